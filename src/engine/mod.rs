@@ -1,0 +1,17 @@
+//! The engine: the bouncing ball impact map and everything computed from it.
+//!
+//! Pure and synchronous: no terminal, no printing, no files, no global state. Errors are
+//! [`EngineError`] values; the binary turns them into messages and exit codes.
+
+pub mod error;
+pub mod impact;
+pub mod map;
+pub mod poly;
+pub mod system;
+pub mod table;
+
+pub use error::EngineError;
+pub use impact::{Landing, Launch, Solver};
+pub use map::{Event, EventKind, Halt, ImpactMap, Mode, State};
+pub use system::{kappa_c, System};
+pub use table::{Table, TableSpec};
