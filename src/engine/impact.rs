@@ -15,7 +15,7 @@
 //!
 //! Time is passed as (integer period, phase in [0, 1)); flight durations are short f64s.
 
-use super::poly::Poly;
+use super::poly::{Poly, MAX_COEFFS};
 use super::system::System;
 use super::table::Shape;
 use std::f64::consts::PI;
@@ -125,25 +125,22 @@ fn poly_landing(sys: &System, launch: &Launch) -> Result<Landing, FlightError> {
 
     // First piece: the gap in the local variable s = τ, with exactly known low-order
     // coefficients: gap(s) = h + w s − s²/2 − α (Q(s) − Q(0) − Q'(0) s).
-    let q = first.f.shift(off).scale(alpha);
-    let mut gap = Poly::zero();
-    let deg = q.degree().max(2);
-    for k in 0..=deg {
-        let c = match k {
-            0 => launch.height,
-            1 => launch.w,
-            2 => -0.5 - q.coeff(2),
-            _ => -q.coeff(k),
-        };
-        gap = gap.with_coeff(k, c);
+    let q = first.f.shift(off);
+    let mut c = [0.0; MAX_COEFFS];
+    let len = q.coeffs().len().max(3);
+    for (k, ck) in c.iter_mut().enumerate().take(len).skip(3) {
+        *ck = -alpha * q.coeff(k);
     }
+    c[0] = launch.height;
+    c[1] = launch.w;
+    c[2] = -0.5 - alpha * q.coeff(2);
+    let gap = Poly::from_array(c, len);
     let search = if launch.height > 0.0 {
         gap
     } else {
         lift_off_quotient(&gap, launch.w)?
     };
-    let len = first.end - phi;
-    if let Some(s) = first_positive_root(&search, len) {
+    if let Some(s) = first_positive_root(&search, first.end - phi) {
         return Ok(landing_on(
             launch,
             0,
@@ -191,19 +188,16 @@ fn poly_landing(sys: &System, launch: &Launch) -> Result<Landing, FlightError> {
             j += 1;
             continue;
         }
-        let fp = p.f.scale(alpha);
-        let vb = v - tau_lo;
-        let mut g = Poly::zero();
-        let deg = fp.degree().max(2);
-        for k in 0..=deg {
-            let c = match k {
-                0 => zb - fp.coeff(0),
-                1 => vb - fp.coeff(1),
-                2 => -0.5 - fp.coeff(2),
-                _ => -fp.coeff(k),
-            };
-            g = g.with_coeff(k, c);
+        let fp = &p.f;
+        let mut c = [0.0; MAX_COEFFS];
+        let len = fp.coeffs().len().max(3);
+        for (k, ck) in c.iter_mut().enumerate().take(len).skip(3) {
+            *ck = -alpha * fp.coeff(k);
         }
+        c[0] = zb - alpha * fp.coeff(0);
+        c[1] = (v - tau_lo) - alpha * fp.coeff(1);
+        c[2] = -0.5 - alpha * fp.coeff(2);
+        let g = Poly::from_array(c, len);
         let (g0, err) = g.eval_with_bound(0.0);
         let root = if g0 <= err {
             Some(0.0)

@@ -49,6 +49,14 @@ impl Poly {
         p
     }
 
+    /// A polynomial from a fixed array of ascending coefficients (the first `len`).
+    #[inline]
+    pub fn from_array(c: [f64; MAX_COEFFS], len: usize) -> Self {
+        let mut p = Poly { c, len };
+        p.trim();
+        p
+    }
+
     fn trim(&mut self) {
         while self.len > 0 && self.c[self.len - 1] == 0.0 {
             self.len -= 1;
@@ -247,6 +255,10 @@ impl Poly {
             }
             return;
         }
+        if self.len == 3 {
+            self.quadratic_roots(lo, hi, out);
+            return;
+        }
         // Critical points split [lo, hi] into monotone segments.
         let crit = self.derivative().roots_in(lo, hi);
         let mut pts = [0.0f64; MAX_COEFFS + 1];
@@ -290,11 +302,46 @@ impl Poly {
         }
     }
 
+    /// Roots of a quadratic in `[lo, hi]` in closed form (the cancellation-free variant
+    /// of the formula); a discriminant that is negative only within rounding gives a
+    /// touching root at the vertex.
+    fn quadratic_roots(&self, lo: f64, hi: f64, out: &mut RootList) {
+        let (c, b, a) = (self.c[0], self.c[1], self.c[2]);
+        let disc = b * b - 4.0 * a * c;
+        let disc_err = 8.0 * EPS * (b * b + (4.0 * a * c).abs());
+        let push_if_in = |x: f64, out: &mut RootList| {
+            if x >= lo && x <= hi {
+                out.push(x);
+            }
+        };
+        if disc < -disc_err {
+            return;
+        }
+        if disc <= disc_err {
+            let x = -b / (2.0 * a);
+            let (v, e) = self.eval_with_bound(x);
+            if v.abs() <= e || disc >= 0.0 {
+                push_if_in(x, out);
+            }
+            return;
+        }
+        let q = -0.5 * (b + b.signum() * disc.sqrt());
+        let (x1, x2) = if q != 0.0 { (q / a, c / q) } else { (0.0, 0.0) };
+        let (x1, x2) = if x1 <= x2 { (x1, x2) } else { (x2, x1) };
+        push_if_in(x1, out);
+        push_if_in(x2, out);
+    }
+
     /// Refine the single root in `(a, b)`, where `p(a)` has sign of `pa` and `p(b)` the
     /// opposite, by Newton steps kept inside a shrinking bracket.
     fn refine(&self, mut a: f64, mut b: f64, pa: f64) -> f64 {
         let neg_at_a = pa < 0.0;
-        let mut x = 0.5 * (a + b);
+        // Start from the secant point: Newton then converges in a few steps.
+        let pb = self.eval(b);
+        let mut x = a - pa * (b - a) / (pb - pa);
+        if !(x > a && x < b) {
+            x = 0.5 * (a + b);
+        }
         for _ in 0..200 {
             let (v, dv) = self.eval_d(x);
             if v == 0.0 {
@@ -309,11 +356,15 @@ impl Poly {
                 break;
             }
             let newton = x - v / dv;
-            x = if dv != 0.0 && newton > a && newton < b {
-                newton
+            if dv != 0.0 && newton > a && newton < b {
+                // Converged: the Newton correction is at the rounding level of x.
+                if (newton - x).abs() <= 4.0 * EPS * x.abs() {
+                    return newton;
+                }
+                x = newton;
             } else {
-                0.5 * (a + b)
-            };
+                x = 0.5 * (a + b);
+            }
             // Stop once Newton no longer moves (converged to the last bit).
             if x == a || x == b {
                 break;
