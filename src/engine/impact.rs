@@ -15,6 +15,7 @@
 //!
 //! Time is passed as (integer period, phase in [0, 1)); flight durations are short f64s.
 
+use super::exact_sum::{ball_at, flight_time};
 use super::poly::{Poly, MAX_COEFFS};
 use super::system::System;
 use super::table::Shape;
@@ -182,12 +183,15 @@ fn poly_landing(sys: &System, launch: &Launch) -> Result<Landing, FlightError> {
                 continue;
             }
         }
-        let zb = z0 + tau_lo * (v - 0.5 * tau_lo);
+        let zb_rough = z0 + tau_lo * (v - 0.5 * tau_lo);
         let ze = z0 + tau_hi * (v - 0.5 * tau_hi);
-        if zb.min(ze) > alpha * p.max {
+        // Skip with a margin far above the rounding of the rough heights.
+        let margin = 1e-9 * (1.0 + z0.abs() + (v * tau_hi).abs() + tau_hi * tau_hi);
+        if zb_rough.min(ze) > alpha * p.max + margin {
             j += 1;
             continue;
         }
+        let (zb, vb) = ball_at(z0, v, flight_time(m, p.start, phi));
         let fp = &p.f;
         let mut c = [0.0; MAX_COEFFS];
         let len = fp.coeffs().len().max(3);
@@ -195,7 +199,7 @@ fn poly_landing(sys: &System, launch: &Launch) -> Result<Landing, FlightError> {
             *ck = -alpha * fp.coeff(k);
         }
         c[0] = zb - alpha * fp.coeff(0);
-        c[1] = (v - tau_lo) - alpha * fp.coeff(1);
+        c[1] = vb - alpha * fp.coeff(1);
         c[2] = -0.5 - alpha * fp.coeff(2);
         let g = Poly::from_array(c, len);
         let (g0, err) = g.eval_with_bound(0.0);
@@ -297,6 +301,34 @@ fn cos_increment(phi: f64, tau: f64) -> f64 {
 
 /// Exact (bounded-step) solver on the sine table.
 fn sine_landing(sys: &System, launch: &Launch) -> Result<Landing, FlightError> {
+    sine_landing_from(sys, launch, true)
+}
+
+/// The ball re-launched, in flight, just before it descends into the band |z| ≤ α where
+/// it can meet the table. The new launch point's time is exact (period, phase) and its
+/// height above the table is computed with compensated arithmetic, so the remaining
+/// flight is short and no precision is lost to the long arc above the table.
+fn reanchor_above_band(sys: &System, launch: &Launch, z0: f64, down: f64) -> Launch {
+    // A little before the crossing, the ball is strictly above every table height.
+    let t = launch.phase + down * (1.0 - 1e-12) - 1e-12;
+    let (period, phase) = normalize(launch.period, t);
+    let m = period - launch.period;
+    let (z, v) = ball_at(z0, launch.v, flight_time(m, phase, launch.phase));
+    let height = (z - sys.f(phase)).max(0.0);
+    Launch {
+        period,
+        phase,
+        height,
+        v,
+        w: v - sys.df(phase),
+    }
+}
+
+fn sine_landing_from(
+    sys: &System,
+    launch: &Launch,
+    may_skip: bool,
+) -> Result<Landing, FlightError> {
     let a = sys.alpha;
     let w2 = 2.0 * PI;
     let phi = launch.phase;
@@ -335,11 +367,17 @@ fn sine_landing(sys: &System, launch: &Launch) -> Result<Landing, FlightError> {
             return Ok(sine_landing_at(launch, tau, dgap(tau)));
         }
         // Skip the stretch where the ball is above the highest table position.
-        if let Some(d) = down {
+        if let (true, Some(d)) = (may_skip, down) {
             let zb = z0 + tau * (v - 0.5 * tau);
-            if zb > a && tau < d {
-                tau = d;
-                continue;
+            if zb > a * (1.0 + 1e-9) + 1e-9 && tau < d && d > 1.0 {
+                let anchor = reanchor_above_band(sys, launch, z0, d);
+                let rest = sine_landing_from(sys, &anchor, false)?;
+                let m = anchor.period - launch.period;
+                let (head, _) = flight_time(m, anchor.phase, launch.phase);
+                return Ok(Landing {
+                    flight: head + rest.flight,
+                    ..rest
+                });
             }
         }
         let bound = if tau == 0.0 && g0 == 0.0 {

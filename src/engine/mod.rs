@@ -4,6 +4,7 @@
 //! [`EngineError`] values; the binary turns them into messages and exit codes.
 
 pub mod error;
+pub mod exact_sum;
 pub mod impact;
 pub mod map;
 pub mod poly;
