@@ -18,12 +18,7 @@ fn main() -> ExitCode {
                 return ExitCode::SUCCESS;
             }
             _ => {
-                let text = e.render().to_string();
-                let first = text
-                    .lines()
-                    .find(|l| !l.trim().is_empty())
-                    .unwrap_or("error: invalid arguments");
-                eprintln!("{}", first.trim_end());
+                eprintln!("{}", one_line_clap_error(&e.render().to_string()));
                 return ExitCode::from(2);
             }
         },
@@ -47,6 +42,20 @@ fn main() -> ExitCode {
             ExitCode::from(code)
         }
     }
+}
+
+/// Clap's message cut to one line, keeping the list of valid values if it gives one.
+fn one_line_clap_error(text: &str) -> String {
+    let mut lines = text.lines().map(str::trim).filter(|l| !l.is_empty());
+    let mut msg = lines
+        .next()
+        .unwrap_or("error: invalid arguments")
+        .to_string();
+    if let Some(valid) = lines.find(|l| l.starts_with("[possible values")) {
+        msg.push(' ');
+        msg.push_str(valid);
+    }
+    msg
 }
 
 fn one_line(e: &anyhow::Error) -> String {
