@@ -458,11 +458,13 @@ fn sine_landing_at(launch: &Launch, tau: f64, vrel: f64) -> Landing {
 
 /// The paper's solver: sign test at the nodes of a fixed 10⁻² grid, bisection to 10⁻⁹.
 ///
-/// Nodes are the absolute times n + j/100. The search starts at the first node after the
-/// launch; the first node where the gap is negative closes the bracket, whose left end is
-/// the previous node (or the launch time, if the ball is already below the table at the
-/// first node). As in the paper, this resolves at most one impact per grid cell and can
-/// miss a contact whose gap dips below zero and back between two nodes.
+/// Nodes are the absolute times n + j/100. As in the paper, at most one impact is
+/// resolved per grid cell: the search starts at the first node after the launch's cell.
+/// If the ball is already below the table there, the impact is placed at that node;
+/// otherwise the first later node where the gap is negative closes a bracket with the
+/// node before it, and bisection narrows it to 10⁻⁹ (the midpoint is returned). Like
+/// the paper's, this solver misses a contact whose gap dips below zero and back between
+/// two nodes, and resolves chattering only at one impact per cell.
 fn grid_landing(sys: &System, launch: &Launch) -> Result<Landing, FlightError> {
     let phi = launch.phase;
     let z0 = sys.f(phi) + launch.height;
@@ -475,15 +477,29 @@ fn grid_landing(sys: &System, launch: &Launch) -> Result<Landing, FlightError> {
     let last = crossing_times(z0, v, sys.alpha * lo_f).map_or(1.0, |c| c.1) + 1.0;
     let max_nodes = ((last / GRID_STEP).ceil() as i64 + 2).min(1 << 40);
     let cell = ((phi * GRID_CELLS as f64).floor() as i64).min(GRID_CELLS - 1);
-    let mut prev_tau = 0.0;
-    let mut prev_g = launch.height;
-    for i in 1..=max_nodes {
+    let node_tau = |i: i64| {
         let node = cell + i;
-        let tau = (node / GRID_CELLS) as f64 + (node % GRID_CELLS) as f64 * GRID_STEP - phi;
-        let g = gap(tau);
-        if g < 0.0 {
+        (node / GRID_CELLS) as f64 + (node % GRID_CELLS) as f64 * GRID_STEP - phi
+    };
+    let land = |t: f64| {
+        let (period, phase) = normalize(launch.period, phi + t);
+        let vrel = (v - t) - sys.df(phase);
+        Ok(Landing {
+            period,
+            phase,
+            flight: t,
+            vrel: vrel.min(0.0),
+        })
+    };
+    let first = node_tau(1);
+    if gap(first) < 0.0 {
+        return land(first);
+    }
+    let mut prev_tau = first;
+    for i in 2..=max_nodes {
+        let tau = node_tau(i);
+        if gap(tau) < 0.0 {
             let (mut lo, mut hi) = (prev_tau, tau);
-            let _ = prev_g;
             while hi - lo > GRID_TOLERANCE {
                 let mid = 0.5 * (lo + hi);
                 if gap(mid) >= 0.0 {
@@ -492,18 +508,9 @@ fn grid_landing(sys: &System, launch: &Launch) -> Result<Landing, FlightError> {
                     hi = mid;
                 }
             }
-            let t = 0.5 * (lo + hi);
-            let (period, phase) = normalize(launch.period, phi + t);
-            let vrel = (v - t) - sys.df(phase);
-            return Ok(Landing {
-                period,
-                phase,
-                flight: t,
-                vrel: vrel.min(0.0),
-            });
+            return land(0.5 * (lo + hi));
         }
         prev_tau = tau;
-        prev_g = g;
     }
     Err(FlightError::NoLanding)
 }
