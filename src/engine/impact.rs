@@ -148,7 +148,7 @@ fn poly_landing(sys: &System, launch: &Launch) -> Result<Landing, FlightError> {
             first.start,
             off + s,
             s,
-            gap.derivative().eval(s),
+            gap.eval_d(s).1,
         ));
     }
 
@@ -273,7 +273,7 @@ fn sine_excess(phi: f64, tau: f64) -> f64 {
     let w = 2.0 * PI;
     let x = w * tau;
     let th = w * phi;
-    if x.abs() < 0.5 {
+    if x.abs() < 0.01 {
         let (s, c) = th.sin_cos();
         let derivs = [s, c, -s, -c];
         let mut term = x;
@@ -288,15 +288,29 @@ fn sine_excess(phi: f64, tau: f64) -> f64 {
         }
         sum
     } else {
-        let (_, ph) = normalize(0, phi + tau);
-        (w * ph).sin() - th.sin() - x * th.cos()
+        // sin(θ + x) − sin θ = 2 cos(θ + x/2) sin(x/2), free of cancellation; the phase
+        // of θ + x/2 is reduced first so long flights keep full precision.
+        let (_, mid) = normalize(0, phi + 0.5 * tau);
+        2.0 * (w * mid).cos() * sin_pi(tau) - x * th.cos()
+    }
+}
+
+/// sin(πτ) with the argument reduced exactly: sin(π(n + f)) = (−1)ⁿ sin(πf).
+fn sin_pi(tau: f64) -> f64 {
+    let n = tau.floor();
+    let s = (PI * (tau - n)).sin();
+    if (n as i64) % 2 == 0 {
+        s
+    } else {
+        -s
     }
 }
 
 /// cos(2π(φ+τ)) − cos 2πφ, accurate for tiny τ.
 fn cos_increment(phi: f64, tau: f64) -> f64 {
     let w = 2.0 * PI;
-    -2.0 * (w * (phi + 0.5 * tau)).sin() * (PI * tau).sin()
+    let (_, mid) = normalize(0, phi + 0.5 * tau);
+    -2.0 * (w * mid).sin() * sin_pi(tau)
 }
 
 /// Exact (bounded-step) solver on the sine table.

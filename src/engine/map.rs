@@ -308,7 +308,7 @@ impl ImpactMap {
 /// If the impacts following this post-impact state accumulate within
 /// [`CHATTER_WINDOW`], the accumulation time.
 fn chatter_limit(sys: &System, st: &State) -> Option<(i64, f64)> {
-    let a = 1.0 + sys.jet(st.phase)[2];
+    let a = 1.0 + sys.ddf(st.phase);
     if a <= 0.0 {
         return None;
     }
@@ -328,7 +328,7 @@ fn chatter_limit(sys: &System, st: &State) -> Option<(i64, f64)> {
         }
     }
     let (period, phase) = normalize(st.period, end);
-    if !forced && 1.0 + sys.jet(phase)[2] <= 0.0 {
+    if !forced && 1.0 + sys.ddf(phase) <= 0.0 {
         return None;
     }
     Some((period, phase))

@@ -40,13 +40,19 @@ impl System {
     /// f at `phase`.
     #[inline]
     pub fn f(&self, phase: f64) -> f64 {
-        self.alpha * self.table.value(phase)
+        self.alpha * self.table.derivative(phase, 0)
     }
 
     /// f' at `phase`.
     #[inline]
     pub fn df(&self, phase: f64) -> f64 {
-        self.jet(phase)[1]
+        self.alpha * self.table.derivative(phase, 1)
+    }
+
+    /// f'' at `phase` (right derivative at breakpoints).
+    #[inline]
+    pub fn ddf(&self, phase: f64) -> f64 {
+        self.alpha * self.table.derivative(phase, 2)
     }
 
     /// κ_c(r) = −2(1 + r²)/(1 + r)², the period-doubling edge of the stable band.

@@ -339,10 +339,37 @@ impl Table {
         }
     }
 
+    /// The `order`-th derivative of F (0 to 3) at `phase`, alone (cheaper than [`Self::jet`]).
+    #[inline]
+    pub fn derivative(&self, phase: f64, order: usize) -> f64 {
+        match &self.shape {
+            Shape::Sine => {
+                let w = 2.0 * PI;
+                let x = w * phase;
+                match order {
+                    0 => x.sin(),
+                    1 => w * x.cos(),
+                    2 => -w * w * x.sin(),
+                    _ => -w * w * w * x.cos(),
+                }
+            }
+            Shape::Piecewise(pieces) => {
+                let p = &pieces[self.piece_index(phase)];
+                let s = phase - p.start;
+                match order {
+                    0 => p.f.eval(s),
+                    1 => p.d1.eval(s),
+                    2 => p.d2.eval(s),
+                    _ => p.d3.eval(s),
+                }
+            }
+        }
+    }
+
     /// F at `phase`.
     #[inline]
     pub fn value(&self, phase: f64) -> f64 {
-        self.jet(phase)[0]
+        self.derivative(phase, 0)
     }
 
     /// Rigorous bounds (min, max) of F over a period.
