@@ -8,7 +8,7 @@
 use super::{initial_state, system_from};
 use crate::cli::OrbitArgs;
 use crate::engine::{Event, Halt, ImpactMap};
-use crate::output::{csv_row, json_num, Format};
+use crate::output::{csv_row, json_num, significant, Format};
 use std::io::{self, BufWriter, Write};
 
 pub fn run(args: &OrbitArgs) -> anyhow::Result<()> {
@@ -90,11 +90,11 @@ fn write_event<W: Write>(
     match format {
         Format::Text => writeln!(
             out,
-            "{index:>8} {:>12} {:>18.15} {:>18.15} {:>18.15}  {}",
+            "{index:>8} {:>12} {:>18.15} {:>18} {:>18}  {}",
             e.period,
             e.phase,
-            e.v,
-            e.vrel,
+            significant(e.v, 15),
+            significant(e.vrel, 15),
             e.kind.as_str()
         ),
         Format::Csv => csv_row(

@@ -25,7 +25,7 @@ use std::f64::consts::PI;
 pub const CHATTER_WINDOW: f64 = 1e-8;
 /// Below this relative velocity the ball is taken to be on the table whatever the window.
 pub const W_FLOOR: f64 = 1e-14;
-/// Largest |v0| and initial height accepted for an initial state.
+/// Largest relative velocity |v0 − f'(t0)| and initial height accepted for an initial state.
 pub const MAX_INITIAL: f64 = 1e3;
 
 /// What happened at an event.
@@ -136,11 +136,11 @@ impl State {
                 range: "a phase in [0, 1)",
             });
         }
-        if !(v.is_finite() && v.abs() <= MAX_INITIAL) {
+        if !(v.is_finite() && (v - sys.df(phase)).abs() <= MAX_INITIAL) {
             return Err(EngineError::InvalidParameter {
                 name: "v0",
                 value: v.to_string(),
-                range: "[-1000, 1000]",
+                range: "|v0 − f'(t0)| ≤ 1000 (velocity relative to the table)",
             });
         }
         if !(height.is_finite() && (0.0..=MAX_INITIAL).contains(&height)) {
