@@ -7,6 +7,7 @@ pub mod error;
 pub mod impact;
 pub mod map;
 pub mod poly;
+pub mod sweep;
 pub mod system;
 pub mod table;
 
