@@ -15,7 +15,8 @@
 //! bit for bit (the map is deterministic, so it then repeats forever). When both
 //! windows are at round-off level the last reliable rate measured for this p is used;
 //! if none was ever measured the orbit fell to round-off within two windows, which only
-//! a strongly contracting cycle does, and it is accepted.
+//! a strongly contracting cycle does, and it is accepted unless the mismatch grew from
+//! the older window to the newer (an unstable cycle met at round-off level).
 
 use crate::engine::map::EventKind;
 
@@ -178,7 +179,7 @@ impl Detector {
                 }
                 match self.rate {
                     Some((q, rho)) if q == p => d_new / (1.0 - rho) <= tol,
-                    _ => d_old < ROUNDOFF && d_new < ROUNDOFF,
+                    _ => d_old < ROUNDOFF && d_new < ROUNDOFF && d_new <= d_old,
                 }
             };
             if !accept {
