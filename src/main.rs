@@ -30,7 +30,10 @@ fn main() -> ExitCode {
     };
     let result = match cli.command {
         Some(cmd) => bouncemap::commands::run(cmd),
-        None => bouncemap::commands::demo(),
+        None => bouncemap::tui::run(
+            bouncemap::tui::Options::from(&cli.tui),
+            std::sync::Arc::new(bouncemap::tui::workers::Unavailable),
+        ),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
