@@ -6,6 +6,7 @@
 pub mod error;
 pub mod impact;
 pub mod map;
+pub mod orbits;
 pub mod poly;
 pub mod sweep;
 pub mod system;
