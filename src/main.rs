@@ -32,7 +32,7 @@ fn main() -> ExitCode {
         Some(cmd) => bouncemap::commands::run(cmd),
         None => bouncemap::tui::run(
             bouncemap::tui::Options::from(&cli.tui),
-            std::sync::Arc::new(bouncemap::tui::workers::Unavailable),
+            std::sync::Arc::new(bouncemap::tui::analysis::EngineAnalysis),
         ),
     };
     match result {

@@ -13,6 +13,7 @@
 //! change bumps a generation that stops stale work; the screen is redrawn only when
 //! something changed, never faster than the frame cap.
 
+pub mod analysis;
 pub mod app;
 pub mod config;
 pub mod export;

@@ -47,7 +47,7 @@ impl Default for Params {
             v0: None,
             lo: 0.1,
             hi: 0.7,
-            transient: 500,
+            transient: 2000,
             keep: 100,
             file: None,
         }

@@ -29,14 +29,19 @@ pub fn setup(mouse: bool) -> io::Result<Term> {
     ACTIVE.store(true, Ordering::SeqCst);
     MOUSE.store(mouse, Ordering::SeqCst);
     let mut out = io::stdout();
-    execute!(out, EnterAlternateScreen, cursor::Hide)?;
+    // Clear ourselves: ratatui's clear() asks the terminal for the cursor position,
+    // a round trip over ssh that some terminals never answer.
+    execute!(
+        out,
+        EnterAlternateScreen,
+        cursor::Hide,
+        terminal::Clear(terminal::ClearType::All)
+    )?;
     if mouse {
         execute!(out, EnableMouseCapture)?;
     }
     let backend = CrosstermBackend::new(BufWriter::with_capacity(1 << 16, io::stdout()));
-    let mut t = Terminal::new(backend)?;
-    t.clear()?;
-    Ok(t)
+    Terminal::new(backend)
 }
 
 /// Leave the alternate screen and raw mode. Safe to call more than once, and from the

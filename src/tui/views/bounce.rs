@@ -67,40 +67,52 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
             .render(inner, buf);
         return;
     }
-    let side = 17u16.min(inner.width / 2);
-    let [plot, numbers] =
-        Layout::horizontal([Constraint::Min(0), Constraint::Length(side)]).areas(inner);
+    // Full precision below the plot when there is room, else a narrow column beside it.
+    let below = inner.height >= 12;
+    let (plot, numbers) = if below {
+        let [p, n] = Layout::vertical([Constraint::Min(0), Constraint::Length(5)]).areas(inner);
+        (p, n)
+    } else {
+        let side = 13u16.min(inner.width / 2);
+        let [p, n] =
+            Layout::horizontal([Constraint::Min(0), Constraint::Length(side)]).areas(inner);
+        (p, n)
+    };
+    let (dec, gap) = if below { (15, "    ") } else { (6, " ") };
     let mut lines = Vec::new();
-    match b.events.last() {
-        Some(e) => {
-            lines.push(Line::styled(e.kind.as_str().to_string(), app.theme.focus()));
-            lines.push(Line::from(format!("period {}", e.period)));
-            lines.push(Line::from(format!("t̂ {:.9}", e.phase)));
-            lines.push(Line::from(format!("v  {:.9}", e.v)));
-            lines.push(Line::from(format!("vrel {:.7}", e.vrel)));
-        }
-        None => {
-            let s = b.history[0];
-            lines.push(Line::styled("start", app.theme.focus()));
-            lines.push(Line::from(format!("t̂ {:.9}", s.phase)));
-            lines.push(Line::from(format!("v  {:.9}", s.v)));
-        }
-    }
-    if let Some(h) = &b.halt {
-        lines.push(Line::styled(
-            match h {
-                crate::engine::Halt::Resting { .. } => "resting for good",
-                crate::engine::Halt::NoLanding { .. } => "no landing",
-            },
-            app.theme.error(),
-        ));
-    }
     let hint = format!(
         "{} +1 {} +10 {} back",
         app.keymap.hint(crate::tui::keymap::Action::StepOne),
         app.keymap.hint(crate::tui::keymap::Action::StepTen),
         app.keymap.hint(crate::tui::keymap::Action::StepBack)
     );
+    match b.events.last() {
+        Some(e) => {
+            let mut head = vec![
+                ratatui::text::Span::styled(e.kind.as_str().to_string(), app.theme.focus()),
+                ratatui::text::Span::raw(format!(" period {}", e.period)),
+            ];
+            if let Some(h) = &b.halt {
+                head.push(ratatui::text::Span::styled(
+                    match h {
+                        crate::engine::Halt::Resting { .. } => " resting",
+                        crate::engine::Halt::NoLanding { .. } => " no landing",
+                    },
+                    app.theme.error(),
+                ));
+            }
+            lines.push(Line::from(head));
+            lines.push(Line::from(format!("t̂{gap}{:.dec$}", e.phase)));
+            lines.push(Line::from(format!("v{gap}{:.dec$}", e.v)));
+            lines.push(Line::from(format!("vrel {:.dec$}", e.vrel)));
+        }
+        None => {
+            let s = b.history[0];
+            lines.push(Line::styled("start", app.theme.focus()));
+            lines.push(Line::from(format!("t̂{gap}{:.dec$}", s.phase)));
+            lines.push(Line::from(format!("v{gap}{:.dec$}", s.v)));
+        }
+    }
     lines.push(Line::styled(hint, app.theme.dim()));
     Paragraph::new(lines)
         .wrap(Wrap { trim: true })
@@ -109,7 +121,7 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
     let (table, ball, (t0, t1)) = curves(&sys, &b.history, (plot.width as usize * 2).max(16));
     if ball.is_empty() {
         Paragraph::new(format!(
-            "press {} to step one impact",
+            "{}: one impact",
             app.keymap.hint(crate::tui::keymap::Action::StepOne)
         ))
         .style(app.theme.dim())

@@ -189,7 +189,7 @@ fn region_plot(app: &App, area: Rect, buf: &mut Buffer) {
                 coords: &here,
                 color: theme.mark().fg.unwrap_or_default(),
             });
-            ctx.print(0.0, 1.0, Line::styled("r↑ α→ stable", theme.dim()));
+            ctx.print(0.0, 0.0, Line::styled("(α, r)", theme.dim()));
             ctx.print(
                 app.params.alpha.min(amax),
                 app.params.r,

@@ -53,6 +53,13 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
         k(Action::Export),
         k(Action::Quit)
     );
+    let used = params.chars().count() + work.chars().count() + 3;
+    let room = (area.width as usize).saturating_sub(used);
+    let hints = if hints.chars().count() > room {
+        format!(" {} help  {} quit", k(Action::Help), k(Action::Quit))
+    } else {
+        hints
+    };
     let line = Line::from(vec![
         Span::styled(params, app.theme.selected()),
         Span::styled(
