@@ -381,11 +381,7 @@ impl App {
             return;
         };
         match key {
-            KeyCode::Char(c) => {
-                if buf.chars().count() < 64 {
-                    buf.push(c)
-                }
-            }
+            KeyCode::Char(c) if buf.chars().count() < 64 => buf.push(c),
             KeyCode::Backspace => {
                 buf.pop();
             }
@@ -453,7 +449,7 @@ impl App {
     pub fn zoom_to(&mut self, lo: f64, hi: f64) {
         let lo = lo.max(1e-6);
         let hi = hi.min(1000.0);
-        if !(hi - lo > 1e-9) {
+        if hi - lo <= 1e-9 || hi.is_nan() || lo.is_nan() {
             self.message = Some((
                 "zoom: the window is empty; mark two different α".into(),
                 true,

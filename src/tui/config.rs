@@ -109,8 +109,7 @@ impl Config {
         let f: File = toml::from_str(text).map_err(|e| {
             e.to_string()
                 .lines()
-                .filter(|l| !l.trim().is_empty())
-                .last()
+                .rfind(|l| !l.trim().is_empty())
                 .unwrap_or("invalid TOML")
                 .trim()
                 .to_string()

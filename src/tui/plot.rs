@@ -361,7 +361,11 @@ pub fn ticks(r: Range, n: usize) -> Vec<f64> {
         // Round away binary noise (0.6000000000000001) so labels and tests see 0.6.
         let clean = (t / step).round() * step;
         let clean = (clean * 1e12).round() / 1e12;
-        v.push(if clean.abs() < step * 1e-9 { 0.0 } else { clean });
+        v.push(if clean.abs() < step * 1e-9 {
+            0.0
+        } else {
+            clean
+        });
         t += step;
     }
     v

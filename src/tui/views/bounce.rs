@@ -13,13 +13,12 @@ use ratatui::widgets::{Paragraph, Widget, Wrap};
 /// Events shown in the plot.
 pub const SHOWN: usize = 4;
 
+/// Sampled curves: (table points, ball points, time span).
+pub type Curves = (Vec<(f64, f64)>, Vec<(f64, f64)>, (f64, f64));
+
 /// Sample the curves: (table points, ball points) over the last `SHOWN` flights, with
 /// time measured from the start of the window.
-pub fn curves(
-    sys: &System,
-    history: &[State],
-    samples: usize,
-) -> (Vec<(f64, f64)>, Vec<(f64, f64)>, (f64, f64)) {
+pub fn curves(sys: &System, history: &[State], samples: usize) -> Curves {
     let n = history.len();
     if n < 2 {
         return (Vec::new(), Vec::new(), (0.0, 1.0));
