@@ -14,6 +14,57 @@ use clap::{Args, Parser, Subcommand, ValueEnum};
 pub struct Cli {
     #[command(subcommand)]
     pub command: Option<Command>,
+    #[command(flatten)]
+    pub tui: TuiArgs,
+}
+
+/// Options of the terminal application (used without a subcommand).
+#[derive(Args, Debug, Clone, Default)]
+pub struct TuiArgs {
+    /// Start with this table: sine, quad, cubic, fd:D or PATH.toml.
+    #[arg(long = "table", value_name = "TABLE")]
+    pub tui_table: Option<String>,
+    /// Start with this amplitude α; valid (0, 1000].
+    #[arg(long = "alpha", value_parser = parse_alpha, value_name = "A")]
+    pub tui_alpha: Option<f64>,
+    /// Start with this restitution r; valid (0, 1).
+    #[arg(long = "r", value_parser = parse_r, value_name = "R")]
+    pub tui_r: Option<f64>,
+    /// Frame cap while interacting, frames per second; valid 1..=60 [default: 15].
+    #[arg(long, value_parser = parse_fps, value_name = "N")]
+    pub fps: Option<u32>,
+    /// Colours: auto (NO_COLOR honoured, else 256), never, 16, 256, truecolor.
+    #[arg(long, value_parser = parse_color, value_name = "MODE")]
+    pub color: Option<crate::tui::theme::ColorChoice>,
+    /// Plot glyphs: braille, halfblock or dot (for fonts without braille).
+    #[arg(long, value_parser = parse_marker, value_name = "MARKER")]
+    pub marker: Option<crate::tui::plot::Marker>,
+    /// Capture the mouse: click on the diagram sets α, drag zooms.
+    #[arg(long)]
+    pub mouse: bool,
+    /// Config file (TOML: keys and defaults); default ~/.config/bouncemap/config.toml.
+    #[arg(long, value_name = "PATH")]
+    pub config: Option<std::path::PathBuf>,
+}
+
+/// --fps: 1..=60.
+pub fn parse_fps(s: &str) -> Result<u32, String> {
+    match s.trim().parse::<u32>() {
+        Ok(n) if (1..=60).contains(&n) => Ok(n),
+        _ => Err(format!(
+            "'{s}' is out of range: valid a whole number in 1..=60"
+        )),
+    }
+}
+
+/// --color.
+pub fn parse_color(s: &str) -> Result<crate::tui::theme::ColorChoice, String> {
+    s.parse()
+}
+
+/// --marker.
+pub fn parse_marker(s: &str) -> Result<crate::tui::plot::Marker, String> {
+    s.parse()
 }
 
 /// The headless subcommands.

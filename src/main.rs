@@ -25,7 +25,10 @@ fn main() -> ExitCode {
     };
     let result = match cli.command {
         Some(cmd) => bouncemap::commands::run(cmd),
-        None => bouncemap::commands::demo(),
+        None => bouncemap::tui::run(
+            bouncemap::tui::Options::from(&cli.tui),
+            std::sync::Arc::new(bouncemap::tui::analysis::EngineAnalysis),
+        ),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -25,27 +25,3 @@ pub fn initial_state(sys: &System, args: &InitialArgs) -> Result<State, InputErr
     let v0 = args.v0.unwrap_or_else(|| sys.df(args.t0) + DEFAULT_HOP);
     Ok(State::launch(sys, 0, args.t0, v0, args.z0)?)
 }
-
-/// What `bouncemap` does without a subcommand until the terminal application exists:
-/// a short demonstration of the default orbit.
-pub fn demo() -> anyhow::Result<()> {
-    use crate::cli::{OrbitArgs, SolverArg};
-    let args = OrbitArgs {
-        system: SystemArgs {
-            table: "fd:0.1".into(),
-            alpha: 0.45,
-            r: 0.8,
-        },
-        initial: InitialArgs {
-            t0: 0.0,
-            v0: None,
-            z0: 0.0,
-        },
-        bounces: 10,
-        skip: 190,
-        solver: SolverArg::Exact,
-        format: crate::output::Format::Text,
-    };
-    println!("bouncemap: fd:0.1, alpha = 0.45, r = 0.8; impacts 190..200 (see `bouncemap --help`)");
-    orbit::run(&args)
-}

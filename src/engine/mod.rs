@@ -7,7 +7,9 @@ pub mod error;
 pub mod exact_sum;
 pub mod impact;
 pub mod map;
+pub mod orbits;
 pub mod poly;
+pub mod sweep;
 pub mod system;
 pub mod table;
 

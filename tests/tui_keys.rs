@@ -1,0 +1,221 @@
+//! Keys map to the right actions, and actions change the state as documented.
+
+mod tui_common;
+
+use bouncemap::engine::{ImpactMap, Solver};
+use bouncemap::tui::app::{Axis, Effect, Focus, Overlay};
+use bouncemap::tui::params::ParamId;
+use bouncemap::tui::plot::Marker;
+use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
+use tui_common::{app, fill, size};
+
+fn press(a: &mut bouncemap::tui::app::App, code: KeyCode, m: KeyModifiers) {
+    if a.editing.is_some() {
+        a.edit_key(code);
+    } else if let Some(act) = a.keymap.action(&KeyEvent::new(code, m)) {
+        a.handle(act);
+    }
+}
+
+fn key(a: &mut bouncemap::tui::app::App, c: char) {
+    press(a, KeyCode::Char(c), KeyModifiers::NONE)
+}
+
+#[test]
+fn stepping_matches_the_impact_map_exactly_and_steps_back() {
+    let mut a = app(Marker::Braille);
+    let sys = a.system();
+    let mut map = ImpactMap::new(sys.clone(), Solver::Exact, a.params.initial(&sys).unwrap());
+    key(&mut a, 'n');
+    assert_eq!(a.bounce_index(), 1);
+    let e = map.step().unwrap();
+    assert_eq!(a.bounce.events[0], e);
+    press(&mut a, KeyCode::Char('N'), KeyModifiers::SHIFT);
+    assert_eq!(a.bounce_index(), 11);
+    for i in 1..11 {
+        assert_eq!(a.bounce.events[i], map.step().unwrap());
+    }
+    key(&mut a, 'b');
+    key(&mut a, 'b');
+    assert_eq!(a.bounce_index(), 9);
+    key(&mut a, 'n');
+    assert_eq!(a.bounce.events[9], a.bounce.events[9]);
+    assert_eq!(a.bounce_index(), 10);
+    // Stepping again after going back gives the same events as before.
+    let mut fresh = ImpactMap::new(sys.clone(), Solver::Exact, a.params.initial(&sys).unwrap());
+    for e in &a.bounce.events {
+        assert_eq!(*e, fresh.step().unwrap());
+    }
+}
+
+#[test]
+fn nudging_alpha_restarts_phase_and_orbits_but_not_the_alpha_sweep() {
+    let mut a = app(Marker::Braille);
+    assert_eq!(a.selected_param(), ParamId::Alpha);
+    press(&mut a, KeyCode::Right, KeyModifiers::NONE);
+    assert!((a.params.alpha - 0.46).abs() < 1e-12);
+    let fx = a.take_effects();
+    assert!(fx.contains(&Effect::RestartPhase) && fx.contains(&Effect::RestartOrbits));
+    assert!(!fx.contains(&Effect::RestartSweep));
+    press(&mut a, KeyCode::Left, KeyModifiers::SHIFT);
+    assert!((a.params.alpha - 0.459).abs() < 1e-12);
+}
+
+#[test]
+fn changing_r_restarts_everything() {
+    let mut a = app(Marker::Braille);
+    press(&mut a, KeyCode::Down, KeyModifiers::NONE);
+    assert_eq!(a.selected_param(), ParamId::R);
+    press(&mut a, KeyCode::Left, KeyModifiers::NONE);
+    assert!((a.params.r - 0.79).abs() < 1e-12);
+    let fx = a.take_effects();
+    for e in [
+        Effect::RestartSweep,
+        Effect::RestartPhase,
+        Effect::RestartOrbits,
+    ] {
+        assert!(fx.contains(&e), "{e:?} missing");
+    }
+}
+
+#[test]
+fn typed_values_are_set_or_refused_inline_with_the_range() {
+    let mut a = app(Marker::Braille);
+    press(&mut a, KeyCode::Enter, KeyModifiers::NONE);
+    for c in "0.3".chars() {
+        press(&mut a, KeyCode::Char(c), KeyModifiers::NONE);
+    }
+    press(&mut a, KeyCode::Enter, KeyModifiers::NONE);
+    assert_eq!(a.params.alpha, 0.3);
+    a.take_effects();
+    let before = a.params.clone();
+    press(&mut a, KeyCode::Enter, KeyModifiers::NONE);
+    for c in "2000".chars() {
+        press(&mut a, KeyCode::Char(c), KeyModifiers::NONE);
+    }
+    press(&mut a, KeyCode::Enter, KeyModifiers::NONE);
+    assert_eq!(a.params, before, "nothing else changes");
+    assert!(a.take_effects().is_empty());
+    let (msg, err) = a.message.clone().unwrap();
+    assert!(err && msg.contains("(0, 1000]"), "{msg}");
+    // Text that is not a number.
+    press(&mut a, KeyCode::Enter, KeyModifiers::NONE);
+    key(&mut a, 'x');
+    press(&mut a, KeyCode::Enter, KeyModifiers::NONE);
+    assert!(a.message.as_ref().unwrap().0.contains("not a number"));
+    // r at its edge is refused by the nudge, unchanged.
+    a.params.set_text(ParamId::R, "0.995").unwrap();
+    a.selected = 3;
+    press(&mut a, KeyCode::Right, KeyModifiers::NONE);
+    assert_eq!(a.params.r, 0.995);
+    assert!(a.message.as_ref().unwrap().0.contains("(0, 1)"));
+}
+
+#[test]
+fn diagram_zoom_marks_stack_and_enter_sets_alpha() {
+    let mut a = app(Marker::Braille);
+    size(&mut a, 120, 40);
+    press(&mut a, KeyCode::Tab, KeyModifiers::NONE);
+    assert_eq!(a.focus, Focus::Diagram);
+    key(&mut a, 'm');
+    press(&mut a, KeyCode::Right, KeyModifiers::NONE);
+    press(&mut a, KeyCode::Right, KeyModifiers::NONE);
+    key(&mut a, 'm');
+    assert!(
+        (a.params.lo - 0.45).abs() < 1e-9 && (a.params.hi - 0.51).abs() < 1e-9,
+        "{:?}",
+        (a.params.lo, a.params.hi)
+    );
+    assert!(a.take_effects().contains(&Effect::RestartSweep));
+    key(&mut a, '+');
+    assert!((a.params.hi - a.params.lo - 0.03).abs() < 1e-9);
+    key(&mut a, 'z');
+    key(&mut a, 'z');
+    assert_eq!((a.params.lo, a.params.hi), (0.1, 0.7));
+    key(&mut a, 'z');
+    assert!(
+        a.message.as_ref().unwrap().1,
+        "empty zoom stack is reported"
+    );
+    press(&mut a, KeyCode::Left, KeyModifiers::NONE);
+    a.take_effects();
+    press(&mut a, KeyCode::Enter, KeyModifiers::NONE);
+    assert!((a.params.alpha - a.diagram.cursor).abs() < 1e-12);
+    assert!(a.take_effects().contains(&Effect::RestartPhase));
+}
+
+#[test]
+fn toggle_axis_pause_help_presets_export_quit() {
+    let mut a = app(Marker::Braille);
+    size(&mut a, 120, 40);
+    fill(&mut a);
+    let lit = a.diagram.grid.lit_cells();
+    key(&mut a, 't');
+    assert_eq!(a.diagram.axis, Axis::Velocity);
+    assert_eq!(a.diagram.grid.points() as usize, a.diagram.plotted);
+    key(&mut a, 't');
+    assert_eq!(a.diagram.grid.lit_cells(), lit);
+    key(&mut a, ' ');
+    assert!(a.paused);
+    assert_eq!(a.take_effects(), vec![Effect::Pause(true)]);
+    key(&mut a, ' ');
+    assert_eq!(a.take_effects(), vec![Effect::Pause(false)]);
+    press(&mut a, KeyCode::Char('?'), KeyModifiers::SHIFT);
+    assert_eq!(a.overlay, Overlay::Help);
+    key(&mut a, 'n'); // ignored under the overlay
+    assert_eq!(a.bounce_index(), 3);
+    press(&mut a, KeyCode::Esc, KeyModifiers::NONE);
+    assert_eq!(a.overlay, Overlay::None);
+    key(&mut a, 'p');
+    press(&mut a, KeyCode::Down, KeyModifiers::NONE);
+    press(&mut a, KeyCode::Enter, KeyModifiers::NONE);
+    assert_eq!(a.params.table_label(), "fd:0.1");
+    let last = a.presets.len() - 4;
+    a.overlay = Overlay::Presets { selected: last };
+    press(&mut a, KeyCode::Enter, KeyModifiers::NONE);
+    assert_eq!(a.params.table_label(), "sine");
+    assert!(a.take_effects().contains(&Effect::RestartSweep));
+    key(&mut a, 'e');
+    assert_eq!(a.take_effects(), vec![Effect::Export]);
+    press(&mut a, KeyCode::Char('c'), KeyModifiers::CONTROL);
+    assert!(a.quit);
+}
+
+#[test]
+fn stale_generations_are_dropped() {
+    let mut a = app(Marker::Braille);
+    size(&mut a, 120, 40);
+    a.phase_started(5);
+    a.receive(bouncemap::tui::workers::Msg::Phase {
+        gen: 4,
+        points: vec![(0.5, 0.5)],
+        done: true,
+        note: None,
+    });
+    assert!(a.phase.points.is_empty() && !a.phase.done);
+    a.receive(bouncemap::tui::workers::Msg::Phase {
+        gen: 5,
+        points: vec![(0.5, 0.5)],
+        done: true,
+        note: None,
+    });
+    assert_eq!(a.phase.points.len(), 1);
+}
+
+#[test]
+fn export_writes_csv_and_braille_text() {
+    let mut a = app(Marker::Braille);
+    size(&mut a, 120, 40);
+    fill(&mut a);
+    let dir = std::env::temp_dir().join(format!("bouncemap-export-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (csv, txt) = bouncemap::tui::export::export(&a, &dir).unwrap();
+    let c = std::fs::read_to_string(&csv).unwrap();
+    assert_eq!(c.lines().count(), 2 + a.diagram.plotted);
+    assert!(c.lines().nth(1).unwrap().starts_with("alpha,phase,v"));
+    let t = std::fs::read_to_string(&txt).unwrap();
+    assert!(t.chars().any(|c| ('\u{2801}'..='\u{28ff}').contains(&c)));
+    let (csv2, _) = bouncemap::tui::export::export(&a, &dir).unwrap();
+    assert_ne!(csv, csv2, "never overwrites");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -1,0 +1,140 @@
+//! Rendering of the terminal application on ratatui's TestBackend from deterministic
+//! data: the whole screen at 120×40 and 80×24, each panel, the overlays, the fallbacks
+//! (half blocks, too small a terminal). Snapshots live in tests/snapshots/.
+
+mod tui_common;
+
+use bouncemap::tui::app::Overlay;
+use bouncemap::tui::plot::Marker;
+use bouncemap::tui::views;
+use ratatui::buffer::Buffer;
+use ratatui::layout::Rect;
+use tui_common::{app, fill, render, size, text};
+
+fn panel(f: fn(&bouncemap::tui::app::App, Rect, &mut Buffer), w: u16, h: u16) -> String {
+    let mut a = app(Marker::Braille);
+    size(&mut a, 120, 40);
+    fill(&mut a);
+    let area = Rect::new(0, 0, w, h);
+    let mut buf = Buffer::empty(area);
+    f(&a, area, &mut buf);
+    (0..h)
+        .map(|y| {
+            (0..w)
+                .map(|x| buf[(x, y)].symbol().to_string())
+                .collect::<String>()
+                .trim_end()
+                .to_string()
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+#[test]
+fn whole_screen_120x40() {
+    let mut a = app(Marker::Braille);
+    size(&mut a, 120, 40);
+    fill(&mut a);
+    let t = render(&mut a, 120, 40);
+    let s = text(&t);
+    assert!(s.contains("κ_c = -1.0123"), "{s}");
+    assert!(a.diagram.grid.lit_cells() > 100);
+    insta::assert_snapshot!(s);
+}
+
+#[test]
+fn whole_screen_80x24() {
+    let mut a = app(Marker::Braille);
+    size(&mut a, 80, 24);
+    fill(&mut a);
+    let t = render(&mut a, 80, 24);
+    insta::assert_snapshot!(text(&t));
+}
+
+#[test]
+fn whole_screen_halfblock() {
+    let mut a = app(Marker::HalfBlock);
+    size(&mut a, 80, 24);
+    fill(&mut a);
+    let s = text(&render(&mut a, 80, 24));
+    assert!(
+        !s.chars().any(|c| ('\u{2801}'..='\u{28ff}').contains(&c)),
+        "braille in halfblock mode"
+    );
+    insta::assert_snapshot!(s);
+}
+
+#[test]
+fn too_small_terminal_shows_a_message() {
+    let mut a = app(Marker::Braille);
+    let s = text(&render(&mut a, 60, 20));
+    assert!(
+        s.contains("terminal too small") && s.contains("80×24"),
+        "{s}"
+    );
+    insta::assert_snapshot!(s);
+}
+
+#[test]
+fn resize_rebins_the_plots() {
+    let mut a = app(Marker::Braille);
+    size(&mut a, 120, 40);
+    fill(&mut a);
+    let big = a.diagram.grid.size();
+    let points = a.diagram.grid.points();
+    size(&mut a, 80, 24);
+    assert_ne!(a.diagram.grid.size(), big);
+    assert_eq!(
+        a.diagram.grid.points(),
+        points,
+        "re-binned from the stored points"
+    );
+}
+
+#[test]
+fn panel_parameters() {
+    insta::assert_snapshot!(panel(views::parameters::render, 30, 14));
+}
+
+#[test]
+fn panel_diagram() {
+    insta::assert_snapshot!(panel(views::diagram::render, 90, 22));
+}
+
+#[test]
+fn panel_phase_plot() {
+    insta::assert_snapshot!(panel(views::phase_plot::render, 40, 17));
+}
+
+#[test]
+fn panel_stability() {
+    let s = panel(views::stability::render, 40, 17);
+    assert!(s.contains("κ_c = -1.0123") && s.contains("stable"), "{s}");
+    insta::assert_snapshot!(s);
+}
+
+#[test]
+fn panel_bounce() {
+    let s = panel(views::bounce::render, 40, 17);
+    assert!(s.contains("Bounce #3"), "{s}");
+    insta::assert_snapshot!(s);
+}
+
+#[test]
+fn panel_status() {
+    insta::assert_snapshot!(panel(views::status::render, 120, 1));
+}
+
+#[test]
+fn overlays_help_and_presets() {
+    let mut a = app(Marker::Braille);
+    fill(&mut a);
+    a.overlay = Overlay::Help;
+    let help = text(&render(&mut a, 120, 40));
+    for (keys, _) in a.keymap.help() {
+        assert!(help.contains(&keys), "help lacks {keys}");
+    }
+    insta::assert_snapshot!("help", help);
+    a.overlay = Overlay::Presets { selected: 1 };
+    insta::assert_snapshot!("presets", text(&render(&mut a, 120, 40)));
+}
