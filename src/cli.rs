@@ -73,6 +73,12 @@ pub enum Command {
     /// Iterate the impact map and print one record per event.
     #[command(allow_negative_numbers = true)]
     Orbit(OrbitArgs),
+    /// The (1, k) solutions: classification, eigenvalues, birth α and α_PD.
+    Fixed(FixedArgs),
+    /// The (2, 2k) solution near the (1, k) one, with the approximation beside it.
+    TwoCycle(TwoCycleArgs),
+    /// Power laws of the (2, 2k) branch near period doubling (the paper's Fig. 4, 5).
+    Scaling(ScalingArgs),
 }
 
 /// The physical system: table shape, amplitude and restitution.
@@ -183,4 +189,110 @@ pub fn parse_f64(s: &str) -> Result<f64, String> {
         Ok(x) if x.is_finite() => Ok(x),
         _ => Err(format!("'{s}' is not a finite number")),
     }
+}
+
+/// `bouncemap fixed`.
+#[derive(Args, Debug, Clone)]
+pub struct FixedArgs {
+    #[command(flatten)]
+    pub system: SystemArgs,
+    /// Periods per bounce of the (1, k) solution; valid 1 to 100.
+    #[arg(long, default_value_t = 1, value_parser = parse_k, value_name = "K")]
+    pub k: u32,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    pub format: Format,
+}
+
+/// `bouncemap two-cycle`.
+#[derive(Args, Debug, Clone)]
+pub struct TwoCycleArgs {
+    #[command(flatten)]
+    pub system: SystemArgs,
+    /// k of the (1, k) solution the (2, 2k) one surrounds; valid 1 to 100.
+    #[arg(long, default_value_t = 1, value_parser = parse_k, value_name = "K")]
+    pub k: u32,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    pub format: Format,
+}
+
+/// `bouncemap scaling`.
+#[derive(Args, Debug, Clone)]
+pub struct ScalingArgs {
+    /// Values of D for F_D: a list (0.001,0.01,0.1) or a log-spaced range LO..HI[:N]
+    /// (default N = 13); each in (0, 1].
+    #[arg(long, default_value = "0.001,0.01,0.1", value_parser = parse_d_list, value_name = "D")]
+    pub d: DList,
+    /// Coefficient of restitution r; valid (0, 1).
+    #[arg(long, default_value_t = 0.8, value_parser = parse_r, value_name = "R")]
+    pub r: f64,
+    /// k of the (1, k) solution; valid 1 to 100.
+    #[arg(long, default_value_t = 1, value_parser = parse_k, value_name = "K")]
+    pub k: u32,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    pub format: Format,
+}
+
+/// The D values of `scaling --d`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DList(pub Vec<f64>);
+
+/// k: a whole number in [1, 100].
+pub fn parse_k(s: &str) -> Result<u32, String> {
+    match s.trim().parse::<u32>() {
+        Ok(k) if (1..=100).contains(&k) => Ok(k),
+        _ => Err(format!(
+            "'{s}' is out of range: valid a whole number in [1, 100]"
+        )),
+    }
+}
+
+/// `--d`: D1,D2,... or LO..HI[:N], every D in (0, 1].
+pub fn parse_d_list(s: &str) -> Result<DList, String> {
+    let one = |t: &str| -> Result<f64, String> {
+        let x = parse_f64(t)?;
+        if x > 0.0 && x <= 1.0 {
+            Ok(x)
+        } else {
+            Err(format!("D = {x} is out of range: valid (0, 1]"))
+        }
+    };
+    let s = s.trim();
+    if let Some((lo, rest)) = s.split_once("..") {
+        let (hi, n) = match rest.split_once(':') {
+            Some((h, n)) => (
+                h,
+                n.trim()
+                    .parse::<usize>()
+                    .ok()
+                    .filter(|n| (2..=1000).contains(n))
+                    .ok_or_else(|| {
+                        format!("'{n}' is not a point count: valid a whole number in [2, 1000]")
+                    })?,
+            ),
+            None => (rest, 13),
+        };
+        let (lo, hi) = (one(lo)?, one(hi)?);
+        if lo >= hi {
+            return Err(format!(
+                "range {lo}..{hi} is empty: valid LO..HI with LO < HI"
+            ));
+        }
+        let (a, b) = (lo.log10(), hi.log10());
+        return Ok(DList(
+            (0..n)
+                .map(|i| 10f64.powf(a + (b - a) * i as f64 / (n - 1) as f64))
+                .collect(),
+        ));
+    }
+    let v: Vec<f64> = s
+        .split(',')
+        .map(|t| one(t.trim()))
+        .collect::<Result<_, _>>()?;
+    if v.is_empty() {
+        return Err("no D given: valid a list like 0.001,0.01,0.1 or a range LO..HI[:N]".into());
+    }
+    Ok(DList(v))
 }

@@ -1,7 +1,10 @@
 //! The headless subcommands, one file each. Each returns `anyhow::Result`; input
 //! problems are [`crate::input::InputError`]s, which the binary reports with status 2.
 
+pub mod fixed;
 pub mod orbit;
+pub mod scaling;
+pub mod two_cycle;
 
 use crate::cli::{Command, InitialArgs, SystemArgs, DEFAULT_HOP};
 use crate::engine::{State, System};
@@ -11,6 +14,9 @@ use crate::input::{load_table, InputError};
 pub fn run(cmd: Command) -> anyhow::Result<()> {
     match cmd {
         Command::Orbit(a) => orbit::run(&a),
+        Command::Fixed(a) => fixed::run(&a),
+        Command::TwoCycle(a) => two_cycle::run(&a),
+        Command::Scaling(a) => scaling::run(&a),
     }
 }
 

@@ -22,8 +22,8 @@ pub use fixed::{
     FixedPoint, StabilityWindow, WindowEnd,
 };
 pub use two_cycle::{
-    approximation_corrected, approximation_paper, border_collision, two_cycle, two_cycle_at,
-    Approximation, BorderCollision, NoBorderCollision, NoTwoCycle, TwoCycle,
+    approximation_corrected, approximation_paper, border_collision, map_check, two_cycle,
+    two_cycle_at, Approximation, BorderCollision, NoBorderCollision, NoTwoCycle, TwoCycle,
 };
 
 use super::table::{Shape, Table};

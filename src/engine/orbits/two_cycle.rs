@@ -713,3 +713,38 @@ pub fn border_collision(
     }
     Err(NoBorderCollision::BranchLost { alpha: b.alpha })
 }
+
+/// Iterate the impact map (exact solver) from the two-cycle's first impact with its
+/// phase moved by `perturbation`, for at most `max_bounces` impacts; stops once the last
+/// two impact phases match (t̂₀*, t̂₁*) within 10⁻¹². Returns the bounces made and that
+/// final distance (max over both phases), or None if the map halted.
+pub fn map_check(
+    sys: &System,
+    tc: &TwoCycle,
+    perturbation: f64,
+    max_bounces: u64,
+) -> Option<(u64, f64)> {
+    use super::super::map::{ImpactMap, State};
+    let start = super::wrap_phase(tc.phase0 + perturbation);
+    let v = tc.v0 + sys.df(start) - sys.df(tc.phase0);
+    let state = State::launch(sys, 0, start, v, 0.0).ok()?;
+    let mut map = ImpactMap::new(sys.clone(), super::super::impact::Solver::Exact, state);
+    let mut prev = f64::NAN;
+    let mut dist = f64::INFINITY;
+    for n in 1..=max_bounces {
+        let e = map.step().ok()?;
+        let (a, b) = if prev < e.phase {
+            (prev, e.phase)
+        } else {
+            (e.phase, prev)
+        };
+        prev = e.phase;
+        if n >= 2 {
+            dist = (a - tc.phase0).abs().max((b - tc.phase1).abs());
+            if dist <= 1e-12 {
+                return Some((n, dist));
+            }
+        }
+    }
+    Some((max_bounces, dist))
+}
