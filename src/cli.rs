@@ -22,6 +22,12 @@ pub enum Command {
     /// Iterate the impact map and print one record per event.
     #[command(allow_negative_numbers = true)]
     Orbit(OrbitArgs),
+    /// Sweep one parameter over a window: a bifurcation diagram (csv, json, braille).
+    Sweep(crate::commands::sweep::SweepArgs),
+    /// Join `sweep --shard I/N` output files into one.
+    Merge(crate::commands::merge::MergeArgs),
+    /// Measure solver throughput (exact vs grid) and sweep timings on this machine.
+    Bench(crate::commands::bench::BenchArgs),
 }
 
 /// The physical system: table shape, amplitude and restitution.

@@ -1,7 +1,10 @@
 //! The headless subcommands, one file each. Each returns `anyhow::Result`; input
 //! problems are [`crate::input::InputError`]s, which the binary reports with status 2.
 
+pub mod bench;
+pub mod merge;
 pub mod orbit;
+pub mod sweep;
 
 use crate::cli::{Command, InitialArgs, SystemArgs, DEFAULT_HOP};
 use crate::engine::{State, System};
@@ -11,6 +14,9 @@ use crate::input::{load_table, InputError};
 pub fn run(cmd: Command) -> anyhow::Result<()> {
     match cmd {
         Command::Orbit(a) => orbit::run(&a),
+        Command::Sweep(a) => sweep::run(&a),
+        Command::Merge(a) => merge::run(&a),
+        Command::Bench(a) => bench::run(&a),
     }
 }
 
