@@ -123,6 +123,40 @@ fn sticking_values_are_computed_and_marked() {
 }
 
 #[test]
+fn long_release_cycles_jump_ahead_and_equal_brute_force() {
+    // fd:0.1 past the (2, 2) window: orbits with a chattering sequence, a stick and a
+    // release at phase 0 every few periods. Their cycles are far longer than 64 events;
+    // the release repeats bit for bit, so the run jumps over whole cycles.
+    let mut s = spec(Table::fd(0.1).unwrap(), 0.56, 0.60, 9, 0.8);
+    s.transient = 30_000;
+    let mut long_cycles = 0;
+    for b in sweep::collect(&s).unwrap() {
+        let sys = s.system_at(b.value).unwrap();
+        assert_matches_brute_force(&b, &sys, 30_000, 50);
+        if let Outcome::Periodic {
+            events, stopped_at, ..
+        } = b.outcome
+        {
+            if events > 64 {
+                long_cycles += 1;
+                assert!(
+                    stopped_at < 10_000,
+                    "α = {}: no jump ({stopped_at})",
+                    b.value
+                );
+                assert!(
+                    b.events < 30_000 * events as u64 / 4,
+                    "α = {}: {} events",
+                    b.value,
+                    b.events
+                );
+            }
+        }
+    }
+    assert!(long_cycles >= 2, "only {long_cycles} long release cycles");
+}
+
+#[test]
 fn resting_ball_is_reported_as_resting() {
     // sine, α = 0.02: 4π²α < 1, the table never pulls away faster than gravity, so a
     // ball that sticks stays on the table forever.
@@ -249,6 +283,7 @@ fn cancel_stops_workers_and_no_stale_batch_is_current() {
     let mut s = spec(Table::fd(0.1).unwrap(), 0.60, 0.62, 8, 0.8);
     s.transient = 5_000_000;
     s.preview = 0;
+    s.periodicity = None;
     let gen = Arc::new(AtomicU64::new(7));
     let h = sweep::start(s, gen.clone()).unwrap();
     std::thread::sleep(Duration::from_millis(50));

@@ -120,7 +120,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     let base_spec = panel_spec(&base)?;
     let coarse = coarse_time(&base_spec)?;
     let cancel = cancel_latency(&base_spec)?;
-    let reduced_t = if args.quick { 5_000 } else { 100_000 };
+    let reduced_t = if args.quick { 5_000 } else { 20_000 };
     let mut reduced = base_spec.clone();
     reduced.transient = reduced_t;
     let reduced_run = time_panel(&reduced)?;
