@@ -203,6 +203,44 @@ fn stable_fixed_point_matches_the_closed_form() {
 }
 
 #[test]
+fn near_fixed_point_start_uses_the_closed_form_fixed_point() {
+    let (d, r) = (0.1, 0.8);
+    let target = 0.5 * (1.0 - r) / (1.0 + r);
+    for a in [0.3, 0.45, 0.5] {
+        let sys = System::new(Table::fd(d).unwrap(), a, r).unwrap();
+        // Quadratic formula on the first piece, the root with f'' < 0.
+        let (qa, qb, qc) = (3.0 * d * a, -(2.0 + d) * a, 0.5 * a - target);
+        let t = (-qb - (qb * qb - 4.0 * qa * qc).sqrt()) / (2.0 * qa);
+        let got = sweep::fixed_point_phase(&sys).unwrap();
+        assert!((got - t).abs() < 1e-13, "α = {a}: {got} vs {t}");
+    }
+    // Sine: 2πα cos 2πt̂ = target with sin 2πt̂ > 0.
+    let sys = System::new(Table::sine(), 0.03, r).unwrap();
+    let got = sweep::fixed_point_phase(&sys).unwrap();
+    assert!((sys.df(got) - target).abs() < 1e-14 && sys.jet(got)[2] < 0.0);
+    // Started there, the stable band below α_PD gives the (1, 1) solution everywhere,
+    // where the default hop from t̂ = 0 falls on sticking orbits for some values.
+    let mut s = spec(Table::fd(0.1).unwrap(), 0.45, 0.505, 40, 0.8);
+    s.transient = 5_000;
+    s.initial.near_fixed_point = true;
+    for b in sweep::collect(&s).unwrap() {
+        assert!(
+            matches!(
+                b.outcome,
+                Outcome::Periodic {
+                    events: 1,
+                    periods: 1,
+                    ..
+                }
+            ),
+            "α = {}: {:?}",
+            b.value,
+            b.outcome
+        );
+    }
+}
+
+#[test]
 fn two_cycle_is_detected_with_two_events_in_two_periods() {
     let s = spec(Table::fd(1.0).unwrap(), 0.50, 0.50, 1, 0.8);
     let b = &sweep::collect(&s).unwrap()[0];

@@ -85,6 +85,10 @@ pub struct SweepArgs {
     /// Warm start: each value starts from its neighbour's final state.
     #[arg(long)]
     pub warm: bool,
+    /// Start each value slightly off its (1,1) fixed point (phase t* + 0.001, v = 1/2),
+    /// as the paper does, instead of --t0/--v0/--z0 (presets do this).
+    #[arg(long)]
+    pub near_fixed_point: bool,
     /// Run every value to the full transient (no periodicity early stop).
     #[arg(long)]
     pub no_early_stop: bool,
@@ -129,6 +133,8 @@ pub struct Preset {
     pub steps: usize,
     pub transient: u64,
     pub keep: usize,
+    /// `near-fixed-point` (the paper's start) or `state` (t0, v0, z0).
+    pub start: Option<String>,
 }
 
 /// The presets shipped with the binary: (name, file text).
@@ -348,6 +354,8 @@ pub fn spec_from(args: &SweepArgs) -> Result<SweepSpec, InputError> {
         t0: args.initial.t0,
         v0: args.initial.v0,
         z0: args.initial.z0,
+        near_fixed_point: args.near_fixed_point
+            || pr.is_some_and(|p| p.start.as_deref() == Some("near-fixed-point")),
     };
     spec.transient = args
         .transient
@@ -538,6 +546,14 @@ pub fn json_header(spec: &SweepSpec) -> serde_json::Map<String, serde_json::Valu
         Value::String(if spec.warm_start { "warm" } else { "cold" }.into()),
     );
     m.insert(
+        "initial".into(),
+        if spec.initial.near_fixed_point {
+            Value::String("near-fixed-point".into())
+        } else {
+            serde_json::json!({"t0": json_num(spec.initial.t0), "v0": spec.initial.v0.map(json_num), "z0": json_num(spec.initial.z0)})
+        },
+    );
+    m.insert(
         "early_stop".into(),
         match spec.periodicity {
             Some(p) => {
@@ -667,6 +683,9 @@ pub fn braille_diagram(
         spec.keep,
         if spec.warm_start { "warm" } else { "cold" },
     )];
+    if spec.initial.near_fixed_point {
+        lines[0].push_str(", near (1,1)");
+    }
     for row in 0..rows {
         let label = if row == 0 {
             "1.0 ┤".to_string()
