@@ -162,8 +162,8 @@ impl ValueRun {
                     cancelled(since_check);
                     return Advance::Done(
                         Outcome::Periodic {
-                            events: cycle.events,
-                            periods: cycle.periods,
+                            events: cycle.distinct_events,
+                            periods: cycle.distinct_periods,
                             stopped_at: e.period,
                         },
                         points,
