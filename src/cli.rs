@@ -79,6 +79,12 @@ pub enum Command {
     TwoCycle(TwoCycleArgs),
     /// Power laws of the (2, 2k) branch near period doubling (the paper's Fig. 4, 5).
     Scaling(ScalingArgs),
+    /// Sweep one parameter over a window: a bifurcation diagram (csv, json, braille).
+    Sweep(crate::commands::sweep::SweepArgs),
+    /// Join `sweep --shard I/N` output files into one.
+    Merge(crate::commands::merge::MergeArgs),
+    /// Measure solver throughput (exact vs grid) and sweep timings on this machine.
+    Bench(crate::commands::bench::BenchArgs),
 }
 
 /// The physical system: table shape, amplitude and restitution.

@@ -123,6 +123,40 @@ fn sticking_values_are_computed_and_marked() {
 }
 
 #[test]
+fn long_release_cycles_jump_ahead_and_equal_brute_force() {
+    // fd:0.1 past the (2, 2) window: orbits with a chattering sequence, a stick and a
+    // release at phase 0 every few periods. Their cycles are far longer than 64 events;
+    // the release repeats bit for bit, so the run jumps over whole cycles.
+    let mut s = spec(Table::fd(0.1).unwrap(), 0.56, 0.60, 9, 0.8);
+    s.transient = 30_000;
+    let mut long_cycles = 0;
+    for b in sweep::collect(&s).unwrap() {
+        let sys = s.system_at(b.value).unwrap();
+        assert_matches_brute_force(&b, &sys, 30_000, 50);
+        if let Outcome::Periodic {
+            events, stopped_at, ..
+        } = b.outcome
+        {
+            if events > 64 {
+                long_cycles += 1;
+                assert!(
+                    stopped_at < 10_000,
+                    "α = {}: no jump ({stopped_at})",
+                    b.value
+                );
+                assert!(
+                    b.events < 30_000 * events as u64 / 4,
+                    "α = {}: {} events",
+                    b.value,
+                    b.events
+                );
+            }
+        }
+    }
+    assert!(long_cycles >= 2, "only {long_cycles} long release cycles");
+}
+
+#[test]
 fn resting_ball_is_reported_as_resting() {
     // sine, α = 0.02: 4π²α < 1, the table never pulls away faster than gravity, so a
     // ball that sticks stays on the table forever.
@@ -165,6 +199,44 @@ fn stable_fixed_point_matches_the_closed_form() {
             assert!((p.phase - t).abs() < 1e-10, "α = {a}: {} vs {t}", p.phase);
             assert!((p.v - 0.5).abs() < 1e-10);
         }
+    }
+}
+
+#[test]
+fn near_fixed_point_start_uses_the_closed_form_fixed_point() {
+    let (d, r) = (0.1, 0.8);
+    let target = 0.5 * (1.0 - r) / (1.0 + r);
+    for a in [0.3, 0.45, 0.5] {
+        let sys = System::new(Table::fd(d).unwrap(), a, r).unwrap();
+        // Quadratic formula on the first piece, the root with f'' < 0.
+        let (qa, qb, qc) = (3.0 * d * a, -(2.0 + d) * a, 0.5 * a - target);
+        let t = (-qb - (qb * qb - 4.0 * qa * qc).sqrt()) / (2.0 * qa);
+        let got = sweep::fixed_point_phase(&sys).unwrap();
+        assert!((got - t).abs() < 1e-13, "α = {a}: {got} vs {t}");
+    }
+    // Sine: 2πα cos 2πt̂ = target with sin 2πt̂ > 0.
+    let sys = System::new(Table::sine(), 0.03, r).unwrap();
+    let got = sweep::fixed_point_phase(&sys).unwrap();
+    assert!((sys.df(got) - target).abs() < 1e-14 && sys.jet(got)[2] < 0.0);
+    // Started there, the stable band below α_PD gives the (1, 1) solution everywhere,
+    // where the default hop from t̂ = 0 falls on sticking orbits for some values.
+    let mut s = spec(Table::fd(0.1).unwrap(), 0.45, 0.505, 40, 0.8);
+    s.transient = 5_000;
+    s.initial.near_fixed_point = true;
+    for b in sweep::collect(&s).unwrap() {
+        assert!(
+            matches!(
+                b.outcome,
+                Outcome::Periodic {
+                    events: 1,
+                    periods: 1,
+                    ..
+                }
+            ),
+            "α = {}: {:?}",
+            b.value,
+            b.outcome
+        );
     }
 }
 
@@ -249,6 +321,7 @@ fn cancel_stops_workers_and_no_stale_batch_is_current() {
     let mut s = spec(Table::fd(0.1).unwrap(), 0.60, 0.62, 8, 0.8);
     s.transient = 5_000_000;
     s.preview = 0;
+    s.periodicity = None;
     let gen = Arc::new(AtomicU64::new(7));
     let h = sweep::start(s, gen.clone()).unwrap();
     std::thread::sleep(Duration::from_millis(50));

@@ -1,9 +1,12 @@
 //! The headless subcommands, one file each. Each returns `anyhow::Result`; input
 //! problems are [`crate::input::InputError`]s, which the binary reports with status 2.
 
+pub mod bench;
 pub mod fixed;
+pub mod merge;
 pub mod orbit;
 pub mod scaling;
+pub mod sweep;
 pub mod two_cycle;
 
 use crate::cli::{Command, InitialArgs, SystemArgs, DEFAULT_HOP};
@@ -17,6 +20,9 @@ pub fn run(cmd: Command) -> anyhow::Result<()> {
         Command::Fixed(a) => fixed::run(&a),
         Command::TwoCycle(a) => two_cycle::run(&a),
         Command::Scaling(a) => scaling::run(&a),
+        Command::Sweep(a) => sweep::run(&a),
+        Command::Merge(a) => merge::run(&a),
+        Command::Bench(a) => bench::run(&a),
     }
 }
 

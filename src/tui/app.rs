@@ -584,6 +584,7 @@ impl App {
             t0: p.t0,
             v0: p.v0,
             z0: 0.0,
+            near_fixed_point: false,
         };
         spec.transient = p.transient.max(1) as u64;
         spec.keep = p.keep as usize;

@@ -74,10 +74,17 @@ impl Rec {
 /// A detected cycle.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Cycle {
-    /// Events per cycle.
+    /// Events per cycle as continued (the repetition that was measured).
     pub events: usize,
-    /// Table periods per cycle.
+    /// Table periods per cycle as continued.
     pub periods: i64,
+    /// The shortest divisor q of `events` whose repetition also holds within twice the
+    /// tolerance: the period to report. A fixed point approached with eigenvalue
+    /// near −1 converges as a 2-cycle (its mismatch after one event is large), yet its
+    /// two points end up within the tolerance of each other: it is reported as 1.
+    pub distinct_events: usize,
+    /// Table periods per reported cycle.
+    pub distinct_periods: i64,
 }
 
 /// Sliding history of events and the cycle test.
@@ -192,7 +199,16 @@ impl Detector {
             if periods < 1 {
                 return None;
             }
-            return Some(Cycle { events: p, periods });
+            let q = (1..p)
+                .filter(|q| p % q == 0)
+                .find(|&q| self.mismatch(q, 0, p, 2.0 * tol) <= 2.0 * tol)
+                .unwrap_or(p);
+            return Some(Cycle {
+                events: p,
+                periods,
+                distinct_events: q,
+                distinct_periods: periods * q as i64 / p as i64,
+            });
         }
         None
     }
@@ -241,7 +257,9 @@ mod tests {
             c,
             Cycle {
                 events: 2,
-                periods: 2
+                periods: 2,
+                distinct_events: 2,
+                distinct_periods: 2,
             }
         );
         assert!(n < 400, "found only after {n} events");
@@ -264,6 +282,21 @@ mod tests {
             }
         }
         panic!("never accepted a converging orbit");
+    }
+
+    #[test]
+    fn fixed_point_approached_by_alternation_is_reported_as_period_one() {
+        // x_n = x* + c (−0.999)ⁿ: the one-step mismatch stays ~2|x − x*|, so the
+        // two-step repetition is accepted first, with both points within 1e-11 of x*.
+        let mut d = Detector::new(Periodicity::default());
+        for n in 0..200_000i64 {
+            let x = 0.3 + 1e-3 * (-0.999f64).powi(n as i32);
+            if let Some(c) = d.push(rec(n, x, 0.5)) {
+                assert_eq!((c.events, c.distinct_events, c.distinct_periods), (2, 1, 1));
+                return;
+            }
+        }
+        panic!("never accepted");
     }
 
     #[test]

@@ -9,7 +9,10 @@
 //! [periodicity detector](detect) proves earlier that the orbit has settled on a cycle
 //! of at most `max_period` events to within `tolerance`: then the remaining events are
 //! continued cyclically (see [`run`]), which gives the same points, within the
-//! tolerance, as the full transient. Values that never settle run the full transient.
+//! tolerance, as the full transient. Orbits that stick and are released at the same
+//! phase again repeat exactly, whatever their length in events; they jump ahead by
+//! whole cycles to just before T (see [`run`]). Values that never settle run the full
+//! transient.
 //!
 //! Outcomes per value ([`Outcome`]): periodic (with its cycle), unsettled (ran to T:
 //! chaotic, quasi-periodic or a cycle longer than `max_period`), resting (the ball
@@ -152,7 +155,15 @@ pub struct InitialSpec {
     pub v0: Option<f64>,
     /// Initial height above the table.
     pub z0: f64,
+    /// Start slightly off the (1, 1) fixed point instead (the paper's procedure):
+    /// phase t̂* + [`FIXED_POINT_OFFSET`], v = ½, where f'(t̂*) = ½(1 − r)/(1 + r) and
+    /// f''(t̂*) < 0 (the stable one if there is one). Falls back to t0, v0, z0 where
+    /// no (1, 1) solution exists.
+    pub near_fixed_point: bool,
 }
+
+/// Phase offset from the (1, 1) fixed point of a `near_fixed_point` start.
+pub const FIXED_POINT_OFFSET: f64 = 1e-3;
 
 impl Default for InitialSpec {
     fn default() -> Self {
@@ -160,8 +171,43 @@ impl Default for InitialSpec {
             t0: 0.0,
             v0: None,
             z0: 0.0,
+            near_fixed_point: false,
         }
     }
+}
+
+/// The phase t̂* of the (1, 1) solution: f'(t̂*) = ½(1 − r)/(1 + r) with f''(t̂*) < 0,
+/// preferring one with κ_c < f''(t̂*) (stable). None if the table is too weak.
+pub fn fixed_point_phase(sys: &System) -> Option<f64> {
+    let target = 0.5 * (1.0 - sys.r) / (1.0 + sys.r);
+    let mut candidates: Vec<f64> = Vec::new();
+    match sys.table.shape() {
+        crate::engine::table::Shape::Sine => {
+            let c = target / (2.0 * std::f64::consts::PI * sys.alpha);
+            if c.abs() <= 1.0 {
+                // f' = 2πα cos 2πt̂, f'' < 0 where sin 2πt̂ > 0: t̂ in (0, ½).
+                candidates.push(c.acos() / (2.0 * std::f64::consts::PI));
+            }
+        }
+        crate::engine::table::Shape::Piecewise(pieces) => {
+            for p in pieces {
+                let g = p.d1.scale(sys.alpha);
+                let g = g.with_coeff(0, g.coeff(0) - target);
+                for &s in g.roots_in(0.0, p.len()).as_slice() {
+                    if s < p.len() {
+                        candidates.push(p.start + s);
+                    }
+                }
+            }
+        }
+    }
+    let kc = sys.kappa_c();
+    let curv = |t: f64| sys.jet(t)[2];
+    candidates
+        .iter()
+        .copied()
+        .find(|&t| curv(t) < 0.0 && curv(t) > kc)
+        .or_else(|| candidates.iter().copied().find(|&t| curv(t) < 0.0))
 }
 
 /// Which interleaved part of a sweep to compute: chains c with c % count == index.
@@ -258,6 +304,14 @@ impl SweepSpec {
     /// The cold initial state for a system of this sweep.
     pub fn initial_state(&self, sys: &System) -> Result<State, EngineError> {
         let i = self.initial;
+        if i.near_fixed_point {
+            if let Some(t) = fixed_point_phase(sys) {
+                let (_, phase) = crate::engine::impact::normalize(0, t + FIXED_POINT_OFFSET);
+                if let Ok(s) = State::launch(sys, 0, phase, 0.5_f64.max(sys.df(phase)), 0.0) {
+                    return Ok(s);
+                }
+            }
+        }
         let v0 = i.v0.unwrap_or_else(|| sys.df(i.t0) + DEFAULT_HOP);
         State::launch(sys, 0, i.t0, v0, i.z0)
     }

@@ -9,6 +9,14 @@
 //! periods, which fixes by integer arithmetic which of them are the last `keep` before
 //! T. Memory is the ring of `keep` events plus the detector's fixed history,
 //! independent of T.
+//!
+//! Release cycles. The state right after a release is fixed by the release phase alone
+//! (the ball leaves the table with the table's velocity), so when a release happens at
+//! bit for bit the phase of an earlier release, the orbit repeats exactly from there,
+//! however many events (a chattering sequence can be dozens) lie in between. The run
+//! then jumps forward by whole cycles (adding cycles × periods to the state's period,
+//! which the map only ever adds to) to a little before T and computes the last cycles
+//! for real, so the recorded points are exactly the full run's.
 
 use super::detect::{Cycle, Detector, Periodicity, Rec};
 use super::{Outcome, SweepPoint};
@@ -42,6 +50,11 @@ pub struct ValueRun {
     pending: Option<Event>,
     /// Period of the latest event recorded.
     reached: i64,
+    periodicity: Option<Periodicity>,
+    /// The latest release: (phase bits, events recorded, period).
+    last_release: Option<(u64, u64, i64)>,
+    /// A release cycle jumped over: (events, periods, period of the jump).
+    jumped: Option<(usize, i64, i64)>,
 }
 
 impl ValueRun {
@@ -54,6 +67,9 @@ impl ValueRun {
             events: 0,
             pending: None,
             reached: 0,
+            periodicity,
+            last_release: None,
+            jumped: None,
         }
     }
 
@@ -111,7 +127,15 @@ impl ValueRun {
             };
             if e.period >= end {
                 cancelled(since_check);
-                return Advance::Done(Outcome::Unsettled, self.points());
+                let outcome = match self.jumped {
+                    Some((events, periods, stopped_at)) => Outcome::Periodic {
+                        events,
+                        periods,
+                        stopped_at,
+                    },
+                    None => Outcome::Unsettled,
+                };
+                return Advance::Done(outcome, self.points());
             }
             if e.period >= checkpoint {
                 self.pending = Some(e);
@@ -129,20 +153,49 @@ impl ValueRun {
                 self.ring.pop_front();
             }
             self.ring.push_back(rec);
+            if e.kind == EventKind::Release && self.periodicity.is_some() && self.jumped.is_none() {
+                self.release_cycle(&e, end);
+            }
             if let Some(det) = self.detector.as_mut() {
                 if let Some(cycle) = det.push(rec) {
                     let points = self.continue_cycle(cycle, end);
                     cancelled(since_check);
                     return Advance::Done(
                         Outcome::Periodic {
-                            events: cycle.events,
-                            periods: cycle.periods,
+                            events: cycle.distinct_events,
+                            periods: cycle.distinct_periods,
                             stopped_at: e.period,
                         },
                         points,
                     );
                 }
             }
+        }
+    }
+
+    /// At a release: if an earlier release had the same phase, jump over whole cycles
+    /// to shortly before `end`.
+    fn release_cycle(&mut self, e: &Event, end: i64) {
+        let n = self.recorded();
+        let bits = e.phase.to_bits();
+        match self.last_release {
+            Some((b, n0, p0)) if b == bits && e.period > p0 => {
+                let events = (n - n0) as usize;
+                let periods = e.period - p0;
+                // Leave enough whole cycles before T to record `keep` events for real.
+                let margin = periods * ((self.keep / events.max(1)) as i64 + 2);
+                let cycles = (end - e.period - margin).div_euclid(periods);
+                self.jumped = Some((events, periods, e.period));
+                if cycles > 0 {
+                    let mut st = *self.map.state();
+                    st.period += cycles * periods;
+                    self.map.set_state(st);
+                    // Older history now lies a whole number of cycles back: the
+                    // detector's period arithmetic would be off, so restart it.
+                    self.detector = self.periodicity.map(Detector::new);
+                }
+            }
+            _ => self.last_release = Some((bits, n, e.period)),
         }
     }
 

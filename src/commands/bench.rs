@@ -1,0 +1,612 @@
+//! `bouncemap bench`: measurements on this machine, printed as a table (or json).
+//!
+//! * Solver throughput: events per second of the exact and the grid solver on the same
+//!   orbits (period-1, period-2, chaotic, sticking), each with its accuracy against an
+//!   independent reference: the closed-form (1, 1) fixed point; the (2, 2) cycle solved
+//!   by Newton's method on its four defining equations (flight and restitution laws);
+//!   for chaotic and sticking orbits, one step of each solver from the same exact
+//!   states, counting steps that land more than 10⁻⁶ apart (missed or misplaced
+//!   impacts).
+//! * Sweep timings with the exact solver on all cores: the coarse pass of a Fig. 3
+//!   panel, cancel-to-idle latency, and a panel at a reduced transient with the
+//!   breakdown of where the events go; `--panel NAME` times a full panel at the paper's
+//!   fidelity.
+
+use super::sweep::preset;
+use crate::engine::map::{Event, EventKind, ImpactMap, State};
+use crate::engine::sweep::{self, Outcome, SweepParam, SweepSpec};
+use crate::engine::{Solver, System};
+use crate::input::{load_table, InputError};
+use clap::{Args, ValueEnum};
+use std::sync::atomic::AtomicU64;
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+/// Output of `bench`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, Default)]
+pub enum BenchFormat {
+    #[default]
+    Text,
+    Json,
+}
+
+/// `bouncemap bench`.
+#[derive(Args, Debug, Clone)]
+pub struct BenchArgs {
+    /// A few seconds instead of a couple of minutes (shorter runs, noisier figures).
+    #[arg(long)]
+    pub quick: bool,
+    /// Also time this preset (fig3a … fig3f) at its full paper fidelity (can be long).
+    #[arg(long, value_name = "PRESET")]
+    pub panel: Option<String>,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = BenchFormat::Text)]
+    pub format: BenchFormat,
+}
+
+/// One orbit on which both solvers are measured.
+struct Case {
+    name: &'static str,
+    table: &'static str,
+    alpha: f64,
+    r: f64,
+    reference: Reference,
+}
+
+#[derive(Clone, Copy)]
+enum Reference {
+    FixedPoint,
+    TwoCycle,
+    OneStep,
+}
+
+const CASES: [Case; 4] = [
+    Case {
+        name: "period-1",
+        table: "fd:0.1",
+        alpha: 0.45,
+        r: 0.8,
+        reference: Reference::FixedPoint,
+    },
+    Case {
+        name: "period-2",
+        table: "fd:1",
+        alpha: 0.50,
+        r: 0.8,
+        reference: Reference::TwoCycle,
+    },
+    Case {
+        name: "chaotic",
+        table: "fd:0.1",
+        alpha: 0.60,
+        r: 0.8,
+        reference: Reference::OneStep,
+    },
+    Case {
+        name: "sticking",
+        table: "quad",
+        alpha: 0.70,
+        r: 0.5,
+        reference: Reference::OneStep,
+    },
+];
+
+struct SolverRow {
+    case: &'static str,
+    system: String,
+    exact_rate: f64,
+    grid_rate: f64,
+    exact_err: f64,
+    grid_err: f64,
+    note: String,
+}
+
+pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
+    let budget = if args.quick {
+        Duration::from_millis(300)
+    } else {
+        Duration::from_secs(3)
+    };
+    let panel_full = match &args.panel {
+        Some(name) => Some(preset(name).map(|p| (name.clone(), p))?),
+        None => None,
+    };
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let mut rows = Vec::new();
+    for c in &CASES {
+        rows.push(solver_row(c, budget)?);
+    }
+    let base = preset("fig3b")?;
+    let base_spec = panel_spec(&base)?;
+    let coarse = coarse_time(&base_spec)?;
+    let cancel = cancel_latency(&base_spec)?;
+    let reduced_t = if args.quick { 5_000 } else { 20_000 };
+    let mut reduced = base_spec.clone();
+    reduced.transient = reduced_t;
+    let reduced_run = time_panel(&reduced)?;
+    let full = match &panel_full {
+        Some((name, p)) => Some((name.clone(), time_panel(&panel_spec(p)?)?)),
+        None => None,
+    };
+    let date = today();
+    match args.format {
+        BenchFormat::Text => {
+            println!("bouncemap bench  ({date}, {cores} cores)");
+            println!();
+            println!(
+                "{:<9} {:<22} {:>12} {:>12} {:>7} {:>11} {:>11}  note",
+                "orbit", "system", "exact ev/s", "grid ev/s", "ratio", "exact err", "grid err"
+            );
+            for r in &rows {
+                println!(
+                    "{:<9} {:<22} {:>12.0} {:>12.0} {:>7.1} {:>11.1e} {:>11.1e}  {}",
+                    r.case,
+                    r.system,
+                    r.exact_rate,
+                    r.grid_rate,
+                    r.exact_rate / r.grid_rate,
+                    r.exact_err,
+                    r.grid_err,
+                    r.note
+                );
+            }
+            println!();
+            println!("targets: exact/grid >= 10 on period-1, >= 4 chaotic");
+            println!();
+            println!(
+                "sweep fig3b (fd:0.1, alpha 0.45..0.60, 1000 values), exact solver, {cores} cores:"
+            );
+            println!(
+                "  coarse pass (every value to t = {}):   {:.3} s   (target 1 s)",
+                sweep::DEFAULT_PREVIEW,
+                coarse.as_secs_f64()
+            );
+            println!(
+                "  cancel to idle:                          {:.1} ms  (target 50 ms)",
+                cancel.as_secs_f64() * 1e3
+            );
+            print_panel(&format!("panel at T = {reduced_t}"), &reduced_run);
+            let est = estimate_full(&reduced_run, reduced_t, sweep::PAPER_TRANSIENT);
+            println!(
+                "  estimated full panel at T = 5e6 (unsettled values scale with T): {:.0} s  (target 60 s)",
+                est
+            );
+            if let Some((name, f)) = &full {
+                print_panel(&format!("{name} at paper fidelity (T = 5e6, keep 100)"), f);
+            }
+        }
+        BenchFormat::Json => {
+            let solver: Vec<_> = rows
+                .iter()
+                .map(|r| {
+                    serde_json::json!({
+                        "orbit": r.case, "system": r.system,
+                        "exact_events_per_s": r.exact_rate, "grid_events_per_s": r.grid_rate,
+                        "ratio": r.exact_rate / r.grid_rate,
+                        "exact_error": r.exact_err, "grid_error": r.grid_err, "note": r.note,
+                    })
+                })
+                .collect();
+            let doc = serde_json::json!({
+                "date": date, "cores": cores, "quick": args.quick,
+                "solvers": solver,
+                "coarse_pass_s": coarse.as_secs_f64(),
+                "cancel_ms": cancel.as_secs_f64() * 1e3,
+                "panel_reduced": panel_json(&reduced_run, reduced_t),
+                "panel_full_estimate_s": estimate_full(&reduced_run, reduced_t, sweep::PAPER_TRANSIENT),
+                "panel_full": full.as_ref().map(|(n, f)| {
+                    let mut j = panel_json(f, sweep::PAPER_TRANSIENT);
+                    j["preset"] = serde_json::Value::String(n.clone());
+                    j
+                }),
+            });
+            println!("{doc}");
+        }
+    }
+    Ok(())
+}
+
+fn panel_spec(p: &super::sweep::Preset) -> Result<SweepSpec, InputError> {
+    let mut s = SweepSpec::new(
+        load_table(&p.table)?,
+        SweepParam::Alpha,
+        p.window[0],
+        p.window[1],
+        p.steps,
+    );
+    s.r = p.r.unwrap_or(0.8);
+    s.transient = p.transient;
+    s.keep = p.keep;
+    s.preview = 0;
+    Ok(s)
+}
+
+/// Measured run of a whole panel.
+struct PanelRun {
+    wall: Duration,
+    values: usize,
+    periodic: usize,
+    unsettled: usize,
+    sticking: usize,
+    resting: usize,
+    events_total: u64,
+    events_unsettled: u64,
+}
+
+fn time_panel(spec: &SweepSpec) -> Result<PanelRun, InputError> {
+    let t = Instant::now();
+    let res = sweep::collect(spec).map_err(|e| InputError(e.to_string()))?;
+    let wall = t.elapsed();
+    let mut r = PanelRun {
+        wall,
+        values: res.len(),
+        periodic: 0,
+        unsettled: 0,
+        sticking: 0,
+        resting: 0,
+        events_total: 0,
+        events_unsettled: 0,
+    };
+    for b in &res {
+        r.events_total += b.events;
+        match b.outcome {
+            Outcome::Periodic { .. } => r.periodic += 1,
+            Outcome::Unsettled => {
+                r.unsettled += 1;
+                r.events_unsettled += b.events;
+            }
+            Outcome::Resting { .. } => r.resting += 1,
+            _ => {}
+        }
+        r.sticking += usize::from(b.sticking);
+    }
+    Ok(r)
+}
+
+fn print_panel(title: &str, r: &PanelRun) {
+    println!(
+        "  {title}: {:.2} s  ({} values: {} periodic, {} unsettled, {} sticking, {} resting; {:.3e} events, {:.0}% in unsettled values, {:.2} M events/s)",
+        r.wall.as_secs_f64(),
+        r.values,
+        r.periodic,
+        r.unsettled,
+        r.sticking,
+        r.resting,
+        r.events_total as f64,
+        100.0 * r.events_unsettled as f64 / (r.events_total.max(1)) as f64,
+        r.events_total as f64 / r.wall.as_secs_f64() / 1e6
+    );
+}
+
+fn panel_json(r: &PanelRun, transient: u64) -> serde_json::Value {
+    serde_json::json!({
+        "transient": transient, "wall_s": r.wall.as_secs_f64(), "values": r.values,
+        "periodic": r.periodic, "unsettled": r.unsettled, "sticking": r.sticking,
+        "resting": r.resting, "events": r.events_total, "events_unsettled": r.events_unsettled,
+    })
+}
+
+/// Full-panel time if the unsettled values' work grows in proportion to T and the
+/// rest stays (periodic values stop early).
+fn estimate_full(r: &PanelRun, t_small: u64, t_full: u64) -> f64 {
+    let frac = r.events_unsettled as f64 / r.events_total.max(1) as f64;
+    let w = r.wall.as_secs_f64();
+    w * (1.0 - frac) + w * frac * (t_full as f64 / t_small as f64)
+}
+
+fn coarse_time(spec: &SweepSpec) -> Result<Duration, InputError> {
+    let mut s = spec.clone();
+    s.preview = sweep::DEFAULT_PREVIEW;
+    let gen = Arc::new(AtomicU64::new(0));
+    let t = Instant::now();
+    let h = sweep::start(s, gen).map_err(|e| InputError(e.to_string()))?;
+    let mut pass0 = 0;
+    let total = h.progress().values_total;
+    let mut at = t.elapsed();
+    for b in h.receiver() {
+        if b.pass == 0 {
+            pass0 += 1;
+            if pass0 == total {
+                at = t.elapsed();
+                h.cancel();
+            }
+        }
+    }
+    h.wait();
+    Ok(at)
+}
+
+fn cancel_latency(spec: &SweepSpec) -> Result<Duration, InputError> {
+    let gen = Arc::new(AtomicU64::new(0));
+    let h = sweep::start(spec.clone(), gen).map_err(|e| InputError(e.to_string()))?;
+    std::thread::sleep(Duration::from_millis(500));
+    let t = Instant::now();
+    h.cancel();
+    while !h.is_finished() {
+        std::thread::sleep(Duration::from_micros(200));
+    }
+    let d = t.elapsed();
+    h.wait();
+    Ok(d)
+}
+
+fn system_of(c: &Case) -> Result<System, InputError> {
+    Ok(System::new(load_table(c.table)?, c.alpha, c.r)?)
+}
+
+fn start_state(sys: &System) -> State {
+    State::launch(sys, 0, 0.0, sys.df(0.0) + 0.5, 0.0).expect("default start is valid")
+}
+
+/// Events per second of `solver` on the case's orbit, and the settled orbit's last
+/// events.
+fn rate(sys: &System, solver: Solver, budget: Duration) -> (f64, Vec<Event>) {
+    let mut map = ImpactMap::new(sys.clone(), solver, start_state(sys));
+    let mut last = Vec::new();
+    for _ in 0..5_000 {
+        if map.step().is_err() {
+            break;
+        }
+    }
+    let t = Instant::now();
+    let mut n = 0u64;
+    while t.elapsed() < budget {
+        for _ in 0..1000 {
+            match map.step() {
+                Ok(e) => {
+                    if last.len() == 4 {
+                        last.remove(0);
+                    }
+                    last.push(e);
+                }
+                Err(_) => {
+                    map = ImpactMap::new(sys.clone(), solver, start_state(sys));
+                }
+            }
+        }
+        n += 1000;
+    }
+    (n as f64 / t.elapsed().as_secs_f64(), last)
+}
+
+fn solver_row(c: &Case, budget: Duration) -> Result<SolverRow, InputError> {
+    let sys = system_of(c)?;
+    let (er, elast) = rate(&sys, Solver::Exact, budget);
+    let (gr, glast) = rate(&sys, Solver::Grid, budget);
+    let (ee, ge, note) = match c.reference {
+        Reference::FixedPoint => {
+            let t = fixed_point_phase(&sys);
+            let err = |l: &[Event]| {
+                l.iter()
+                    .map(|e| (e.phase - t).abs().max((e.v - 0.5).abs()))
+                    .fold(0.0, f64::max)
+            };
+            (
+                err(&elast),
+                err(&glast),
+                format!("max |error| vs closed-form t* = {t:.12}, v* = 1/2"),
+            )
+        }
+        Reference::TwoCycle => {
+            let reference = two_cycle(&sys, &elast);
+            let err = |l: &[Event]| match reference {
+                Some((t0, t1, v0, v1)) => l
+                    .iter()
+                    .map(|e| {
+                        let a = (e.phase - t0).abs().max((e.v - v0).abs());
+                        let b = (e.phase - t1).abs().max((e.v - v1).abs());
+                        a.min(b)
+                    })
+                    .fold(0.0, f64::max),
+                None => f64::NAN,
+            };
+            (
+                err(&elast),
+                err(&glast),
+                "max |error| vs Newton solution of the (2,2) equations".into(),
+            )
+        }
+        Reference::OneStep => {
+            let (max_diff, bad, steps) = one_step_comparison(&sys, 20_000);
+            (
+                0.0,
+                max_diff,
+                format!(
+                    "grid vs exact from the same {steps} states: {bad} steps land > 1e-6 apart"
+                ),
+            )
+        }
+    };
+    Ok(SolverRow {
+        case: c.name,
+        system: format!("{} a={} r={}", c.table, c.alpha, c.r),
+        exact_rate: er,
+        grid_rate: gr,
+        exact_err: ee,
+        grid_err: ge,
+        note,
+    })
+}
+
+/// The (1, 1) fixed point's phase on an F_D table: the smaller root of
+/// α(3D t² − (2 + D) t + ½) = ½ (1 − r)/(1 + r) on the first piece.
+fn fixed_point_phase(sys: &System) -> f64 {
+    let d = sys.table.d().unwrap_or(0.0);
+    let a = sys.alpha;
+    let target = 0.5 * (1.0 - sys.r) / (1.0 + sys.r);
+    let (qa, qb, qc) = (3.0 * d * a, -(2.0 + d) * a, 0.5 * a - target);
+    if qa == 0.0 {
+        -qc / qb
+    } else {
+        (-qb - (qb * qb - 4.0 * qa * qc).sqrt()) / (2.0 * qa)
+    }
+}
+
+/// Solve the (2, 2) cycle equations (flight 1 + Δ from t0 to t1, flight 1 − Δ back,
+/// restitution at both impacts) by Newton's method from the exact orbit's last events.
+fn two_cycle(sys: &System, last: &[Event]) -> Option<(f64, f64, f64, f64)> {
+    let [.., a, b] = last else { return None };
+    let (e0, e1) = if a.phase < b.phase { (a, b) } else { (b, a) };
+    let mut x = [e0.phase, e1.phase, e0.v, e1.v];
+    let r = sys.r;
+    let f = |x: &[f64; 4]| -> [f64; 4] {
+        let (t0, t1, v0, v1) = (x[0], x[1], x[2], x[3]);
+        let dt = t1 - t0;
+        let (l0, l1) = (1.0 + dt, 1.0 - dt);
+        [
+            -0.5 * l0 * l0 + v0 * l0 + sys.f(t0) - sys.f(t1),
+            -0.5 * l1 * l1 + v1 * l1 + sys.f(t1) - sys.f(t0),
+            v1 - ((1.0 + r) * sys.df(t1) - r * (v0 - l0)),
+            v0 - ((1.0 + r) * sys.df(t0) - r * (v1 - l1)),
+        ]
+    };
+    for _ in 0..50 {
+        let fx = f(&x);
+        let mut j = [[0.0; 4]; 4];
+        for k in 0..4 {
+            let h = 1e-7;
+            let mut xp = x;
+            xp[k] += h;
+            let mut xm = x;
+            xm[k] -= h;
+            let (fp, fm) = (f(&xp), f(&xm));
+            for i in 0..4 {
+                j[i][k] = (fp[i] - fm[i]) / (2.0 * h);
+            }
+        }
+        let dx = solve4(j, fx)?;
+        for k in 0..4 {
+            x[k] -= dx[k];
+        }
+        if dx.iter().all(|d| d.abs() < 1e-15) {
+            break;
+        }
+    }
+    Some((x[0], x[1], x[2], x[3]))
+}
+
+/// Gaussian elimination with partial pivoting.
+fn solve4(mut a: [[f64; 4]; 4], mut b: [f64; 4]) -> Option<[f64; 4]> {
+    for c in 0..4 {
+        let p = (c..4).max_by(|&i, &k| a[i][c].abs().total_cmp(&a[k][c].abs()))?;
+        if a[p][c] == 0.0 {
+            return None;
+        }
+        a.swap(c, p);
+        b.swap(c, p);
+        for i in c + 1..4 {
+            let m = a[i][c] / a[c][c];
+            let pivot_row = a[c];
+            for (x, p) in a[i][c..].iter_mut().zip(&pivot_row[c..]) {
+                *x -= m * p;
+            }
+            b[i] -= m * b[c];
+        }
+    }
+    let mut x = [0.0; 4];
+    for c in (0..4).rev() {
+        let s: f64 = (c + 1..4).map(|k| a[c][k] * x[k]).sum();
+        x[c] = (b[c] - s) / a[c][c];
+    }
+    Some(x)
+}
+
+/// From each of `n` consecutive states of the exact orbit, one step of each solver:
+/// (largest landing time difference, steps landing > 1e-6 apart, steps compared).
+fn one_step_comparison(sys: &System, n: usize) -> (f64, usize, usize) {
+    let mut exact = ImpactMap::new(sys.clone(), Solver::Exact, start_state(sys));
+    for _ in 0..5_000 {
+        if exact.step().is_err() {
+            return (f64::NAN, 0, 0);
+        }
+    }
+    let (mut max_diff, mut bad, mut compared) = (0.0f64, 0usize, 0usize);
+    for _ in 0..n {
+        let s = *exact.state();
+        let Ok(e) = exact.step() else { break };
+        // Compare flights only: the grid solver has no sticking of its own.
+        if s.mode != crate::engine::Mode::Flying || e.kind != EventKind::Impact {
+            continue;
+        }
+        let mut grid = ImpactMap::new(sys.clone(), Solver::Grid, s);
+        let Ok(g) = grid.step() else {
+            bad += 1;
+            continue;
+        };
+        compared += 1;
+        let d = (g.period - e.period) as f64 + (g.phase - e.phase);
+        max_diff = max_diff.max(d.abs());
+        if d.abs() > 1e-6 {
+            bad += 1;
+        }
+    }
+    (max_diff, bad, compared)
+}
+
+/// Today's date (UTC) as YYYY-MM-DD.
+fn today() -> String {
+    let secs = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.as_secs()) as i64;
+    let days = secs.div_euclid(86_400);
+    // Civil from days (Howard Hinnant's algorithm).
+    let z = days + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z - era * 146_097;
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let d = doy - (153 * mp + 2) / 5 + 1;
+    let m = if mp < 10 { mp + 3 } else { mp - 9 };
+    let y = yoe + era * 400 + i64::from(m <= 2);
+    format!("{y:04}-{m:02}-{d:02}")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::engine::Table;
+
+    #[test]
+    fn fixed_point_phase_satisfies_the_defining_equation() {
+        let sys = System::new(Table::fd(0.1).unwrap(), 0.45, 0.8).unwrap();
+        let t = fixed_point_phase(&sys);
+        assert!((sys.df(t) - 0.5 * 0.2 / 1.8).abs() < 1e-14);
+        assert!(sys.jet(t)[2] < 0.0 && t < 0.5);
+    }
+
+    #[test]
+    fn two_cycle_newton_solves_a_perturbed_guess() {
+        // fd:1, α = 0.5 (past α_PD ≈ 0.4838): Newton from a rough guess must land on a
+        // genuine 2-cycle, which the exact map then reproduces.
+        let sys = System::new(Table::fd(1.0).unwrap(), 0.5, 0.8).unwrap();
+        let mut map = ImpactMap::new(sys.clone(), Solver::Exact, start_state(&sys));
+        let mut last = Vec::new();
+        for _ in 0..20_000 {
+            last.push(map.step().unwrap());
+        }
+        let mut guess = last[last.len() - 2..].to_vec();
+        guess[0].phase += 1e-4;
+        guess[1].v -= 1e-4;
+        let (t0, t1, v0, v1) = two_cycle(&sys, &guess).unwrap();
+        assert!((t1 - t0).abs() > 1e-3, "collapsed onto the fixed point");
+        let st = State::launch(&sys, 0, t0, v0, 0.0).unwrap();
+        let e = ImpactMap::new(sys, Solver::Exact, st).step().unwrap();
+        assert!((e.phase - t1).abs() < 1e-12 && (e.v - v1).abs() < 1e-12);
+    }
+
+    #[test]
+    fn today_is_a_date() {
+        let d = today();
+        assert_eq!(d.len(), 10);
+        assert!(d.starts_with("20"));
+    }
+
+    #[test]
+    fn cases_use_valid_tables() {
+        for c in &CASES {
+            system_of(c).unwrap();
+        }
+        assert!(Table::fd(0.1).is_ok());
+    }
+}
