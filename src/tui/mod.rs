@@ -160,6 +160,7 @@ pub fn run(opts: Options, analysis: Arc<dyn workers::Analysis>) -> anyhow::Resul
     };
     let mut app = build_app(&opts, &config)?;
     let stop = terminal::signal_flag()?;
+    terminal::spawn_watchdog(stop.clone());
     let workers = workers::Workers::new(analysis);
     let mut term = terminal::setup(app.mouse)?;
     let result = runtime::run(&mut term, &mut app, &workers, &stop);

@@ -32,7 +32,9 @@ pub fn run(
     let mut last_input = Instant::now();
     let mut resume_sweep = false;
     loop {
-        if stop.load(Ordering::Relaxed) {
+        // A signal, or a terminal that hung up without one (the link dropped and the
+        // pseudo-terminal is gone: reads return end-of-file forever).
+        if stop.load(Ordering::Relaxed) || !terminal::terminal_alive() {
             break;
         }
         // Size the plot grids before sweeps ask for the diagram's width.

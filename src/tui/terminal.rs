@@ -94,3 +94,40 @@ pub fn signal_flag() -> io::Result<Arc<AtomicBool>> {
     }
     Ok(flag)
 }
+
+/// Whether stdin and stdout are still terminals; after a hang-up they are not.
+pub fn terminal_alive() -> bool {
+    use std::io::IsTerminal;
+    io::stdin().is_terminal() && io::stdout().is_terminal()
+}
+
+/// How often the watchdog looks, and how long a stop signal may go unanswered.
+const WATCH_EVERY: std::time::Duration = std::time::Duration::from_millis(250);
+const STOP_GRACE: std::time::Duration = std::time::Duration::from_secs(1);
+
+/// Guard against a terminal that disappears without a signal (an SSH link dropped, a
+/// terminal emulator killed). crossterm 0.29's event reader then reads end-of-file in a
+/// loop that never returns (crossterm issue #793), so the event loop cannot notice. This
+/// thread ends the process when the terminal is gone, or when a stop signal (SIGTERM,
+/// SIGHUP, SIGINT) has not been answered within a second, restoring the terminal first
+/// where there still is one.
+pub fn spawn_watchdog(stop: Arc<AtomicBool>) {
+    let _ = std::thread::Builder::new()
+        .name("terminal-watchdog".into())
+        .spawn(move || {
+            let mut stop_seen: Option<std::time::Instant> = None;
+            loop {
+                std::thread::sleep(WATCH_EVERY);
+                if !terminal_alive() {
+                    std::process::exit(0);
+                }
+                if stop.load(Ordering::Relaxed) {
+                    let since = *stop_seen.get_or_insert_with(std::time::Instant::now);
+                    if since.elapsed() >= STOP_GRACE {
+                        restore();
+                        std::process::exit(0);
+                    }
+                }
+            }
+        });
+}
