@@ -49,7 +49,7 @@ mod tests {
     #[test]
     fn significant_digits() {
         assert_eq!(significant(0.5, 15), "0.500000000000000");
-        assert_eq!(significant(9780.139_017_934_653, 15), "9780.13901793465");
+        assert_eq!(significant(9_780.139_017_934_653, 15), "9780.13901793465");
         assert_eq!(significant(-0.0123, 3), "-0.0123");
         assert_eq!(significant(0.0, 4), "0.000");
     }
