@@ -308,6 +308,12 @@ impl ImpactMap {
 /// If the impacts following this post-impact state accumulate within
 /// [`CHATTER_WINDOW`], the accumulation time.
 fn chatter_limit(sys: &System, st: &State) -> Option<(i64, f64)> {
+    // The window 2w/((1 + f'')(1 − r)) cannot be short while w is large compared with
+    // the largest possible 1 + f'': most impacts are dismissed here without evaluating f''.
+    let a_max = 1.0 + sys.alpha * sys.table.accel_bound();
+    if st.w > W_FLOOR && 2.0 * st.w > CHATTER_WINDOW * a_max * (1.0 - sys.r) {
+        return None;
+    }
     let a = 1.0 + sys.ddf(st.phase);
     if a <= 0.0 {
         return None;

@@ -287,7 +287,7 @@ impl Poly {
             let prev_zero = prev.0.abs() <= prev.1;
             let cur_zero = cur.0.abs() <= cur.1;
             if !prev_zero && !cur_zero && (prev.0 < 0.0) != (cur.0 < 0.0) {
-                out.push(self.refine(pts[i - 1], pts[i], prev.0));
+                out.push(self.refine(pts[i - 1], pts[i], prev.0, cur.0));
                 if first_only {
                     return;
                 }
@@ -332,12 +332,11 @@ impl Poly {
         push_if_in(x2, out);
     }
 
-    /// Refine the single root in `(a, b)`, where `p(a)` has sign of `pa` and `p(b)` the
-    /// opposite, by Newton steps kept inside a shrinking bracket.
-    fn refine(&self, mut a: f64, mut b: f64, pa: f64) -> f64 {
+    /// Refine the single root in `(a, b)`, where `p(a) = pa` and `p(b) = pb` have opposite
+    /// signs, by Newton steps kept inside a shrinking bracket.
+    fn refine(&self, mut a: f64, mut b: f64, pa: f64, pb: f64) -> f64 {
         let neg_at_a = pa < 0.0;
         // Start from the secant point: Newton then converges in a few steps.
-        let pb = self.eval(b);
         let mut x = a - pa * (b - a) / (pb - pa);
         if !(x > a && x < b) {
             x = 0.5 * (a + b);

@@ -90,6 +90,8 @@ pub struct Table {
     shape: Shape,
     /// D for the paper's F_D family, None otherwise.
     d: Option<f64>,
+    /// An upper bound of |F''| over a period.
+    accel_bound: f64,
 }
 
 /// What a `--table` argument names before any file is read.
@@ -149,6 +151,7 @@ impl Table {
             name: "sine".into(),
             shape: Shape::Sine,
             d: None,
+            accel_bound: 4.0 * PI * PI,
         }
     }
 
@@ -174,9 +177,11 @@ impl Table {
         } else {
             format!("fd:{d}")
         };
+        let pieces = vec![Piece::new(0.0, 0.5, p0), Piece::new(0.5, 1.0, p1)];
         Ok(Table {
             name,
-            shape: Shape::Piecewise(vec![Piece::new(0.0, 0.5, p0), Piece::new(0.5, 1.0, p1)]),
+            accel_bound: accel_bound(&pieces),
+            shape: Shape::Piecewise(pieces),
             d: Some(d),
         })
     }
@@ -283,6 +288,7 @@ impl Table {
         }
         Ok(Table {
             name: file.name.unwrap_or_else(|| origin.to_string()),
+            accel_bound: accel_bound(&pieces),
             shape: Shape::Piecewise(pieces),
             d: None,
         })
@@ -382,10 +388,27 @@ impl Table {
         }
     }
 
+    /// An upper bound of |F''| over a period (rigorous, padded).
+    pub fn accel_bound(&self) -> f64 {
+        self.accel_bound
+    }
+
     /// Phases where F is not C² (piece starts), for plots and release search.
     pub fn breakpoints(&self) -> Vec<f64> {
         self.pieces().iter().map(|p| p.start).collect()
     }
+}
+
+/// Max |F''| over the pieces: endpoints and the critical points of F''.
+fn accel_bound(pieces: &[Piece]) -> f64 {
+    let mut m: f64 = 0.0;
+    for p in pieces {
+        m = m.max(p.d2.eval(0.0).abs()).max(p.d2.eval(p.len()).abs());
+        for &c in p.d3.roots_in(0.0, p.len()).as_slice() {
+            m = m.max(p.d2.eval(c).abs());
+        }
+    }
+    m * (1.0 + 1e-12) + 1e-12
 }
 
 impl fmt::Display for Table {
