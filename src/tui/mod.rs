@@ -122,8 +122,25 @@ fn default_window(spec: &str) -> Option<(f64, f64)> {
     }
 }
 
-/// The paper's figures (r = 0.8, k = 1).
+/// The paper's figures (r = 0.8, k = 1): Fig. 3's panels from the preset files shipped
+/// in `assets/presets/` (the same ones `bouncemap sweep --preset` uses), then enlarged
+/// windows around α_PD in the manner of Fig. 4.
 pub fn paper_presets() -> Vec<Preset> {
+    let mut presets: Vec<Preset> = crate::commands::sweep::PRESETS
+        .iter()
+        .filter_map(|(name, _)| {
+            let p = crate::commands::sweep::preset(name).ok()?;
+            (p.param == "alpha").then(|| Preset {
+                name: name.to_string(),
+                description: shorten(&p.description, 48),
+                table: p.table,
+                r: p.r.unwrap_or(0.8),
+                k: 1,
+                lo: p.window[0],
+                hi: p.window[1],
+            })
+        })
+        .collect();
     let p = |name: &str, description: &str, table: &str, lo, hi| Preset {
         name: name.into(),
         description: description.into(),
@@ -133,17 +150,21 @@ pub fn paper_presets() -> Vec<Preset> {
         lo,
         hi,
     };
-    vec![
-        p("fig3a", "F_0: chaos right after (1,1)", "fd:0", 0.1, 0.8),
-        p("fig3b", "F_0.1", "fd:0.1", 0.1, 0.8),
-        p("fig3c", "F_0.3", "fd:0.3", 0.1, 0.8),
-        p("fig3d", "F_0.5", "fd:0.5", 0.1, 0.8),
-        p("fig3e", "F_1: period doubling cascade", "fd:1", 0.1, 0.8),
-        p("fig3f", "sin 2πt", "sine", 0.005, 0.05),
+    presets.extend([
         p("fig4a", "D = 0.001 near α_PD", "fd:0.001", 0.46, 0.56),
         p("fig4b", "D = 0.01 near α_PD", "fd:0.01", 0.46, 0.56),
         p("fig4c", "D = 0.1 near α_PD", "fd:0.1", 0.44, 0.54),
-    ]
+    ]);
+    presets
+}
+
+/// `text` cut to at most `max` characters, with an ellipsis where it was cut.
+fn shorten(text: &str, max: usize) -> String {
+    if text.chars().count() <= max {
+        return text.to_string();
+    }
+    let cut: String = text.chars().take(max.saturating_sub(1)).collect();
+    format!("{}…", cut.trim_end())
 }
 
 /// Open the terminal application. Bad options or config: [`InputError`] (status 2).
