@@ -230,9 +230,51 @@ impl Poly {
 
     /// The smallest real root in `[lo, hi]`, including touching roots.
     pub fn first_root(&self, lo: f64, hi: f64) -> Option<f64> {
+        if self.len == 4 && lo < hi {
+            return self.first_root_cubic(lo, hi);
+        }
         let mut out = RootList::default();
         self.collect_roots(lo, hi, &mut out, true);
         out.as_slice().first().copied()
+    }
+
+    /// [`Self::first_root`] for a cubic: the critical points come from the derivative in
+    /// closed form (a double critical point is an inflection and splits nothing), then the
+    /// monotone segments are scanned in order as in the general case.
+    fn first_root_cubic(&self, lo: f64, hi: f64) -> Option<f64> {
+        let (a, b, c) = (3.0 * self.c[3], 2.0 * self.c[2], self.c[1]);
+        let mut pts = [lo, 0.0, 0.0, hi];
+        let mut n = 1;
+        let disc = b * b - 4.0 * a * c;
+        if disc > 0.0 {
+            let q = -0.5 * (b + b.signum() * disc.sqrt());
+            let (x1, x2) = (q / a, c / q);
+            let (x1, x2) = if x1 <= x2 { (x1, x2) } else { (x2, x1) };
+            for x in [x1, x2] {
+                if x > pts[n - 1] && x < hi {
+                    pts[n] = x;
+                    n += 1;
+                }
+            }
+        }
+        pts[n] = hi;
+        n += 1;
+        let mut prev = self.eval_with_bound(pts[0]);
+        if prev.0.abs() <= prev.1 {
+            return Some(pts[0]);
+        }
+        for i in 1..n {
+            let cur = self.eval_with_bound(pts[i]);
+            let cur_zero = cur.0.abs() <= cur.1;
+            if !cur_zero && (prev.0 < 0.0) != (cur.0 < 0.0) {
+                return Some(self.refine(pts[i - 1], pts[i], prev.0, cur.0));
+            }
+            if cur_zero {
+                return Some(pts[i]);
+            }
+            prev = cur;
+        }
+        None
     }
 
     fn collect_roots(&self, lo: f64, hi: f64, out: &mut RootList, first_only: bool) {
@@ -428,6 +470,34 @@ mod tests {
         }
         assert!((p.first_root(0.2, 1.0).unwrap() - 0.35).abs() < 1e-15);
         assert!(p.first_root(0.36, 0.89).is_none());
+    }
+
+    #[test]
+    fn cubic_fast_path_agrees_with_general_isolation() {
+        // Deterministic pseudo-random cubics, some built from known roots.
+        let mut seed = 0x9e3779b97f4a7c15u64;
+        let mut rnd = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        for i in 0..20000 {
+            let p = if i % 2 == 0 {
+                Poly::new(&[rnd(), rnd(), rnd(), rnd() + 2.0 * rnd().signum()])
+            } else {
+                from_roots(&[rnd(), rnd(), rnd()], 1.0 + rnd().abs())
+            };
+            let (lo, hi) = (rnd().min(0.0), rnd().max(0.0) + 0.1);
+            let mut general = RootList::default();
+            p.collect_roots(lo, hi, &mut general, true);
+            let fast = p.first_root(lo, hi);
+            match (fast, general.as_slice().first()) {
+                (None, None) => {}
+                (Some(a), Some(&b)) => assert!((a - b).abs() < 1e-9, "{p:?} [{lo}, {hi}]: {a} vs {b}"),
+                (a, b) => panic!("{p:?} [{lo}, {hi}]: {a:?} vs {b:?}"),
+            }
+        }
     }
 
     #[test]
