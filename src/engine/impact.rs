@@ -129,8 +129,9 @@ fn poly_landing(sys: &System, launch: &Launch) -> Result<Landing, FlightError> {
     let q = first.f.shift(off);
     let mut c = [0.0; MAX_COEFFS];
     let len = q.coeffs().len().max(3);
-    for (k, ck) in c.iter_mut().enumerate().take(len).skip(3) {
-        *ck = -alpha * q.coeff(k);
+    let qc = q.coeffs();
+    for k in 3..qc.len() {
+        c[k] = -alpha * qc[k];
     }
     c[0] = launch.height;
     c[1] = launch.w;
@@ -195,8 +196,9 @@ fn poly_landing(sys: &System, launch: &Launch) -> Result<Landing, FlightError> {
         let fp = &p.f;
         let mut c = [0.0; MAX_COEFFS];
         let len = fp.coeffs().len().max(3);
-        for (k, ck) in c.iter_mut().enumerate().take(len).skip(3) {
-            *ck = -alpha * fp.coeff(k);
+        let fc = fp.coeffs();
+        for k in 3..fc.len() {
+            c[k] = -alpha * fc[k];
         }
         c[0] = zb - alpha * fp.coeff(0);
         c[1] = vb - alpha * fp.coeff(1);

@@ -494,7 +494,9 @@ mod tests {
             let fast = p.first_root(lo, hi);
             match (fast, general.as_slice().first()) {
                 (None, None) => {}
-                (Some(a), Some(&b)) => assert!((a - b).abs() < 1e-9, "{p:?} [{lo}, {hi}]: {a} vs {b}"),
+                (Some(a), Some(&b)) => {
+                    assert!((a - b).abs() < 1e-9, "{p:?} [{lo}, {hi}]: {a} vs {b}")
+                }
                 (a, b) => panic!("{p:?} [{lo}, {hi}]: {a:?} vs {b:?}"),
             }
         }
