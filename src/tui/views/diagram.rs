@@ -17,18 +17,7 @@ const LABEL_W: u16 = 5;
 
 /// The plot rectangle inside the pane (border, y labels, x labels removed).
 pub fn plot_area(pane: Rect) -> Rect {
-    let inner = Rect {
-        x: pane.x + 1,
-        y: pane.y + 1,
-        width: pane.width.saturating_sub(2),
-        height: pane.height.saturating_sub(2),
-    };
-    Rect {
-        x: inner.x + LABEL_W + 1,
-        y: inner.y,
-        width: inner.width.saturating_sub(LABEL_W + 1),
-        height: inner.height.saturating_sub(1),
-    }
+    super::plot_area_within(pane, LABEL_W)
 }
 
 fn gauge(frac: f64, w: usize) -> String {

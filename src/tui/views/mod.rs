@@ -13,8 +13,10 @@ pub mod status;
 pub mod too_small;
 
 use super::app::{App, Focus, Overlay};
+use ratatui::buffer::Buffer;
 use ratatui::layout::{Constraint, Layout, Rect};
-use ratatui::widgets::{Block, BorderType};
+use ratatui::text::Line;
+use ratatui::widgets::{Block, BorderType, Clear, Paragraph, Widget};
 use ratatui::Frame;
 
 /// Smallest usable terminal.
@@ -117,4 +119,43 @@ pub fn compact(n: f64) -> String {
     } else {
         format!("{n:.0}")
     }
+}
+
+/// The plot rectangle inside a bordered pane, leaving `label_w` columns (plus the axis)
+/// for the y tick labels on the left and one row for the x tick labels at the bottom.
+pub fn plot_area_within(pane: Rect, label_w: u16) -> Rect {
+    let inner = Rect {
+        x: pane.x + 1,
+        y: pane.y + 1,
+        width: pane.width.saturating_sub(2),
+        height: pane.height.saturating_sub(2),
+    };
+    Rect {
+        x: inner.x + label_w + 1,
+        y: inner.y,
+        width: inner.width.saturating_sub(label_w + 1),
+        height: inner.height.saturating_sub(1),
+    }
+}
+
+/// A bordered box with `lines`, centred over `area` and sized to its content (overlays:
+/// help, presets).
+pub fn overlay(app: &App, title: &str, lines: Vec<Line<'_>>, area: Rect, buf: &mut Buffer) {
+    let w = (lines.iter().map(|l| l.width()).max().unwrap_or(40) as u16 + 2).min(area.width);
+    let h = (lines.len() as u16 + 2).min(area.height);
+    let r = Rect {
+        x: area.x + (area.width - w) / 2,
+        y: area.y + (area.height - h) / 2,
+        width: w,
+        height: h,
+    };
+    Clear.render(r, buf);
+    Paragraph::new(lines)
+        .block(
+            Block::bordered()
+                .border_type(BorderType::Rounded)
+                .border_style(app.theme.focus())
+                .title(format!(" {title} ")),
+        )
+        .render(r, buf);
 }

@@ -5,7 +5,6 @@ use crate::tui::params::fmt_num;
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::text::Line;
-use ratatui::widgets::{Block, BorderType, Clear, Paragraph, Widget};
 
 pub fn render(app: &App, selected: usize, area: Rect, buf: &mut Buffer) {
     let mut lines: Vec<Line> = if app.presets.is_empty() {
@@ -36,21 +35,5 @@ pub fn render(app: &App, selected: usize, area: Rect, buf: &mut Buffer) {
         " ↑/↓ choose, Enter load, Esc close",
         app.theme.dim(),
     ));
-    let w = (lines.iter().map(|l| l.width()).max().unwrap_or(40) as u16 + 2).min(area.width);
-    let h = (lines.len() as u16 + 2).min(area.height);
-    let r = Rect {
-        x: area.x + (area.width - w) / 2,
-        y: area.y + (area.height - h) / 2,
-        width: w,
-        height: h,
-    };
-    Clear.render(r, buf);
-    Paragraph::new(lines)
-        .block(
-            Block::bordered()
-                .border_type(BorderType::Rounded)
-                .border_style(app.theme.focus())
-                .title(" Presets "),
-        )
-        .render(r, buf);
+    super::overlay(app, "Presets", lines, area, buf);
 }
