@@ -18,16 +18,7 @@ fn panel(f: fn(&bouncemap::tui::app::App, Rect, &mut Buffer), w: u16, h: u16) ->
     let area = Rect::new(0, 0, w, h);
     let mut buf = Buffer::empty(area);
     f(&a, area, &mut buf);
-    (0..h)
-        .map(|y| {
-            (0..w)
-                .map(|x| buf[(x, y)].symbol().to_string())
-                .collect::<String>()
-                .trim_end()
-                .to_string()
-        })
-        .collect::<Vec<_>>()
-        .join("\n")
+    tui_common::buffer_text(&buf)
 }
 
 #[test]

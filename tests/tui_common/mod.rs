@@ -109,7 +109,11 @@ pub fn render(app: &mut App, w: u16, h: u16) -> Terminal<TestBackend> {
 
 /// The screen as text, one line per row.
 pub fn text(t: &Terminal<TestBackend>) -> String {
-    let buf = t.backend().buffer();
+    buffer_text(t.backend().buffer())
+}
+
+/// A buffer as text, one line per row, trailing blanks removed.
+pub fn buffer_text(buf: &ratatui::buffer::Buffer) -> String {
     (0..buf.area.height)
         .map(|y| {
             (0..buf.area.width)
