@@ -154,7 +154,7 @@ fn poly_landing(sys: &System, launch: &Launch) -> Result<Landing, FlightError> {
     }
 
     // Later pieces: gap from absolute heights, skipping where the ball is above the table.
-    let z0 = alpha * first.f.eval(off) + launch.height;
+    let z0 = alpha * q.coeff(0) + launch.height;
     let (top_lo, top_hi) = sys.table.range();
     let (up, down) = match crossing_times(z0, v, alpha * top_hi) {
         Some((u, d)) if z0 <= alpha * top_hi => (u.max(0.0), d),

@@ -109,6 +109,20 @@ impl Poly {
         (p, dp)
     }
 
+    /// Value, first and second derivative at `x`.
+    #[inline]
+    pub fn eval_d2(&self, x: f64) -> (f64, f64, f64) {
+        let mut p = 0.0;
+        let mut dp = 0.0;
+        let mut ddp = 0.0;
+        for k in (0..self.len).rev() {
+            ddp = ddp * x + dp;
+            dp = dp * x + p;
+            p = p * x + self.c[k];
+        }
+        (p, dp, 2.0 * ddp)
+    }
+
     /// Value at `x` with a bound on its rounding error (a few ulps of `sum |c_k x^k|`).
     #[inline]
     pub fn eval_with_bound(&self, x: f64) -> (f64, f64) {
@@ -384,7 +398,7 @@ impl Poly {
             x = 0.5 * (a + b);
         }
         for _ in 0..200 {
-            let (v, dv) = self.eval_d(x);
+            let (v, dv, ddv) = self.eval_d2(x);
             if v == 0.0 {
                 return x;
             }
@@ -398,8 +412,13 @@ impl Poly {
             }
             let newton = x - v / dv;
             if dv != 0.0 && newton > a && newton < b {
-                // Converged: the Newton correction is at the rounding level of x.
-                if (newton - x).abs() <= 4.0 * EPS * x.abs() {
+                // Converged: the Newton correction is at the rounding level of x, or
+                // the error left after this step, |p''|/(2|p'|)·step² (quadratic
+                // convergence), is.
+                let step = newton - x;
+                if step.abs() <= 4.0 * EPS * x.abs()
+                    || (ddv / dv).abs() * step * step <= 2.0 * EPS * newton.abs()
+                {
                     return newton;
                 }
                 x = newton;

@@ -92,6 +92,8 @@ pub struct Table {
     d: Option<f64>,
     /// An upper bound of |F''| over a period.
     accel_bound: f64,
+    /// Rigorous bounds (min, max) of F over a period.
+    range: (f64, f64),
 }
 
 /// What a `--table` argument names before any file is read.
@@ -152,6 +154,7 @@ impl Table {
             shape: Shape::Sine,
             d: None,
             accel_bound: 4.0 * PI * PI,
+            range: (-1.0, 1.0),
         }
     }
 
@@ -181,6 +184,7 @@ impl Table {
         Ok(Table {
             name,
             accel_bound: accel_bound(&pieces),
+            range: piece_range(&pieces),
             shape: Shape::Piecewise(pieces),
             d: Some(d),
         })
@@ -289,6 +293,7 @@ impl Table {
         Ok(Table {
             name: file.name.unwrap_or_else(|| origin.to_string()),
             accel_bound: accel_bound(&pieces),
+            range: piece_range(&pieces),
             shape: Shape::Piecewise(pieces),
             d: None,
         })
@@ -380,12 +385,7 @@ impl Table {
 
     /// Rigorous bounds (min, max) of F over a period.
     pub fn range(&self) -> (f64, f64) {
-        match &self.shape {
-            Shape::Sine => (-1.0, 1.0),
-            Shape::Piecewise(p) => p.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |a, q| {
-                (a.0.min(q.min), a.1.max(q.max))
-            }),
-        }
+        self.range
     }
 
     /// An upper bound of |F''| over a period (rigorous, padded).
@@ -397,6 +397,15 @@ impl Table {
     pub fn breakpoints(&self) -> Vec<f64> {
         self.pieces().iter().map(|p| p.start).collect()
     }
+}
+
+/// Bounds (min, max) of F over all pieces.
+fn piece_range(pieces: &[Piece]) -> (f64, f64) {
+    pieces
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |a, q| {
+            (a.0.min(q.min), a.1.max(q.max))
+        })
 }
 
 /// Max |F''| over the pieces: endpoints and the critical points of F''.
