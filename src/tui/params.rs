@@ -132,7 +132,7 @@ impl ParamId {
             ParamId::V0 => "auto, or a number ≥ f'(t̂0) within [-1000, 1000]",
             ParamId::Lo => "(0, 1000] and below α to",
             ParamId::Hi => "(0, 1000] and above α from",
-            ParamId::Transient => "a whole number in [0, 1000000]",
+            ParamId::Transient => "a whole number in [0, 10000000]",
             ParamId::Keep => "a whole number in [1, 10000]",
         }
     }
@@ -341,7 +341,7 @@ impl Params {
                     return bad(fmt_num(v));
                 }
             }
-            ParamId::Transient if self.transient > 1_000_000 => {
+            ParamId::Transient if self.transient > 10_000_000 => {
                 return bad(self.transient.to_string())
             }
             ParamId::Keep if !(1..=10_000).contains(&self.keep) => {
