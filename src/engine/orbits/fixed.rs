@@ -370,30 +370,24 @@ pub fn stability_windows(
         let Some(i0) = oks.iter().position(|&b| b) else {
             continue;
         };
+        // The admissible end of a bracket (good, bad) after 60 bisections.
+        let mut boundary = |mut good: f64, mut bad: f64| {
+            for _ in 0..60 {
+                let mid = 0.5 * (bad + good);
+                if admissible_at(&mut sys, mid) {
+                    good = mid;
+                } else {
+                    bad = mid;
+                }
+            }
+            good
+        };
         let mut birth = alpha_lo;
         if i0 > 0 {
-            let (mut bad, mut good) = (at(i0 - 1), at(i0));
-            for _ in 0..60 {
-                let mid = 0.5 * (bad + good);
-                if admissible_at(&mut sys, mid) {
-                    good = mid;
-                } else {
-                    bad = mid;
-                }
-            }
-            birth = good;
+            birth = boundary(at(i0), at(i0 - 1));
         }
         if let Some(i1) = (i0..SAMPLES).find(|&i| !oks[i]) {
-            let (mut good, mut bad) = (at(i1 - 1), at(i1));
-            for _ in 0..60 {
-                let mid = 0.5 * (bad + good);
-                if admissible_at(&mut sys, mid) {
-                    good = mid;
-                } else {
-                    bad = mid;
-                }
-            }
-            alpha_hi = good;
+            alpha_hi = boundary(at(i1 - 1), at(i1));
             end = WindowEnd::Inadmissible;
         }
         let phase_birth = if i0 == 0 {
