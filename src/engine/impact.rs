@@ -66,6 +66,8 @@ pub struct Landing {
     pub flight: f64,
     /// Relative velocity at contact, u − f'(t) (≤ 0).
     pub vrel: f64,
+    /// The table's velocity f'(t) at contact.
+    pub df: f64,
 }
 
 /// Why no landing was returned.
@@ -150,6 +152,7 @@ fn poly_landing(sys: &System, launch: &Launch) -> Result<Landing, FlightError> {
             off + s,
             s,
             gap.eval_d(s).1,
+            alpha * first.d1.eval(off + s),
         ));
     }
 
@@ -204,7 +207,9 @@ fn poly_landing(sys: &System, launch: &Launch) -> Result<Landing, FlightError> {
         c[1] = vb - alpha * fp.coeff(1);
         c[2] = -0.5 - alpha * fp.coeff(2);
         let g = Poly::from_array(c, len);
-        let (g0, err) = g.eval_with_bound(0.0);
+        // At s = 0 the value is c0 itself, its rounding bound that of one term.
+        let g0 = g.coeff(0);
+        let err = (4 * g.coeffs().len()) as f64 * f64::EPSILON * g0.abs();
         let root = if g0 <= err {
             Some(0.0)
         } else {
@@ -217,7 +222,8 @@ fn poly_landing(sys: &System, launch: &Launch) -> Result<Landing, FlightError> {
                 p.start,
                 s,
                 tau_lo + s,
-                g.derivative().eval(s),
+                g.eval_d(s).1,
+                alpha * p.d1.eval(s),
             ));
         }
         j += 1;
@@ -260,6 +266,7 @@ fn landing_on(
     s_in_piece: f64,
     tau: f64,
     vrel: f64,
+    df: f64,
 ) -> Landing {
     let (period, phase) = normalize(launch.period + m, start + s_in_piece);
     Landing {
@@ -267,6 +274,7 @@ fn landing_on(
         phase,
         flight: tau,
         vrel: vrel.min(0.0),
+        df,
     }
 }
 
@@ -380,7 +388,7 @@ fn sine_landing_from(
     for _ in 0..MAX_SINE_STEPS {
         let g0 = gap(tau);
         if tau > 0.0 && g0 <= tol(tau) {
-            return Ok(sine_landing_at(launch, tau, dgap(tau)));
+            return Ok(sine_landing_at(sys, launch, tau, dgap(tau)));
         }
         // Skip the stretch where the ball is above the highest table position.
         if let (true, Some(d)) = (may_skip, down) {
@@ -404,14 +412,14 @@ fn sine_landing_from(
         };
         let step = bound.first_root(0.0, 1.0).unwrap_or(1.0);
         if step <= 0.0 {
-            return Ok(sine_landing_at(launch, tau, dgap(tau)));
+            return Ok(sine_landing_at(sys, launch, tau, dgap(tau)));
         }
         let next = tau + step;
         let gn = gap(next);
         if gn < 0.0 {
             // The contact lies in (tau, next): bracketed, refine by bisection + secant.
             let root = refine_bracket(&gap, tau, next, g0, gn);
-            return Ok(sine_landing_at(launch, root, dgap(root)));
+            return Ok(sine_landing_at(sys, launch, root, dgap(root)));
         }
         tau = next;
     }
@@ -462,13 +470,14 @@ fn refine_bracket(
     }
 }
 
-fn sine_landing_at(launch: &Launch, tau: f64, vrel: f64) -> Landing {
+fn sine_landing_at(sys: &System, launch: &Launch, tau: f64, vrel: f64) -> Landing {
     let (period, phase) = normalize(launch.period, launch.phase + tau);
     Landing {
         period,
         phase,
         flight: tau,
         vrel: vrel.min(0.0),
+        df: sys.df(phase),
     }
 }
 
@@ -505,6 +514,7 @@ fn grid_landing(sys: &System, launch: &Launch) -> Result<Landing, FlightError> {
             phase,
             flight: t,
             vrel: vrel.min(0.0),
+            df: sys.df(phase),
         })
     };
     let first = node_tau(1);

@@ -228,7 +228,7 @@ impl ImpactMap {
         };
         match next_landing(&self.sys, self.solver, &launch) {
             Ok(l) => {
-                let df = self.sys.df(l.phase);
+                let df = l.df;
                 let w = -self.sys.r * l.vrel;
                 self.state = State {
                     period: l.period,

@@ -9,7 +9,7 @@
 //! are found, not skipped.
 
 /// Largest number of coefficients a [`Poly`] holds (degree up to `MAX_COEFFS - 1`).
-pub const MAX_COEFFS: usize = 10;
+pub const MAX_COEFFS: usize = 8;
 
 /// A real polynomial `c[0] + c[1] x + ... + c[len-1] x^(len-1)`, stored inline.
 #[derive(Clone, Copy, Debug, PartialEq)]
