@@ -3,7 +3,7 @@
 //! * Solver throughput: events per second of the exact and the grid solver on the same
 //!   orbits (period-1, period-2, chaotic, sticking), each with its accuracy against an
 //!   independent reference: the closed-form (1, 1) fixed point; the (2, 2) cycle solved
-//!   by Newton's method on its four defining equations (flight and restitution laws);
+//!   by Newton's method on its four defining equations ([`orbits::two_cycle`]);
 //!   for chaotic and sticking orbits, one step of each solver from the same exact
 //!   states, counting steps that land more than 10⁻⁶ apart (missed or misplaced
 //!   impacts).
@@ -14,6 +14,7 @@
 
 use super::sweep::preset;
 use crate::engine::map::{Event, EventKind, ImpactMap, State};
+use crate::engine::orbits;
 use crate::engine::sweep::{self, Outcome, SweepParam, SweepSpec};
 use crate::engine::{Solver, System};
 use crate::input::{load_table, InputError};
@@ -388,7 +389,9 @@ fn solver_row(c: &Case, budget: Duration) -> Result<SolverRow, InputError> {
             )
         }
         Reference::TwoCycle => {
-            let reference = two_cycle(&sys, &elast);
+            let reference = orbits::two_cycle(&sys, 1)
+                .ok()
+                .map(|tc| (tc.phase0, tc.phase1, tc.v0, tc.v1));
             let err = |l: &[Event]| match reference {
                 Some((t0, t1, v0, v1)) => l
                     .iter()
@@ -440,75 +443,6 @@ fn fixed_point_phase(sys: &System) -> f64 {
     } else {
         (-qb - (qb * qb - 4.0 * qa * qc).sqrt()) / (2.0 * qa)
     }
-}
-
-/// Solve the (2, 2) cycle equations (flight 1 + Δ from t0 to t1, flight 1 − Δ back,
-/// restitution at both impacts) by Newton's method from the exact orbit's last events.
-fn two_cycle(sys: &System, last: &[Event]) -> Option<(f64, f64, f64, f64)> {
-    let [.., a, b] = last else { return None };
-    let (e0, e1) = if a.phase < b.phase { (a, b) } else { (b, a) };
-    let mut x = [e0.phase, e1.phase, e0.v, e1.v];
-    let r = sys.r;
-    let f = |x: &[f64; 4]| -> [f64; 4] {
-        let (t0, t1, v0, v1) = (x[0], x[1], x[2], x[3]);
-        let dt = t1 - t0;
-        let (l0, l1) = (1.0 + dt, 1.0 - dt);
-        [
-            -0.5 * l0 * l0 + v0 * l0 + sys.f(t0) - sys.f(t1),
-            -0.5 * l1 * l1 + v1 * l1 + sys.f(t1) - sys.f(t0),
-            v1 - ((1.0 + r) * sys.df(t1) - r * (v0 - l0)),
-            v0 - ((1.0 + r) * sys.df(t0) - r * (v1 - l1)),
-        ]
-    };
-    for _ in 0..50 {
-        let fx = f(&x);
-        let mut j = [[0.0; 4]; 4];
-        for k in 0..4 {
-            let h = 1e-7;
-            let mut xp = x;
-            xp[k] += h;
-            let mut xm = x;
-            xm[k] -= h;
-            let (fp, fm) = (f(&xp), f(&xm));
-            for i in 0..4 {
-                j[i][k] = (fp[i] - fm[i]) / (2.0 * h);
-            }
-        }
-        let dx = solve4(j, fx)?;
-        for k in 0..4 {
-            x[k] -= dx[k];
-        }
-        if dx.iter().all(|d| d.abs() < 1e-15) {
-            break;
-        }
-    }
-    Some((x[0], x[1], x[2], x[3]))
-}
-
-/// Gaussian elimination with partial pivoting.
-fn solve4(mut a: [[f64; 4]; 4], mut b: [f64; 4]) -> Option<[f64; 4]> {
-    for c in 0..4 {
-        let p = (c..4).max_by(|&i, &k| a[i][c].abs().total_cmp(&a[k][c].abs()))?;
-        if a[p][c] == 0.0 {
-            return None;
-        }
-        a.swap(c, p);
-        b.swap(c, p);
-        for i in c + 1..4 {
-            let m = a[i][c] / a[c][c];
-            let pivot_row = a[c];
-            for (x, p) in a[i][c..].iter_mut().zip(&pivot_row[c..]) {
-                *x -= m * p;
-            }
-            b[i] -= m * b[c];
-        }
-    }
-    let mut x = [0.0; 4];
-    for c in (0..4).rev() {
-        let s: f64 = (c + 1..4).map(|k| a[c][k] * x[k]).sum();
-        x[c] = (b[c] - s) / a[c][c];
-    }
-    Some(x)
 }
 
 /// From each of `n` consecutive states of the exact orbit, one step of each solver:
@@ -576,19 +510,12 @@ mod tests {
     }
 
     #[test]
-    fn two_cycle_newton_solves_a_perturbed_guess() {
-        // fd:1, α = 0.5 (past α_PD ≈ 0.4838): Newton from a rough guess must land on a
-        // genuine 2-cycle, which the exact map then reproduces.
+    fn two_cycle_reference_is_a_genuine_cycle_of_the_map() {
+        // fd:1, α = 0.5 (past α_PD ≈ 0.4838): the reference the period-2 row uses must be
+        // a genuine 2-cycle, which the exact map then reproduces.
         let sys = System::new(Table::fd(1.0).unwrap(), 0.5, 0.8).unwrap();
-        let mut map = ImpactMap::new(sys.clone(), Solver::Exact, start_state(&sys));
-        let mut last = Vec::new();
-        for _ in 0..20_000 {
-            last.push(map.step().unwrap());
-        }
-        let mut guess = last[last.len() - 2..].to_vec();
-        guess[0].phase += 1e-4;
-        guess[1].v -= 1e-4;
-        let (t0, t1, v0, v1) = two_cycle(&sys, &guess).unwrap();
+        let tc = orbits::two_cycle(&sys, 1).unwrap();
+        let (t0, t1, v0, v1) = (tc.phase0, tc.phase1, tc.v0, tc.v1);
         assert!((t1 - t0).abs() > 1e-3, "collapsed onto the fixed point");
         let st = State::launch(&sys, 0, t0, v0, 0.0).unwrap();
         let e = ImpactMap::new(sys, Solver::Exact, st).step().unwrap();
