@@ -32,9 +32,9 @@ pub fn run(
     let mut last_input = Instant::now();
     let mut resume_sweep = false;
     loop {
-        // A signal, or a terminal that hung up without one (the link dropped and the
-        // pseudo-terminal is gone: reads return end-of-file forever).
-        if stop.load(Ordering::Relaxed) || !terminal::terminal_alive() {
+        // A hang-up without a signal is the watchdog's (terminal::spawn_watchdog): the
+        // event reader never returns then, so a check here would not run.
+        if stop.load(Ordering::Relaxed) {
             break;
         }
         // Size the plot grids before sweeps ask for the diagram's width.

@@ -96,7 +96,7 @@ pub fn signal_flag() -> io::Result<Arc<AtomicBool>> {
 }
 
 /// Whether stdin and stdout are still terminals; after a hang-up they are not.
-pub fn terminal_alive() -> bool {
+fn terminal_alive() -> bool {
     use std::io::IsTerminal;
     io::stdin().is_terminal() && io::stdout().is_terminal()
 }
