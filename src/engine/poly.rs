@@ -109,18 +109,20 @@ impl Poly {
         (p, dp)
     }
 
-    /// Value, first and second derivative at `x`.
+    /// Value and first three derivatives at `x`.
     #[inline]
-    pub fn eval_d2(&self, x: f64) -> (f64, f64, f64) {
+    pub fn eval_d3(&self, x: f64) -> [f64; 4] {
         let mut p = 0.0;
         let mut dp = 0.0;
         let mut ddp = 0.0;
+        let mut dddp = 0.0;
         for k in (0..self.len).rev() {
+            dddp = dddp * x + ddp;
             ddp = ddp * x + dp;
             dp = dp * x + p;
             p = p * x + self.c[k];
         }
-        (p, dp, 2.0 * ddp)
+        [p, dp, 2.0 * ddp, 6.0 * dddp]
     }
 
     /// Value at `x` with a bound on its rounding error (a few ulps of `sum |c_k x^k|`).
@@ -244,51 +246,22 @@ impl Poly {
 
     /// The smallest real root in `[lo, hi]`, including touching roots.
     pub fn first_root(&self, lo: f64, hi: f64) -> Option<f64> {
-        if self.len == 4 && lo < hi {
-            return self.first_root_cubic(lo, hi);
+        if self.len <= 4 {
+            return first_root_low_degree(&self.low_coeffs(), self.len, lo, hi);
         }
         let mut out = RootList::default();
         self.collect_roots(lo, hi, &mut out, true);
         out.as_slice().first().copied()
     }
 
-    /// [`Self::first_root`] for a cubic: the critical points come from the derivative in
-    /// closed form (a double critical point is an inflection and splits nothing), then the
-    /// monotone segments are scanned in order as in the general case.
-    fn first_root_cubic(&self, lo: f64, hi: f64) -> Option<f64> {
-        let (a, b, c) = (3.0 * self.c[3], 2.0 * self.c[2], self.c[1]);
-        let mut pts = [lo, 0.0, 0.0, hi];
-        let mut n = 1;
-        let disc = b * b - 4.0 * a * c;
-        if disc > 0.0 {
-            let q = -0.5 * (b + b.signum() * disc.sqrt());
-            let (x1, x2) = (q / a, c / q);
-            let (x1, x2) = if x1 <= x2 { (x1, x2) } else { (x2, x1) };
-            for x in [x1, x2] {
-                if x > pts[n - 1] && x < hi {
-                    pts[n] = x;
-                    n += 1;
-                }
-            }
-        }
-        pts[n] = hi;
-        n += 1;
-        let mut prev = self.eval_with_bound(pts[0]);
-        if prev.0.abs() <= prev.1 {
-            return Some(pts[0]);
-        }
-        for i in 1..n {
-            let cur = self.eval_with_bound(pts[i]);
-            let cur_zero = cur.0.abs() <= cur.1;
-            if !cur_zero && (prev.0 < 0.0) != (cur.0 < 0.0) {
-                return Some(self.refine(pts[i - 1], pts[i], prev.0, cur.0));
-            }
-            if cur_zero {
-                return Some(pts[i]);
-            }
-            prev = cur;
-        }
-        None
+    /// The first four coefficients (zero beyond the degree), for the fixed-size
+    /// routines of polynomials of degree at most 3.
+    #[inline]
+    pub fn low_coeffs(&self) -> [f64; 4] {
+        // Coefficients at and beyond `len` are always zero (every constructor keeps
+        // them so), so no masking is needed.
+        debug_assert!(self.c[self.len.min(MAX_COEFFS)..].iter().all(|&c| c == 0.0));
+        [self.c[0], self.c[1], self.c[2], self.c[3]]
     }
 
     fn collect_roots(&self, lo: f64, hi: f64, out: &mut RootList, first_only: bool) {
@@ -296,23 +269,16 @@ impl Poly {
             return;
         }
         if self.len == 2 {
-            let x = -self.c[0] / self.c[1];
-            if x >= lo && x <= hi {
+            if let Some(x) = linear_root(&self.low_coeffs(), lo, hi) {
                 out.push(x);
-            } else {
-                // Endpoints within rounding of zero still count.
-                for e in [lo, hi] {
-                    let (v, b) = self.eval_with_bound(e);
-                    if v.abs() <= b {
-                        out.push(e);
-                        break;
-                    }
-                }
             }
             return;
         }
         if self.len == 3 {
-            self.quadratic_roots(lo, hi, out);
+            let (xs, n) = quadratic_roots(&self.low_coeffs(), lo, hi);
+            for &x in &xs[..n] {
+                out.push(x);
+            }
             return;
         }
         // Critical points split [lo, hi] into monotone segments.
@@ -358,88 +324,230 @@ impl Poly {
         }
     }
 
-    /// Roots of a quadratic in `[lo, hi]` in closed form (the cancellation-free variant
-    /// of the formula); a discriminant that is negative only within rounding gives a
-    /// touching root at the vertex.
-    fn quadratic_roots(&self, lo: f64, hi: f64, out: &mut RootList) {
-        let (c, b, a) = (self.c[0], self.c[1], self.c[2]);
-        let disc = b * b - 4.0 * a * c;
-        let disc_err = 8.0 * EPS * (b * b + (4.0 * a * c).abs());
-        let push_if_in = |x: f64, out: &mut RootList| {
-            if x >= lo && x <= hi {
-                out.push(x);
-            }
-        };
-        if disc < -disc_err {
-            return;
-        }
-        if disc <= disc_err {
-            let x = -b / (2.0 * a);
-            let (v, e) = self.eval_with_bound(x);
-            if v.abs() <= e || disc >= 0.0 {
-                push_if_in(x, out);
-            }
-            return;
-        }
-        let q = -0.5 * (b + b.signum() * disc.sqrt());
-        let (x1, x2) = if q != 0.0 { (q / a, c / q) } else { (0.0, 0.0) };
-        let (x1, x2) = if x1 <= x2 { (x1, x2) } else { (x2, x1) };
-        push_if_in(x1, out);
-        push_if_in(x2, out);
-    }
-
     /// Refine the single root in `(a, b)`, where `p(a) = pa` and `p(b) = pb` have opposite
-    /// signs, by Newton steps kept inside a shrinking bracket.
-    fn refine(&self, mut a: f64, mut b: f64, pa: f64, pb: f64) -> f64 {
-        let neg_at_a = pa < 0.0;
-        // Start from the secant point: Newton then converges in a few steps.
-        let mut x = a - pa * (b - a) / (pb - pa);
-        if !(x > a && x < b) {
+    /// signs.
+    fn refine(&self, a: f64, b: f64, pa: f64, pb: f64) -> f64 {
+        refine_root(|x| self.eval_d3(x), a, b, pa, pb)
+    }
+}
+
+/// Value and first three derivatives of `c[0] + c[1] x + c[2] x² + c[3] x³`.
+#[inline]
+fn cubic_eval_d3(c: &[f64; 4], x: f64) -> [f64; 4] {
+    let p = ((c[3] * x + c[2]) * x + c[1]) * x + c[0];
+    let dp = (3.0 * c[3] * x + 2.0 * c[2]) * x + c[1];
+    let ddp = 6.0 * c[3] * x + 2.0 * c[2];
+    [p, dp, ddp, 6.0 * c[3]]
+}
+
+/// Value of a polynomial of degree ≤ 3 with a bound on its rounding error, as
+/// [`Poly::eval_with_bound`] (`len` is the number of coefficients).
+#[inline]
+fn cubic_eval_with_bound(c: &[f64; 4], len: usize, x: f64) -> (f64, f64) {
+    let ax = x.abs();
+    let p = ((c[3] * x + c[2]) * x + c[1]) * x + c[0];
+    let mag = ((c[3].abs() * ax + c[2].abs()) * ax + c[1].abs()) * ax + c[0].abs();
+    (p, (4 * len.max(1)) as f64 * EPS * mag)
+}
+
+/// [`Poly::first_root`] for a polynomial of degree ≤ 3 given by its first four
+/// coefficients and its length (`len` ≤ 4, no trailing zero): closed forms for the
+/// linear and quadratic cases; for a cubic, the critical points in closed form split the
+/// interval into monotone segments, which are scanned in order.
+pub fn first_root_low_degree(c: &[f64; 4], len: usize, lo: f64, hi: f64) -> Option<f64> {
+    // An empty or NaN interval holds no root.
+    if lo.is_nan() || hi.is_nan() || lo > hi {
+        return None;
+    }
+    match len {
+        0 | 1 => None,
+        2 => linear_root(c, lo, hi),
+        3 => {
+            if quadratic_keeps_sign([c[0], c[1], c[2]], lo, hi) {
+                return None;
+            }
+            let (xs, n) = quadratic_roots(c, lo, hi);
+            (n > 0).then(|| xs[0])
+        }
+        _ => first_root_cubic(c, lo, hi),
+    }
+}
+
+/// The root of `c[0] + c[1] x` in `[lo, hi]`; an end where the value is zero within
+/// rounding also counts.
+fn linear_root(c: &[f64; 4], lo: f64, hi: f64) -> Option<f64> {
+    let x = -c[0] / c[1];
+    if x >= lo && x <= hi {
+        return Some(x);
+    }
+    [lo, hi].into_iter().find(|&e| {
+        let (v, b) = cubic_eval_with_bound(c, 2, e);
+        v.abs() <= b
+    })
+}
+
+/// Roots of the quadratic `c[0] + c[1] x + c[2] x²` in `[lo, hi]`, ascending, in closed
+/// form (the cancellation-free variant of the formula); a discriminant that is negative
+/// only within rounding gives a touching root at the vertex.
+fn quadratic_roots(c: &[f64; 4], lo: f64, hi: f64) -> ([f64; 2], usize) {
+    let (c0, b, a) = (c[0], c[1], c[2]);
+    let mut xs = [0.0; 2];
+    let mut n = 0;
+    let mut push_if_in = |x: f64| {
+        if x >= lo && x <= hi && (n == 0 || xs[n - 1] != x) {
+            xs[n] = x;
+            n += 1;
+        }
+    };
+    let disc = b * b - 4.0 * a * c0;
+    let disc_err = 8.0 * EPS * (b * b + (4.0 * a * c0).abs());
+    if disc < -disc_err {
+        return (xs, 0);
+    }
+    if disc <= disc_err {
+        let x = -b / (2.0 * a);
+        let (v, e) = cubic_eval_with_bound(c, 3, x);
+        if v.abs() <= e || disc >= 0.0 {
+            push_if_in(x);
+        }
+        return (xs, n);
+    }
+    let q = -0.5 * (b + b.signum() * disc.sqrt());
+    let (x1, x2) = if q != 0.0 {
+        (q / a, c0 / q)
+    } else {
+        (0.0, 0.0)
+    };
+    let (x1, x2) = if x1 <= x2 { (x1, x2) } else { (x2, x1) };
+    push_if_in(x1);
+    push_if_in(x2);
+    (xs, n)
+}
+
+/// True when the quadratic `d[0] + d[1] x + d[2] x²` provably has no root in `[lo, hi]`:
+/// its values at both ends are of one sign beyond their rounding bounds, and either its
+/// curvature bends it away from zero (a concave one lies above its chord, a convex one
+/// below) or its slope keeps one sign too, so it is monotone there. Cheap (no square
+/// root, no division); false means only "maybe a root".
+#[inline]
+fn quadratic_keeps_sign(d: [f64; 3], lo: f64, hi: f64) -> bool {
+    let c = [d[0], d[1], d[2], 0.0];
+    let (vlo, blo) = cubic_eval_with_bound(&c, 3, lo);
+    let (vhi, bhi) = cubic_eval_with_bound(&c, 3, hi);
+    if !(vlo.abs() > blo && vhi.abs() > bhi && (vlo > 0.0) == (vhi > 0.0)) {
+        return false;
+    }
+    let slope = [d[1], 2.0 * d[2], 0.0, 0.0];
+    let (slo, sblo) = cubic_eval_with_bound(&slope, 2, lo);
+    let (shi, sbhi) = cubic_eval_with_bound(&slope, 2, hi);
+    slo.abs() > sblo && shi.abs() > sbhi && (slo > 0.0) == (shi > 0.0)
+}
+
+/// The first root of a cubic (`c[3]` ≠ 0) in `[lo, hi]`. The critical points come from
+/// the derivative in closed form (a double critical point is an inflection and splits
+/// nothing), then the monotone segments are scanned in order as in the general case.
+fn first_root_cubic(c: &[f64; 4], lo: f64, hi: f64) -> Option<f64> {
+    let (a, b, cc) = (3.0 * c[3], 2.0 * c[2], c[1]);
+    let mut pts = [lo, 0.0, 0.0, hi];
+    let mut n = 1;
+    let disc = b * b - 4.0 * a * cc;
+    // The closed form is needed only when a critical point may lie in the interval.
+    if disc > 0.0 && !quadratic_keeps_sign([cc, b, a], lo, hi) {
+        let q = -0.5 * (b + b.signum() * disc.sqrt());
+        let (x1, x2) = (q / a, cc / q);
+        let (x1, x2) = if x1 <= x2 { (x1, x2) } else { (x2, x1) };
+        for x in [x1, x2] {
+            if x > pts[n - 1] && x < hi {
+                pts[n] = x;
+                n += 1;
+            }
+        }
+    }
+    pts[n] = hi;
+    n += 1;
+    let mut prev = cubic_eval_with_bound(c, 4, pts[0]);
+    if prev.0.abs() <= prev.1 {
+        return Some(pts[0]);
+    }
+    for i in 1..n {
+        let cur = cubic_eval_with_bound(c, 4, pts[i]);
+        let cur_zero = cur.0.abs() <= cur.1;
+        if !cur_zero && (prev.0 < 0.0) != (cur.0 < 0.0) {
+            return Some(refine_root(
+                |x| cubic_eval_d3(c, x),
+                pts[i - 1],
+                pts[i],
+                prev.0,
+                cur.0,
+            ));
+        }
+        if cur_zero {
+            return Some(pts[i]);
+        }
+        prev = cur;
+    }
+    None
+}
+
+/// Refine the single root in `(a, b)`, where `p(a) = pa` and `p(b) = pb` have opposite
+/// signs, by Halley steps kept inside a shrinking bracket (bisection when a step would
+/// leave it). `eval` gives p and its first three derivatives.
+///
+/// Halley's method converges cubically: from the secant start a landing takes two or
+/// three evaluations. It stops when the step is at the rounding level of x, or when the
+/// error left after the step is below half an ulp. That error is (C₂² − C₃)·step³ to
+/// leading order, with C_k = p⁽ᵏ⁾/(k! p'); the estimate used, (C₂² + |C₃|)·|step|³, cannot
+/// vanish by cancellation (near an inflection point, say), where the next order would
+/// then decide.
+#[inline]
+fn refine_root(eval: impl Fn(f64) -> [f64; 4], mut a: f64, mut b: f64, pa: f64, pb: f64) -> f64 {
+    let neg_at_a = pa < 0.0;
+    // Start from the secant point.
+    let mut x = a - pa * (b - a) / (pb - pa);
+    if !(x > a && x < b) {
+        x = 0.5 * (a + b);
+    }
+    for _ in 0..200 {
+        let [v, dv, ddv, dddv] = eval(x);
+        if v == 0.0 {
+            return x;
+        }
+        if (v < 0.0) == neg_at_a {
+            a = x;
+        } else {
+            b = x;
+        }
+        if b - a <= 2.0 * EPS * a.abs().max(b.abs()) || b - a <= f64::MIN_POSITIVE {
+            break;
+        }
+        // Halley: x − 2 p p' / (2 p'² − p p''). A zero or non-finite denominator gives a
+        // step outside the bracket, hence bisection.
+        let next = x - 2.0 * v * dv / (2.0 * dv * dv - v * ddv);
+        if next > a && next < b {
+            let step = next - x;
+            let left =
+                (0.25 * ddv * ddv + (dv * dddv).abs() * (1.0 / 6.0)) * (step * step * step).abs();
+            if step.abs() <= 4.0 * EPS * x.abs() || 2.0 * left <= EPS * next.abs() * dv * dv {
+                return next;
+            }
+            x = next;
+        } else {
             x = 0.5 * (a + b);
         }
-        for _ in 0..200 {
-            let (v, dv, ddv) = self.eval_d2(x);
-            if v == 0.0 {
-                return x;
-            }
-            if (v < 0.0) == neg_at_a {
-                a = x;
-            } else {
-                b = x;
-            }
-            if b - a <= 2.0 * EPS * a.abs().max(b.abs()) || b - a <= f64::MIN_POSITIVE {
-                break;
-            }
-            let newton = x - v / dv;
-            if dv != 0.0 && newton > a && newton < b {
-                // Converged: the Newton correction is at the rounding level of x, or
-                // the error left after this step, |p''|/(2|p'|)·step² (quadratic
-                // convergence), is.
-                let step = newton - x;
-                if step.abs() <= 4.0 * EPS * x.abs()
-                    || (ddv / dv).abs() * step * step <= 2.0 * EPS * newton.abs()
-                {
-                    return newton;
-                }
-                x = newton;
-            } else {
-                x = 0.5 * (a + b);
-            }
-            // Stop once Newton no longer moves (converged to the last bit).
-            if x == a || x == b {
-                break;
-            }
+        // Stop once the iteration no longer moves (converged to the last bit).
+        if x == a || x == b {
+            break;
         }
-        // Return the bracket end with the smaller residual.
-        let (va, vb) = (self.eval(a).abs(), self.eval(b).abs());
-        let (vx, _) = self.eval_d(x);
-        if vx.abs() <= va && vx.abs() <= vb && x >= a && x <= b {
-            x
-        } else if va <= vb {
-            a
-        } else {
-            b
-        }
+    }
+    // Return the bracket end with the smaller residual.
+    let (va, vb) = (eval(a)[0].abs(), eval(b)[0].abs());
+    let vx = eval(x)[0];
+    if vx.abs() <= va && vx.abs() <= vb && x >= a && x <= b {
+        x
+    } else if va <= vb {
+        a
+    } else {
+        b
     }
 }
 
@@ -519,6 +627,94 @@ mod tests {
                 (a, b) => panic!("{p:?} [{lo}, {hi}]: {a:?} vs {b:?}"),
             }
         }
+    }
+
+    /// p(x) by compensated Horner: accurate to about one ulp of the value even where
+    /// plain Horner loses everything to cancellation.
+    fn eval_compensated(c: &[f64; 4], x: f64) -> f64 {
+        use crate::engine::exact_sum::{two_prod, two_sum};
+        let mut s = c[3];
+        let mut err = 0.0;
+        for k in (0..3).rev() {
+            let (p, pe) = two_prod(s, x);
+            let (t, te) = two_sum(p, c[k]);
+            s = t;
+            err = err * x + (pe + te);
+        }
+        s + err
+    }
+
+    /// The root in [a, b] (a sign change) by bisection down to adjacent floats, with
+    /// signs from the compensated evaluation: a reference independent of Halley's
+    /// iteration and of its stopping rule.
+    fn bisect_reference(c: &[f64; 4], mut a: f64, mut b: f64) -> f64 {
+        let neg_a = eval_compensated(c, a) < 0.0;
+        loop {
+            let m = 0.5 * (a + b);
+            if m <= a || m >= b {
+                break;
+            }
+            if (eval_compensated(c, m) < 0.0) == neg_a {
+                a = m;
+            } else {
+                b = m;
+            }
+        }
+        if eval_compensated(c, a).abs() <= eval_compensated(c, b).abs() {
+            a
+        } else {
+            b
+        }
+    }
+
+    #[test]
+    fn cubic_roots_are_refined_to_full_precision() {
+        // Random cubics, and two families where a leading error term is zero at the
+        // root, so the stopping rule relies on its guard against cancellation:
+        // C₂² = C₃ (Halley's cubic term) and an inflection point (C₂ = 0).
+        let mut seed = 0x2545f4914f6cdd1du64;
+        let mut rnd = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut worst = 0.0f64;
+        for i in 0..30000 {
+            let r = 0.05 + 0.9 * rnd();
+            // Powers of (x − r) as polynomials in x.
+            let u = Poly::new(&[-r, 1.0]);
+            let (u2, u3) = (u.mul(&u), u.mul(&u).mul(&u));
+            let c = match i % 3 {
+                0 => from_roots(&[r, -1.0 - rnd(), 2.0 + rnd()], 0.2 + rnd()).low_coeffs(),
+                1 => {
+                    // (x − r) + q/2 (x − r)² + q²/4 (x − r)³, where p''² = 2/3 p' p'''.
+                    let q = 2.0 + 8.0 * rnd();
+                    let a = 0.25 * q * q * (1.0 + 1e-6 * (rnd() - 0.5));
+                    u.add(&u2.scale(0.5 * q)).add(&u3.scale(a)).low_coeffs()
+                }
+                _ => {
+                    // k (x − r) + a (x − r)³: inflection at the root.
+                    let (k, a) = (0.01 + rnd(), 0.1 + 10.0 * rnd());
+                    u.scale(k).add(&u3.scale(a)).low_coeffs()
+                }
+            };
+            let Some(x) = first_root_low_degree(&c, 4, r - 0.04, r + 0.04) else {
+                panic!("no root found for {c:?} near {r}");
+            };
+            let reference = bisect_reference(&c, r - 0.04, r + 0.04);
+            // Allowed: the conditioning of the plain evaluation at the root, plus 2 ulps.
+            let (_, bound) = cubic_eval_with_bound(&c, 4, x);
+            let slope = cubic_eval_d3(&c, x)[1].abs();
+            let allowed = 2.0 * EPS * x.abs() + bound / slope;
+            let err = (x - reference).abs();
+            worst = worst.max(err / allowed);
+            assert!(
+                err <= allowed,
+                "{c:?}: {x} vs {reference} (allowed {allowed:e})"
+            );
+        }
+        assert!(worst > 0.0, "the comparison must not be vacuous");
     }
 
     #[test]
