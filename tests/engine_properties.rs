@@ -9,7 +9,8 @@
 //!
 //! Random tables are C¹ periodic piecewise polynomials of degree up to 5 (cubic Hermite
 //! pieces through random values and slopes, plus random bumps s²(s − L)² q(s) that keep
-//! the Hermite data), the paper's F_D with random D, and the sine.
+//! the Hermite data), plain cubic splines (the solver's fixed-size cubic path), the
+//! paper's F_D with random D, and the sine.
 
 use bouncemap::engine::poly::Poly;
 use bouncemap::engine::{EventKind, Halt, ImpactMap, Solver, State, System, Table};
@@ -51,14 +52,20 @@ fn random_table(knots: &[f64], values: &[f64], slopes: &[f64], bumps: &[(f64, f6
     Table::from_toml(&text, "random.toml").expect("random table is C¹ by construction")
 }
 
-fn table_strategy() -> impl Strategy<Value = Table> {
-    let piecewise = (1usize..=4)
-        .prop_flat_map(|n| {
+/// Random C¹ piecewise tables: degree 5 with `bumps`, plain cubic splines without.
+fn piecewise_strategy(bumps: bool) -> impl Strategy<Value = Table> {
+    let bump = if bumps { 1.0 } else { 0.0 };
+    (1usize..=4)
+        .prop_flat_map(move |n| {
             (
                 proptest::collection::vec(0.05f64..0.95, n - 1),
                 proptest::collection::vec(-1.0f64..1.0, n),
                 proptest::collection::vec(-4.0f64..4.0, n),
-                proptest::collection::vec((-200.0f64..200.0, -400.0f64..400.0), n),
+                proptest::collection::vec(
+                    (-200.0f64..200.0, -400.0f64..400.0)
+                        .prop_map(move |(p, q)| (bump * p, bump * q)),
+                    n,
+                ),
             )
         })
         .prop_filter_map("knots too close", |(mut inner, values, slopes, bumps)| {
@@ -68,9 +75,13 @@ fn table_strategy() -> impl Strategy<Value = Table> {
             let ok =
                 knots.windows(2).all(|w| w[1] - w[0] > 0.02) && 1.0 - knots.last().unwrap() > 0.02;
             ok.then(|| random_table(&knots, &values, &slopes, &bumps))
-        });
+        })
+}
+
+fn table_strategy() -> impl Strategy<Value = Table> {
     prop_oneof![
-        3 => piecewise,
+        2 => piecewise_strategy(true),
+        1 => piecewise_strategy(false),
         2 => (0.0f64..=1.0).prop_map(|d| Table::fd(d).unwrap()),
         1 => Just(Table::sine()),
     ]

@@ -94,6 +94,8 @@ pub struct Table {
     accel_bound: f64,
     /// Rigorous bounds (min, max) of F over a period.
     range: (f64, f64),
+    /// Highest polynomial degree among the pieces (0 for the sine, which has none).
+    max_degree: usize,
 }
 
 /// What a `--table` argument names before any file is read.
@@ -155,6 +157,7 @@ impl Table {
             d: None,
             accel_bound: 4.0 * PI * PI,
             range: (-1.0, 1.0),
+            max_degree: 0,
         }
     }
 
@@ -185,6 +188,7 @@ impl Table {
             name,
             accel_bound: accel_bound(&pieces),
             range: piece_range(&pieces),
+            max_degree: max_degree(&pieces),
             shape: Shape::Piecewise(pieces),
             d: Some(d),
         })
@@ -294,6 +298,7 @@ impl Table {
             name: file.name.unwrap_or_else(|| origin.to_string()),
             accel_bound: accel_bound(&pieces),
             range: piece_range(&pieces),
+            max_degree: max_degree(&pieces),
             shape: Shape::Piecewise(pieces),
             d: None,
         })
@@ -393,6 +398,11 @@ impl Table {
         self.accel_bound
     }
 
+    /// Highest polynomial degree among the pieces (0 for the sine, which has none).
+    pub fn max_degree(&self) -> usize {
+        self.max_degree
+    }
+
     /// Phases where F is not C² (piece starts), for plots and release search.
     pub fn breakpoints(&self) -> Vec<f64> {
         self.pieces().iter().map(|p| p.start).collect()
@@ -400,6 +410,10 @@ impl Table {
 }
 
 /// Bounds (min, max) of F over all pieces.
+fn max_degree(pieces: &[Piece]) -> usize {
+    pieces.iter().map(|p| p.f.degree()).max().unwrap_or(0)
+}
+
 fn piece_range(pieces: &[Piece]) -> (f64, f64) {
     pieces
         .iter()
