@@ -1,7 +1,8 @@
 //! `bouncemap bench`: measurements on this machine, printed as a table (or json).
 //!
 //! * Solver throughput: events per second of the exact and the grid solver on the same
-//!   orbits (period-1, period-2, chaotic, sticking), each with its accuracy against an
+//!   orbits (period-1, period-2, chaotic, sticking; the median of five alternating
+//!   rounds per solver), each with its accuracy against an
 //!   independent reference: the closed-form (1, 1) fixed point; the (2, 2) cycle solved
 //!   by Newton's method on its four defining equations ([`orbits::two_cycle`]);
 //!   for chaotic and sticking orbits, one step of each solver from the same exact
@@ -339,41 +340,85 @@ fn start_state(sys: &System) -> State {
     State::launch(sys, 0, 0.0, sys.df(0.0) + 0.5, 0.0).expect("default start is valid")
 }
 
-/// Events per second of `solver` on the case's orbit, and the settled orbit's last
-/// events.
-fn rate(sys: &System, solver: Solver, budget: Duration) -> (f64, Vec<Event>) {
-    let mut map = ImpactMap::new(sys.clone(), solver, start_state(sys));
-    let mut last = Vec::new();
-    for _ in 0..5_000 {
-        if map.step().is_err() {
-            break;
-        }
-    }
-    let t = Instant::now();
-    let mut n = 0u64;
-    while t.elapsed() < budget {
-        for _ in 0..1000 {
-            match map.step() {
-                Ok(e) => {
-                    if last.len() == 4 {
-                        last.remove(0);
-                    }
-                    last.push(e);
-                }
-                Err(_) => {
-                    map = ImpactMap::new(sys.clone(), solver, start_state(sys));
-                }
+/// One solver's map, timed in rounds.
+struct Timed {
+    sys: System,
+    solver: Solver,
+    map: ImpactMap,
+    /// The last four events, oldest first once full (a ring: no per-event shuffling).
+    last: [Option<Event>; 4],
+    next: usize,
+    rates: Vec<f64>,
+}
+
+impl Timed {
+    fn new(sys: &System, solver: Solver) -> Timed {
+        let mut map = ImpactMap::new(sys.clone(), solver, start_state(sys));
+        for _ in 0..5_000 {
+            if map.step().is_err() {
+                break;
             }
         }
-        n += 1000;
+        Timed {
+            sys: sys.clone(),
+            solver,
+            map,
+            last: [None; 4],
+            next: 0,
+            rates: Vec::new(),
+        }
     }
-    (n as f64 / t.elapsed().as_secs_f64(), last)
+
+    /// Step for `budget`, in blocks of 1000 events, and record the rate.
+    fn round(&mut self, budget: Duration) {
+        let t = Instant::now();
+        let mut n = 0u64;
+        while t.elapsed() < budget {
+            for _ in 0..1000 {
+                match self.map.step() {
+                    Ok(e) => {
+                        self.last[self.next] = Some(e);
+                        self.next = (self.next + 1) % 4;
+                    }
+                    Err(_) => {
+                        let start = start_state(&self.sys);
+                        self.map = ImpactMap::new(self.sys.clone(), self.solver, start);
+                    }
+                }
+            }
+            n += 1000;
+        }
+        self.rates.push(n as f64 / t.elapsed().as_secs_f64());
+    }
+
+    /// The median rate over the rounds, and the last events.
+    fn result(mut self) -> (f64, Vec<Event>) {
+        self.rates.sort_by(f64::total_cmp);
+        let median = self.rates[self.rates.len() / 2];
+        let last = (0..4)
+            .filter_map(|k| self.last[(self.next + k) % 4])
+            .collect();
+        (median, last)
+    }
+}
+
+/// Events per second of the exact and the grid solver on the case's orbit (the median
+/// of five rounds, the two solvers alternating so a drift of the machine's speed
+/// affects both alike), and each settled orbit's last events.
+fn rates(sys: &System, budget: Duration) -> ((f64, Vec<Event>), (f64, Vec<Event>)) {
+    const ROUNDS: u32 = 5;
+    let mut exact = Timed::new(sys, Solver::Exact);
+    let mut grid = Timed::new(sys, Solver::Grid);
+    for _ in 0..ROUNDS {
+        exact.round(budget / ROUNDS);
+        grid.round(budget / ROUNDS);
+    }
+    (exact.result(), grid.result())
 }
 
 fn solver_row(c: &Case, budget: Duration) -> Result<SolverRow, InputError> {
     let sys = system_of(c)?;
-    let (er, elast) = rate(&sys, Solver::Exact, budget);
-    let (gr, glast) = rate(&sys, Solver::Grid, budget);
+    let ((er, elast), (gr, glast)) = rates(&sys, budget);
     let (ee, ge, note) = match c.reference {
         Reference::FixedPoint => {
             let t = fixed_point_phase(&sys);
