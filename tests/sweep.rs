@@ -1,5 +1,6 @@
 //! Sweep engine against independent computations: brute-force `ImpactMap` runs to the
-//! full transient, closed-form (1, 1) fixed points, and the cancellation contract.
+//! full transient, closed-form (1, 1) fixed points, and the cancellation and pause
+//! contracts.
 
 use bouncemap::engine::sweep::{
     self, Outcome, Periodicity, Shard, SweepBatch, SweepParam, SweepSpec,
@@ -335,6 +336,72 @@ fn cancel_stops_workers_and_no_stale_batch_is_current() {
     let summary = h.wait();
     assert!(summary.cancelled);
     assert_eq!(gen.load(Ordering::SeqCst), 8);
+}
+
+#[test]
+fn a_paused_sweep_parks_then_finishes_with_the_unpaused_result() {
+    // Chaotic values (no early stop) with enough transient to be mid-run when paused.
+    let mut s = spec(Table::fd(0.1).unwrap(), 0.60, 0.62, 6, 0.8);
+    s.transient = 200_000;
+    s.periodicity = None;
+    let reference = sweep::collect(&s).unwrap();
+
+    let gate = Arc::new(sweep::PauseGate::default());
+    let h = sweep::start_pausable(s, Arc::new(AtomicU64::new(0)), gate.clone()).unwrap();
+    std::thread::sleep(Duration::from_millis(30));
+    gate.set(true);
+    // Workers park at their next cancellation test, a few dozen events away.
+    std::thread::sleep(Duration::from_millis(50));
+    let parked = h.progress();
+    std::thread::sleep(Duration::from_millis(400));
+    let later = h.progress();
+    assert_eq!(parked.events, later.events, "workers ran while paused");
+    assert!(parked.values_done < 6, "the sweep ended before the pause");
+    assert!(
+        later.elapsed <= parked.elapsed + Duration::from_millis(20),
+        "paused time counted as sweep time: {:?} then {:?}",
+        parked.elapsed,
+        later.elapsed
+    );
+    gate.set(false);
+    let mut finals: Vec<SweepBatch> = Vec::new();
+    for b in h.receiver() {
+        if h.is_current(&b) && b.complete {
+            finals.push(b);
+        }
+    }
+    assert!(!h.wait().cancelled);
+    finals.sort_by_key(|b| b.index);
+    assert_eq!(finals.len(), reference.len());
+    for (a, b) in finals.iter().zip(&reference) {
+        assert_eq!(
+            a.points, b.points,
+            "value {} differs after the pause",
+            a.index
+        );
+    }
+}
+
+#[test]
+fn cancelling_a_paused_sweep_stops_it_at_once() {
+    let mut s = spec(Table::fd(0.1).unwrap(), 0.60, 0.62, 8, 0.8);
+    s.transient = 5_000_000;
+    s.periodicity = None;
+    let gate = Arc::new(sweep::PauseGate::default());
+    let h = sweep::start_pausable(s, Arc::new(AtomicU64::new(0)), gate.clone()).unwrap();
+    std::thread::sleep(Duration::from_millis(30));
+    gate.set(true);
+    std::thread::sleep(Duration::from_millis(50));
+    let t = Instant::now();
+    h.cancel();
+    while !h.is_finished() {
+        assert!(
+            t.elapsed() < Duration::from_millis(200),
+            "parked workers did not stop"
+        );
+        std::thread::sleep(Duration::from_millis(1));
+    }
+    assert!(h.wait().cancelled);
 }
 
 #[test]

@@ -171,16 +171,14 @@ fn apply(e: Effect, app: &mut App, workers: &Workers, resume_sweep: &mut bool) {
             app.orbits_started(gen);
         }
         Effect::Pause(true) => {
+            // The phase-plot worker and the sweep's workers park where they are.
             workers.gate.set(true);
-            if app.diagram.status == SweepStatus::Running {
-                // The sweep engine cannot park its workers: stop it, keep what is drawn,
-                // and sweep again on resume.
-                workers.cancel_sweep();
-                *resume_sweep = true;
-            }
+            workers.sweep_pause.set(true);
         }
         Effect::Pause(false) => {
             workers.gate.set(false);
+            workers.sweep_pause.set(false);
+            // A sweep cancelled by new parameters during the pause starts now.
             if std::mem::take(resume_sweep) {
                 apply(Effect::RestartSweep, app, workers, resume_sweep);
             }

@@ -6,7 +6,7 @@
 //! The diagram is fed by the engine's sweeps ([`crate::engine::sweep`]); the stability
 //! panel gets its numbers through [`Analysis`], the seam to the orbit analysis.
 
-use crate::engine::sweep::{self, SweepBatch, SweepSpec};
+use crate::engine::sweep::{self, PauseGate, SweepBatch, SweepSpec};
 #[cfg(test)]
 use crate::engine::Table;
 use crate::engine::{Event, ImpactMap, Solver, State, System};
@@ -131,6 +131,8 @@ pub struct Workers {
     pub sweep_gen: Arc<AtomicU64>,
     pub orbit_gen: Arc<AtomicU64>,
     pub gate: Arc<Gate>,
+    /// Parks the sweep's workers while paused; they keep their progress.
+    pub sweep_pause: Arc<PauseGate>,
     pub analysis: Arc<dyn Analysis>,
 }
 
@@ -144,6 +146,7 @@ impl Workers {
             sweep_gen: Arc::new(AtomicU64::new(0)),
             orbit_gen: Arc::new(AtomicU64::new(0)),
             gate: Arc::new(Gate::default()),
+            sweep_pause: Arc::new(PauseGate::default()),
             analysis,
         }
     }
@@ -170,9 +173,11 @@ impl Workers {
         gen
     }
 
-    /// Cancel the running sweep (pause, quit).
+    /// Cancel the running sweep (new parameters while paused, quit); a paused one
+    /// stops at once too.
     pub fn cancel_sweep(&self) {
         self.sweep_gen.fetch_add(1, Ordering::SeqCst);
+        self.sweep_pause.wake();
     }
 
     /// Cancel the running sweep and start `spec` under a new generation. A forwarding
@@ -180,10 +185,11 @@ impl Workers {
     /// batches on as [`Msg::Sweep`]. Returns the generation, or the engine's refusal.
     pub fn start_sweep(&self, spec: SweepSpec) -> (u64, Result<(), String>) {
         let gen = self.sweep_gen.fetch_add(1, Ordering::SeqCst) + 1;
-        let handle = match sweep::start(spec, self.sweep_gen.clone()) {
-            Ok(h) => h,
-            Err(e) => return (gen, Err(e.to_string())),
-        };
+        let handle =
+            match sweep::start_pausable(spec, self.sweep_gen.clone(), self.sweep_pause.clone()) {
+                Ok(h) => h,
+                Err(e) => return (gen, Err(e.to_string())),
+            };
         let gen = handle.generation();
         let tx = self.tx.clone();
         std::thread::Builder::new()

@@ -45,6 +45,11 @@
 //! not the counter's current value ([`SweepHandle::is_current`]), so no stale batch is
 //! ever used.
 //!
+//! # Pause
+//! [`start_pausable`] takes a [`PauseGate`]: while it is closed the workers park where
+//! they test for cancellation, without spinning, and resume where they stopped. A
+//! cancellation also ends a pause. [`Progress::elapsed`] leaves the paused time out.
+//!
 //! # Examples
 //! Background sweep, drained by a consumer (e.g. once per frame):
 //! ```
@@ -81,9 +86,11 @@
 //! Cancel: `handle.cancel()` (or `generation.fetch_add(1, SeqCst)` from anywhere).
 
 pub mod detect;
+pub mod pause;
 pub mod run;
 
 pub use detect::Periodicity;
+pub use pause::PauseGate;
 
 use crate::engine::error::EngineError;
 use crate::engine::impact::Solver;
@@ -529,6 +536,7 @@ pub struct SweepHandle {
     counters: Arc<Counters>,
     values_total: usize,
     started: Instant,
+    pause: Arc<PauseGate>,
     thread: Option<JoinHandle<SweepSummary>>,
 }
 
@@ -566,6 +574,7 @@ impl SweepHandle {
             Ordering::SeqCst,
             Ordering::SeqCst,
         );
+        self.pause.wake();
         self.counter.load(Ordering::SeqCst)
     }
 
@@ -576,8 +585,16 @@ impl SweepHandle {
             values_total: self.values_total,
             events: self.counters.events.load(Ordering::Relaxed),
             points: self.counters.points.load(Ordering::Relaxed),
-            elapsed: self.started.elapsed(),
+            elapsed: self
+                .started
+                .elapsed()
+                .saturating_sub(self.pause.paused_for()),
         }
+    }
+
+    /// The gate that pauses this sweep's workers (see [`pause`]).
+    pub fn pause_gate(&self) -> Arc<PauseGate> {
+        self.pause.clone()
     }
 
     /// Whether every worker has stopped.
@@ -600,11 +617,22 @@ impl Drop for SweepHandle {
         // Nobody will read the batches: stop the workers without touching the shared
         // counter (a newer sweep may already run under it).
         self.abandoned.store(true, Ordering::SeqCst);
+        self.pause.wake();
     }
 }
 
 /// Start a sweep in the background under the counter's current generation.
 pub fn start(spec: SweepSpec, counter: Arc<AtomicU64>) -> Result<SweepHandle, EngineError> {
+    start_pausable(spec, counter, Arc::new(PauseGate::default()))
+}
+
+/// [`start`], with workers that park while `pause` is closed (a caller that pauses
+/// several sweeps in turn keeps one gate for all of them).
+pub fn start_pausable(
+    spec: SweepSpec,
+    counter: Arc<AtomicU64>,
+    pause: Arc<PauseGate>,
+) -> Result<SweepHandle, EngineError> {
     spec.validate()?;
     let generation = counter.load(Ordering::SeqCst);
     let (tx, rx) = mpsc::channel();
@@ -631,6 +659,7 @@ pub fn start(spec: SweepSpec, counter: Arc<AtomicU64>) -> Result<SweepHandle, En
         counter: counter.clone(),
         abandoned: abandoned.clone(),
         counters: counters.clone(),
+        pause: pause.clone(),
         tx,
     };
     let thread = std::thread::Builder::new()
@@ -648,7 +677,7 @@ pub fn start(spec: SweepSpec, counter: Arc<AtomicU64>) -> Result<SweepHandle, En
                     values_total,
                     events: ctx.counters.events.load(Ordering::Relaxed),
                     points: ctx.counters.points.load(Ordering::Relaxed),
-                    elapsed: started.elapsed(),
+                    elapsed: started.elapsed().saturating_sub(ctx.pause.paused_for()),
                 },
             }
         })
@@ -665,6 +694,7 @@ pub fn start(spec: SweepSpec, counter: Arc<AtomicU64>) -> Result<SweepHandle, En
         counters,
         values_total,
         started,
+        pause,
         thread: Some(thread),
     })
 }
@@ -718,6 +748,7 @@ struct Ctx {
     counter: Arc<AtomicU64>,
     abandoned: Arc<AtomicBool>,
     counters: Arc<Counters>,
+    pause: Arc<PauseGate>,
     tx: Sender<SweepBatch>,
 }
 
@@ -727,9 +758,11 @@ impl Ctx {
             || self.abandoned.load(Ordering::Relaxed)
     }
 
-    /// The cancellation test handed to value runs; it also counts events.
+    /// The cancellation test handed to value runs; it also counts events, and parks
+    /// the worker while the sweep is paused.
     fn tick(&self, events: u64) -> bool {
         self.counters.events.fetch_add(events, Ordering::Relaxed);
+        self.pause.wait(|| self.stopped());
         self.stopped()
     }
 
