@@ -1,7 +1,8 @@
 //! End to end: the real binary in a pseudo-terminal at 120×40. Waits for the diagram
 //! to fill, steps a bounce, opens and closes the help, pauses, quits with `q`, and
-//! checks the exit status and that the terminal was restored. Also: without a terminal
-//! the binary exits with status 2 and points at the headless commands.
+//! checks the exit status and that the terminal was restored; SIGTERM restores it too
+//! and exits with 143. Also: without a terminal the binary exits with status 2 and
+//! points at the headless commands.
 
 use portable_pty::{native_pty_system, CommandBuilder, PtySize};
 use std::io::{Read, Write};
@@ -39,8 +40,16 @@ fn wait_screen(out: &Arc<Mutex<Vec<u8>>>, needle: &str, timeout: Duration) -> bo
     false
 }
 
-#[test]
-fn runs_in_a_pty_fills_the_diagram_steps_and_quits_cleanly() {
+/// The binary running in a 120×40 pseudo-terminal: the child, its output so far, the
+/// keyboard, and the terminal's master side (kept open while the test runs).
+struct Running {
+    child: Box<dyn portable_pty::Child + Send + Sync>,
+    out: Arc<Mutex<Vec<u8>>>,
+    writer: Box<dyn Write + Send>,
+    _master: Box<dyn portable_pty::MasterPty + Send>,
+}
+
+fn start() -> Running {
     let pty = native_pty_system();
     let pair = pty
         .openpty(PtySize {
@@ -56,10 +65,10 @@ fn runs_in_a_pty_fills_the_diagram_steps_and_quits_cleanly() {
         "XDG_CONFIG_HOME",
         std::env::temp_dir().join("bouncemap-e2e-no-config"),
     );
-    let mut child = pair.slave.spawn_command(cmd).unwrap();
+    let child = pair.slave.spawn_command(cmd).unwrap();
     drop(pair.slave);
     let mut reader = pair.master.try_clone_reader().unwrap();
-    let mut writer = pair.master.take_writer().unwrap();
+    let writer = pair.master.take_writer().unwrap();
     let out = Arc::new(Mutex::new(Vec::new()));
     let sink = out.clone();
     std::thread::spawn(move || {
@@ -71,6 +80,34 @@ fn runs_in_a_pty_fills_the_diagram_steps_and_quits_cleanly() {
             sink.lock().unwrap().extend_from_slice(&buf[..n]);
         }
     });
+    Running {
+        child,
+        out,
+        writer,
+        _master: pair.master,
+    }
+}
+
+/// Wait for the child to exit (at most 10 s).
+fn exit_status(child: &mut Box<dyn portable_pty::Child + Send + Sync>) -> portable_pty::ExitStatus {
+    let t = Instant::now();
+    loop {
+        if let Some(s) = child.try_wait().unwrap() {
+            return s;
+        }
+        assert!(t.elapsed() < Duration::from_secs(10), "did not exit");
+        std::thread::sleep(Duration::from_millis(50));
+    }
+}
+
+#[test]
+fn runs_in_a_pty_fills_the_diagram_steps_and_quits_cleanly() {
+    let Running {
+        mut child,
+        out,
+        mut writer,
+        _master,
+    } = start();
     assert!(
         wait_for(&out, "\x1b[?1049h", Duration::from_secs(10)),
         "no alternate screen"
@@ -112,15 +149,35 @@ fn runs_in_a_pty_fills_the_diagram_steps_and_quits_cleanly() {
     assert!(wait_screen(&out, "PAUSED", Duration::from_secs(10)));
     writer.write_all(b"q").unwrap();
     writer.flush().unwrap();
-    let t = Instant::now();
-    let status = loop {
-        if let Some(s) = child.try_wait().unwrap() {
-            break s;
-        }
-        assert!(t.elapsed() < Duration::from_secs(10), "did not quit");
-        std::thread::sleep(Duration::from_millis(50));
-    };
+    let status = exit_status(&mut child);
     assert!(status.success(), "exit status {status:?}");
+    assert!(
+        wait_for(&out, "\x1b[?1049l", Duration::from_secs(5)),
+        "alternate screen not left"
+    );
+}
+
+#[test]
+fn sigterm_restores_the_terminal_and_exits_143() {
+    let Running {
+        mut child,
+        out,
+        writer: _writer,
+        _master,
+    } = start();
+    assert!(
+        wait_screen(&out, "Bifurcation diagram", Duration::from_secs(10)),
+        "{}",
+        screen(&out)
+    );
+    let pid = child.process_id().expect("the child has a pid");
+    let killed = std::process::Command::new("kill")
+        .args(["-TERM", &pid.to_string()])
+        .status()
+        .unwrap();
+    assert!(killed.success());
+    let status = exit_status(&mut child);
+    assert_eq!(status.exit_code(), 143, "{status:?}");
     assert!(
         wait_for(&out, "\x1b[?1049l", Duration::from_secs(5)),
         "alternate screen not left"

@@ -187,5 +187,9 @@ pub fn run(opts: Options, analysis: Arc<dyn workers::Analysis>) -> anyhow::Resul
     let result = runtime::run(&mut term, &mut app, &workers, &stop);
     terminal::restore();
     workers.cancel_all();
+    if let Some(status) = terminal::signal_status(stop.load(std::sync::atomic::Ordering::SeqCst)) {
+        // Stopped by a signal: say so in the exit status, as a shell expects.
+        std::process::exit(status);
+    }
     result
 }

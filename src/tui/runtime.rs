@@ -9,7 +9,7 @@ use super::terminal::{self, Term};
 use super::views;
 use super::workers::Workers;
 use crossterm::event::{self, Event, KeyEventKind, MouseButton, MouseEventKind};
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
 
 /// Slowest frame rate while only background results change (a sweep adding points):
@@ -25,7 +25,7 @@ pub fn run(
     term: &mut Term,
     app: &mut App,
     workers: &Workers,
-    stop: &AtomicBool,
+    stop: &AtomicUsize,
 ) -> anyhow::Result<()> {
     let frame = Duration::from_secs_f64(1.0 / app.fps.max(1) as f64);
     let mut last_draw: Option<Instant> = None;
@@ -34,7 +34,7 @@ pub fn run(
     loop {
         // A hang-up without a signal is the watchdog's (terminal::spawn_watchdog): the
         // event reader never returns then, so a check here would not run.
-        if stop.load(Ordering::Relaxed) {
+        if stop.load(Ordering::Relaxed) != 0 {
             break;
         }
         // Size the plot grids before sweeps ask for the diagram's width.

@@ -1,6 +1,7 @@
 //! The terminal: raw mode and the alternate screen on entry, and their undoing on every
 //! way out — normal quit, panic (a hook restores before the message is printed), and
-//! SIGTERM/SIGHUP/SIGINT (flags the event loop checks several times a second).
+//! SIGTERM/SIGHUP/SIGINT (a flag the event loop checks several times a second; the
+//! process then exits with status 128 + the signal's number, as a shell expects).
 //! Frames are wrapped in synchronized updates so slow links never show half a frame.
 
 use crossterm::event::{DisableMouseCapture, EnableMouseCapture};
@@ -12,7 +13,7 @@ use crossterm::{cursor, execute, queue};
 use ratatui::backend::CrosstermBackend;
 use ratatui::Terminal;
 use std::io::{self, BufWriter, Stdout, Write};
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Arc, Once};
 
 pub type Term = Terminal<CrosstermBackend<BufWriter<Stdout>>>;
@@ -82,17 +83,23 @@ pub fn draw_synced(term: &mut Term, f: impl FnOnce(&mut ratatui::Frame)) -> io::
     Ok(())
 }
 
-/// A flag raised by SIGTERM, SIGHUP or SIGINT.
-pub fn signal_flag() -> io::Result<Arc<AtomicBool>> {
-    let flag = Arc::new(AtomicBool::new(false));
+/// The stop signal received, if any: 0 until SIGTERM, SIGHUP or SIGINT arrives, then
+/// that signal's number.
+pub fn signal_flag() -> io::Result<Arc<AtomicUsize>> {
+    let flag = Arc::new(AtomicUsize::new(0));
     for sig in [
         signal_hook::consts::SIGTERM,
         signal_hook::consts::SIGHUP,
         signal_hook::consts::SIGINT,
     ] {
-        signal_hook::flag::register(sig, flag.clone())?;
+        signal_hook::flag::register_usize(sig, flag.clone(), sig as usize)?;
     }
     Ok(flag)
+}
+
+/// The exit status after stop signal `sig` (0: none): 128 + its number.
+pub fn signal_status(sig: usize) -> Option<i32> {
+    (sig != 0).then(|| 128 + sig as i32)
 }
 
 /// Whether stdin and stdout are still terminals; after a hang-up they are not.
@@ -111,7 +118,7 @@ const STOP_GRACE: std::time::Duration = std::time::Duration::from_secs(1);
 /// thread ends the process when the terminal is gone, or when a stop signal (SIGTERM,
 /// SIGHUP, SIGINT) has not been answered within a second, restoring the terminal first
 /// where there still is one.
-pub fn spawn_watchdog(stop: Arc<AtomicBool>) {
+pub fn spawn_watchdog(stop: Arc<AtomicUsize>) {
     let _ = std::thread::Builder::new()
         .name("terminal-watchdog".into())
         .spawn(move || {
@@ -119,13 +126,15 @@ pub fn spawn_watchdog(stop: Arc<AtomicBool>) {
             loop {
                 std::thread::sleep(WATCH_EVERY);
                 if !terminal_alive() {
-                    std::process::exit(0);
+                    // A hang-up, whether or not SIGHUP was delivered.
+                    std::process::exit(128 + signal_hook::consts::SIGHUP);
                 }
-                if stop.load(Ordering::Relaxed) {
+                let sig = stop.load(Ordering::Relaxed);
+                if let Some(status) = signal_status(sig) {
                     let since = *stop_seen.get_or_insert_with(std::time::Instant::now);
                     if since.elapsed() >= STOP_GRACE {
                         restore();
-                        std::process::exit(0);
+                        std::process::exit(status);
                     }
                 }
             }
