@@ -72,9 +72,11 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
         let [p, n] = Layout::vertical([Constraint::Min(0), Constraint::Length(5)]).areas(inner);
         (p, n)
     } else {
+        // A blank column keeps the plot's text from running into the numbers.
         let side = 13u16.min(inner.width / 2);
-        let [p, n] =
-            Layout::horizontal([Constraint::Min(0), Constraint::Length(side)]).areas(inner);
+        let [p, n] = Layout::horizontal([Constraint::Min(0), Constraint::Length(side)])
+            .spacing(1)
+            .areas(inner);
         (p, n)
     };
     let (dec, gap) = if below { (15, "    ") } else { (6, " ") };
