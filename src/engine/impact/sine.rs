@@ -117,8 +117,9 @@ fn sine_landing_from(
     }
     let z0 = a * (w2 * phi).sin() + h0;
     let down = crossing_times(z0, v, a).map(|c| c.1);
+    // The gap at the current step's start (carried over from the previous step's end).
+    let mut g0 = gap(tau);
     for _ in 0..MAX_SINE_STEPS {
-        let g0 = gap(tau);
         if tau > 0.0 && g0 <= tol(tau) {
             return Ok(sine_landing_at(sys, launch, tau, dgap(tau)));
         }
@@ -154,6 +155,7 @@ fn sine_landing_from(
             return Ok(sine_landing_at(sys, launch, root, dgap(root)));
         }
         tau = next;
+        g0 = gn;
     }
     Err(FlightError::NoLanding)
 }
