@@ -11,12 +11,11 @@ use crate::engine::system::System;
 use std::f64::consts::PI;
 
 /// sin(2π(φ+τ)) − sin 2πφ − 2π cos(2πφ) τ, accurate also for tiny τ.
-fn sine_excess(phi: f64, tau: f64) -> f64 {
+fn sine_excess(launch: &LaunchPhase, tau: f64) -> f64 {
     let w = 2.0 * PI;
     let x = w * tau;
-    let th = w * phi;
     if x.abs() < 0.01 {
-        let (s, c) = th.sin_cos();
+        let (s, c) = (launch.sin, launch.cos);
         let derivs = [s, c, -s, -c];
         let mut term = x;
         let mut sum = 0.0;
@@ -32,8 +31,23 @@ fn sine_excess(phi: f64, tau: f64) -> f64 {
     } else {
         // sin(θ + x) − sin θ = 2 cos(θ + x/2) sin(x/2), free of cancellation; the phase
         // of θ + x/2 is reduced first so long flights keep full precision.
-        let (_, mid) = normalize(0, phi + 0.5 * tau);
-        2.0 * (w * mid).cos() * sin_pi(tau) - x * th.cos()
+        let (_, mid) = normalize(0, launch.phi + 0.5 * tau);
+        2.0 * (w * mid).cos() * sin_pi(tau) - x * launch.cos
+    }
+}
+
+/// The launch phase φ with sin 2πφ and cos 2πφ, computed once per flight.
+#[derive(Clone, Copy, Debug)]
+struct LaunchPhase {
+    phi: f64,
+    sin: f64,
+    cos: f64,
+}
+
+impl LaunchPhase {
+    fn new(phi: f64) -> LaunchPhase {
+        let (sin, cos) = (2.0 * PI * phi).sin_cos();
+        LaunchPhase { phi, sin, cos }
     }
 }
 
@@ -93,7 +107,8 @@ fn sine_landing_from(
     let v = launch.v;
     let m3 = a * w2.powi(3);
     let m4 = a * w2.powi(4);
-    let gap = |t: f64| h0 + w * t - 0.5 * t * t - a * sine_excess(phi, t);
+    let launch_phase = LaunchPhase::new(phi);
+    let gap = |t: f64| h0 + w * t - 0.5 * t * t - a * sine_excess(&launch_phase, t);
     let dgap = |t: f64| w - t - a * w2 * cos_increment(phi, t);
     let ddgap = |t: f64| {
         let (_, ph) = normalize(0, phi + t);
@@ -224,7 +239,7 @@ mod tests {
         for &(phi, tau) in &[(0.1, 0.03), (0.77, 0.001), (0.3, 0.2), (0.95, 0.6)] {
             let w = 2.0 * PI;
             let direct = (w * (phi + tau)).sin() - (w * phi).sin() - w * (w * phi).cos() * tau;
-            assert!((sine_excess(phi, tau) - direct).abs() < 1e-14);
+            assert!((sine_excess(&LaunchPhase::new(phi), tau) - direct).abs() < 1e-14);
         }
     }
 }
