@@ -5,8 +5,10 @@
 //! [`piecewise_landing`], over a [`PieceGap`]: the gap polynomial on one piece, built
 //! and searched either in general storage ([`Poly`], any degree the table allows) or in
 //! fixed cubic storage ([`CubicGap`], for tables whose pieces are all of degree ≤ 3 such
-//! as F_D). Both compute the same coefficients by the same formulas; the cubic one only
-//! avoids the bookkeeping of variable-length polynomials on the hot path.
+//! as F_D). Both build the same gap polynomials (to rounding: the cubic one writes the
+//! launch piece's Taylor coefficients out instead of shifting the piece) and search them
+//! the same way; the cubic one only avoids the bookkeeping of variable-length
+//! polynomials on the hot path. A unit test holds the two to the same contacts.
 
 use super::{crossing_times, floor, landing_on, FlightError, Landing, Launch, MAX_FLIGHT_PIECES};
 use crate::engine::exact_sum::{ball_at, flight_time};
