@@ -4,7 +4,7 @@
 
 mod tui_common;
 
-use bouncemap::tui::app::Overlay;
+use bouncemap::tui::app::{Effect, Overlay};
 use bouncemap::tui::plot::Marker;
 use bouncemap::tui::views;
 use ratatui::buffer::Buffer;
@@ -128,4 +128,25 @@ fn overlays_help_and_presets() {
     insta::assert_snapshot!("help", help);
     a.overlay = Overlay::Presets { selected: 1 };
     insta::assert_snapshot!("presets", text(&render(&mut a, 120, 40)));
+}
+
+#[test]
+fn enlarging_the_terminal_sweeps_again_at_the_new_resolution() {
+    // A sweep at 80×24 has one value per sub-column there; at 160×48 the diagram has
+    // more columns than values, so the app asks for a new sweep.
+    let mut a = app(Marker::Braille);
+    size(&mut a, 80, 24);
+    let n = a.sweep_columns();
+    a.sweep_started(1, n, Ok(()));
+    a.take_effects();
+    size(&mut a, 80, 24);
+    assert!(a.take_effects().is_empty(), "same size: nothing to do");
+    size(&mut a, 160, 48);
+    assert!(a.sweep_columns() > n);
+    assert_eq!(a.take_effects(), vec![Effect::RestartSweep]);
+    // Shrinking keeps the values it has: more values than columns is fine.
+    a.sweep_started(2, a.sweep_columns(), Ok(()));
+    a.take_effects();
+    size(&mut a, 80, 24);
+    assert!(a.take_effects().is_empty());
 }

@@ -572,10 +572,15 @@ impl App {
 
     // ---------------------------------------------------------------- results
 
+    /// Values a sweep computes: one per sub-column of the diagram (at least 80).
+    pub fn sweep_columns(&self) -> usize {
+        self.diagram.grid.sub_size().0.max(80)
+    }
+
     /// The sweep for the current parameters, at the diagram's full resolution (one
     /// α value per sub-cell column).
     pub fn sweep_spec(&self) -> SweepSpec {
-        let cols = self.diagram.grid.sub_size().0.max(80);
+        let cols = self.sweep_columns();
         let p = &self.params;
         let mut spec = SweepSpec::new(p.table(), SweepParam::Alpha, p.lo, p.hi, cols);
         spec.r = p.r;
@@ -759,6 +764,13 @@ impl App {
                 self.diagram.grid.y_range(),
             );
             self.rebin_diagram();
+            // Grown wider than the sweep has values (a terminal enlarged, or one too
+            // small at start): sweep again at the new resolution, or every other
+            // column would stay empty.
+            let values = self.diagram.values_total;
+            if values > 0 && self.sweep_columns() > values {
+                self.effects.push(Effect::RestartSweep);
+            }
         }
         if self.phase.grid.size() != (phase.width, phase.height) {
             self.phase.grid = HitGrid::new(
