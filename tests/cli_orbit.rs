@@ -1,5 +1,6 @@
 //! The `orbit` command from the outside: the settled (1, 1) orbit against its closed
-//! form, the grid solver against the exact one, the output formats, and bad input.
+//! form (F_D and the sine), the grid solver against the exact one, the output formats,
+//! and bad input.
 
 use std::process::{Command, Output};
 
@@ -53,6 +54,34 @@ fn settles_on_the_closed_form_fixed_point() {
         (gphase - phase).abs() < 1e-8 && (gv - v).abs() < 1e-8,
         "grid {gphase} {gv}"
     );
+}
+
+#[test]
+fn sine_settles_on_the_closed_form_fixed_point() {
+    // On the sine, α·2π cos 2πt̂* = (1 − r)/(2(1 + r)), the stable root in (0, ¼); the
+    // multipliers have modulus r, so 2000 bounces from the default start are plenty.
+    let (alpha, r) = (0.022, 0.8);
+    let c = (1.0 - r) / (2.0 * (1.0 + r));
+    let want = (c / (2.0 * std::f64::consts::PI * alpha)).acos() / (2.0 * std::f64::consts::PI);
+    let row = last_csv_row(&bouncemap(&[
+        "orbit",
+        "--table",
+        "sine",
+        "--alpha",
+        "0.022",
+        "--r",
+        "0.8",
+        "--skip",
+        "2000",
+        "--bounces",
+        "1",
+        "--format",
+        "csv",
+    ]));
+    let phase: f64 = row[2].parse().unwrap();
+    let v: f64 = row[3].parse().unwrap();
+    assert!((phase - want).abs() < 1e-13, "phase {phase} vs {want}");
+    assert!((v - 0.5).abs() < 1e-13, "v {v}");
 }
 
 #[test]

@@ -158,11 +158,18 @@ fn sine_landing_from(
         } else {
             Poly::new(&[g0, dgap(tau), 0.5 * ddgap(tau), -m3 / 6.0])
         };
-        let step = bound.first_root(0.0, 1.0).unwrap_or(1.0);
+        let zero = bound.first_root(0.0, 1.0);
+        let step = zero.unwrap_or(1.0);
         if step <= 0.0 {
             return Ok(sine_landing_at(sys, launch, tau, dgap(tau)));
         }
         let next = tau + step;
+        // Where the lower bound reaches zero, the gap lies between 0 and that bound plus
+        // M3·step³/3 (the same remainder bound taken from above). Once that is within
+        // the landing tolerance the contact is here, without another evaluation.
+        if zero.is_some() && m3 * step * step * step / 3.0 <= tol(next) {
+            return Ok(sine_landing_at(sys, launch, next, dgap(next)));
+        }
         let gn = gap(next);
         if gn < 0.0 {
             // The contact lies in (tau, next): bracketed, refine by bisection + secant.
