@@ -345,6 +345,9 @@ fn a_paused_sweep_parks_then_finishes_with_the_unpaused_result() {
     let mut s = spec(Table::fd(0.1).unwrap(), 0.60, 0.62, 6, 0.8);
     s.transient = 1_000_000;
     s.periodicity = None;
+    // A private pool: parked workers would otherwise hold the global pool's threads
+    // away from the other tests running meanwhile.
+    s.threads = Some(2);
     let reference = sweep::collect(&s).unwrap();
 
     let gate = Arc::new(sweep::PauseGate::default());
@@ -390,6 +393,7 @@ fn cancelling_a_paused_sweep_stops_it_at_once() {
     let mut s = spec(Table::fd(0.1).unwrap(), 0.60, 0.62, 8, 0.8);
     s.transient = 5_000_000;
     s.periodicity = None;
+    s.threads = Some(2);
     let gate = Arc::new(sweep::PauseGate::default());
     let h = sweep::start_pausable(s, Arc::new(AtomicU64::new(0)), gate.clone()).unwrap();
     std::thread::sleep(Duration::from_millis(30));

@@ -49,6 +49,9 @@
 //! [`start_pausable`] takes a [`PauseGate`]: while it is closed the workers park where
 //! they test for cancellation, without spinning, and resume where they stopped. A
 //! cancellation also ends a pause. [`Progress::elapsed`] leaves the paused time out.
+//! Parked workers keep their threads: on the global rayon pool (`threads: None`) other
+//! rayon work of the process waits until the sweep resumes or is cancelled; give the
+//! sweep its own pool (`threads: Some(n)`) where that matters.
 //!
 //! # Examples
 //! Background sweep, drained by a consumer (e.g. once per frame):
