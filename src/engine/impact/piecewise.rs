@@ -74,16 +74,7 @@ impl PieceGap for Poly {
         launch: &Launch,
     ) -> Result<(Option<Hit>, f64), FlightError> {
         let q = piece.f.shift(off);
-        let mut c = [0.0; MAX_COEFFS];
-        let n = q.coeffs().len().max(3);
-        let qc = q.coeffs();
-        for k in 3..qc.len() {
-            c[k] = -alpha * qc[k];
-        }
-        c[0] = launch.height;
-        c[1] = launch.w;
-        c[2] = -0.5 - alpha * q.coeff(2);
-        let gap = Poly::from_array(c, n);
+        let gap = gap_with_low_terms(&q, alpha, launch.height, launch.w);
         let search = if launch.height > 0.0 {
             gap
         } else {
@@ -97,17 +88,8 @@ impl PieceGap for Poly {
     }
 
     fn later_piece(piece: &Piece, alpha: f64, zb: f64, vb: f64) -> Self {
-        let fp = &piece.f;
-        let mut c = [0.0; MAX_COEFFS];
-        let n = fp.coeffs().len().max(3);
-        let fc = fp.coeffs();
-        for k in 3..fc.len() {
-            c[k] = -alpha * fc[k];
-        }
-        c[0] = zb - alpha * fp.coeff(0);
-        c[1] = vb - alpha * fp.coeff(1);
-        c[2] = -0.5 - alpha * fp.coeff(2);
-        Poly::from_array(c, n)
+        let f = &piece.f;
+        gap_with_low_terms(f, alpha, zb - alpha * f.coeff(0), vb - alpha * f.coeff(1))
     }
 
     fn at_start(&self) -> (f64, f64) {
@@ -125,6 +107,21 @@ impl PieceGap for Poly {
     fn slope(&self, s: f64) -> f64 {
         self.eval_d(s).1
     }
+}
+
+/// The gap c0 + c1 s − s²/2 − α (f₂ s² + f₃ s³ + …) on a piece whose table polynomial
+/// (in the same variable) is `f`: its two lowest coefficients are given, the others
+/// come from the ball's fall and the table.
+fn gap_with_low_terms(f: &Poly, alpha: f64, c0: f64, c1: f64) -> Poly {
+    let fc = f.coeffs();
+    let mut c = [0.0; MAX_COEFFS];
+    for k in 3..fc.len() {
+        c[k] = -alpha * fc[k];
+    }
+    c[0] = c0;
+    c[1] = c1;
+    c[2] = -0.5 - alpha * f.coeff(2);
+    Poly::from_array(c, fc.len().max(3))
 }
 
 /// The gap on a piece of degree ≤ 3, in fixed storage: ascending coefficients and their
