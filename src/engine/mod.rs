@@ -12,6 +12,8 @@ pub mod poly;
 pub mod sweep;
 pub mod system;
 pub mod table;
+#[cfg(test)]
+mod test_rng;
 
 pub use error::EngineError;
 pub use impact::{Landing, Launch, Solver};

@@ -578,6 +578,7 @@ impl RootList {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::engine::test_rng::Xorshift;
 
     fn from_roots(roots: &[f64], lead: f64) -> Poly {
         let mut p = Poly::new(&[lead]);
@@ -602,13 +603,8 @@ mod tests {
     #[test]
     fn cubic_fast_path_agrees_with_general_isolation() {
         // Deterministic pseudo-random cubics, some built from known roots.
-        let mut seed = 0x9e3779b97f4a7c15u64;
-        let mut rnd = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut rng = Xorshift::new(0x9e3779b97f4a7c15);
+        let mut rnd = || rng.next() * 2.0 - 1.0;
         for i in 0..20000 {
             let p = if i % 2 == 0 {
                 Poly::new(&[rnd(), rnd(), rnd(), rnd() + 2.0 * rnd().signum()])
@@ -672,13 +668,8 @@ mod tests {
         // Random cubics, and two families where a leading error term is zero at the
         // root, so the stopping rule relies on its guard against cancellation:
         // C₂² = C₃ (Halley's cubic term) and an inflection point (C₂ = 0).
-        let mut seed = 0x2545f4914f6cdd1du64;
-        let mut rnd = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = Xorshift::new(0x2545f4914f6cdd1d);
+        let mut rnd = || rng.next();
         let mut worst = 0.0f64;
         for i in 0..30000 {
             let r = 0.05 + 0.9 * rnd();

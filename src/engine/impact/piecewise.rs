@@ -330,6 +330,7 @@ fn first_positive_root(q: &Poly, len: f64) -> Option<f64> {
 mod tests {
     use super::*;
     use crate::engine::table::Table;
+    use crate::engine::test_rng::Xorshift;
 
     /// A C¹ periodic cubic spline through `values` with `slopes` at `knots` (knots[0] = 0).
     fn cubic_spline(knots: &[f64], values: &[f64], slopes: &[f64]) -> Table {
@@ -356,13 +357,8 @@ mod tests {
     /// search: on cubic tables they must find the same contact for every launch.
     #[test]
     fn cubic_path_agrees_with_general_path() {
-        let mut seed = 0x853c49e6748fea9bu64;
-        let mut rnd = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = Xorshift::new(0x853c49e6748fea9b);
+        let mut rnd = || rng.next();
         let mut compared = 0;
         for i in 0..4000 {
             let table = if i % 2 == 0 {
