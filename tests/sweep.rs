@@ -338,6 +338,15 @@ fn cancel_stops_workers_and_no_stale_batch_is_current() {
     assert_eq!(gen.load(Ordering::SeqCst), 8);
 }
 
+/// Start `s` with a pause gate, let it run 30 ms, and close the gate.
+fn start_then_pause(s: SweepSpec) -> (sweep::SweepHandle, Arc<sweep::PauseGate>) {
+    let gate = Arc::new(sweep::PauseGate::default());
+    let h = sweep::start_pausable(s, Arc::new(AtomicU64::new(0)), gate.clone()).unwrap();
+    std::thread::sleep(Duration::from_millis(30));
+    gate.set(true);
+    (h, gate)
+}
+
 #[test]
 fn a_paused_sweep_parks_then_finishes_with_the_unpaused_result() {
     // Chaotic values (no early stop) with enough transient to be mid-run when paused
@@ -350,10 +359,7 @@ fn a_paused_sweep_parks_then_finishes_with_the_unpaused_result() {
     s.threads = Some(2);
     let reference = sweep::collect(&s).unwrap();
 
-    let gate = Arc::new(sweep::PauseGate::default());
-    let h = sweep::start_pausable(s, Arc::new(AtomicU64::new(0)), gate.clone()).unwrap();
-    std::thread::sleep(Duration::from_millis(30));
-    gate.set(true);
+    let (h, gate) = start_then_pause(s);
     // Workers park at their next cancellation test, at most CANCEL_EVERY events away
     // (later if the system has not scheduled them meanwhile): give them time, then the
     // count must stand still.
@@ -394,10 +400,7 @@ fn cancelling_a_paused_sweep_stops_it_at_once() {
     s.transient = 5_000_000;
     s.periodicity = None;
     s.threads = Some(2);
-    let gate = Arc::new(sweep::PauseGate::default());
-    let h = sweep::start_pausable(s, Arc::new(AtomicU64::new(0)), gate.clone()).unwrap();
-    std::thread::sleep(Duration::from_millis(30));
-    gate.set(true);
+    let (h, _gate) = start_then_pause(s);
     std::thread::sleep(Duration::from_millis(50));
     let t = Instant::now();
     h.cancel();
