@@ -1,14 +1,103 @@
-//! bouncemap: an exact explorer for the bouncing ball system.
+//! bouncemap, the binary: command-line input, the configuration stage, the headless
+//! commands, the terminal application and every output format, on top of the
+//! `bouncemap-engine` crate (the science).
 //!
-//! * [`engine`]: the impact map and its analysis, pure and synchronous.
-//! * [`cli`], [`commands`], [`input`], [`output`]: the headless command-line front end.
-//! * [`tui`]: the terminal application (`bouncemap` without a subcommand).
+//! * [`config`]: the configuration stage: the flags (clap definitions), the one table
+//!   of parameter rules, the one table-spec parser, typed presets, and the conversion of
+//!   all of them into validated engine values.
+//! * [`commands`]: one file per headless subcommand.
+//! * [`output`]: typed records written as csv and json, the hit-count grid and its text
+//!   form.
+//! * [`tui`]: the terminal application.
 //!
+//! [`main`] is the whole binary; `config`, `output` and `tui` are public for the
+//! integration tests (the headless commands are tested by running the binary).
 //! See ARCHITECTURE.md for the bird's-eye view.
 
-pub mod cli;
-pub mod commands;
-pub mod engine;
-pub mod input;
+mod commands;
+pub mod config;
 pub mod output;
 pub mod tui;
+
+use clap::error::ErrorKind;
+use clap::Parser;
+use config::InputError;
+use std::process::ExitCode;
+
+/// Parse the command line, dispatch, and map failures to exit codes: 2 for bad input
+/// (one line naming the problem and the valid range), 1 for anything else; a closed
+/// output pipe ends quietly with 0.
+pub fn main() -> ExitCode {
+    let cli = match config::flags::Cli::try_parse() {
+        Ok(c) => c,
+        Err(e) => match e.kind() {
+            ErrorKind::DisplayHelp
+            | ErrorKind::DisplayVersion
+            | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
+                let _ = e.print();
+                return ExitCode::SUCCESS;
+            }
+            _ => {
+                eprintln!("{}", one_line_clap_error(&e.render().to_string()));
+                return ExitCode::from(2);
+            }
+        },
+    };
+    let result = match cli.command {
+        Some(cmd) => commands::run(cmd),
+        None => {
+            let a = cli.tui;
+            tui::run(tui::Options {
+                table: a.tui_table,
+                alpha: a.tui_alpha,
+                r: a.tui_r,
+                fps: a.fps,
+                color: a.color,
+                marker: a.marker,
+                mouse: a.mouse,
+                config: a.config,
+            })
+        }
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            if is_broken_pipe(&e) {
+                return ExitCode::SUCCESS;
+            }
+            let code = if e.downcast_ref::<InputError>().is_some() {
+                2
+            } else {
+                1
+            };
+            eprintln!("error: {}", e.to_string().replace('\n', " "));
+            ExitCode::from(code)
+        }
+    }
+}
+
+/// Clap's message cut to one line, keeping the list of valid values if it gives one.
+fn one_line_clap_error(text: &str) -> String {
+    let mut lines = text.lines().map(str::trim).filter(|l| !l.is_empty());
+    let mut msg = lines
+        .next()
+        .unwrap_or("error: invalid arguments")
+        .to_string();
+    if let Some(valid) = lines.find(|l| l.starts_with("[possible values")) {
+        msg.push(' ');
+        msg.push_str(valid);
+    }
+    msg
+}
+
+fn is_broken_pipe(e: &anyhow::Error) -> bool {
+    e.chain().any(|c| {
+        c.downcast_ref::<std::io::Error>()
+            .is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe)
+            || c.downcast_ref::<csv::Error>().is_some_and(|ce| {
+                matches!(ce.kind(), csv::ErrorKind::Io(io) if io.kind() == std::io::ErrorKind::BrokenPipe)
+            })
+            || c.downcast_ref::<serde_json::Error>()
+                .is_some_and(|je| je.io_error_kind() == Some(std::io::ErrorKind::BrokenPipe))
+    })
+}

@@ -2,15 +2,19 @@
 
 mod tui_common;
 
-use bouncemap::engine::{ImpactMap, Solver};
-use bouncemap::tui::app::{Axis, Effect, Focus, Overlay};
+use bouncemap::output::hitgrid::Marker;
+use bouncemap::tui::app::{Effect, Focus, Overlay};
+use bouncemap::tui::components::diagram::Axis;
+use bouncemap::tui::components::phase_plot::PhasePoints;
+use bouncemap::tui::components::Target;
 use bouncemap::tui::params::ParamId;
-use bouncemap::tui::plot::Marker;
+use bouncemap::tui::workers::Msg;
+use bouncemap_engine::{ImpactMap, Solver};
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use tui_common::{app, fill, size};
 
 fn press(a: &mut bouncemap::tui::app::App, code: KeyCode, m: KeyModifiers) {
-    if a.editing.is_some() {
+    if a.editing() {
         a.edit_key(code);
     } else if let Some(act) = a.keymap.action(&KeyEvent::new(code, m)) {
         a.handle(act);
@@ -27,20 +31,24 @@ fn stepping_matches_the_impact_map_exactly_and_steps_back() {
     let sys = a.system();
     let mut map = ImpactMap::new(sys.clone(), Solver::Exact, a.params.initial(&sys).unwrap());
     key(&mut a, 'n');
-    assert_eq!(a.bounce_index(), 1);
+    assert_eq!(a.bounce.index(), 1);
     let e = map.step().unwrap();
     assert_eq!(a.bounce.events[0], e);
     press(&mut a, KeyCode::Char('N'), KeyModifiers::SHIFT);
-    assert_eq!(a.bounce_index(), 11);
+    assert_eq!(a.bounce.index(), 11);
     for i in 1..11 {
         assert_eq!(a.bounce.events[i], map.step().unwrap());
     }
+    let stepped = a.bounce.events.clone();
     key(&mut a, 'b');
     key(&mut a, 'b');
-    assert_eq!(a.bounce_index(), 9);
+    assert_eq!(a.bounce.index(), 9);
     key(&mut a, 'n');
-    assert_eq!(a.bounce.events[9], a.bounce.events[9]);
-    assert_eq!(a.bounce_index(), 10);
+    assert_eq!(
+        a.bounce.events[9], stepped[9],
+        "the event stepped again is the one stepped back over"
+    );
+    assert_eq!(a.bounce.index(), 10);
     // Stepping again after going back gives the same events as before.
     let mut fresh = ImpactMap::new(sys.clone(), Solver::Exact, a.params.initial(&sys).unwrap());
     for e in &a.bounce.events {
@@ -55,8 +63,10 @@ fn nudging_alpha_restarts_phase_and_orbits_but_not_the_alpha_sweep() {
     press(&mut a, KeyCode::Right, KeyModifiers::NONE);
     assert!((a.params.alpha - 0.46).abs() < 1e-12);
     let fx = a.take_effects();
-    assert!(fx.contains(&Effect::RestartPhase) && fx.contains(&Effect::RestartOrbits));
-    assert!(!fx.contains(&Effect::RestartSweep));
+    assert!(
+        fx.contains(&Effect::Start(Target::Phase)) && fx.contains(&Effect::Start(Target::Orbits))
+    );
+    assert!(!fx.contains(&Effect::Start(Target::Diagram)));
     press(&mut a, KeyCode::Left, KeyModifiers::SHIFT);
     assert!((a.params.alpha - 0.459).abs() < 1e-12);
 }
@@ -70,9 +80,9 @@ fn changing_r_restarts_everything() {
     assert!((a.params.r - 0.79).abs() < 1e-12);
     let fx = a.take_effects();
     for e in [
-        Effect::RestartSweep,
-        Effect::RestartPhase,
-        Effect::RestartOrbits,
+        Effect::Start(Target::Diagram),
+        Effect::Start(Target::Phase),
+        Effect::Start(Target::Orbits),
     ] {
         assert!(fx.contains(&e), "{e:?} missing");
     }
@@ -105,7 +115,7 @@ fn typed_values_are_set_or_refused_inline_with_the_range() {
     assert!(a.message.as_ref().unwrap().0.contains("not a number"));
     // r at its edge is refused by the nudge, unchanged.
     a.params.set_text(ParamId::R, "0.995").unwrap();
-    a.selected = 3;
+    a.parameters.selected = 3;
     press(&mut a, KeyCode::Right, KeyModifiers::NONE);
     assert_eq!(a.params.r, 0.995);
     assert!(a.message.as_ref().unwrap().0.contains("(0, 1)"));
@@ -126,7 +136,7 @@ fn diagram_zoom_marks_stack_and_enter_sets_alpha() {
         "{:?}",
         (a.params.lo, a.params.hi)
     );
-    assert!(a.take_effects().contains(&Effect::RestartSweep));
+    assert!(a.take_effects().contains(&Effect::Start(Target::Diagram)));
     key(&mut a, '+');
     assert!((a.params.hi - a.params.lo - 0.03).abs() < 1e-9);
     key(&mut a, 'z');
@@ -141,7 +151,7 @@ fn diagram_zoom_marks_stack_and_enter_sets_alpha() {
     a.take_effects();
     press(&mut a, KeyCode::Enter, KeyModifiers::NONE);
     assert!((a.params.alpha - a.diagram.cursor).abs() < 1e-12);
-    assert!(a.take_effects().contains(&Effect::RestartPhase));
+    assert!(a.take_effects().contains(&Effect::Start(Target::Phase)));
 }
 
 #[test]
@@ -163,7 +173,7 @@ fn toggle_axis_pause_help_presets_export_quit() {
     press(&mut a, KeyCode::Char('?'), KeyModifiers::SHIFT);
     assert_eq!(a.overlay, Overlay::Help);
     key(&mut a, 'n'); // ignored under the overlay
-    assert_eq!(a.bounce_index(), 3);
+    assert_eq!(a.bounce.index(), 3);
     press(&mut a, KeyCode::Esc, KeyModifiers::NONE);
     assert_eq!(a.overlay, Overlay::None);
     key(&mut a, 'p');
@@ -174,7 +184,7 @@ fn toggle_axis_pause_help_presets_export_quit() {
     a.overlay = Overlay::Presets { selected: last };
     press(&mut a, KeyCode::Enter, KeyModifiers::NONE);
     assert_eq!(a.params.table_label(), "sine");
-    assert!(a.take_effects().contains(&Effect::RestartSweep));
+    assert!(a.take_effects().contains(&Effect::Start(Target::Diagram)));
     key(&mut a, 'e');
     assert_eq!(a.take_effects(), vec![Effect::Export]);
     press(&mut a, KeyCode::Char('c'), KeyModifiers::CONTROL);
@@ -185,20 +195,16 @@ fn toggle_axis_pause_help_presets_export_quit() {
 fn stale_generations_are_dropped() {
     let mut a = app(Marker::Braille);
     size(&mut a, 120, 40);
-    a.phase_started(5);
-    a.receive(bouncemap::tui::workers::Msg::Phase {
-        gen: 4,
+    let shared = &a.shared;
+    a.phase.started(5, shared);
+    let chunk = || PhasePoints {
         points: vec![(0.5, 0.5)],
         done: true,
         note: None,
-    });
+    };
+    a.receive(Msg::new(Target::Phase, 4, chunk()));
     assert!(a.phase.points.is_empty() && !a.phase.done);
-    a.receive(bouncemap::tui::workers::Msg::Phase {
-        gen: 5,
-        points: vec![(0.5, 0.5)],
-        done: true,
-        note: None,
-    });
+    a.receive(Msg::new(Target::Phase, 5, chunk()));
     assert_eq!(a.phase.points.len(), 1);
 }
 
@@ -212,7 +218,11 @@ fn export_writes_csv_and_braille_text() {
     let (csv, txt) = bouncemap::tui::export::export(&a, &dir).unwrap();
     let c = std::fs::read_to_string(&csv).unwrap();
     assert_eq!(c.lines().count(), 2 + a.diagram.plotted);
-    assert!(c.lines().nth(1).unwrap().starts_with("alpha,phase,v"));
+    // The same rows as `bouncemap sweep`'s csv.
+    assert_eq!(
+        c.lines().nth(1).unwrap(),
+        "index,alpha,phase,v,kind,period,table_periods,status,sticking"
+    );
     let t = std::fs::read_to_string(&txt).unwrap();
     assert!(t.chars().any(|c| ('\u{2801}'..='\u{28ff}').contains(&c)));
     let (csv2, _) = bouncemap::tui::export::export(&a, &dir).unwrap();

@@ -4,14 +4,14 @@
 
 mod tui_common;
 
-use bouncemap::tui::app::{Effect, Overlay};
-use bouncemap::tui::plot::Marker;
-use bouncemap::tui::views;
+use bouncemap::output::hitgrid::Marker;
+use bouncemap::tui::app::{App, Effect, Overlay};
+use bouncemap::tui::components::{status, Component, Target};
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use tui_common::{app, fill, render, size, text};
 
-fn panel(f: fn(&bouncemap::tui::app::App, Rect, &mut Buffer), w: u16, h: u16) -> String {
+fn panel(f: impl Fn(&App, Rect, &mut Buffer), w: u16, h: u16) -> String {
     let mut a = app(Marker::Braille);
     size(&mut a, 120, 40);
     fill(&mut a);
@@ -84,36 +84,40 @@ fn resize_rebins_the_plots() {
 
 #[test]
 fn panel_parameters() {
-    insta::assert_snapshot!(panel(views::parameters::render, 30, 14));
+    insta::assert_snapshot!(panel(|a, r, b| a.parameters.draw(&a.shared, r, b), 30, 14));
 }
 
 #[test]
 fn panel_diagram() {
-    insta::assert_snapshot!(panel(views::diagram::render, 90, 22));
+    insta::assert_snapshot!(panel(|a, r, b| a.diagram.draw(&a.shared, r, b), 90, 22));
 }
 
 #[test]
 fn panel_phase_plot() {
-    insta::assert_snapshot!(panel(views::phase_plot::render, 40, 17));
+    insta::assert_snapshot!(panel(|a, r, b| a.phase.draw(&a.shared, r, b), 40, 17));
 }
 
 #[test]
 fn panel_stability() {
-    let s = panel(views::stability::render, 40, 17);
+    let s = panel(|a, r, b| a.stability.draw(&a.shared, r, b), 40, 17);
     assert!(s.contains("κ_c = -1.0123") && s.contains("stable"), "{s}");
     insta::assert_snapshot!(s);
 }
 
 #[test]
 fn panel_bounce() {
-    let s = panel(views::bounce::render, 40, 17);
+    let s = panel(|a, r, b| a.bounce.draw(&a.shared, r, b), 40, 17);
     assert!(s.contains("Bounce #3"), "{s}");
     insta::assert_snapshot!(s);
 }
 
 #[test]
 fn panel_status() {
-    insta::assert_snapshot!(panel(views::status::render, 120, 1));
+    insta::assert_snapshot!(panel(
+        |a, r, b| status::draw(&a.shared, &a.diagram, &a.phase, r, b),
+        120,
+        1
+    ));
 }
 
 #[test]
@@ -136,16 +140,18 @@ fn enlarging_the_terminal_sweeps_again_at_the_new_resolution() {
     // more columns than values, so the app asks for a new sweep.
     let mut a = app(Marker::Braille);
     size(&mut a, 80, 24);
-    let n = a.sweep_columns();
-    a.sweep_started(1, n, Ok(()));
+    let n = a.diagram.sweep_columns();
+    let shared = &a.shared;
+    a.diagram.sweep_started(1, n, shared);
     a.take_effects();
     size(&mut a, 80, 24);
     assert!(a.take_effects().is_empty(), "same size: nothing to do");
     size(&mut a, 160, 48);
-    assert!(a.sweep_columns() > n);
-    assert_eq!(a.take_effects(), vec![Effect::RestartSweep]);
+    assert!(a.diagram.sweep_columns() > n);
+    assert_eq!(a.take_effects(), vec![Effect::Start(Target::Diagram)]);
     // Shrinking keeps the values it has: more values than columns is fine.
-    a.sweep_started(2, a.sweep_columns(), Ok(()));
+    let (n, shared) = (a.diagram.sweep_columns(), &a.shared);
+    a.diagram.sweep_started(2, n, shared);
     a.take_effects();
     size(&mut a, 80, 24);
     assert!(a.take_effects().is_empty());

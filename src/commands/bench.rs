@@ -13,38 +13,16 @@
 //!   breakdown of where the events go; `--panel NAME` times a full panel at the paper's
 //!   fidelity.
 
-use super::sweep::preset;
-use crate::engine::map::{Event, EventKind, ImpactMap, State};
-use crate::engine::orbits;
-use crate::engine::sweep::{self, Outcome, SweepParam, SweepSpec};
-use crate::engine::{Solver, System};
-use crate::input::{load_table, InputError};
-use clap::{Args, ValueEnum};
-use std::sync::atomic::AtomicU64;
-use std::sync::Arc;
+use crate::config::flags::{BenchArgs, BenchFormat};
+use crate::config::presets::preset;
+use crate::config::table_spec::TableSpec;
+use crate::config::InputError;
+use bouncemap_engine::jobs::{available_cores, Control, Executor};
+use bouncemap_engine::map::{Event, EventKind, ImpactMap, State};
+use bouncemap_engine::orbits;
+use bouncemap_engine::sweep::{self, Outcome, SweepJob, SweepSpec};
+use bouncemap_engine::{Solver, System};
 use std::time::{Duration, Instant};
-
-/// Output of `bench`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, Default)]
-pub enum BenchFormat {
-    #[default]
-    Text,
-    Json,
-}
-
-/// `bouncemap bench`.
-#[derive(Args, Debug, Clone)]
-pub struct BenchArgs {
-    /// A few seconds instead of a couple of minutes (shorter runs, noisier figures).
-    #[arg(long)]
-    pub quick: bool,
-    /// Also time this preset (fig3a … fig3f) at its full paper fidelity (can be long).
-    #[arg(long, value_name = "PRESET")]
-    pub panel: Option<String>,
-    /// Output format.
-    #[arg(long, value_enum, default_value_t = BenchFormat::Text)]
-    pub format: BenchFormat,
-}
 
 /// One orbit on which both solvers are measured.
 struct Case {
@@ -110,24 +88,29 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         Duration::from_secs(3)
     };
     let panel_full = match &args.panel {
-        Some(name) => Some(preset(name).map(|p| (name.clone(), p))?),
+        Some(name) => Some((
+            name.clone(),
+            preset(name)
+                .and_then(|p| p.sweep_spec())
+                .map_err(|e| InputError(format!("--panel: {e}")))?,
+        )),
         None => None,
     };
-    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let cores = available_cores();
+    let executor = Executor::all_cores()?;
     let mut rows = Vec::new();
     for c in &CASES {
         rows.push(solver_row(c, budget)?);
     }
-    let base = preset("fig3b")?;
-    let base_spec = panel_spec(&base)?;
-    let coarse = coarse_time(&base_spec)?;
-    let cancel = cancel_latency(&base_spec)?;
+    let base_spec = preset("fig3b")?.sweep_spec()?;
+    let coarse = coarse_time(&base_spec, &executor)?;
+    let cancel = cancel_latency(&base_spec, &executor)?;
     let reduced_t = if args.quick { 5_000 } else { 20_000 };
     let mut reduced = base_spec.clone();
     reduced.transient = reduced_t;
-    let reduced_run = time_panel(&reduced)?;
+    let reduced_run = time_panel(&reduced, &executor)?;
     let full = match &panel_full {
-        Some((name, p)) => Some((name.clone(), time_panel(&panel_spec(p)?)?)),
+        Some((name, spec)) => Some((name.clone(), time_panel(spec, &executor)?)),
         None => None,
     };
     let date = today();
@@ -208,21 +191,6 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-fn panel_spec(p: &super::sweep::Preset) -> Result<SweepSpec, InputError> {
-    let mut s = SweepSpec::new(
-        load_table(&p.table)?,
-        SweepParam::Alpha,
-        p.window[0],
-        p.window[1],
-        p.steps,
-    );
-    s.r = p.r.unwrap_or(0.8);
-    s.transient = p.transient;
-    s.keep = p.keep;
-    s.preview = 0;
-    Ok(s)
-}
-
 /// Measured run of a whole panel.
 struct PanelRun {
     wall: Duration,
@@ -235,9 +203,9 @@ struct PanelRun {
     events_unsettled: u64,
 }
 
-fn time_panel(spec: &SweepSpec) -> Result<PanelRun, InputError> {
+fn time_panel(spec: &SweepSpec, executor: &Executor) -> Result<PanelRun, InputError> {
     let t = Instant::now();
-    let res = sweep::collect(spec).map_err(|e| InputError(e.to_string()))?;
+    let res = sweep::collect(spec, executor)?;
     let wall = t.elapsed();
     let mut r = PanelRun {
         wall,
@@ -296,14 +264,12 @@ fn estimate_full(r: &PanelRun, t_small: u64, t_full: u64) -> f64 {
     w * (1.0 - frac) + w * frac * (t_full as f64 / t_small as f64)
 }
 
-fn coarse_time(spec: &SweepSpec) -> Result<Duration, InputError> {
-    let mut s = spec.clone();
-    s.preview = sweep::DEFAULT_PREVIEW;
-    let gen = Arc::new(AtomicU64::new(0));
+fn coarse_time(spec: &SweepSpec, executor: &Executor) -> Result<Duration, InputError> {
+    let job = SweepJob::new(spec.clone())?.preview(sweep::DEFAULT_PREVIEW);
     let t = Instant::now();
-    let h = sweep::start(s, gen).map_err(|e| InputError(e.to_string()))?;
+    let h = executor.start(job, &Control::new());
     let mut pass0 = 0;
-    let total = h.progress().values_total;
+    let total = h.progress().total;
     let mut at = t.elapsed();
     for b in h.receiver() {
         if b.pass == 0 {
@@ -318,9 +284,8 @@ fn coarse_time(spec: &SweepSpec) -> Result<Duration, InputError> {
     Ok(at)
 }
 
-fn cancel_latency(spec: &SweepSpec) -> Result<Duration, InputError> {
-    let gen = Arc::new(AtomicU64::new(0));
-    let h = sweep::start(spec.clone(), gen).map_err(|e| InputError(e.to_string()))?;
+fn cancel_latency(spec: &SweepSpec, executor: &Executor) -> Result<Duration, InputError> {
+    let h = sweep::start(spec.clone(), executor, &Control::new())?;
     std::thread::sleep(Duration::from_millis(500));
     let t = Instant::now();
     h.cancel();
@@ -333,11 +298,12 @@ fn cancel_latency(spec: &SweepSpec) -> Result<Duration, InputError> {
 }
 
 fn system_of(c: &Case) -> Result<System, InputError> {
-    Ok(System::new(load_table(c.table)?, c.alpha, c.r)?)
+    let table = TableSpec::parse(c.table).map_err(InputError)?.load()?;
+    Ok(System::new(table, c.alpha, c.r)?)
 }
 
 fn start_state(sys: &System) -> State {
-    State::launch(sys, 0, 0.0, sys.df(0.0) + 0.5, 0.0).expect("default start is valid")
+    State::start(sys, 0.0, None, 0.0).expect("default start is valid")
 }
 
 /// One solver's map, timed in rounds.
@@ -504,7 +470,7 @@ fn one_step_comparison(sys: &System, n: usize) -> (f64, usize, usize) {
         let s = *exact.state();
         let Ok(e) = exact.step() else { break };
         // Compare flights only: the grid solver has no sticking of its own.
-        if s.mode != crate::engine::Mode::Flying || e.kind != EventKind::Impact {
+        if s.mode != bouncemap_engine::Mode::Flying || e.kind != EventKind::Impact {
             continue;
         }
         let mut grid = ImpactMap::new(sys.clone(), Solver::Grid, s);
@@ -544,7 +510,7 @@ fn today() -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::engine::Table;
+    use bouncemap_engine::Table;
 
     #[test]
     fn fixed_point_phase_satisfies_the_defining_equation() {

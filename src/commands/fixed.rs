@@ -1,74 +1,42 @@
 //! `bouncemap fixed`: κ_c, every (1, k) solution with its classification and
 //! eigenvalues, and the α window(s) of stability (birth α and α_PD).
 
-use super::system_from;
-use crate::cli::FixedArgs;
-use crate::engine::orbits::{
-    fixed_points, stability_windows, Complex, FixedPoint, StabilityWindow,
-};
-use crate::output::{csv_row, json_num, Format};
-use serde_json::{json, Value};
+use crate::config;
+use crate::config::flags::FixedArgs;
+use crate::output::records::{csv_writer, FixedDoc, FixedRow, FixedSolution, WindowRecord};
+use crate::output::text::complex;
+use crate::output::Format;
+use bouncemap_engine::orbits::{fixed_point_slope, fixed_points, stability_windows};
 use std::io::{self, BufWriter, Write};
 
 pub fn run(args: &FixedArgs) -> anyhow::Result<()> {
-    let sys = system_from(&args.system)?;
+    let sys = config::system(&args.system)?;
     let points = fixed_points(&sys, args.k)?;
     let windows = stability_windows(&sys.table, sys.r, args.k)?;
     let mut out = BufWriter::new(io::stdout().lock());
     match args.format {
         Format::Json => {
             let first = windows.first();
-            let v = json!({
-                "table": sys.table.name(),
-                "alpha": json_num(sys.alpha),
-                "r": json_num(sys.r),
-                "k": args.k,
-                "kappa_c": json_num(sys.kappa_c()),
-                "solutions": points.iter().map(point_json).collect::<Vec<_>>(),
-                "alpha_birth": first.map_or(Value::Null, |w| json_num(w.alpha_birth)),
-                "alpha_pd": first.and_then(|w| w.alpha_pd()).map_or(Value::Null, json_num),
-                "windows": windows.iter().map(window_json).collect::<Vec<_>>(),
-            });
-            writeln!(out, "{v}")?;
+            let doc = FixedDoc {
+                table: sys.table.name(),
+                alpha: sys.alpha,
+                r: sys.r,
+                k: args.k,
+                kappa_c: sys.kappa_c(),
+                solutions: points.iter().map(FixedSolution::from).collect(),
+                alpha_birth: first.map(|w| w.alpha_birth),
+                alpha_pd: first.and_then(|w| w.alpha_pd()),
+                windows: windows.iter().map(WindowRecord::from).collect(),
+            };
+            serde_json::to_writer(&mut out, &doc)?;
+            writeln!(out)?;
         }
         Format::Csv => {
-            csv_row(
-                &mut out,
-                &[
-                    "phase",
-                    "v",
-                    "df",
-                    "ddf",
-                    "dddf",
-                    "delta_kappa",
-                    "eig1_re",
-                    "eig1_im",
-                    "eig2_re",
-                    "eig2_im",
-                    "admissible",
-                    "classification",
-                ]
-                .map(String::from),
-            )?;
+            let mut w = csv_writer(&mut out, &FixedRow::HEADER)?;
             for p in &points {
-                csv_row(
-                    &mut out,
-                    &[
-                        p.phase.to_string(),
-                        p.v.to_string(),
-                        p.df.to_string(),
-                        p.ddf.to_string(),
-                        p.dddf.to_string(),
-                        p.delta_kappa.to_string(),
-                        p.eigenvalues[0].re.to_string(),
-                        p.eigenvalues[0].im.to_string(),
-                        p.eigenvalues[1].re.to_string(),
-                        p.eigenvalues[1].im.to_string(),
-                        p.admissible.to_string(),
-                        p.classification.as_str().to_string(),
-                    ],
-                )?;
+                w.serialize(FixedRow::from(p))?;
             }
+            w.flush()?;
         }
         Format::Text => {
             writeln!(
@@ -83,7 +51,7 @@ pub fn run(args: &FixedArgs) -> anyhow::Result<()> {
                 out,
                 "kappa_c = {:.15}   (1,k) solutions need f'(t*) = {:.15}, v* = {}",
                 sys.kappa_c(),
-                crate::engine::orbits::fixed_point_slope(sys.r, args.k),
+                fixed_point_slope(sys.r, args.k),
                 0.5 * args.k as f64
             )?;
             if points.is_empty() {
@@ -102,8 +70,8 @@ pub fn run(args: &FixedArgs) -> anyhow::Result<()> {
                         p.ddf,
                         p.dddf,
                         p.delta_kappa,
-                        complex_text(p.eigenvalues[0]),
-                        complex_text(p.eigenvalues[1]),
+                        complex(p.eigenvalues[0]),
+                        complex(p.eigenvalues[1]),
                         p.classification.as_str()
                     )?;
                 }
@@ -129,44 +97,4 @@ pub fn run(args: &FixedArgs) -> anyhow::Result<()> {
     }
     out.flush()?;
     Ok(())
-}
-
-fn complex_text(z: Complex) -> String {
-    if z.im == 0.0 {
-        format!("{:.12}", z.re)
-    } else {
-        format!("{:.12}{:+.12}i", z.re, z.im)
-    }
-}
-
-/// A complex number as {"re", "im"}.
-pub fn complex_json(z: Complex) -> Value {
-    json!({"re": json_num(z.re), "im": json_num(z.im)})
-}
-
-/// One (1, k) solution as JSON.
-pub fn point_json(p: &FixedPoint) -> Value {
-    json!({
-        "phase": json_num(p.phase),
-        "v": json_num(p.v),
-        "df": json_num(p.df),
-        "ddf": json_num(p.ddf),
-        "dddf": json_num(p.dddf),
-        "delta_kappa": json_num(p.delta_kappa),
-        "jacobian": p.jacobian.iter().map(|row| row.iter().map(|&x| json_num(x)).collect::<Vec<_>>()).collect::<Vec<_>>(),
-        "eigenvalues": p.eigenvalues.iter().map(|&z| complex_json(z)).collect::<Vec<_>>(),
-        "flight": p.flight.map_or(Value::Null, json_num),
-        "admissible": p.admissible,
-        "classification": p.classification.as_str(),
-    })
-}
-
-fn window_json(w: &StabilityWindow) -> Value {
-    json!({
-        "alpha_birth": json_num(w.alpha_birth),
-        "phase_birth": json_num(w.phase_birth),
-        "alpha_end": json_num(w.alpha_end),
-        "phase_end": json_num(w.phase_end),
-        "end": w.end.as_str(),
-    })
 }

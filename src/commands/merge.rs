@@ -5,27 +5,18 @@
 //! `shard`. A value index found in two parts is refused, and so (for json, which
 //! records `steps`) is a set of parts that misses values.
 
-use crate::input::InputError;
-use clap::Args;
+use crate::config::files::{read_text, LARGE_FILE};
+use crate::config::flags::MergeArgs;
+use crate::config::InputError;
+use crate::output::records::SweepDoc;
 use std::collections::BTreeMap;
 use std::io::{self, BufWriter, Write};
-
-/// `bouncemap merge`.
-#[derive(Args, Debug, Clone)]
-pub struct MergeArgs {
-    /// Part files written by `sweep --shard I/N --out FILE` (all csv or all json).
-    #[arg(required = true, value_name = "FILE")]
-    pub files: Vec<String>,
-    /// Write to FILE instead of stdout.
-    #[arg(long, value_name = "FILE")]
-    pub out: Option<String>,
-}
+use std::path::Path;
 
 pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
     let mut texts = Vec::new();
     for f in &args.files {
-        let t = std::fs::read_to_string(f)
-            .map_err(|e| InputError(format!("merge: cannot read {f}: {e}")))?;
+        let t = read_text(Path::new(f), "merge: part", LARGE_FILE)?;
         texts.push((f.as_str(), t));
     }
     let merged = merge_texts(&texts)?;
@@ -115,63 +106,41 @@ fn merge_csv(parts: &[(&str, String)]) -> Result<String, InputError> {
 }
 
 fn merge_json(parts: &[(&str, String)]) -> Result<String, InputError> {
-    use serde_json::Value;
-    let mut header: Option<serde_json::Map<String, Value>> = None;
-    let mut values: BTreeMap<u64, (&str, Value)> = BTreeMap::new();
+    let mut first: Option<(&str, SweepDoc)> = None;
+    let mut values = BTreeMap::new();
     for (name, text) in parts {
-        let doc: Value = serde_json::from_str(text)
+        let mut doc: SweepDoc = serde_json::from_str(text)
             .map_err(|e| InputError(format!("merge: {name}: not sweep json: {e}")))?;
-        let Value::Object(mut m) = doc else {
-            return Err(InputError(format!(
-                "merge: {name}: not a sweep json object"
-            )));
-        };
-        let vals = match m.remove("values") {
-            Some(Value::Array(v)) => v,
-            _ => {
+        doc.header.shard = None;
+        for v in std::mem::take(&mut doc.values) {
+            if let Some((other, _)) = values.get(&v.index) {
                 return Err(InputError(format!(
-                    "merge: {name}: no \"values\" array: valid a sweep json file"
-                )))
+                    "merge: value {} is in both {other} and {name}: valid disjoint shards",
+                    v.index
+                )));
             }
-        };
-        m.insert("shard".into(), Value::Null);
-        match &header {
-            None => header = Some(m),
-            Some(h) if *h != m => {
+            values.insert(v.index, (*name, v));
+        }
+        match &first {
+            None => first = Some((name, doc)),
+            Some((_, d)) if d.header != doc.header => {
                 return Err(InputError(format!(
                     "merge: {name} has other sweep settings than the first part: valid parts of one sweep"
                 )))
             }
             _ => {}
         }
-        for v in vals {
-            let idx = v
-                .get("index")
-                .and_then(Value::as_u64)
-                .ok_or_else(|| InputError(format!("merge: {name}: a value without an index")))?;
-            if let Some((other, _)) = values.get(&idx) {
-                return Err(InputError(format!(
-                    "merge: value {idx} is in both {other} and {name}: valid disjoint shards"
-                )));
-            }
-            values.insert(idx, (name, v));
-        }
     }
-    let header = header.unwrap_or_default();
-    if let Some(steps) = header.get("steps").and_then(Value::as_u64) {
-        if values.len() as u64 != steps {
-            return Err(InputError(format!(
-                "merge: the parts hold {} of the sweep's {steps} values: valid every shard I/N of one sweep",
-                values.len()
-            )));
-        }
+    let (_, mut doc) = first.ok_or_else(|| InputError("merge: no files given".into()))?;
+    if values.len() != doc.header.steps {
+        return Err(InputError(format!(
+            "merge: the parts hold {} of the sweep's {} values: valid every shard I/N of one sweep",
+            values.len(),
+            doc.header.steps
+        )));
     }
-    let mut buf = Vec::new();
-    super::sweep::write_json_doc(
-        &mut buf,
-        header,
-        values.into_values().map(|(_, v)| v).collect(),
-    )
-    .map_err(|e| InputError(format!("merge: {e}")))?;
-    Ok(String::from_utf8(buf).expect("json is utf-8"))
+    doc.values = values.into_values().map(|(_, v)| v).collect();
+    let mut text = serde_json::to_string(&doc).map_err(|e| InputError(format!("merge: {e}")))?;
+    text.push('\n');
+    Ok(text)
 }

@@ -3,14 +3,15 @@
 //! (2, 2k) solutions, (b) simulated orbits, and (c) the analytic intercepts (printed and
 //! corrected), beside the paper's fitted values where it gives them.
 
-use crate::cli::ScalingArgs;
-use crate::engine::orbits::scaling::{
+use crate::config::flags::ScalingArgs;
+use crate::output::records::csv_writer;
+use crate::output::Format;
+use bouncemap_engine::orbits::scaling::{
     analytic_intercepts_corrected, analytic_intercepts_paper, exact_fits, least_squares,
     log_spaced, simulated_point, Fit, SimulatedPoint, PAPER_FIG4_FITS,
 };
-use crate::engine::Table;
-use crate::output::{csv_row, json_num, Format};
-use serde_json::{json, Value};
+use bouncemap_engine::Table;
+use serde::Serialize;
 use std::io::{self, BufWriter, Write};
 
 /// Δκ range and count of the exact fits.
@@ -70,56 +71,16 @@ pub fn run(args: &ScalingArgs) -> anyhow::Result<()> {
     }
     let mut out = BufWriter::new(io::stdout().lock());
     match args.format {
-        Format::Json => writeln!(out, "{}", to_json(args, &rows))?,
+        Format::Json => {
+            serde_json::to_writer(&mut out, &ScalingDoc::new(args, &rows))?;
+            writeln!(out)?;
+        }
         Format::Csv => {
-            csv_row(
-                &mut out,
-                &[
-                    "d",
-                    "exact_a_T",
-                    "exact_b_T",
-                    "exact_a_t",
-                    "exact_b_t",
-                    "sim_a_T",
-                    "sim_b_T",
-                    "sim_a_t",
-                    "sim_b_t",
-                    "analytic_b_T",
-                    "analytic_b_t",
-                    "paper_analytic_b_T",
-                    "paper_analytic_b_t",
-                    "paper_a_T",
-                    "paper_b_T",
-                    "paper_a_t",
-                    "paper_b_t",
-                ]
-                .map(String::from),
-            )?;
-            let o = |x: Option<f64>| x.map_or(String::new(), |v| v.to_string());
+            let mut w = csv_writer(&mut out, &ScalingRow::HEADER)?;
             for row in &rows {
-                csv_row(
-                    &mut out,
-                    &[
-                        row.d.to_string(),
-                        o(row.exact.map(|f| f.0.slope)),
-                        o(row.exact.map(|f| f.0.intercept)),
-                        o(row.exact.map(|f| f.1.slope)),
-                        o(row.exact.map(|f| f.1.intercept)),
-                        o(row.sim.map(|f| f.0.slope)),
-                        o(row.sim.map(|f| f.0.intercept)),
-                        o(row.sim.map(|f| f.1.slope)),
-                        o(row.sim.map(|f| f.1.intercept)),
-                        o(row.corrected_analytic.map(|a| a.0)),
-                        o(row.corrected_analytic.map(|a| a.1)),
-                        row.paper_analytic.0.to_string(),
-                        row.paper_analytic.1.to_string(),
-                        o(row.paper_fit.map(|p| p.0)),
-                        o(row.paper_fit.map(|p| p.1)),
-                        o(row.paper_fit.map(|p| p.2)),
-                        o(row.paper_fit.map(|p| p.3)),
-                    ],
-                )?;
+                w.serialize(ScalingRow::from(row))?;
             }
+            w.flush()?;
         }
         Format::Text => {
             writeln!(out, "log10 dT = a_T log10 dkappa + b_T,  log10 dt = a_t log10 dkappa + b_t   (r = {r}, k = {k}, table fd:D)")?;
@@ -208,30 +169,212 @@ fn fits4(f: Option<(Fit, Fit)>) -> [Option<f64>; 4] {
     }
 }
 
-fn fit_json(f: Option<(Fit, Fit)>) -> Value {
-    f.map_or(Value::Null, |(a, b)| {
-        json!({"a_T": json_num(a.slope), "b_T": json_num(a.intercept), "a_t": json_num(b.slope), "b_t": json_num(b.intercept), "points": a.points})
-    })
+/// A pair of fits, log10 ΔT and log10 Δt against log10 Δκ.
+#[derive(Serialize)]
+struct FitsRecord {
+    #[serde(rename = "a_T")]
+    a_big_t: f64,
+    #[serde(rename = "b_T")]
+    b_big_t: f64,
+    a_t: f64,
+    b_t: f64,
+    points: Option<usize>,
 }
 
-fn to_json(args: &ScalingArgs, rows: &[Row]) -> Value {
-    json!({
-        "r": json_num(args.r),
-        "k": args.k,
-        "log_base": 10,
-        "exact_delta_kappa": {"min": json_num(EXACT_RANGE.0), "max": json_num(EXACT_RANGE.1), "points": EXACT_RANGE.2},
-        "simulated_delta_kappa": {"min": json_num(SIM_RANGE.0), "max": json_num(SIM_RANGE.1), "points": SIM_RANGE.2, "max_bounces": SIM_BOUNCES},
-        "rows": rows.iter().map(|row| json!({
-            "d": json_num(row.d),
-            "exact": fit_json(row.exact),
-            "simulated": fit_json(row.sim),
-            "simulated_points": row.sim_points.iter().map(|p| json!({
-                "delta_kappa": json_num(p.delta_kappa), "delta_T": json_num(p.delta_big_t),
-                "delta_t": json_num(p.delta_t), "settled_to": json_num(p.settled_to), "bounces": p.bounces,
-            })).collect::<Vec<_>>(),
-            "analytic": row.corrected_analytic.map_or(Value::Null, |a| json!({"b_T": json_num(a.0), "b_t": json_num(a.1)})),
-            "paper_analytic": json!({"b_T": json_num(row.paper_analytic.0), "b_t": json_num(row.paper_analytic.1)}),
-            "paper_fit": row.paper_fit.map_or(Value::Null, |p| json!({"a_T": json_num(p.0), "b_T": json_num(p.1), "a_t": json_num(p.2), "b_t": json_num(p.3)})),
-        })).collect::<Vec<_>>(),
-    })
+impl FitsRecord {
+    fn new(f: Option<(Fit, Fit)>) -> Option<FitsRecord> {
+        f.map(|(a, b)| FitsRecord {
+            a_big_t: a.slope,
+            b_big_t: a.intercept,
+            a_t: b.slope,
+            b_t: b.intercept,
+            points: Some(a.points),
+        })
+    }
+}
+
+/// Intercepts only (the slopes are 1 and ½ by construction).
+#[derive(Serialize)]
+struct Intercepts {
+    #[serde(rename = "b_T")]
+    b_big_t: f64,
+    b_t: f64,
+}
+
+/// A Δκ range of the fits.
+#[derive(Serialize)]
+struct Range {
+    min: f64,
+    max: f64,
+    points: usize,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    max_bounces: Option<u64>,
+}
+
+/// One simulated orbit's ΔT and Δt.
+#[derive(Serialize)]
+struct SimulatedRecord {
+    delta_kappa: f64,
+    #[serde(rename = "delta_T")]
+    delta_big_t: f64,
+    delta_t: f64,
+    settled_to: f64,
+    bounces: u64,
+}
+
+/// One D of `scaling`'s json.
+#[derive(Serialize)]
+struct RowRecord {
+    d: f64,
+    exact: Option<FitsRecord>,
+    simulated: Option<FitsRecord>,
+    simulated_points: Vec<SimulatedRecord>,
+    analytic: Option<Intercepts>,
+    paper_analytic: Intercepts,
+    paper_fit: Option<FitsRecord>,
+}
+
+/// `scaling`'s json.
+#[derive(Serialize)]
+struct ScalingDoc {
+    r: f64,
+    k: u32,
+    log_base: u32,
+    exact_delta_kappa: Range,
+    simulated_delta_kappa: Range,
+    rows: Vec<RowRecord>,
+}
+
+impl ScalingDoc {
+    fn new(args: &ScalingArgs, rows: &[Row]) -> ScalingDoc {
+        ScalingDoc {
+            r: args.r,
+            k: args.k,
+            log_base: 10,
+            exact_delta_kappa: Range {
+                min: EXACT_RANGE.0,
+                max: EXACT_RANGE.1,
+                points: EXACT_RANGE.2,
+                max_bounces: None,
+            },
+            simulated_delta_kappa: Range {
+                min: SIM_RANGE.0,
+                max: SIM_RANGE.1,
+                points: SIM_RANGE.2,
+                max_bounces: Some(SIM_BOUNCES),
+            },
+            rows: rows
+                .iter()
+                .map(|row| RowRecord {
+                    d: row.d,
+                    exact: FitsRecord::new(row.exact),
+                    simulated: FitsRecord::new(row.sim),
+                    simulated_points: row
+                        .sim_points
+                        .iter()
+                        .map(|p| SimulatedRecord {
+                            delta_kappa: p.delta_kappa,
+                            delta_big_t: p.delta_big_t,
+                            delta_t: p.delta_t,
+                            settled_to: p.settled_to,
+                            bounces: p.bounces,
+                        })
+                        .collect(),
+                    analytic: row.corrected_analytic.map(|a| Intercepts {
+                        b_big_t: a.0,
+                        b_t: a.1,
+                    }),
+                    paper_analytic: Intercepts {
+                        b_big_t: row.paper_analytic.0,
+                        b_t: row.paper_analytic.1,
+                    },
+                    paper_fit: row.paper_fit.map(|p| FitsRecord {
+                        a_big_t: p.0,
+                        b_big_t: p.1,
+                        a_t: p.2,
+                        b_t: p.3,
+                        points: None,
+                    }),
+                })
+                .collect(),
+        }
+    }
+}
+
+/// One csv row of `scaling`: one D.
+#[derive(Serialize)]
+struct ScalingRow {
+    d: f64,
+    #[serde(rename = "exact_a_T")]
+    exact_a_big_t: Option<f64>,
+    #[serde(rename = "exact_b_T")]
+    exact_b_big_t: Option<f64>,
+    exact_a_t: Option<f64>,
+    exact_b_t: Option<f64>,
+    #[serde(rename = "sim_a_T")]
+    sim_a_big_t: Option<f64>,
+    #[serde(rename = "sim_b_T")]
+    sim_b_big_t: Option<f64>,
+    sim_a_t: Option<f64>,
+    sim_b_t: Option<f64>,
+    #[serde(rename = "analytic_b_T")]
+    analytic_b_big_t: Option<f64>,
+    analytic_b_t: Option<f64>,
+    #[serde(rename = "paper_analytic_b_T")]
+    paper_analytic_b_big_t: f64,
+    paper_analytic_b_t: f64,
+    #[serde(rename = "paper_a_T")]
+    paper_a_big_t: Option<f64>,
+    #[serde(rename = "paper_b_T")]
+    paper_b_big_t: Option<f64>,
+    paper_a_t: Option<f64>,
+    paper_b_t: Option<f64>,
+}
+
+impl ScalingRow {
+    const HEADER: [&'static str; 17] = [
+        "d",
+        "exact_a_T",
+        "exact_b_T",
+        "exact_a_t",
+        "exact_b_t",
+        "sim_a_T",
+        "sim_b_T",
+        "sim_a_t",
+        "sim_b_t",
+        "analytic_b_T",
+        "analytic_b_t",
+        "paper_analytic_b_T",
+        "paper_analytic_b_t",
+        "paper_a_T",
+        "paper_b_T",
+        "paper_a_t",
+        "paper_b_t",
+    ];
+}
+
+impl From<&Row> for ScalingRow {
+    fn from(row: &Row) -> Self {
+        let [ea, eb, ec, ed] = fits4(row.exact);
+        let [sa, sb, sc, sd] = fits4(row.sim);
+        ScalingRow {
+            d: row.d,
+            exact_a_big_t: ea,
+            exact_b_big_t: eb,
+            exact_a_t: ec,
+            exact_b_t: ed,
+            sim_a_big_t: sa,
+            sim_b_big_t: sb,
+            sim_a_t: sc,
+            sim_b_t: sd,
+            analytic_b_big_t: row.corrected_analytic.map(|a| a.0),
+            analytic_b_t: row.corrected_analytic.map(|a| a.1),
+            paper_analytic_b_big_t: row.paper_analytic.0,
+            paper_analytic_b_t: row.paper_analytic.1,
+            paper_a_big_t: row.paper_fit.map(|p| p.0),
+            paper_b_big_t: row.paper_fit.map(|p| p.1),
+            paper_a_t: row.paper_fit.map(|p| p.2),
+            paper_b_t: row.paper_fit.map(|p| p.3),
+        }
+    }
 }

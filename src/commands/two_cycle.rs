@@ -2,16 +2,17 @@
 //! is none), with ΔT, Δt, Δκ, multipliers, a check by iterating the map, the paper's and
 //! the corrected approximations beside it, and the border collision of the branch.
 
-use super::fixed::{complex_json, point_json};
-use super::system_from;
-use crate::cli::TwoCycleArgs;
-use crate::engine::orbits::two_cycle::period_doubling_candidate;
-use crate::engine::orbits::{
+use crate::config;
+use crate::config::flags::TwoCycleArgs;
+use crate::output::records::{csv_writer, ComplexRecord, FixedSolution};
+use crate::output::text::complex;
+use crate::output::Format;
+use bouncemap_engine::orbits::two_cycle::period_doubling_candidate;
+use bouncemap_engine::orbits::{
     border_collision, map_check, two_cycle, Approximation, BorderCollision, NoBorderCollision,
     TwoCycle,
 };
-use crate::output::{csv_row, json_num, Format};
-use serde_json::{json, Value};
+use serde::Serialize;
 use std::io::{self, BufWriter, Write};
 
 /// Impacts iterated to confirm a stable solution.
@@ -20,7 +21,7 @@ pub const CHECK_BOUNCES: u64 = 200_000;
 pub const CHECK_PERTURBATION: f64 = 1e-6;
 
 pub fn run(args: &TwoCycleArgs) -> anyhow::Result<()> {
-    let sys = system_from(&args.system)?;
+    let sys = config::system(&args.system)?;
     let fp = period_doubling_candidate(&sys, args.k);
     let result = two_cycle(&sys, args.k);
     let check = result
@@ -32,79 +33,28 @@ pub fn run(args: &TwoCycleArgs) -> anyhow::Result<()> {
     let mut out = BufWriter::new(io::stdout().lock());
     match args.format {
         Format::Json => {
-            let v = json!({
-                "table": sys.table.name(),
-                "alpha": json_num(sys.alpha),
-                "r": json_num(sys.r),
-                "k": args.k,
-                "kappa_c": json_num(sys.kappa_c()),
-                "fixed": fp.as_ref().map_or(Value::Null, point_json),
-                "found": result.is_ok(),
-                "reason": match &result {
-                    Ok(_) => Value::Null,
-                    Err(e) => json!({"code": e.as_str(), "message": e.to_string()}),
-                },
-                "two_cycle": result.as_ref().map_or(Value::Null, |tc| cycle_json(tc, check)),
-                "border_collision": border_json(&border),
-            });
-            writeln!(out, "{v}")?;
+            let doc = TwoCycleDoc {
+                table: sys.table.name(),
+                alpha: sys.alpha,
+                r: sys.r,
+                k: args.k,
+                kappa_c: sys.kappa_c(),
+                fixed: fp.as_ref().map(FixedSolution::from),
+                found: result.is_ok(),
+                reason: result.as_ref().err().map(|e| Reason {
+                    code: e.as_str(),
+                    message: e.to_string(),
+                }),
+                two_cycle: result.as_ref().ok().map(|tc| CycleRecord::new(tc, check)),
+                border_collision: BorderRecord::from(&border),
+            };
+            serde_json::to_writer(&mut out, &doc)?;
+            writeln!(out)?;
         }
         Format::Csv => {
-            csv_row(
-                &mut out,
-                &[
-                    "found",
-                    "phase0",
-                    "phase1",
-                    "v0",
-                    "v1",
-                    "delta_T",
-                    "delta_t",
-                    "delta_kappa",
-                    "mult1_re",
-                    "mult1_im",
-                    "mult2_re",
-                    "mult2_im",
-                    "stable",
-                    "admissible",
-                    "approx_delta_T",
-                    "approx_delta_t",
-                    "paper_delta_T",
-                    "paper_delta_t",
-                ]
-                .map(String::from),
-            )?;
-            let f = |x: Option<f64>| x.map_or(String::new(), |v| v.to_string());
-            match &result {
-                Ok(tc) => csv_row(
-                    &mut out,
-                    &[
-                        "true".into(),
-                        tc.phase0.to_string(),
-                        tc.phase1.to_string(),
-                        tc.v0.to_string(),
-                        tc.v1.to_string(),
-                        tc.delta_big_t.to_string(),
-                        tc.delta_t.to_string(),
-                        tc.delta_kappa.to_string(),
-                        tc.multipliers[0].re.to_string(),
-                        tc.multipliers[0].im.to_string(),
-                        tc.multipliers[1].re.to_string(),
-                        tc.multipliers[1].im.to_string(),
-                        tc.stable.to_string(),
-                        tc.admissible.to_string(),
-                        f(tc.corrected.map(|a| a.delta_big_t)),
-                        f(tc.corrected.map(|a| a.delta_t)),
-                        f(tc.paper.map(|a| a.delta_big_t)),
-                        f(tc.paper.map(|a| a.delta_t)),
-                    ],
-                )?,
-                Err(_) => {
-                    let mut row = vec!["false".to_string()];
-                    row.resize(18, String::new());
-                    csv_row(&mut out, &row)?
-                }
-            }
+            let mut w = csv_writer(&mut out, &TwoCycleRow::HEADER)?;
+            w.serialize(TwoCycleRow::from(result.as_ref().ok()))?;
+            w.flush()?;
         }
         Format::Text => {
             writeln!(
@@ -169,18 +119,11 @@ fn write_cycle_text<W: Write>(
         "  delta_T = {:.12e}  delta_t = {:.12e}  delta_kappa = {:.12e}",
         tc.delta_big_t, tc.delta_t, tc.delta_kappa
     )?;
-    let m = |z: crate::engine::orbits::Complex| {
-        if z.im == 0.0 {
-            format!("{:.12}", z.re)
-        } else {
-            format!("{:.12}{:+.12}i", z.re, z.im)
-        }
-    };
     writeln!(
         out,
         "  multipliers {}, {}: {}; {}; residual {:.1e} after {} Newton steps",
-        m(tc.multipliers[0]),
-        m(tc.multipliers[1]),
+        complex(tc.multipliers[0]),
+        complex(tc.multipliers[1]),
         if tc.stable { "stable" } else { "unstable" },
         if tc.admissible {
             "admissible"
@@ -212,48 +155,217 @@ fn write_cycle_text<W: Write>(
     Ok(())
 }
 
-fn approx_json(a: Option<Approximation>, tc: &TwoCycle) -> Value {
-    a.map_or(Value::Null, |a| {
-        json!({
-            "delta_T": json_num(a.delta_big_t),
-            "delta_t": json_num(a.delta_t),
-            "rel_err_delta_T": json_num(rel(a.delta_big_t, tc.delta_big_t)),
-            "rel_err_delta_t": json_num(rel(a.delta_t, tc.delta_t)),
+/// `two-cycle`'s json.
+#[derive(Serialize)]
+struct TwoCycleDoc<'a> {
+    table: &'a str,
+    alpha: f64,
+    r: f64,
+    k: u32,
+    kappa_c: f64,
+    fixed: Option<FixedSolution>,
+    found: bool,
+    reason: Option<Reason>,
+    two_cycle: Option<CycleRecord>,
+    border_collision: BorderRecord,
+}
+
+/// Why no (2, 2k) solution was found.
+#[derive(Serialize)]
+struct Reason {
+    code: &'static str,
+    message: String,
+}
+
+/// An approximation beside the exact solution.
+#[derive(Serialize)]
+struct ApproxRecord {
+    #[serde(rename = "delta_T")]
+    delta_big_t: f64,
+    delta_t: f64,
+    #[serde(rename = "rel_err_delta_T")]
+    rel_err_delta_big_t: f64,
+    rel_err_delta_t: f64,
+}
+
+impl ApproxRecord {
+    fn new(a: Option<Approximation>, tc: &TwoCycle) -> Option<ApproxRecord> {
+        a.map(|a| ApproxRecord {
+            delta_big_t: a.delta_big_t,
+            delta_t: a.delta_t,
+            rel_err_delta_big_t: rel(a.delta_big_t, tc.delta_big_t),
+            rel_err_delta_t: rel(a.delta_t, tc.delta_t),
         })
-    })
+    }
 }
 
-fn cycle_json(tc: &TwoCycle, check: Option<(u64, f64)>) -> Value {
-    json!({
-        "phase0": json_num(tc.phase0),
-        "phase1": json_num(tc.phase1),
-        "v0": json_num(tc.v0),
-        "v1": json_num(tc.v1),
-        "delta_T": json_num(tc.delta_big_t),
-        "delta_t": json_num(tc.delta_t),
-        "delta_kappa": json_num(tc.delta_kappa),
-        "multipliers": tc.multipliers.iter().map(|&z| complex_json(z)).collect::<Vec<_>>(),
-        "stable": tc.stable,
-        "admissible": tc.admissible,
-        "residual": json_num(tc.residual),
-        "newton_iterations": tc.newton_iterations,
-        "map_check": check.map_or(Value::Null, |(n, d)| json!({"bounces": n, "distance": json_num(d), "perturbation": json_num(CHECK_PERTURBATION)})),
-        "approximation": approx_json(tc.corrected, tc),
-        "paper_approximation": approx_json(tc.paper, tc),
-    })
+/// The map iterated into a stable solution from a perturbed start.
+#[derive(Serialize)]
+struct MapCheck {
+    bounces: u64,
+    distance: f64,
+    perturbation: f64,
 }
 
-fn border_json(b: &Result<BorderCollision, NoBorderCollision>) -> Value {
-    match b {
-        Ok(b) => json!({
-            "alpha": json_num(b.alpha),
-            "phase": json_num(b.phase),
-            "alpha_pd": json_num(b.alpha_pd),
-            "phase0": json_num(b.phase0),
-            "phase1": json_num(b.phase1),
-            "v0": json_num(b.v0),
-            "v1": json_num(b.v1),
-        }),
-        Err(e) => json!({"alpha": null, "reason": e.to_string()}),
+/// The (2, 2k) solution.
+#[derive(Serialize)]
+struct CycleRecord {
+    phase0: f64,
+    phase1: f64,
+    v0: f64,
+    v1: f64,
+    #[serde(rename = "delta_T")]
+    delta_big_t: f64,
+    delta_t: f64,
+    delta_kappa: f64,
+    multipliers: [ComplexRecord; 2],
+    stable: bool,
+    admissible: bool,
+    residual: f64,
+    newton_iterations: u32,
+    map_check: Option<MapCheck>,
+    approximation: Option<ApproxRecord>,
+    paper_approximation: Option<ApproxRecord>,
+}
+
+impl CycleRecord {
+    fn new(tc: &TwoCycle, check: Option<(u64, f64)>) -> CycleRecord {
+        CycleRecord {
+            phase0: tc.phase0,
+            phase1: tc.phase1,
+            v0: tc.v0,
+            v1: tc.v1,
+            delta_big_t: tc.delta_big_t,
+            delta_t: tc.delta_t,
+            delta_kappa: tc.delta_kappa,
+            multipliers: tc.multipliers.map(Into::into),
+            stable: tc.stable,
+            admissible: tc.admissible,
+            residual: tc.residual,
+            newton_iterations: tc.newton_iterations,
+            map_check: check.map(|(bounces, distance)| MapCheck {
+                bounces,
+                distance,
+                perturbation: CHECK_PERTURBATION,
+            }),
+            approximation: ApproxRecord::new(tc.corrected, tc),
+            paper_approximation: ApproxRecord::new(tc.paper, tc),
+        }
+    }
+}
+
+/// The border collision of the branch, or why there is none (`alpha` null).
+#[derive(Serialize)]
+#[serde(untagged)]
+enum BorderRecord {
+    Found {
+        alpha: f64,
+        phase: f64,
+        alpha_pd: f64,
+        phase0: f64,
+        phase1: f64,
+        v0: f64,
+        v1: f64,
+    },
+    None {
+        alpha: Option<f64>,
+        reason: String,
+    },
+}
+
+impl From<&Result<BorderCollision, NoBorderCollision>> for BorderRecord {
+    fn from(b: &Result<BorderCollision, NoBorderCollision>) -> Self {
+        match b {
+            Ok(b) => BorderRecord::Found {
+                alpha: b.alpha,
+                phase: b.phase,
+                alpha_pd: b.alpha_pd,
+                phase0: b.phase0,
+                phase1: b.phase1,
+                v0: b.v0,
+                v1: b.v1,
+            },
+            Err(e) => BorderRecord::None {
+                alpha: None,
+                reason: e.to_string(),
+            },
+        }
+    }
+}
+
+/// `two-cycle`'s csv row (empty fields when no solution was found).
+#[derive(Serialize, Default)]
+struct TwoCycleRow {
+    found: bool,
+    phase0: Option<f64>,
+    phase1: Option<f64>,
+    v0: Option<f64>,
+    v1: Option<f64>,
+    #[serde(rename = "delta_T")]
+    delta_big_t: Option<f64>,
+    delta_t: Option<f64>,
+    delta_kappa: Option<f64>,
+    mult1_re: Option<f64>,
+    mult1_im: Option<f64>,
+    mult2_re: Option<f64>,
+    mult2_im: Option<f64>,
+    stable: Option<bool>,
+    admissible: Option<bool>,
+    #[serde(rename = "approx_delta_T")]
+    approx_delta_big_t: Option<f64>,
+    approx_delta_t: Option<f64>,
+    #[serde(rename = "paper_delta_T")]
+    paper_delta_big_t: Option<f64>,
+    paper_delta_t: Option<f64>,
+}
+
+impl TwoCycleRow {
+    const HEADER: [&'static str; 18] = [
+        "found",
+        "phase0",
+        "phase1",
+        "v0",
+        "v1",
+        "delta_T",
+        "delta_t",
+        "delta_kappa",
+        "mult1_re",
+        "mult1_im",
+        "mult2_re",
+        "mult2_im",
+        "stable",
+        "admissible",
+        "approx_delta_T",
+        "approx_delta_t",
+        "paper_delta_T",
+        "paper_delta_t",
+    ];
+}
+
+impl From<Option<&TwoCycle>> for TwoCycleRow {
+    fn from(tc: Option<&TwoCycle>) -> Self {
+        let Some(tc) = tc else {
+            return TwoCycleRow::default();
+        };
+        TwoCycleRow {
+            found: true,
+            phase0: Some(tc.phase0),
+            phase1: Some(tc.phase1),
+            v0: Some(tc.v0),
+            v1: Some(tc.v1),
+            delta_big_t: Some(tc.delta_big_t),
+            delta_t: Some(tc.delta_t),
+            delta_kappa: Some(tc.delta_kappa),
+            mult1_re: Some(tc.multipliers[0].re),
+            mult1_im: Some(tc.multipliers[0].im),
+            mult2_re: Some(tc.multipliers[1].re),
+            mult2_im: Some(tc.multipliers[1].im),
+            stable: Some(tc.stable),
+            admissible: Some(tc.admissible),
+            approx_delta_big_t: tc.corrected.map(|a| a.delta_big_t),
+            approx_delta_t: tc.corrected.map(|a| a.delta_t),
+            paper_delta_big_t: tc.paper.map(|a| a.delta_big_t),
+            paper_delta_t: tc.paper.map(|a| a.delta_t),
+        }
     }
 }

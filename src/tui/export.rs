@@ -1,7 +1,9 @@
-//! `e`: write the current diagram as csv (one row per point: alpha, phase, v, complete,
-//! sticking) and as the braille text of the plot, next to each other in a directory.
+//! `e`: write the current diagram next to each other in a directory, as csv (the same
+//! rows as `bouncemap sweep`, after a `#` line stating the run) and as the braille text
+//! of the plot.
 
 use super::app::App;
+use crate::output::records::{csv_writer, SweepRow};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
@@ -21,11 +23,12 @@ pub fn export(app: &App, dir: &Path) -> Result<(PathBuf, PathBuf), String> {
         })
         .find(|(c, t)| !c.exists() && !t.exists())
         .ok_or("export: no free file name")?;
-    let fail = |p: &Path, e: std::io::Error| format!("export: cannot write {}: {e}", p.display());
-    let mut out = std::io::BufWriter::new(std::fs::File::create(&csv).map_err(|e| fail(&csv, e))?);
+    let fail =
+        |p: &Path, e: &dyn std::fmt::Display| format!("export: cannot write {}: {e}", p.display());
+    let spec = d.sweep_spec(app);
     let p = &app.params;
     let mut body = format!(
-        "# table={} r={} k={} window=[{}, {}] transient={} keep={}\nalpha,phase,v,complete,sticking\n",
+        "# table={} r={} k={} window=[{}, {}] transient={} keep={}\n",
         p.table_label(),
         p.r,
         p.k,
@@ -33,22 +36,22 @@ pub fn export(app: &App, dir: &Path) -> Result<(PathBuf, PathBuf), String> {
         p.hi,
         p.transient,
         p.keep
-    );
-    let mut slots: Vec<_> = d.slots.iter().flatten().collect();
-    slots.sort_by(|a, b| a.value.total_cmp(&b.value));
-    for s in slots {
-        for (t, v) in &s.points {
-            body.push_str(&format!(
-                "{},{},{},{},{}\n",
-                s.value, t, v, s.complete, s.sticking
-            ));
+    )
+    .into_bytes();
+    {
+        let mut w =
+            csv_writer(&mut body, &SweepRow::header(spec.param)).map_err(|e| fail(&csv, &e))?;
+        for r in d.slots.iter().flatten() {
+            for row in SweepRow::rows(r) {
+                w.serialize(row).map_err(|e| fail(&csv, &e))?;
+            }
         }
+        w.flush().map_err(|e| fail(&csv, &e))?;
     }
-    out.write_all(body.as_bytes())
-        .and_then(|_| out.flush())
-        .map_err(|e| fail(&csv, e))?;
+    let mut out = std::fs::File::create(&csv).map_err(|e| fail(&csv, &e))?;
+    out.write_all(&body).map_err(|e| fail(&csv, &e))?;
     let mut text = d.grid.to_text().join("\n");
     text.push('\n');
-    std::fs::write(&txt, text).map_err(|e| fail(&txt, e))?;
+    std::fs::write(&txt, text).map_err(|e| fail(&txt, &e))?;
     Ok((csv, txt))
 }

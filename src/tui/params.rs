@@ -1,55 +1,66 @@
 //! The parameters the user edits: table, D, α, r, k, initial state, sweep window,
-//! transient and keep. Each row knows its valid range, its coarse and fine steps, and
-//! how to parse a typed value; a refused value leaves everything unchanged and comes
-//! back as a one-line message naming the valid range.
+//! transient and keep. Each row parses and checks typed text through the shared rule
+//! for it ([`crate::config::rules`], the same ranges and messages as the command line)
+//! and knows its coarse and fine steps; a refused value leaves everything unchanged and
+//! comes back as a one-line message naming the valid range.
 
-use crate::cli::DEFAULT_HOP;
-use crate::engine::{State, System, Table};
-
-/// The table shapes the table row cycles through.
-#[derive(Clone, Debug, PartialEq)]
-pub enum TableKind {
-    Sine,
-    /// F_D with the D row's value (quad = fd:0, cubic = fd:1).
-    Fd,
-    /// A table read from a file at start-up.
-    File(String, Table),
-}
+use crate::config::presets::Preset;
+use crate::config::rules::{self, Rule};
+use crate::config::table_spec::{TableSpec, TABLE_RANGE};
+use crate::output::text::shortest;
+use bouncemap_engine::{State, System, Table, DEFAULT_HOP};
 
 /// Every editable value.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Params {
-    pub table: TableKind,
-    pub d: f64,
+    /// The table's name (sine, fd:D, or a file).
+    pub table: TableSpec,
+    /// The table itself (a file is read once, when named).
+    loaded: Table,
+    /// The file given at start or typed, if any (the table row can cycle back to it).
+    pub file: Option<(TableSpec, Table)>,
     pub alpha: f64,
     pub r: f64,
     pub k: u32,
     pub t0: f64,
     /// None: f'(t0) + 0.5, the same default as `bouncemap orbit`.
     pub v0: Option<f64>,
+    /// The diagram's α window.
     pub lo: f64,
     pub hi: f64,
-    pub transient: u32,
-    pub keep: u32,
-    /// The table file given at start, if any (the table row can cycle back to it).
-    pub file: Option<(String, Table)>,
+    pub transient: u64,
+    pub keep: usize,
+    /// Values in the diagram's sweep; None: one per column of the plot.
+    pub steps: Option<usize>,
+    /// Start every value near the (1, 1) fixed point (the paper's start) instead of
+    /// from t̂0, v0.
+    pub near_fixed_point: bool,
 }
+
+/// The window, transient and keep the application opens with.
+pub const START_WINDOW: (f64, f64) = (0.1, 0.7);
+/// The sine's interesting window (its α is about 40 times smaller than F_D's).
+pub const SINE_WINDOW: (f64, f64) = (0.005, 0.05);
+pub const START_TRANSIENT: u64 = 2000;
 
 impl Default for Params {
     fn default() -> Self {
+        let table = TableSpec::Fd(rules::D.default);
         Params {
-            table: TableKind::Fd,
-            d: 0.1,
-            alpha: 0.45,
-            r: 0.8,
-            k: 1,
-            t0: 0.0,
-            v0: None,
-            lo: 0.1,
-            hi: 0.7,
-            transient: 2000,
-            keep: 100,
+            loaded: table.load().expect("the default table is built in"),
+            table,
             file: None,
+            alpha: rules::ALPHA.default,
+            r: rules::R.default,
+            k: rules::K.default as u32,
+            t0: rules::T0.default,
+            v0: None,
+            lo: START_WINDOW.0,
+            hi: START_WINDOW.1,
+            transient: START_TRANSIENT,
+            keep: rules::KEEP.default as usize,
+            steps: None,
+            near_fixed_point: false,
         }
     }
 }
@@ -96,19 +107,27 @@ impl ParamId {
         ParamId::Keep,
     ];
 
+    /// The shared rule of a numeric row.
+    pub fn rule(self) -> Option<Rule> {
+        match self {
+            ParamId::D => Some(rules::D),
+            ParamId::Alpha | ParamId::Lo | ParamId::Hi => Some(rules::ALPHA),
+            ParamId::R => Some(rules::R),
+            ParamId::K => Some(rules::K),
+            ParamId::T0 => Some(rules::T0),
+            ParamId::Transient => Some(rules::TRANSIENT),
+            ParamId::Keep => Some(rules::KEEP),
+            ParamId::Table | ParamId::V0 => None,
+        }
+    }
+
     pub fn label(self) -> &'static str {
         match self {
             ParamId::Table => "table",
-            ParamId::D => "D",
-            ParamId::Alpha => "α",
-            ParamId::R => "r",
-            ParamId::K => "k",
-            ParamId::T0 => "t̂0",
-            ParamId::V0 => "v0",
             ParamId::Lo => "α from",
             ParamId::Hi => "α to",
-            ParamId::Transient => "transient",
-            ParamId::Keep => "keep",
+            ParamId::V0 => "v0",
+            other => other.rule().map_or("", |r| r.label),
         }
     }
 
@@ -121,19 +140,15 @@ impl ParamId {
     }
 
     /// The valid range, as shown in refusals.
-    pub fn range(self) -> &'static str {
+    pub fn range(self) -> String {
         match self {
-            ParamId::Table => "sine, quad, cubic, fd:D or the file given at start",
-            ParamId::D => "[0, 1]",
-            ParamId::Alpha => "(0, 1000]",
-            ParamId::R => "(0, 1)",
-            ParamId::K => "a whole number in [1, 20]",
-            ParamId::T0 => "[0, 1)",
-            ParamId::V0 => "auto, or a number ≥ f'(t̂0) within [-1000, 1000]",
-            ParamId::Lo => "(0, 1000] and below α to",
-            ParamId::Hi => "(0, 1000] and above α from",
-            ParamId::Transient => "a whole number in [0, 10000000]",
-            ParamId::Keep => "a whole number in [1, 10000]",
+            ParamId::Table => format!("{TABLE_RANGE} (a file is read when typed)"),
+            ParamId::V0 => "auto, or a number ≥ f'(t̂0) with |v0 − f'(t̂0)| ≤ 1000".into(),
+            ParamId::Lo => format!("{} and below α to", rules::ALPHA.limit.text),
+            ParamId::Hi => format!("{} and above α from", rules::ALPHA.limit.text),
+            other => other
+                .rule()
+                .map_or(String::new(), |r| r.limit.text.to_string()),
         }
     }
 }
@@ -141,19 +156,14 @@ impl ParamId {
 impl Params {
     /// The table these parameters name.
     pub fn table(&self) -> Table {
-        match &self.table {
-            TableKind::Sine => Table::sine(),
-            TableKind::Fd => Table::fd(self.d).unwrap_or_else(|_| Table::sine()),
-            TableKind::File(_, t) => t.clone(),
-        }
+        self.loaded.clone()
     }
 
     /// Short name of the table: sine, fd:0.1, or the file's name.
     pub fn table_label(&self) -> String {
         match &self.table {
-            TableKind::Sine => "sine".into(),
-            TableKind::Fd => format!("fd:{}", fmt_num(self.d)),
-            TableKind::File(p, _) => p.clone(),
+            TableSpec::File(_) => self.loaded.name().to_string(),
+            spec => spec.to_string(),
         }
     }
 
@@ -164,28 +174,31 @@ impl Params {
 
     /// The initial state, with the same default as `bouncemap orbit`.
     pub fn initial(&self, sys: &System) -> Result<State, String> {
-        let v0 = self.v0.unwrap_or_else(|| sys.df(self.t0) + DEFAULT_HOP);
-        State::launch(sys, 0, self.t0, v0, 0.0).map_err(|e| e.to_string())
+        State::start(sys, self.t0, self.v0, 0.0).map_err(|e| e.to_string())
+    }
+
+    /// Use `table` (already loaded) named `spec`.
+    pub fn set_table(&mut self, spec: TableSpec, table: Table) {
+        if matches!(spec, TableSpec::File(_)) {
+            self.file = Some((spec.clone(), table.clone()));
+        }
+        self.table = spec;
+        self.loaded = table;
     }
 
     /// The value of a row as displayed.
     pub fn show(&self, id: ParamId) -> String {
+        let n = |x: f64| fmt_num(x);
         match id {
             ParamId::Table => self.table_label(),
-            ParamId::D => match self.table {
-                TableKind::Fd => fmt_num(self.d),
-                _ => "—".into(),
-            },
-            ParamId::Alpha => fmt_num(self.alpha),
-            ParamId::R => fmt_num(self.r),
+            ParamId::D => self.table.d().map_or("—".into(), n),
+            ParamId::Alpha => n(self.alpha),
+            ParamId::R => n(self.r),
             ParamId::K => self.k.to_string(),
-            ParamId::T0 => fmt_num(self.t0),
-            ParamId::V0 => match self.v0 {
-                Some(v) => fmt_num(v),
-                None => "auto".into(),
-            },
-            ParamId::Lo => fmt_num(self.lo),
-            ParamId::Hi => fmt_num(self.hi),
+            ParamId::T0 => n(self.t0),
+            ParamId::V0 => self.v0.map_or("auto".into(), n),
+            ParamId::Lo => n(self.lo),
+            ParamId::Hi => n(self.hi),
             ParamId::Transient => self.transient.to_string(),
             ParamId::Keep => self.keep.to_string(),
         }
@@ -196,162 +209,133 @@ impl Params {
     pub fn nudge(&mut self, id: ParamId, dir: i32, fine: bool) -> Result<(), String> {
         let s = dir.signum() as f64;
         let step = |coarse: f64, f: f64| if fine { f } else { coarse } * s;
-        let mut next = self.clone();
-        match id {
+        let value = match id {
             ParamId::Table => {
                 let order = self.table_order();
                 let here = order
                     .iter()
-                    .position(|t| kind_eq(t, &self.table))
+                    .position(|(t, _)| same_kind(t, &self.table))
                     .unwrap_or(0);
                 let n = order.len() as i32;
-                next.table = order[((here as i32 + dir).rem_euclid(n)) as usize].clone();
+                let (spec, table) = order[((here as i32 + dir).rem_euclid(n)) as usize].clone();
+                let mut next = self.clone();
+                next.set_table(spec, table);
+                next.validate(id)?;
+                *self = next;
+                return Ok(());
             }
-            ParamId::D => next.d = round_to(self.d + step(0.1, 0.01), 1e-9),
-            ParamId::Alpha => next.alpha = round_to(self.alpha + step(0.01, 0.001), 1e-9),
-            ParamId::R => next.r = round_to(self.r + step(0.01, 0.001), 1e-9),
-            ParamId::K => next.k = (self.k as i64 + dir as i64).max(0) as u32,
-            ParamId::T0 => next.t0 = round_to(self.t0 + step(0.05, 0.005), 1e-9),
+            ParamId::D => round_to(
+                self.table.d().unwrap_or(rules::D.default) + step(0.1, 0.01),
+                1e-9,
+            ),
+            ParamId::Alpha => round_to(self.alpha + step(0.01, 0.001), 1e-9),
+            ParamId::R => round_to(self.r + step(0.01, 0.001), 1e-9),
+            ParamId::K => self.k as f64 + s,
+            ParamId::T0 => round_to(self.t0 + step(0.05, 0.005), 1e-9),
             ParamId::V0 => {
                 let sys = self.system();
                 let cur = self.v0.unwrap_or_else(|| sys.df(self.t0) + DEFAULT_HOP);
-                next.v0 = Some(round_to(cur + step(0.1, 0.01), 1e-9));
+                round_to(cur + step(0.1, 0.01), 1e-9)
             }
-            ParamId::Lo => {
-                let st = step((self.hi - self.lo) * 0.1, (self.hi - self.lo) * 0.01);
-                next.lo = round_to(self.lo + st, 1e-9);
-            }
-            ParamId::Hi => {
-                let st = step((self.hi - self.lo) * 0.1, (self.hi - self.lo) * 0.01);
-                next.hi = round_to(self.hi + st, 1e-9);
-            }
-            ParamId::Transient => {
-                next.transient = (self.transient as i64 + step(100.0, 10.0) as i64).max(-1) as u32
-            }
-            ParamId::Keep => next.keep = (self.keep as i64 + step(50.0, 10.0) as i64).max(0) as u32,
-        }
-        if id == ParamId::Transient && self.transient == 0 && dir < 0 {
-            return Err(format!("transient: valid {}", id.range()));
-        }
-        next.validate(id)?;
-        *self = next;
-        Ok(())
+            ParamId::Lo => round_to(
+                self.lo + step((self.hi - self.lo) * 0.1, (self.hi - self.lo) * 0.01),
+                1e-9,
+            ),
+            ParamId::Hi => round_to(
+                self.hi + step((self.hi - self.lo) * 0.1, (self.hi - self.lo) * 0.01),
+                1e-9,
+            ),
+            ParamId::Transient => self.transient as f64 + step(100.0, 10.0),
+            ParamId::Keep => self.keep as f64 + step(50.0, 10.0),
+        };
+        self.set_value(id, value)
     }
 
     /// Set a row from typed text. Refusals name the valid range; nothing changes then.
     pub fn set_text(&mut self, id: ParamId, text: &str) -> Result<(), String> {
         let t = text.trim();
-        let mut next = self.clone();
-        let num = || -> Result<f64, String> {
-            match t.parse::<f64>() {
-                Ok(x) if x.is_finite() => Ok(x),
-                _ => Err(format!(
-                    "{}: '{t}' is not a number; valid {}",
-                    id.label(),
-                    id.range()
-                )),
-            }
-        };
-        let whole = || -> Result<u32, String> {
-            t.parse::<u32>().map_err(|_| {
-                format!(
-                    "{}: '{t}' is not a whole number; valid {}",
-                    id.label(),
-                    id.range()
-                )
-            })
-        };
+        let refuse = |e: String| format!("{}: {e}", id.label());
         match id {
-            ParamId::Table => match t {
-                "sine" => next.table = TableKind::Sine,
-                "quad" => {
-                    next.table = TableKind::Fd;
-                    next.d = 0.0
-                }
-                "cubic" => {
-                    next.table = TableKind::Fd;
-                    next.d = 1.0
-                }
-                _ if t.starts_with("fd:") => {
-                    let d = t[3..].trim().parse::<f64>().map_err(|_| {
-                        format!("table: '{t}' has no number after fd:; valid {}", id.range())
-                    })?;
-                    next.table = TableKind::Fd;
-                    next.d = d;
-                    next.validate(ParamId::D)?;
-                }
-                _ => match &self.table_order().last() {
-                    Some(TableKind::File(p, tb)) if p == t => {
-                        next.table = TableKind::File(p.clone(), tb.clone())
-                    }
-                    _ => return Err(format!("table: '{t}' is not a table; valid {}", id.range())),
-                },
-            },
-            ParamId::D => {
-                next.d = num()?;
-                if !matches!(next.table, TableKind::Fd) {
-                    next.table = TableKind::Fd;
-                }
+            ParamId::Table => {
+                let spec = TableSpec::parse(t).map_err(refuse)?;
+                let table = match (&spec, &self.file) {
+                    (TableSpec::File(_), Some((f, tb))) if *f == spec => tb.clone(),
+                    _ => spec.load().map_err(|e| e.0)?,
+                };
+                let mut next = self.clone();
+                next.set_table(spec, table);
+                next.validate(id)?;
+                *self = next;
+                Ok(())
             }
-            ParamId::Alpha => next.alpha = num()?,
-            ParamId::R => next.r = num()?,
-            ParamId::K => next.k = whole()?,
-            ParamId::T0 => next.t0 = num()?,
+            ParamId::V0 if t == "auto" || t.is_empty() => {
+                let mut next = self.clone();
+                next.v0 = None;
+                next.validate(id)?;
+                *self = next;
+                Ok(())
+            }
             ParamId::V0 => {
-                next.v0 = if t == "auto" || t.is_empty() {
-                    None
-                } else {
-                    Some(num()?)
-                }
+                let x: f64 = t
+                    .parse()
+                    .ok()
+                    .filter(|x: &f64| x.is_finite())
+                    .ok_or_else(|| {
+                        refuse(format!("'{t}' is not a number: valid {}", id.range()))
+                    })?;
+                self.set_value(id, x)
             }
-            ParamId::Lo => next.lo = num()?,
-            ParamId::Hi => next.hi = num()?,
-            ParamId::Transient => next.transient = whole()?,
-            ParamId::Keep => next.keep = whole()?,
+            _ => {
+                let rule = id.rule().expect("numeric row");
+                let x = rule.parse(t).map_err(refuse)?;
+                self.set_value(id, x)
+            }
+        }
+    }
+
+    /// Set a numeric row to `x`, checking it and what depends on it.
+    fn set_value(&mut self, id: ParamId, x: f64) -> Result<(), String> {
+        if let Some(rule) = id.rule() {
+            rule.check(x).map_err(|e| format!("{}: {e}", id.label()))?;
+        }
+        let mut next = self.clone();
+        match id {
+            ParamId::Table => unreachable!("the table row is not numeric"),
+            ParamId::D => {
+                let spec = TableSpec::Fd(x);
+                let table = spec.load().map_err(|e| e.0)?;
+                next.set_table(spec, table);
+            }
+            ParamId::Alpha => next.alpha = x,
+            ParamId::R => next.r = x,
+            ParamId::K => next.k = x as u32,
+            ParamId::T0 => next.t0 = x,
+            ParamId::V0 => next.v0 = Some(x),
+            ParamId::Lo => next.lo = x,
+            ParamId::Hi => next.hi = x,
+            ParamId::Transient => next.transient = x as u64,
+            ParamId::Keep => next.keep = x as usize,
         }
         next.validate(id)?;
         *self = next;
         Ok(())
     }
 
-    /// Check the row `id` (and what depends on it) of a candidate parameter set.
+    /// Check what depends on row `id` of a candidate parameter set (its own range was
+    /// checked by its rule).
     pub fn validate(&self, id: ParamId) -> Result<(), String> {
-        let bad = |v: String| {
-            Err(format!(
-                "{}: {v} is out of range; valid {}",
+        if matches!(id, ParamId::Lo | ParamId::Hi) && self.lo >= self.hi {
+            let v = if id == ParamId::Lo { self.lo } else { self.hi };
+            return Err(format!(
+                "{}: {} is out of range; valid {}",
                 id.label(),
+                shortest(v),
                 id.range()
-            ))
-        };
-        match id {
-            ParamId::Table => {}
-            ParamId::D if !(0.0..=1.0).contains(&self.d) => return bad(fmt_num(self.d)),
-            ParamId::Alpha if crate::engine::system::check_alpha(self.alpha).is_err() => {
-                return bad(fmt_num(self.alpha))
-            }
-            ParamId::R if crate::engine::system::check_r(self.r).is_err() => {
-                return bad(fmt_num(self.r))
-            }
-            ParamId::K if !(1..=20).contains(&self.k) => return bad(self.k.to_string()),
-            ParamId::T0 if !(0.0..1.0).contains(&self.t0) => return bad(fmt_num(self.t0)),
-            ParamId::Lo | ParamId::Hi => {
-                let ok = |x: f64| x > 0.0 && x <= 1000.0;
-                if !(ok(self.lo) && ok(self.hi) && self.lo < self.hi) {
-                    let v = if id == ParamId::Lo { self.lo } else { self.hi };
-                    return bad(fmt_num(v));
-                }
-            }
-            ParamId::Transient if self.transient > 10_000_000 => {
-                return bad(self.transient.to_string())
-            }
-            ParamId::Keep if !(1..=10_000).contains(&self.keep) => {
-                return bad(self.keep.to_string())
-            }
-            _ => {}
+            ));
         }
         // The start must stay valid for the new system (v0 above the table's velocity).
         if matches!(id.touches(), Touch::System | Touch::Start) && id != ParamId::K {
-            let sys = self.system();
+            let sys = System::new(self.table(), self.alpha, self.r).map_err(|e| e.to_string())?;
             if let Err(e) = self.initial(&sys) {
                 return Err(format!(
                     "{}: refused, the initial state would be invalid: {e}",
@@ -362,16 +346,42 @@ impl Params {
         Ok(())
     }
 
-    fn table_order(&self) -> Vec<TableKind> {
-        let mut v = vec![TableKind::Sine, TableKind::Fd];
-        if let Some((p, t)) = &self.file {
-            v.push(TableKind::File(p.clone(), t.clone()));
+    /// These parameters with the settings of a preset: its table, r, window, values,
+    /// transient, keep and start (k = 1; α kept inside the window).
+    pub fn with_preset(&self, p: &Preset) -> Result<Params, String> {
+        let spec = p.sweep_spec().map_err(|e| e.0)?;
+        let mut next = self.clone();
+        let table = spec.table.clone();
+        next.set_table(p.table.clone(), table);
+        next.r = spec.r;
+        next.k = 1;
+        next.lo = spec.lo;
+        next.hi = spec.hi;
+        next.steps = Some(spec.steps);
+        next.transient = spec.transient;
+        next.keep = spec.keep;
+        next.near_fixed_point = spec.initial.near_fixed_point;
+        next.alpha = self.alpha.clamp(spec.lo, spec.hi);
+        next.validate(ParamId::Table)?;
+        Ok(next)
+    }
+
+    /// The tables the table row cycles through: sine, F_D (at the current D), a file.
+    fn table_order(&self) -> Vec<(TableSpec, Table)> {
+        let d = self.table.d().unwrap_or(rules::D.default);
+        let fd = TableSpec::Fd(d);
+        let mut v = vec![
+            (TableSpec::Sine, Table::sine()),
+            (fd.clone(), fd.load().expect("D is in range")),
+        ];
+        if let Some(f) = &self.file {
+            v.push(f.clone());
         }
         v
     }
 }
 
-fn kind_eq(a: &TableKind, b: &TableKind) -> bool {
+fn same_kind(a: &TableSpec, b: &TableSpec) -> bool {
     std::mem::discriminant(a) == std::mem::discriminant(b)
 }
 

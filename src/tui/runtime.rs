@@ -3,10 +3,10 @@
 //! until the next frame is due. Nothing here waits on a computation, and with nothing
 //! changing it blocks in `poll` and writes nothing.
 
-use super::app::{App, Effect, SweepStatus};
+use super::app::{App, Effect, Focus};
+use super::components::diagram::alpha_at;
 use super::export::export;
 use super::terminal::{self, Term};
-use super::views;
 use super::workers::Workers;
 use crossterm::event::{self, Event, KeyEventKind, MouseButton, MouseEventKind};
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -30,7 +30,8 @@ pub fn run(
     let frame = Duration::from_secs_f64(1.0 / app.fps.max(1) as f64);
     let mut last_draw: Option<Instant> = None;
     let mut last_input = Instant::now();
-    let mut resume_sweep = false;
+    // Start of a mouse drag on the diagram (column).
+    let mut drag_from: Option<u16> = None;
     loop {
         // A hang-up without a signal is the watchdog's (terminal::spawn_watchdog): the
         // event reader never returns then, so a check here would not run.
@@ -39,12 +40,9 @@ pub fn run(
         }
         // Size the plot grids before sweeps ask for the diagram's width.
         let size = term.size()?;
-        if let Some(p) = views::layout(ratatui::layout::Rect::new(0, 0, size.width, size.height)) {
-            let (d, ph) = views::plot_areas(&p);
-            app.set_plot_sizes(d, ph);
-        }
+        app.set_size(ratatui::layout::Rect::new(0, 0, size.width, size.height));
         for e in app.take_effects() {
-            apply(e, app, workers, &mut resume_sweep);
+            apply(e, app, workers);
         }
         for m in workers.rx.try_iter().take(DRAIN_MAX) {
             app.receive(m);
@@ -60,7 +58,7 @@ pub fn run(
         };
         let due = last_draw.map_or(now, |t| t + cap);
         if app.dirty && now >= due {
-            terminal::draw_synced(term, |f| views::draw(f, app))?;
+            terminal::draw_synced(term, |f| app.draw(f))?;
             app.dirty = false;
             last_draw = Some(now);
         }
@@ -77,7 +75,7 @@ pub fn run(
             loop {
                 let ev = event::read()?;
                 last_input = Instant::now();
-                handle_event(app, ev);
+                handle_event(app, ev, &mut drag_from);
                 if app.quit || !event::poll(Duration::ZERO)? {
                     break;
                 }
@@ -88,11 +86,11 @@ pub fn run(
     Ok(())
 }
 
-fn handle_event(app: &mut App, ev: Event) {
+fn handle_event(app: &mut App, ev: Event, drag_from: &mut Option<u16>) {
     match ev {
         Event::Key(k) if k.kind != KeyEventKind::Release => {
             let action = app.keymap.action(&k);
-            if app.editing.is_some() {
+            if app.editing() {
                 if action == Some(super::keymap::Action::Quit)
                     && k.modifiers
                         .contains(crossterm::event::KeyModifiers::CONTROL)
@@ -111,14 +109,14 @@ fn handle_event(app: &mut App, ev: Event) {
             let x = app.diagram.grid.x_range();
             match m.kind {
                 MouseEventKind::Down(MouseButton::Left) => {
-                    app.drag_from = views::diagram::alpha_at(x, plot, m.column)
+                    *drag_from = alpha_at(x, plot, m.column)
                         .filter(|_| m.row >= plot.y && m.row < plot.y + plot.height)
                         .map(|_| m.column);
                 }
                 MouseEventKind::Up(MouseButton::Left) => {
-                    if let Some(from) = app.drag_from.take() {
-                        let a = views::diagram::alpha_at(x, plot, from);
-                        let b = views::diagram::alpha_at(
+                    if let Some(from) = drag_from.take() {
+                        let a = alpha_at(x, plot, from);
+                        let b = alpha_at(
                             x,
                             plot,
                             m.column
@@ -127,8 +125,8 @@ fn handle_event(app: &mut App, ev: Event) {
                         if let (Some(a), Some(b)) = (a, b) {
                             if from == m.column {
                                 app.diagram.cursor = a;
-                                app.focus = super::app::Focus::Diagram;
-                                app.handle(super::keymap::Action::Enter);
+                                app.focus = Focus::Diagram;
+                                app.set_alpha_to_cursor();
                             } else {
                                 app.zoom_to(a.min(b), a.max(b));
                             }
@@ -143,55 +141,22 @@ fn handle_event(app: &mut App, ev: Event) {
     }
 }
 
-fn apply(e: Effect, app: &mut App, workers: &Workers, resume_sweep: &mut bool) {
+fn apply(e: Effect, app: &mut App, workers: &Workers) {
     match e {
-        Effect::RestartSweep => {
-            if app.paused {
-                workers.cancel_sweep();
-                app.sweep_started(0, 0, Ok(()));
-                app.diagram.status = SweepStatus::Idle;
-                *resume_sweep = true;
-            } else {
-                let spec = app.sweep_spec();
-                let steps = spec.steps;
-                let (gen, r) = workers.start_sweep(spec);
-                app.sweep_started(gen, steps, r);
-            }
-        }
-        Effect::RestartPhase => {
-            let sys = app.system();
-            if let Ok(st) = app.params.initial(&sys) {
-                let gen = workers.start_phase(sys, st);
-                app.phase_started(gen);
-            }
-        }
-        Effect::RestartOrbits => {
-            let gen =
-                workers.start_orbits(app.system(), app.params.k, (app.params.lo, app.params.hi));
-            app.orbits_started(gen);
-        }
-        Effect::Pause(true) => {
-            // The phase-plot worker and the sweep's workers park where they are.
-            workers.gate.set(true);
-            workers.sweep_pause.set(true);
-        }
-        Effect::Pause(false) => {
-            workers.gate.set(false);
-            workers.sweep_pause.set(false);
-            // A sweep cancelled by new parameters during the pause starts now.
-            if std::mem::take(resume_sweep) {
-                apply(Effect::RestartSweep, app, workers, resume_sweep);
-            }
-        }
+        Effect::Start(t) => app.start(t, workers),
+        // Parked workers (sweep, phase plot) keep their progress; work started while
+        // paused parks at once.
+        Effect::Pause(p) => workers.pause(p),
         Effect::Export => {
             let dir = std::env::current_dir().unwrap_or_else(|_| ".".into());
-            app.message = Some(match export(app, &dir) {
+            let msg = match export(app, &dir) {
                 Ok((c, t)) => (
                     format!("exported {} and {}", c.display(), t.display()),
                     false,
                 ),
                 Err(e) => (e, true),
-            });
+            };
+            app.message = Some(msg);
         }
     }
 }

@@ -1,322 +1,182 @@
-//! Background work, latest-wins. Every job carries the generation it was started for;
-//! a parameter change bumps the generation, workers check it between chunks and stop,
-//! and the UI drops any message whose generation is stale. Results come back over one
-//! channel as [`Msg`]. A pause gate parks the phase-plot worker without spinning.
+//! Background work for the panels, latest-wins.
 //!
-//! The diagram is fed by the engine's sweeps ([`crate::engine::sweep`]); the stability
-//! panel gets its numbers through [`Analysis`], the seam to the orbit analysis.
+//! Every piece of background work is addressed to a [`Target`] (the panel that shows
+//! it) and runs under that target's generation counter: starting new work for a target
+//! cancels the old, workers stop within milliseconds, and the UI drops any message
+//! whose generation is stale. Results come back over one channel as [`Msg`]s whose body
+//! only the target panel reads, so a new panel needs no new message type here.
+//!
+//! Two kinds of work:
+//! * jobs over many items (the diagram's sweep) run on the engine's [`Executor`], which
+//!   owns its pool; their batches are forwarded as messages, then [`JobDone`];
+//! * interactive work (the phase plot, the orbit analysis) runs on a thread of its own,
+//!   so it never waits behind a job, paused or not.
+//!
+//! One pause [`Gate`] parks everything that checks it (job workers, the phase plot):
+//! paused means no CPU and no output, and every item keeps its progress.
 
-use crate::engine::sweep::{self, PauseGate, SweepBatch, SweepSpec};
-#[cfg(test)]
-use crate::engine::Table;
-use crate::engine::{Event, ImpactMap, Solver, State, System};
-use std::sync::atomic::{AtomicU64, Ordering};
+use bouncemap_engine::jobs::{Control, Executor, Gate, Job};
+use std::any::Any;
+use std::collections::HashMap;
 use std::sync::mpsc::{self, Receiver, Sender};
-use std::sync::{Arc, Condvar, Mutex};
-use std::time::Duration;
+use std::sync::Arc;
 
-/// One (1, k) solution.
-#[derive(Clone, Debug, PartialEq)]
-pub struct FixedPoint {
-    pub phase: f64,
-    pub v: f64,
-    /// f''(t̂*).
-    pub f2: f64,
-    /// Eigenvalues of the Jacobian as (re, im).
-    pub eig: [(f64, f64); 2],
-    pub stable: bool,
+/// Whose background work a message is for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Target {
+    Diagram,
+    Phase,
+    Orbits,
 }
 
-/// A slice of the stability region in the (α, r) plane: stable α intervals at one r.
-#[derive(Clone, Debug, PartialEq)]
-pub struct RegionRow {
-    pub r: f64,
-    pub intervals: Vec<(f64, f64)>,
+impl Target {
+    pub const ALL: [Target; 3] = [Target::Diagram, Target::Phase, Target::Orbits];
 }
 
-/// What the orbit analysis knows for the current system and k.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct OrbitInfo {
-    pub fixed: Vec<FixedPoint>,
-    /// Birth α of the (1, k) solution (where it first exists).
-    pub birth: Option<f64>,
-    /// α at which the stable (1, k) solution period-doubles (f'' = κ_c).
-    pub pd: Option<f64>,
-    /// The (2, 2k) solution's two points (phase, v), if it exists.
-    pub two: Vec<(f64, f64)>,
-    /// The stable region of the (1, k) solution in the (α, r) plane.
-    pub region: Vec<RegionRow>,
+/// What a message carries; the target panel knows its type.
+pub type Body = Box<dyn Any + Send>;
+
+/// A message from background work to a panel.
+pub struct Msg {
+    pub to: Target,
+    pub gen: u64,
+    pub body: Body,
 }
 
-/// The engine's orbit analysis, as the stability panel needs it.
-pub trait Analysis: Send + Sync {
-    /// The (1, k) analysis for a system (run on a worker thread, never the UI's).
-    fn orbits(&self, sys: &System, k: u32, alpha_window: (f64, f64)) -> Result<OrbitInfo, String>;
-}
-
-/// Used while the engine has no orbit module: the stability panel says so instead of
-/// showing made-up numbers.
-pub struct Unavailable;
-
-impl Analysis for Unavailable {
-    fn orbits(&self, _sys: &System, _k: u32, _w: (f64, f64)) -> Result<OrbitInfo, String> {
-        Err("not available: this build has no orbit analysis".into())
-    }
-}
-
-/// Messages from workers to the UI thread.
-#[derive(Debug)]
-pub enum Msg {
-    /// New phase-plot points; `note` when the orbit ended (resting, no landing).
-    Phase {
-        gen: u64,
-        points: Vec<(f64, f64)>,
-        done: bool,
-        note: Option<String>,
-    },
-    /// One value's points from the sweep engine (its generation is in the batch).
-    Sweep(SweepBatch),
-    /// The sweep of this generation ran to its end.
-    SweepDone { gen: u64 },
-    Orbits {
-        gen: u64,
-        info: Result<OrbitInfo, String>,
-    },
-}
-
-/// Parks workers while paused, without spinning.
-#[derive(Default)]
-pub struct Gate {
-    paused: Mutex<bool>,
-    cv: Condvar,
-}
-
-impl Gate {
-    pub fn set(&self, paused: bool) {
-        *self.paused.lock().unwrap_or_else(|e| e.into_inner()) = paused;
-        self.cv.notify_all();
-    }
-
-    pub fn is_paused(&self) -> bool {
-        *self.paused.lock().unwrap_or_else(|e| e.into_inner())
-    }
-
-    /// Block while paused; returns false if `gen` went stale meanwhile.
-    pub fn wait(&self, gen: u64, current: &AtomicU64) -> bool {
-        let mut p = self.paused.lock().unwrap_or_else(|e| e.into_inner());
-        while *p && current.load(Ordering::Relaxed) == gen {
-            p = self.cv.wait(p).unwrap_or_else(|e| e.into_inner());
+impl Msg {
+    pub fn new<T: Send + 'static>(to: Target, gen: u64, body: T) -> Msg {
+        Msg {
+            to,
+            gen,
+            body: Box::new(body),
         }
-        current.load(Ordering::Relaxed) == gen
-    }
-
-    /// Wake every parked worker (after a generation bump).
-    pub fn kick(&self) {
-        self.cv.notify_all();
     }
 }
 
-/// Phase-plot pacing: a first burst, then steady chunks up to the cap, so that the
-/// plot visibly accumulates and then goes idle.
-pub const PHASE_BURST: usize = 1500;
-pub const PHASE_CHUNK: usize = 250;
-pub const PHASE_CAP: usize = 20_000;
-pub const PHASE_PACE: Duration = Duration::from_millis(50);
+impl std::fmt::Debug for Msg {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "Msg {{ to: {:?}, gen: {} }}", self.to, self.gen)
+    }
+}
+
+/// Sent after the last batch of a job that ran to its end.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct JobDone;
+
+/// What interactive work needs: its generation, whether it is still current, the
+/// pause gate, and the way back to its panel.
+pub struct Ticket {
+    to: Target,
+    gen: u64,
+    control: Control,
+    tx: Sender<Msg>,
+}
+
+impl Ticket {
+    /// Whether newer work has replaced this one.
+    pub fn stale(&self) -> bool {
+        !self.control.is_current(self.gen)
+    }
+
+    /// Park while paused; false if the work went stale meanwhile.
+    pub fn wait_if_paused(&self) -> bool {
+        self.control.gate().wait(|| self.stale());
+        !self.stale()
+    }
+
+    /// Send a result to the panel; false if stale or nobody listens any more.
+    pub fn send<T: Send + 'static>(&self, body: T) -> bool {
+        !self.stale() && self.tx.send(Msg::new(self.to, self.gen, body)).is_ok()
+    }
+}
 
 /// The workers the runtime owns.
 pub struct Workers {
-    pub tx: Sender<Msg>,
+    executor: Executor,
+    gate: Arc<Gate>,
+    controls: HashMap<Target, Control>,
+    tx: Sender<Msg>,
     pub rx: Receiver<Msg>,
-    pub phase_gen: Arc<AtomicU64>,
-    pub sweep_gen: Arc<AtomicU64>,
-    pub orbit_gen: Arc<AtomicU64>,
-    pub gate: Arc<Gate>,
-    /// Parks the sweep's workers while paused; they keep their progress.
-    pub sweep_pause: Arc<PauseGate>,
-    pub analysis: Arc<dyn Analysis>,
 }
 
 impl Workers {
-    pub fn new(analysis: Arc<dyn Analysis>) -> Workers {
+    /// Workers whose jobs run on `executor`.
+    pub fn new(executor: Executor) -> Workers {
         let (tx, rx) = mpsc::channel();
+        let gate = Arc::new(Gate::default());
+        let controls = Target::ALL
+            .iter()
+            .map(|t| (*t, Control::with_gate(gate.clone())))
+            .collect();
         Workers {
+            executor,
+            gate,
+            controls,
             tx,
             rx,
-            phase_gen: Arc::new(AtomicU64::new(0)),
-            sweep_gen: Arc::new(AtomicU64::new(0)),
-            orbit_gen: Arc::new(AtomicU64::new(0)),
-            gate: Arc::new(Gate::default()),
-            sweep_pause: Arc::new(PauseGate::default()),
-            analysis,
         }
     }
 
-    /// Stop everything (quit, SIGHUP): bump every generation and wake parked workers.
-    pub fn cancel_all(&self) {
-        self.phase_gen.fetch_add(1, Ordering::SeqCst);
-        self.sweep_gen.fetch_add(1, Ordering::SeqCst);
-        self.orbit_gen.fetch_add(1, Ordering::SeqCst);
-        self.gate.kick();
+    fn control(&self, to: Target) -> &Control {
+        &self.controls[&to]
     }
 
-    /// Restart the phase plot from `state`; returns the new generation.
-    pub fn start_phase(&self, sys: System, state: State) -> u64 {
-        let gen = self.phase_gen.fetch_add(1, Ordering::SeqCst) + 1;
-        self.gate.kick();
-        let current = self.phase_gen.clone();
-        let gate = self.gate.clone();
-        let tx = self.tx.clone();
-        std::thread::Builder::new()
-            .name("phase-plot".into())
-            .spawn(move || phase_worker(sys, state, gen, &current, &gate, &tx))
-            .ok();
+    /// Pause or resume everything that checks the gate.
+    pub fn pause(&self, paused: bool) {
+        self.gate.set(paused);
+    }
+
+    /// Cancel the work of `to`.
+    pub fn cancel(&self, to: Target) {
+        self.control(to).cancel();
+    }
+
+    /// Stop everything (quit, SIGHUP).
+    pub fn cancel_all(&self) {
+        for c in self.controls.values() {
+            c.cancel();
+        }
+    }
+
+    /// Run `work` on a thread of its own under a new generation of `to` (cancelling
+    /// the previous one); returns the generation.
+    pub fn spawn(&self, to: Target, name: &str, work: impl FnOnce(Ticket) + Send + 'static) -> u64 {
+        let control = self.control(to).clone();
+        let gen = control.cancel();
+        let ticket = Ticket {
+            to,
+            gen,
+            control,
+            tx: self.tx.clone(),
+        };
+        let _ = std::thread::Builder::new()
+            .name(name.into())
+            .spawn(move || work(ticket));
         gen
     }
 
-    /// Cancel the running sweep (new parameters while paused, quit); a paused one
-    /// stops at once too.
-    pub fn cancel_sweep(&self) {
-        self.sweep_gen.fetch_add(1, Ordering::SeqCst);
-        self.sweep_pause.wake();
-    }
-
-    /// Cancel the running sweep and start `spec` under a new generation. A forwarding
-    /// thread (blocked on the engine's channel, so idle costs nothing) passes its
-    /// batches on as [`Msg::Sweep`]. Returns the generation, or the engine's refusal.
-    pub fn start_sweep(&self, spec: SweepSpec) -> (u64, Result<(), String>) {
-        let gen = self.sweep_gen.fetch_add(1, Ordering::SeqCst) + 1;
-        let handle =
-            match sweep::start_pausable(spec, self.sweep_gen.clone(), self.sweep_pause.clone()) {
-                Ok(h) => h,
-                Err(e) => return (gen, Err(e.to_string())),
-            };
+    /// Start `job` on the executor under a new generation of `to` (cancelling the
+    /// previous one). A forwarding thread (blocked on the job's channel, so idle costs
+    /// nothing) passes its batches on as messages, then [`JobDone`] if it ran to its end.
+    pub fn start_job<J: Job>(&self, to: Target, job: J) -> u64 {
+        let control = self.control(to).clone();
+        control.cancel();
+        let handle = self.executor.start(job, &control);
         let gen = handle.generation();
         let tx = self.tx.clone();
-        std::thread::Builder::new()
-            .name("sweep-forward".into())
+        let _ = std::thread::Builder::new()
+            .name("job-forward".into())
             .spawn(move || {
                 for b in handle.receiver() {
-                    if handle.is_current(&b) && tx.send(Msg::Sweep(b)).is_err() {
+                    if handle.is_current(&b) && tx.send(Msg::new(to, gen, b)).is_err() {
                         handle.cancel();
                         return;
                     }
                 }
-                let summary = handle.wait();
-                if !summary.cancelled {
-                    let _ = tx.send(Msg::SweepDone { gen });
+                if !handle.wait().cancelled {
+                    let _ = tx.send(Msg::new(to, gen, JobDone));
                 }
-            })
-            .ok();
-        (gen, Ok(()))
-    }
-
-    /// Recompute the orbit analysis on the rayon pool; returns the new generation.
-    pub fn start_orbits(&self, sys: System, k: u32, window: (f64, f64)) -> u64 {
-        let gen = self.orbit_gen.fetch_add(1, Ordering::SeqCst) + 1;
-        let current = self.orbit_gen.clone();
-        let analysis = self.analysis.clone();
-        let tx = self.tx.clone();
-        rayon::spawn(move || {
-            if current.load(Ordering::Relaxed) != gen {
-                return;
-            }
-            let info = analysis.orbits(&sys, k, window);
-            if current.load(Ordering::Relaxed) == gen {
-                let _ = tx.send(Msg::Orbits { gen, info });
-            }
-        });
+            });
         gen
-    }
-}
-
-/// Iterate the map from `state`, sending (phase, v) after every event.
-pub fn phase_worker(
-    sys: System,
-    state: State,
-    gen: u64,
-    current: &AtomicU64,
-    gate: &Gate,
-    tx: &Sender<Msg>,
-) {
-    let mut map = ImpactMap::new(sys, Solver::Exact, state);
-    let mut sent = 0usize;
-    while sent < PHASE_CAP {
-        if !gate.wait(gen, current) {
-            return;
-        }
-        let n = if sent == 0 { PHASE_BURST } else { PHASE_CHUNK };
-        let mut points = Vec::with_capacity(n);
-        let mut note = None;
-        for _ in 0..n {
-            match map.step() {
-                Ok(Event { phase, v, .. }) => points.push((phase, v)),
-                Err(h) => {
-                    note = Some(h.to_string());
-                    break;
-                }
-            }
-        }
-        sent += points.len();
-        let done = note.is_some() || sent >= PHASE_CAP;
-        if current.load(Ordering::Relaxed) != gen
-            || tx
-                .send(Msg::Phase {
-                    gen,
-                    points,
-                    done,
-                    note,
-                })
-                .is_err()
-            || done
-        {
-            return;
-        }
-        std::thread::sleep(PHASE_PACE);
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn phase_worker_streams_the_same_points_as_the_map() {
-        let sys = System::new(Table::fd(0.1).unwrap(), 0.45, 0.8).unwrap();
-        let st = State::launch(&sys, 0, 0.0, sys.df(0.0) + 0.5, 0.0).unwrap();
-        let (tx, rx) = mpsc::channel();
-        let current = AtomicU64::new(1);
-        let gate = Gate::default();
-        // Stop after the first chunk by going stale once it is sent.
-        std::thread::scope(|s| {
-            s.spawn(|| phase_worker(sys.clone(), st, 1, &current, &gate, &tx));
-            let first = rx.recv().unwrap();
-            current.store(2, Ordering::SeqCst);
-            let Msg::Phase { gen, points, .. } = first else {
-                panic!("unexpected message")
-            };
-            assert_eq!(gen, 1);
-            assert_eq!(points.len(), PHASE_BURST);
-            let mut map = ImpactMap::new(sys.clone(), Solver::Exact, st);
-            for p in points.iter().take(50) {
-                let e = map.step().unwrap();
-                assert_eq!(*p, (e.phase, e.v));
-            }
-        });
-    }
-
-    #[test]
-    fn paused_gate_parks_until_resumed_or_stale() {
-        let gate = Arc::new(Gate::default());
-        gate.set(true);
-        let current = Arc::new(AtomicU64::new(7));
-        let (g, c) = (gate.clone(), current.clone());
-        let h = std::thread::spawn(move || g.wait(7, &c));
-        std::thread::sleep(Duration::from_millis(30));
-        assert!(!h.is_finished());
-        current.store(8, Ordering::SeqCst);
-        gate.kick();
-        assert!(!h.join().unwrap());
-        gate.set(false);
-        assert!(gate.wait(8, &current));
     }
 }

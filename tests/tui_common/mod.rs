@@ -2,16 +2,19 @@
 #![allow(dead_code)]
 //! built from deterministic data (no threads, no clock).
 
-use bouncemap::engine::sweep::{Outcome, SweepBatch, SweepPoint};
-use bouncemap::engine::EventKind;
-use bouncemap::tui::analysis::EngineAnalysis;
+use bouncemap::config::display::ColorMode;
+use bouncemap::output::hitgrid::Marker;
+use bouncemap::tui::analysis::orbit_info;
 use bouncemap::tui::app::App;
+use bouncemap::tui::components::phase_plot::PhasePoints;
+use bouncemap::tui::components::Target;
 use bouncemap::tui::keymap::Keymap;
 use bouncemap::tui::params::Params;
-use bouncemap::tui::plot::Marker;
-use bouncemap::tui::theme::{ColorMode, Theme};
-use bouncemap::tui::views;
-use bouncemap::tui::workers::{Analysis, Msg};
+use bouncemap::tui::theme::Theme;
+use bouncemap::tui::workers::{JobDone, Msg};
+use bouncemap_engine::jobs::Batch;
+use bouncemap_engine::sweep::{Outcome, SweepPoint, ValueResult};
+use bouncemap_engine::EventKind;
 use ratatui::backend::TestBackend;
 use ratatui::layout::Rect;
 use ratatui::Terminal;
@@ -25,24 +28,34 @@ pub fn app(marker: Marker) -> App {
         marker,
         15,
     );
-    app.presets = bouncemap::tui::paper_presets();
     app.take_effects();
     app
 }
 
 /// Size the grids as the runtime does before drawing.
 pub fn size(app: &mut App, w: u16, h: u16) {
-    if let Some(p) = views::layout(Rect::new(0, 0, w, h)) {
-        let (d, ph) = views::plot_areas(&p);
-        app.set_plot_sizes(d, ph);
-    }
+    app.set_size(Rect::new(0, 0, w, h));
+}
+
+/// A sweep batch as the executor streams it.
+pub fn sweep_msg(gen: u64, data: ValueResult) -> Msg {
+    Msg::new(
+        Target::Diagram,
+        gen,
+        Batch {
+            generation: gen,
+            pass: 1,
+            data,
+        },
+    )
 }
 
 /// Feed deterministic results: a synthetic diagram (a branch that splits in two), the
 /// map's own phase points, the engine's orbit analysis, and three stepped bounces.
 pub fn fill(app: &mut App) {
     let n = 120;
-    app.sweep_started(1, n, Ok(()));
+    let shared = &app.shared;
+    app.diagram.sweep_started(1, n, shared);
     let (lo, hi) = (app.params.lo, app.params.hi);
     for i in 0..n {
         let a = lo + (hi - lo) * i as f64 / (n - 1) as f64;
@@ -64,46 +77,51 @@ pub fn fill(app: &mut App) {
                 kind: EventKind::Impact,
             })
             .collect();
-        app.receive(Msg::Sweep(SweepBatch {
-            generation: 1,
-            pass: 1,
-            complete: true,
-            index: i,
-            value: a,
-            points,
-            outcome: Outcome::Unsettled,
-            sticking: false,
-            events: 100,
-        }));
+        app.receive(sweep_msg(
+            1,
+            ValueResult {
+                index: i,
+                value: a,
+                complete: true,
+                points,
+                outcome: Outcome::Unsettled,
+                sticking: false,
+                events: 100,
+            },
+        ));
     }
-    app.receive(Msg::SweepDone { gen: 1 });
+    app.receive(Msg::new(Target::Diagram, 1, JobDone));
     app.diagram.started = None;
     app.diagram.elapsed = 2.0;
     let sys = app.system();
     let st = app.params.initial(&sys).unwrap();
     let mut map =
-        bouncemap::engine::ImpactMap::new(sys.clone(), bouncemap::engine::Solver::Exact, st);
+        bouncemap_engine::ImpactMap::new(sys.clone(), bouncemap_engine::Solver::Exact, st);
     let pts: Vec<(f64, f64)> = (0..400)
         .map(|_| map.step().map(|e| (e.phase, e.v)).unwrap())
         .collect();
-    app.phase_started(1);
-    app.receive(Msg::Phase {
-        gen: 1,
-        points: pts,
-        done: true,
-        note: None,
-    });
-    app.orbits_started(1);
-    let info = EngineAnalysis.orbits(&sys, app.params.k, (lo, hi));
-    app.receive(Msg::Orbits { gen: 1, info });
-    app.step(3);
+    let shared = &app.shared;
+    app.phase.started(1, shared);
+    app.receive(Msg::new(
+        Target::Phase,
+        1,
+        PhasePoints {
+            points: pts,
+            done: true,
+            note: None,
+        },
+    ));
+    app.stability.started(1, &mut app.shared);
+    let info = orbit_info(&sys, app.params.k);
+    app.receive(Msg::new(Target::Orbits, 1, info));
+    app.bounce.step(3);
 }
 
 /// Render the whole screen into a test backend.
 pub fn render(app: &mut App, w: u16, h: u16) -> Terminal<TestBackend> {
     size(app, w, h);
     let mut t = Terminal::new(TestBackend::new(w, h)).unwrap();
-    t.draw(|f| views::draw(f, app)).unwrap();
+    t.draw(|f| app.draw(f)).unwrap();
     t
 }
 

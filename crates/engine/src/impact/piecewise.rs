@@ -1,0 +1,409 @@
+//! The exact solver on a piecewise polynomial table.
+//!
+//! On each piece the gap z(τ) − f(τ) is a polynomial in the piece's local variable; its
+//! first real root is isolated exactly. The walk over pieces is written once,
+//! [`piecewise_landing`], over a [`PieceGap`]: the gap polynomial on one piece, built
+//! and searched either in general storage ([`Poly`], any degree the table allows) or in
+//! fixed cubic storage ([`CubicGap`], for tables whose pieces are all of degree ≤ 3 such
+//! as F_D). Both build the same gap polynomials (to rounding: the cubic one writes the
+//! launch piece's Taylor coefficients out instead of shifting the piece) and search them
+//! the same way; the cubic one only avoids the bookkeeping of variable-length
+//! polynomials on the hot path. A unit test holds the two to the same contacts.
+
+use super::{crossing_times, floor, landing_on, FlightError, Landing, Launch, MAX_FLIGHT_PIECES};
+use crate::exact_sum::{ball_at, flight_time};
+use crate::poly::{first_root_low_degree, Poly, MAX_COEFFS};
+use crate::system::System;
+use crate::table::Piece;
+
+/// Exact solver on a piecewise polynomial table.
+pub(super) fn poly_landing(sys: &System, launch: &Launch) -> Result<Landing, FlightError> {
+    if sys.table.max_degree() <= 3 {
+        piecewise_landing::<CubicGap>(sys, launch)
+    } else {
+        piecewise_landing::<Poly>(sys, launch)
+    }
+}
+
+/// A contact found on a piece: the local variable s at contact and the gap's slope there
+/// (the relative velocity of the ball).
+struct Hit {
+    s: f64,
+    slope: f64,
+}
+
+/// The gap polynomial on one table piece.
+trait PieceGap: Sized {
+    /// The search on the launch piece, whose local variable is the flight time τ:
+    /// gap(τ) = h + w τ − τ²/2 − α (Q(τ) − Q(0) − Q'(0) τ) with Q = F shifted to the
+    /// launch phase (`off` into the piece). Returns the first contact in (0, `len`] and
+    /// Q(0), the table's height at launch over α.
+    fn launch_piece(
+        piece: &Piece,
+        alpha: f64,
+        off: f64,
+        len: f64,
+        launch: &Launch,
+    ) -> Result<(Option<Hit>, f64), FlightError>;
+
+    /// The gap zb + vb s − s²/2 − α F(s) on a later piece, the ball at height `zb` with
+    /// velocity `vb` at the piece's start.
+    fn later_piece(piece: &Piece, alpha: f64, zb: f64, vb: f64) -> Self;
+
+    /// Value at s = 0 and the rounding bound of that value (one term, exactly c0).
+    fn at_start(&self) -> (f64, f64);
+
+    /// The first root in [0, len].
+    fn first_root(&self, len: f64) -> Option<f64>;
+
+    /// The slope at s.
+    fn slope(&self, s: f64) -> f64;
+
+    /// The table's slope F'(s) on `piece` (in its local variable).
+    fn table_slope(piece: &Piece, s: f64) -> f64 {
+        piece.d1.eval(s)
+    }
+}
+
+impl PieceGap for Poly {
+    fn launch_piece(
+        piece: &Piece,
+        alpha: f64,
+        off: f64,
+        len: f64,
+        launch: &Launch,
+    ) -> Result<(Option<Hit>, f64), FlightError> {
+        let q = piece.f.shift(off);
+        let gap = gap_with_low_terms(&q, alpha, launch.height, launch.w);
+        let search = if launch.height > 0.0 {
+            gap
+        } else {
+            lift_off_quotient(&gap, launch.w)?
+        };
+        let hit = first_positive_root(&search, len).map(|s| Hit {
+            s,
+            slope: gap.eval_d(s).1,
+        });
+        Ok((hit, q.coeff(0)))
+    }
+
+    fn later_piece(piece: &Piece, alpha: f64, zb: f64, vb: f64) -> Self {
+        let f = &piece.f;
+        gap_with_low_terms(f, alpha, zb - alpha * f.coeff(0), vb - alpha * f.coeff(1))
+    }
+
+    fn at_start(&self) -> (f64, f64) {
+        let g0 = self.coeff(0);
+        (
+            g0,
+            (4 * self.coeffs().len()) as f64 * f64::EPSILON * g0.abs(),
+        )
+    }
+
+    fn first_root(&self, len: f64) -> Option<f64> {
+        Poly::first_root(self, 0.0, len)
+    }
+
+    fn slope(&self, s: f64) -> f64 {
+        self.eval_d(s).1
+    }
+}
+
+/// The gap c0 + c1 s − s²/2 − α (f₂ s² + f₃ s³ + …) on a piece whose table polynomial
+/// (in the same variable) is `f`: its two lowest coefficients are given, the others
+/// come from the ball's fall and the table.
+fn gap_with_low_terms(f: &Poly, alpha: f64, c0: f64, c1: f64) -> Poly {
+    let fc = f.coeffs();
+    let mut c = [0.0; MAX_COEFFS];
+    for k in 3..fc.len() {
+        c[k] = -alpha * fc[k];
+    }
+    c[0] = c0;
+    c[1] = c1;
+    c[2] = -0.5 - alpha * f.coeff(2);
+    Poly::from_array(c, fc.len().max(3))
+}
+
+/// The gap on a piece of degree ≤ 3, in fixed storage: ascending coefficients and their
+/// number without trailing zeros.
+#[derive(Clone, Copy, Debug)]
+struct CubicGap {
+    c: [f64; 4],
+    len: usize,
+}
+
+impl CubicGap {
+    fn new(c: [f64; 4]) -> CubicGap {
+        let mut len = 4;
+        while len > 0 && c[len - 1] == 0.0 {
+            len -= 1;
+        }
+        CubicGap { c, len }
+    }
+}
+
+impl PieceGap for CubicGap {
+    fn launch_piece(
+        piece: &Piece,
+        alpha: f64,
+        off: f64,
+        len: f64,
+        launch: &Launch,
+    ) -> Result<(Option<Hit>, f64), FlightError> {
+        // A launch from the table with a positive relative velocity (every impact) has
+        // the simple root τ = 0, divided out in closed form below. Releases (w = 0) and
+        // launches above the table take the general route.
+        let from_table_moving_up = launch.height == 0.0 && launch.w > 0.0;
+        if !from_table_moving_up {
+            return Poly::launch_piece(piece, alpha, off, len, launch);
+        }
+        let [f0, f1, f2, f3] = piece.f.low_coeffs();
+        // Taylor coefficients of F at `off`: Q(0) and Q''(0)/2 (Q''' /6 = f3).
+        let q0 = ((f3 * off + f2) * off + f1) * off + f0;
+        let q2 = f2 + 3.0 * f3 * off;
+        let g2 = -0.5 - alpha * q2;
+        let g3 = -alpha * f3;
+        // gap(τ)/τ = w + g2 τ + g3 τ², positive at τ = 0.
+        let quotient = CubicGap::new([launch.w, g2, g3, 0.0]);
+        let hit = first_root_low_degree(&quotient.c, quotient.len, 0.0, len)
+            .filter(|&s| s > 0.0)
+            .map(|s| Hit {
+                s,
+                slope: launch.w + s * (2.0 * g2 + 3.0 * g3 * s),
+            });
+        Ok((hit, q0))
+    }
+
+    #[inline]
+    fn later_piece(piece: &Piece, alpha: f64, zb: f64, vb: f64) -> Self {
+        let [f0, f1, f2, f3] = piece.f.low_coeffs();
+        CubicGap::new([
+            zb - alpha * f0,
+            vb - alpha * f1,
+            -0.5 - alpha * f2,
+            -alpha * f3,
+        ])
+    }
+
+    #[inline]
+    fn at_start(&self) -> (f64, f64) {
+        let g0 = self.c[0];
+        (g0, (4 * self.len) as f64 * f64::EPSILON * g0.abs())
+    }
+
+    #[inline]
+    fn first_root(&self, len: f64) -> Option<f64> {
+        first_root_low_degree(&self.c, self.len, 0.0, len)
+    }
+
+    #[inline]
+    fn slope(&self, s: f64) -> f64 {
+        let c = &self.c;
+        c[1] + s * (2.0 * c[2] + 3.0 * c[3] * s)
+    }
+
+    #[inline]
+    fn table_slope(piece: &Piece, s: f64) -> f64 {
+        let [_, f1, f2, f3] = piece.f.low_coeffs();
+        f1 + s * (2.0 * f2 + 3.0 * f3 * s)
+    }
+}
+
+/// The walk over pieces: the launch piece first, then later pieces in time order,
+/// skipping a piece only where the ball is provably above the table's maximum on it and
+/// whole periods where it is above every table height.
+fn piecewise_landing<G: PieceGap>(sys: &System, launch: &Launch) -> Result<Landing, FlightError> {
+    let pieces = sys.table.pieces();
+    let alpha = sys.alpha;
+    let phi = launch.phase;
+    let v = launch.v;
+    let mut j = sys.table.segment_index(phi);
+    let first = &pieces[j];
+    let off = phi - first.start;
+
+    let (hit, q0) = G::launch_piece(first, alpha, off, first.end - phi, launch)?;
+    if let Some(Hit { s, slope }) = hit {
+        return Ok(landing_on(
+            launch,
+            0,
+            first.start,
+            off + s,
+            s,
+            slope,
+            alpha * G::table_slope(first, off + s),
+        ));
+    }
+
+    // Later pieces: gap from absolute heights, skipping where the ball is above the table.
+    let z0 = alpha * q0 + launch.height;
+    let (top_lo, top_hi) = sys.table.range();
+    let (up, down) = match crossing_times(z0, v, alpha * top_hi) {
+        Some((u, d)) if z0 <= alpha * top_hi => (u.max(0.0), d),
+        Some((_, d)) => (0.0, d),
+        None => (f64::INFINITY, f64::INFINITY),
+    };
+    // The ball surely lands before it falls below the table's minimum.
+    let last = crossing_times(z0, v, alpha * top_lo).map_or(0.0, |c| c.1);
+    let mut m: i64 = 0;
+    j += 1;
+    for _ in 0..MAX_FLIGHT_PIECES {
+        if j == pieces.len() {
+            j = 0;
+            m += 1;
+        }
+        let p = &pieces[j];
+        let tau_lo = m as f64 + p.start - phi;
+        let tau_hi = tau_lo + p.len();
+        if tau_lo > last + 1.0 {
+            break;
+        }
+        if tau_lo >= up && j == 0 {
+            // Whole periods with the ball above every table height.
+            let target = floor(phi + down) as i64;
+            if target > m {
+                m = target;
+                continue;
+            }
+        }
+        let zb_rough = z0 + tau_lo * (v - 0.5 * tau_lo);
+        let ze = z0 + tau_hi * (v - 0.5 * tau_hi);
+        // Skip with a margin far above the rounding of the rough heights.
+        let margin = 1e-9 * (1.0 + z0.abs() + (v * tau_hi).abs() + tau_hi * tau_hi);
+        if zb_rough.min(ze) > alpha * p.max + margin {
+            j += 1;
+            continue;
+        }
+        let (zb, vb) = ball_at(z0, v, flight_time(m, p.start, phi));
+        let g = G::later_piece(p, alpha, zb, vb);
+        // At s = 0 the value is c0 itself, its rounding bound that of one term.
+        let (g0, err) = g.at_start();
+        let root = if g0 <= err {
+            Some(0.0)
+        } else {
+            g.first_root(p.len())
+        };
+        if let Some(s) = root {
+            return Ok(landing_on(
+                launch,
+                m,
+                p.start,
+                s,
+                tau_lo + s,
+                g.slope(s),
+                alpha * G::table_slope(p, s),
+            ));
+        }
+        j += 1;
+    }
+    Err(FlightError::NoLanding)
+}
+
+/// Divide the launch root out of the gap polynomial (whose constant term is zero).
+/// With w = 0 (a release) the next coefficients may vanish too: they are divided out as
+/// long as they are zero within rounding; the first one left must be positive.
+fn lift_off_quotient(gap: &Poly, w: f64) -> Result<Poly, FlightError> {
+    let mut q = gap.div_x();
+    if w > 0.0 {
+        return Ok(q);
+    }
+    let scale: f64 = gap.coeffs().iter().map(|c| c.abs()).sum::<f64>().max(1.0);
+    let tiny = 64.0 * f64::EPSILON * scale;
+    loop {
+        let c0 = q.coeff(0);
+        if c0 > tiny {
+            return Ok(q);
+        }
+        if c0 < -tiny || q.degree() == 0 {
+            return Err(FlightError::NoLiftOff);
+        }
+        q = q.div_x();
+    }
+}
+
+/// First root of `q` in (0, len]; q(0) > 0 is known.
+fn first_positive_root(q: &Poly, len: f64) -> Option<f64> {
+    q.first_root(0.0, len)
+        .filter(|&s| s > 0.0 || q.eval(0.0) <= 0.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::table::Table;
+    use crate::test_rng::Xorshift;
+
+    /// A C¹ periodic cubic spline through `values` with `slopes` at `knots` (knots[0] = 0).
+    fn cubic_spline(knots: &[f64], values: &[f64], slopes: &[f64]) -> Table {
+        let n = knots.len();
+        let pieces: Vec<(f64, Vec<f64>)> = (0..n)
+            .map(|i| {
+                let a = knots[i];
+                let l = if i + 1 < n { knots[i + 1] } else { 1.0 } - a;
+                let (y0, y1) = (values[i], values[(i + 1) % n]);
+                let (m0, m1) = (slopes[i], slopes[(i + 1) % n]);
+                let c2 = (3.0 * (y1 - y0) / l - 2.0 * m0 - m1) / l;
+                let c3 = (2.0 * (y0 - y1) / l + m0 + m1) / (l * l);
+                let global = Poly::new(&[y0, m0, c2, c3]).shift(-a);
+                (a, global.coeffs().to_vec())
+            })
+            .collect();
+        Table::piecewise("spline", &pieces).unwrap()
+    }
+
+    /// The fixed-size cubic path and the general one are two implementations of the same
+    /// search: on cubic tables they must find the same contact for every launch.
+    #[test]
+    fn cubic_path_agrees_with_general_path() {
+        let mut rng = Xorshift::new(0x853c49e6748fea9b);
+        let mut rnd = || rng.next();
+        let mut compared = 0;
+        for i in 0..4000 {
+            let table = if i % 2 == 0 {
+                Table::fd(rnd()).unwrap()
+            } else {
+                let n = 1 + (4.0 * rnd()) as usize;
+                let mut knots: Vec<f64> = (0..n)
+                    .map(|k| (k as f64 + 0.2 + 0.6 * rnd()) / n as f64)
+                    .collect();
+                knots[0] = 0.0;
+                let values: Vec<f64> = (0..n).map(|_| 2.0 * rnd() - 1.0).collect();
+                let slopes: Vec<f64> = (0..n).map(|_| 8.0 * rnd() - 4.0).collect();
+                cubic_spline(&knots, &values, &slopes)
+            };
+            assert!(table.max_degree() <= 3);
+            let sys = System::new(table, 0.05 + 1.45 * rnd(), 0.5).unwrap();
+            for _ in 0..10 {
+                let phase = rnd();
+                let (height, w) = match (8.0 * rnd()) as u32 {
+                    0 => (0.0, 0.0),
+                    1 | 2 => (0.5 * rnd(), 3.0 * rnd() - 1.0),
+                    _ => (0.0, 1e-6 + 3.0 * rnd()),
+                };
+                let launch = Launch {
+                    period: 7,
+                    phase,
+                    height,
+                    v: sys.df(phase) + w,
+                    w,
+                };
+                let fast = piecewise_landing::<CubicGap>(&sys, &launch);
+                let general = piecewise_landing::<Poly>(&sys, &launch);
+                match (fast, general) {
+                    (Ok(a), Ok(b)) => {
+                        let ta = a.period as f64 - 7.0 + a.phase;
+                        let tb = b.period as f64 - 7.0 + b.phase;
+                        assert!((ta - tb).abs() <= 1e-12, "{launch:?}: {a:?} vs {b:?}");
+                        assert!(
+                            (a.vrel - b.vrel).abs() <= 1e-10,
+                            "{launch:?}: {a:?} vs {b:?}"
+                        );
+                        assert!((a.df - b.df).abs() <= 1e-10, "{launch:?}: {a:?} vs {b:?}");
+                        compared += 1;
+                    }
+                    (a, b) => assert_eq!(a, b, "{launch:?}"),
+                }
+            }
+        }
+        assert!(compared > 30_000, "{compared} landings compared");
+    }
+}

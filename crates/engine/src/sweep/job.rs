@@ -1,0 +1,292 @@
+//! The sweep as a [`Job`]: its items, its passes, and the work on one item.
+//!
+//! Without continuation an item is one value: pass 0 (the preview, if any) runs it from
+//! its cold start to the preview transient and keeps the run, pass 1 continues that
+//! run to the end. With continuation an item of the last pass is a chain of values, each
+//! started from its neighbour's final state; the preview then runs every value cold
+//! (provisional results only, nothing is kept).
+
+use super::run::{has_sticking, Advance, ValueRun};
+use super::{SweepSpec, Warm};
+use crate::error::EngineError;
+use crate::jobs::{bit_reversed_order, Context, Job};
+use crate::map::{EventKind, ImpactMap, State};
+
+/// One recorded event of a value.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SweepPoint {
+    /// Phase t̂ in [0, 1).
+    pub phase: f64,
+    /// Ball velocity after the event.
+    pub v: f64,
+    pub kind: EventKind,
+}
+
+/// What became of one value.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Outcome {
+    /// Provisional (pass 0): the run has reached this period and goes on.
+    Running { reached: i64 },
+    /// Settled on a cycle of `events` events in `periods` table periods; the run
+    /// stopped at period `stopped_at` and the cycle was continued to T.
+    Periodic {
+        events: usize,
+        periods: i64,
+        stopped_at: i64,
+    },
+    /// Ran the full transient without settling on a cycle of at most `max_period`
+    /// events (chaos, a long or slowly converging cycle, or early stop switched off).
+    Unsettled,
+    /// The ball rides on the table forever from this time on.
+    Resting { period: i64, phase: f64 },
+    /// The ball did not land within the solver's work bound.
+    NoLanding { period: i64, phase: f64 },
+}
+
+impl Outcome {
+    /// Lower-case name used in every output format.
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            Outcome::Running { .. } => "running",
+            Outcome::Periodic { .. } => "periodic",
+            Outcome::Unsettled => "unsettled",
+            Outcome::Resting { .. } => "resting",
+            Outcome::NoLanding { .. } => "no-landing",
+        }
+    }
+
+    /// Events per detected cycle.
+    pub fn period(&self) -> Option<usize> {
+        match self {
+            Outcome::Periodic { events, .. } => Some(*events),
+            _ => None,
+        }
+    }
+
+    /// Table periods per detected cycle (the k of an (n, k) orbit).
+    pub fn table_periods(&self) -> Option<i64> {
+        match self {
+            Outcome::Periodic { periods, .. } => Some(*periods),
+            _ => None,
+        }
+    }
+}
+
+/// The result for one value.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ValueResult {
+    /// Index of the value in the window, 0 ..< steps.
+    pub index: usize,
+    /// The swept parameter's value.
+    pub value: f64,
+    /// True when this is the value's final result (no later batch will replace it).
+    pub complete: bool,
+    /// Recorded events, oldest first.
+    pub points: Vec<SweepPoint>,
+    pub outcome: Outcome,
+    /// Whether the points include a stick or a release.
+    pub sticking: bool,
+    /// Events computed for this value.
+    pub events: u64,
+}
+
+/// A run carried from the preview pass to the final one.
+pub struct Carried {
+    index: usize,
+    value: f64,
+    run: ValueRun,
+}
+
+/// A sweep, ready to run on an executor.
+pub struct SweepJob {
+    spec: SweepSpec,
+    /// Value indices of the shard, in chain order.
+    values: Vec<usize>,
+    chains: Vec<Vec<usize>>,
+    /// Hand values out in index order (for writers that stream in order) instead of
+    /// spread over the window.
+    in_order: bool,
+    /// Transient of the provisional pass 0, in periods; 0 for none.
+    preview: u64,
+}
+
+impl SweepJob {
+    /// Validate the spec and lay out the items.
+    pub fn new(spec: SweepSpec) -> Result<SweepJob, EngineError> {
+        spec.validate()?;
+        let chains = spec.chains();
+        let values = chains.iter().flatten().copied().collect();
+        Ok(SweepJob {
+            spec,
+            values,
+            chains,
+            in_order: false,
+            preview: 0,
+        })
+    }
+
+    /// Run a provisional pass first: every value to `periods` (if shorter than the
+    /// transient), spread over the window, so a complete rough picture arrives early.
+    pub fn preview(mut self, periods: u64) -> SweepJob {
+        self.preview = periods;
+        self
+    }
+
+    /// Hand items out in index order (for a consumer that writes results in order
+    /// with a window, see [`crate::jobs::Executor::start_windowed`]).
+    pub fn in_order(mut self) -> SweepJob {
+        self.in_order = true;
+        self
+    }
+
+    /// The specification.
+    pub fn spec(&self) -> &SweepSpec {
+        &self.spec
+    }
+
+    fn order(&self, n: usize) -> Vec<usize> {
+        if self.in_order {
+            (0..n).collect()
+        } else {
+            bit_reversed_order(n)
+        }
+    }
+
+    fn preview_end(&self) -> Option<i64> {
+        let (p, end) = (self.preview as i64, self.spec.transient as i64);
+        (p > 0 && p < end).then_some(p)
+    }
+
+    fn new_run(&self, index: usize, warm_from: Option<&State>) -> Option<(f64, ValueRun)> {
+        let value = self.spec.value(index);
+        let sys = self.spec.system_at(value).ok()?;
+        let state = warm_from
+            .and_then(|s| {
+                let v = s.v.max(sys.df(s.phase));
+                State::launch(&sys, 0, s.phase, v, 0.0).ok()
+            })
+            .or_else(|| self.spec.initial_state(&sys).ok())?;
+        let map = ImpactMap::new(sys, self.spec.solver, state);
+        Some((
+            value,
+            ValueRun::new(map, self.spec.keep, self.spec.periodicity),
+        ))
+    }
+
+    /// Advance `run` to `checkpoint` and emit what it reached: whether it can be resumed
+    /// and its outcome, or None if the job was cancelled.
+    fn advance(
+        &self,
+        index: usize,
+        value: f64,
+        run: &mut ValueRun,
+        checkpoint: i64,
+        provisional: bool,
+        cx: &Context<'_, ValueResult>,
+    ) -> Option<(bool, Outcome)> {
+        let end = self.spec.transient as i64;
+        let adv = run.advance(checkpoint, end, &mut |n| cx.tick(n));
+        let (complete, outcome, points, resumable) = match adv {
+            Advance::Done(o, p) => (true, o, p, false),
+            Advance::Checkpoint => (
+                false,
+                Outcome::Running {
+                    reached: run.reached(),
+                },
+                run.points(),
+                true,
+            ),
+            Advance::Cancelled => return None,
+        };
+        let complete = complete && !provisional;
+        cx.emit(
+            ValueResult {
+                index,
+                value,
+                complete,
+                sticking: has_sticking(&points),
+                points,
+                outcome,
+                events: run.events(),
+            },
+            complete,
+        );
+        Some((resumable, outcome))
+    }
+}
+
+impl Job for SweepJob {
+    type State = Carried;
+    type Output = ValueResult;
+
+    fn items(&self) -> usize {
+        self.values.len().max(self.chains.len())
+    }
+
+    fn units(&self) -> usize {
+        self.values.len()
+    }
+
+    fn passes(&self) -> Vec<Vec<usize>> {
+        let last = if self.spec.warm == Warm::Off {
+            self.order(self.values.len())
+        } else {
+            self.order(self.chains.len())
+        };
+        match self.preview_end() {
+            Some(_) => vec![self.order(self.values.len()), last],
+            None => vec![last],
+        }
+    }
+
+    fn work(
+        &self,
+        pass: usize,
+        item: usize,
+        state: &mut Option<Carried>,
+        cx: &Context<'_, ValueResult>,
+    ) {
+        let end = self.spec.transient as i64;
+        let warm = self.spec.warm != Warm::Off;
+        if let (Some(preview), 0) = (self.preview_end(), pass) {
+            // Pass 0: one value from its cold start to the preview transient.
+            let index = self.values[item];
+            let Some((value, mut run)) = self.new_run(index, None) else {
+                return;
+            };
+            let reached = self.advance(index, value, &mut run, preview, warm, cx);
+            if matches!(reached, Some((true, _))) && !warm {
+                *state = Some(Carried { index, value, run });
+            }
+            return;
+        }
+        if warm {
+            let mut prev: Option<State> = None;
+            for &index in &self.chains[item] {
+                let Some((value, mut run)) = self.new_run(index, prev.as_ref()) else {
+                    return;
+                };
+                prev = match self.advance(index, value, &mut run, end, false, cx) {
+                    None => return,
+                    Some((_, Outcome::NoLanding { .. })) => None,
+                    Some(_) => Some(run.state()),
+                };
+            }
+            return;
+        }
+        // Cold, final pass: continue the preview's run, or start one.
+        let carried = match state.take() {
+            Some(c) => Some(c),
+            None if self.preview_end().is_none() => {
+                let index = self.values[item];
+                self.new_run(index, None)
+                    .map(|(value, run)| Carried { index, value, run })
+            }
+            // The preview finished this value (or could not start it).
+            None => None,
+        };
+        if let Some(mut c) = carried {
+            self.advance(c.index, c.value, &mut c.run, end, false, cx);
+        }
+    }
+}

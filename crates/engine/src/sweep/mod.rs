@@ -1,0 +1,458 @@
+//! Parameter sweeps: bifurcation diagrams, one client of the [job executor](crate::jobs).
+//!
+//! A [`SweepSpec`] names the table, the swept parameter ([`SweepParam`]: α, r or D),
+//! the window `lo..=hi` with `steps` values, the fixed parameters, the start, the
+//! transient (in table periods), how many events to keep, the solver and whether to
+//! continue each value from its neighbour. For each value the ball runs until the end
+//! of the transient T and the last `keep` events before T are recorded (phase, v, event
+//! kind), unless the [periodicity detector](detect) proves earlier that the orbit has
+//! settled on a cycle of at most `max_period` events to within `tolerance`: then the
+//! remaining events are continued cyclically (see [`run`]), which gives the same points,
+//! within the tolerance, as the full transient. Orbits that stick and are released at
+//! the same phase again repeat exactly, whatever their length in events; they jump ahead
+//! by whole cycles to just before T (see [`run`]). Values that never settle run the full
+//! transient.
+//!
+//! Outcomes per value ([`Outcome`]): periodic (with its cycle), unsettled (ran to T:
+//! chaotic, quasi-periodic or a cycle longer than `max_period`), resting (the ball
+//! rides on the table forever, [`Halt::Resting`](crate::Halt::Resting)), or
+//! no-landing. Stick and release events are recorded like impacts; a value whose points
+//! include one is marked [`ValueResult::sticking`].
+//!
+//! # Progressive passes
+//! With a preview ([`SweepJob::preview`], an execution choice, not part of what the
+//! sweep computes) every value first runs to `preview` periods from its cold start,
+//! in bit-reversed order over the window, so a complete rough diagram arrives early
+//! (pass 0, provisional results). Pass 1 then brings every value to the full transient;
+//! a cold run simply continues where pass 0 left it, so no work is repeated and the
+//! result does not depend on the preview. Results of a later pass replace the earlier
+//! ones for the same value index.
+//!
+//! # Continuation (warm start)
+//! With [`Warm::Forward`] (or `Backward`), the window is cut into chains of
+//! [`WARM_CHAIN`] consecutive values; along a chain each value starts from the final
+//! state of its neighbour below (above), so branches stay continuous and transients are
+//! short; forward and backward together show hysteresis. Chains start cold and run in
+//! parallel. Chain boundaries depend only on the value indices, so a sharded warm sweep
+//! merges into exactly the unsharded one. Cold sweeps (the default) start every value
+//! from the same initial state, as the paper does.
+//!
+//! # Running
+//! [`start`] runs a sweep in the background on an [`Executor`] under a [`Control`]
+//! (generation and pause, see [`crate::jobs`]); [`collect`] runs one to the end and
+//! returns the final result of every value.
+//!
+//! ```
+//! use bouncemap_engine::jobs::{Control, Executor};
+//! use bouncemap_engine::sweep::{self, Outcome, SweepParam, SweepSpec};
+//! use bouncemap_engine::Table;
+//!
+//! let table = Table::fd(0.1).unwrap();
+//! let mut spec = SweepSpec::new(table, 0.45, 0.8, SweepParam::Alpha, 0.45, 0.45, 1);
+//! spec.transient = 10_000;
+//! let result = sweep::collect(&spec, &Executor::new(1).unwrap()).unwrap();
+//! // α = 0.45 is on the stable (1, 1) branch: one event per table period.
+//! assert!(matches!(result[0].outcome, Outcome::Periodic { events: 1, periods: 1, .. }));
+//!
+//! // In the background, results streamed as they come (drained e.g. once per frame);
+//! // `control.cancel()` from anywhere stops it.
+//! let control = Control::new();
+//! let handle = sweep::start(spec, &Executor::new(1).unwrap(), &control).unwrap();
+//! let finals = handle.receiver().iter().filter(|b| handle.is_current(b) && b.complete).count();
+//! assert_eq!(finals, 1);
+//! assert!(!handle.wait().cancelled);
+//! ```
+
+pub mod detect;
+mod job;
+pub mod run;
+
+pub use detect::Periodicity;
+pub use job::{Outcome, SweepJob, SweepPoint, ValueResult};
+
+use crate::error::EngineError;
+use crate::impact::Solver;
+use crate::jobs::{Batch, Control, Executor, Handle};
+use crate::limits;
+use crate::map::State;
+use crate::orbits::fixed::fixed_points;
+use crate::system::System;
+use crate::table::Table;
+
+/// Consecutive values per warm-start chain.
+pub const WARM_CHAIN: usize = 32;
+/// The paper's transient (Fig. 3): t = 5·10⁶.
+pub const PAPER_TRANSIENT: u64 = 5_000_000;
+/// The paper's kept bounces per value (Fig. 3).
+pub const PAPER_KEEP: usize = 100;
+/// Default preview transient of pass 0, in periods.
+pub const DEFAULT_PREVIEW: u64 = 1_000;
+/// Phase offset from the (1, 1) fixed point of a `near_fixed_point` start.
+pub const FIXED_POINT_OFFSET: f64 = 1e-3;
+
+/// One streamed result of a sweep.
+pub type SweepBatch = Batch<ValueResult>;
+/// A sweep running in the background.
+pub type SweepHandle = Handle<ValueResult>;
+
+/// The swept parameter.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum SweepParam {
+    /// The amplitude α.
+    Alpha,
+    /// The restitution coefficient r.
+    R,
+    /// D of the paper's F_D table.
+    D,
+}
+
+impl SweepParam {
+    /// Every swept parameter.
+    pub const ALL: [SweepParam; 3] = [SweepParam::Alpha, SweepParam::R, SweepParam::D];
+
+    /// Lower-case name used in every output format (`alpha`, `r`, `d`).
+    pub fn as_str(self) -> &'static str {
+        match self {
+            SweepParam::Alpha => "alpha",
+            SweepParam::R => "r",
+            SweepParam::D => "d",
+        }
+    }
+
+    /// The range of the parameter.
+    pub fn limit(self) -> limits::Limit {
+        match self {
+            SweepParam::Alpha => limits::ALPHA,
+            SweepParam::R => limits::R,
+            SweepParam::D => limits::D,
+        }
+    }
+}
+
+/// Where every cold-started value begins.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct InitialSpec {
+    /// Initial phase in [0, 1).
+    pub t0: f64,
+    /// Initial velocity; None means f'(t0) + [`DEFAULT_HOP`](crate::map::DEFAULT_HOP).
+    pub v0: Option<f64>,
+    /// Initial height above the table.
+    pub z0: f64,
+    /// Start slightly off the (1, 1) fixed point instead (the paper's procedure):
+    /// phase t̂* + [`FIXED_POINT_OFFSET`], v = ½, where f'(t̂*) = ½(1 − r)/(1 + r) and
+    /// f''(t̂*) < 0 (the stable one if there is one). Falls back to t0, v0, z0 where
+    /// no (1, 1) solution exists.
+    pub near_fixed_point: bool,
+}
+
+impl Default for InitialSpec {
+    fn default() -> Self {
+        InitialSpec {
+            t0: 0.0,
+            v0: None,
+            z0: 0.0,
+            near_fixed_point: false,
+        }
+    }
+}
+
+/// Continuation of each value from its neighbour (see the module docs).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Warm {
+    /// Every value starts cold (the paper's procedure).
+    #[default]
+    Off,
+    /// Each value starts from the final state of the value below it.
+    Forward,
+    /// Each value starts from the final state of the value above it.
+    Backward,
+}
+
+impl Warm {
+    /// Name used in outputs: `cold`, `warm`, `warm-backward`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Warm::Off => "cold",
+            Warm::Forward => "warm",
+            Warm::Backward => "warm-backward",
+        }
+    }
+}
+
+/// The phase t̂* of the (1, 1) solution: f'(t̂*) = ½(1 − r)/(1 + r) with f''(t̂*) < 0,
+/// preferring one with κ_c < f''(t̂*) (stable). None if the table is too weak.
+pub fn fixed_point_phase(sys: &System) -> Option<f64> {
+    let candidates = fixed_points(sys, 1).ok()?;
+    let kc = sys.kappa_c();
+    candidates
+        .iter()
+        .find(|p| p.ddf < 0.0 && p.ddf > kc)
+        .or_else(|| candidates.iter().find(|p| p.ddf < 0.0))
+        .map(|p| p.phase)
+}
+
+/// Which interleaved part of a sweep to compute: chains c with c % count == index.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Shard {
+    /// 0-based part number, < count.
+    pub index: usize,
+    pub count: usize,
+}
+
+impl Shard {
+    /// The whole sweep.
+    pub const WHOLE: Shard = Shard { index: 0, count: 1 };
+}
+
+/// Everything that defines a sweep.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SweepSpec {
+    /// The table (for a D sweep, an F_D table; its D is replaced by each value).
+    pub table: Table,
+    pub param: SweepParam,
+    /// Window of the swept parameter, inclusive.
+    pub lo: f64,
+    pub hi: f64,
+    /// Number of values, evenly spaced: lo + (hi − lo) i / (steps − 1).
+    pub steps: usize,
+    /// α when it is not swept.
+    pub alpha: f64,
+    /// r when it is not swept.
+    pub r: f64,
+    pub initial: InitialSpec,
+    /// End of the transient T, in table periods: points are the last `keep` events
+    /// before t = T.
+    pub transient: u64,
+    /// Events recorded per value.
+    pub keep: usize,
+    pub solver: Solver,
+    /// Start each value from its neighbour's final state (see the module docs).
+    pub warm: Warm,
+    /// Early stop on detected cycles; None runs every value to T (brute force).
+    pub periodicity: Option<Periodicity>,
+    pub shard: Shard,
+}
+
+impl SweepSpec {
+    /// A sweep of `param` over `lo..=hi` at the paper's fidelity (T = 5·10⁶, keep 100),
+    /// cold start, exact solver, early stop with the default [`Periodicity`]; `alpha`
+    /// and `r` are used where they are not swept (the swept one's slot is set to `lo`,
+    /// so two specs of the same run compare equal).
+    pub fn new(
+        table: Table,
+        alpha: f64,
+        r: f64,
+        param: SweepParam,
+        lo: f64,
+        hi: f64,
+        steps: usize,
+    ) -> SweepSpec {
+        let (alpha, r) = match param {
+            SweepParam::Alpha => (lo, r),
+            SweepParam::R => (alpha, lo),
+            SweepParam::D => (alpha, r),
+        };
+        SweepSpec {
+            table,
+            param,
+            lo,
+            hi,
+            steps,
+            alpha,
+            r,
+            initial: InitialSpec::default(),
+            transient: PAPER_TRANSIENT,
+            keep: PAPER_KEEP,
+            solver: Solver::Exact,
+            warm: Warm::Off,
+            periodicity: Some(Periodicity::default()),
+            shard: Shard::WHOLE,
+        }
+    }
+
+    /// The value with index `i`.
+    pub fn value(&self, i: usize) -> f64 {
+        if self.steps <= 1 {
+            self.lo
+        } else if i + 1 == self.steps {
+            self.hi
+        } else {
+            self.lo + (self.hi - self.lo) * (i as f64) / ((self.steps - 1) as f64)
+        }
+    }
+
+    /// The system at a value of the swept parameter.
+    pub fn system_at(&self, value: f64) -> Result<System, EngineError> {
+        match self.param {
+            SweepParam::Alpha => System::new(self.table.clone(), value, self.r),
+            SweepParam::R => System::new(self.table.clone(), self.alpha, value),
+            SweepParam::D => System::new(Table::fd(value)?, self.alpha, self.r),
+        }
+    }
+
+    /// The cold initial state for a system of this sweep.
+    pub fn initial_state(&self, sys: &System) -> Result<State, EngineError> {
+        let i = self.initial;
+        if i.near_fixed_point {
+            if let Some(t) = fixed_point_phase(sys) {
+                let (_, phase) = crate::impact::normalize(0, t + FIXED_POINT_OFFSET);
+                if let Ok(s) = State::launch(sys, 0, phase, 0.5_f64.max(sys.df(phase)), 0.0) {
+                    return Ok(s);
+                }
+            }
+        }
+        State::start(sys, i.t0, i.v0, i.z0)
+    }
+
+    /// Value indices of this sweep's shard, in chains of consecutive indices (one value
+    /// per chain without continuation), each in the order it is run.
+    pub fn chains(&self) -> Vec<Vec<usize>> {
+        let len = if self.warm == Warm::Off {
+            1
+        } else {
+            WARM_CHAIN
+        };
+        (0..self.steps.div_ceil(len))
+            .filter(|c| c % self.shard.count == self.shard.index)
+            .map(|c| {
+                let chain = c * len..((c + 1) * len).min(self.steps);
+                if self.warm == Warm::Backward {
+                    chain.rev().collect()
+                } else {
+                    chain.collect()
+                }
+            })
+            .collect()
+    }
+
+    /// Values in this sweep's shard.
+    pub fn shard_values(&self) -> usize {
+        self.chains().iter().map(Vec::len).sum()
+    }
+
+    /// Check every setting; the message names the setting, the value and the range.
+    pub fn validate(&self) -> Result<(), EngineError> {
+        limits::STEPS.check(self.steps as f64)?;
+        if !(self.lo.is_finite() && self.hi.is_finite() && self.lo <= self.hi) {
+            return Err(EngineError::InvalidParameter {
+                name: self.param.as_str(),
+                value: format!(
+                    "{}..{}",
+                    crate::error::fmt_value(self.lo),
+                    crate::error::fmt_value(self.hi)
+                ),
+                range: "a window LO..HI with LO ≤ HI",
+            });
+        }
+        let limit = self.param.limit();
+        limit.check(self.lo)?;
+        limit.check(self.hi)?;
+        limits::TRANSIENT.check(self.transient as f64)?;
+        limits::KEEP.check(self.keep as f64)?;
+        if let Some(p) = self.periodicity {
+            limits::MAX_PERIOD.check(p.max_period as f64)?;
+            limits::TOLERANCE.check(p.tolerance)?;
+        }
+        if self.shard.count == 0 || self.shard.index >= self.shard.count {
+            return Err(EngineError::InvalidParameter {
+                name: "shard",
+                value: format!("{}/{}", self.shard.index + 1, self.shard.count),
+                range: "I/N with 1 ≤ I ≤ N",
+            });
+        }
+        match self.param {
+            SweepParam::Alpha => {
+                limits::R.check(self.r)?;
+            }
+            SweepParam::R => {
+                limits::ALPHA.check(self.alpha)?;
+            }
+            SweepParam::D => {
+                limits::ALPHA.check(self.alpha)?;
+                limits::R.check(self.r)?;
+                if self.table.d().is_none() {
+                    return Err(EngineError::Inconsistent(format!(
+                        "table = {}: sweeping D needs an fd:D table",
+                        self.table.name()
+                    )));
+                }
+            }
+        }
+        // f'(t0) is affine in α and in D and does not depend on r, so checking the
+        // window's ends checks every value's initial state.
+        for v in [self.lo, self.hi] {
+            let sys = self.system_at(v)?;
+            self.initial_state(&sys)?;
+        }
+        Ok(())
+    }
+}
+
+/// Start a sweep in the background (one pass, values spread over the window) on
+/// `executor` under `control`'s current generation.
+pub fn start(
+    spec: SweepSpec,
+    executor: &Executor,
+    control: &Control,
+) -> Result<SweepHandle, EngineError> {
+    Ok(executor.start(SweepJob::new(spec)?, control))
+}
+
+/// Run a whole sweep and return the final result of every value of its shard, in index
+/// order.
+pub fn collect(spec: &SweepSpec, executor: &Executor) -> Result<Vec<ValueResult>, EngineError> {
+    let mut out = Vec::new();
+    executor.run(SweepJob::new(spec.clone())?, &Control::new(), |b| {
+        if b.complete {
+            out.push(b.data)
+        }
+    });
+    out.sort_by_key(|b| b.index);
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn chains_of_a_sharded_warm_sweep_partition_the_window() {
+        let mut spec = SweepSpec::new(
+            Table::fd(0.1).unwrap(),
+            0.45,
+            0.8,
+            SweepParam::Alpha,
+            0.4,
+            0.5,
+            100,
+        );
+        spec.warm = Warm::Forward;
+        let mut all = Vec::new();
+        for i in 0..3 {
+            spec.shard = Shard { index: i, count: 3 };
+            for c in spec.chains() {
+                assert!(c.len() <= WARM_CHAIN);
+                assert_eq!(c[0] % WARM_CHAIN, 0);
+                all.extend(c);
+            }
+        }
+        all.sort();
+        assert_eq!(all, (0..100).collect::<Vec<_>>());
+        spec.warm = Warm::Backward;
+        spec.shard = Shard::WHOLE;
+        let c = spec.chains();
+        assert_eq!(c[0][0], WARM_CHAIN - 1);
+        assert!(c[0].windows(2).all(|w| w[0] == w[1] + 1));
+    }
+
+    #[test]
+    fn the_near_fixed_point_start_is_on_the_closed_form_branch() {
+        // fd:0.1, α = 0.45, r = 0.8: f'(t̂*) = ½(1 − r)/(1 + r) on the first piece,
+        // α(3D t² − (2 + D) t + ½) = 1/18, the smaller root.
+        let sys = System::new(Table::fd(0.1).unwrap(), 0.45, 0.8).unwrap();
+        let (a, d): (f64, f64) = (0.45, 0.1);
+        let (qa, qb, qc) = (3.0 * d * a, -(2.0 + d) * a, 0.5 * a - 1.0 / 18.0);
+        let t = (-qb - (qb * qb - 4.0 * qa * qc).sqrt()) / (2.0 * qa);
+        assert!((fixed_point_phase(&sys).unwrap() - t).abs() < 1e-14);
+    }
+}

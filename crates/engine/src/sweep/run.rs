@@ -1,0 +1,256 @@
+//! One parameter value's computation: iterate the impact map to the end of the
+//! transient (or to a detected cycle), keeping only the last `keep` events, and
+//! resumable across the progressive passes of a sweep.
+//!
+//! Recorded points are the last `keep` events whose time is before the end of the
+//! transient T (event period < T), exactly what a plain run of [`ImpactMap`] to T
+//! records. When the detector accepts a cycle at event n, the events after n are not
+//! computed but continued cyclically: the cycle's event i recurs every `periods` table
+//! periods, which fixes by integer arithmetic which of them are the last `keep` before
+//! T. Memory is the ring of `keep` events plus the detector's fixed history,
+//! independent of T.
+//!
+//! Release cycles. The state right after a release is fixed by the release phase alone
+//! (the ball leaves the table with the table's velocity), so when a release happens at
+//! bit for bit the phase of an earlier release, the orbit repeats exactly from there,
+//! however many events (a chattering sequence can be dozens) lie in between. The run
+//! then jumps forward by whole cycles (adding cycles × periods to the state's period,
+//! which the map only ever adds to) to a little before T and computes the last cycles
+//! for real, so the recorded points are exactly the full run's.
+
+use super::detect::{Cycle, Detector, Periodicity, Rec};
+use super::job::{Outcome, SweepPoint};
+use crate::map::{Event, EventKind, Halt, ImpactMap, State};
+use std::collections::VecDeque;
+
+use crate::jobs::CANCEL_EVERY;
+
+/// Why [`ValueRun::advance`] returned.
+#[derive(Debug)]
+pub enum Advance {
+    /// The run is finished: its outcome and recorded points.
+    Done(Outcome, Vec<SweepPoint>),
+    /// The checkpoint was reached before the end; the run can be resumed.
+    Checkpoint,
+    /// The cancellation test said stop.
+    Cancelled,
+}
+
+/// A resumable run of one parameter value.
+#[derive(Clone, Debug)]
+pub struct ValueRun {
+    map: ImpactMap,
+    keep: usize,
+    ring: VecDeque<Rec>,
+    detector: Option<Detector>,
+    /// Events computed so far (including one held back at a checkpoint).
+    events: u64,
+    /// An event computed past a checkpoint, not yet recorded.
+    pending: Option<Event>,
+    /// Period of the latest event recorded.
+    reached: i64,
+    periodicity: Option<Periodicity>,
+    /// The latest release: (phase bits, events recorded, period).
+    last_release: Option<(u64, u64, i64)>,
+    /// A release cycle jumped over: (events, periods, period of the jump).
+    jumped: Option<(usize, i64, i64)>,
+}
+
+impl ValueRun {
+    pub fn new(map: ImpactMap, keep: usize, periodicity: Option<Periodicity>) -> ValueRun {
+        ValueRun {
+            map,
+            keep: keep.max(1),
+            ring: VecDeque::with_capacity(keep.max(1)),
+            detector: periodicity.map(Detector::new),
+            events: 0,
+            pending: None,
+            reached: 0,
+            periodicity,
+            last_release: None,
+            jumped: None,
+        }
+    }
+
+    /// Events computed so far.
+    pub fn events(&self) -> u64 {
+        self.events
+    }
+
+    /// Period of the latest recorded event.
+    pub fn reached(&self) -> i64 {
+        self.reached
+    }
+
+    /// The map's current state (after the latest computed event).
+    pub fn state(&self) -> State {
+        *self.map.state()
+    }
+
+    /// The recorded points so far (the last `keep` events before the latest checkpoint).
+    pub fn points(&self) -> Vec<SweepPoint> {
+        self.ring.iter().map(point).collect()
+    }
+
+    /// Run until an event at or after period `checkpoint` (≤ `end`), or the end of the
+    /// transient `end`, a detected cycle, a halt, or `cancelled()` returning true.
+    pub fn advance(
+        &mut self,
+        checkpoint: i64,
+        end: i64,
+        cancelled: &mut dyn FnMut(u64) -> bool,
+    ) -> Advance {
+        let mut since_check = 0u64;
+        loop {
+            let e = match self.pending.take() {
+                Some(e) => e,
+                None => {
+                    since_check += 1;
+                    if since_check == CANCEL_EVERY {
+                        since_check = 0;
+                        if cancelled(CANCEL_EVERY) {
+                            return Advance::Cancelled;
+                        }
+                    }
+                    match self.map.step() {
+                        Ok(e) => {
+                            self.events += 1;
+                            e
+                        }
+                        Err(h) => {
+                            cancelled(since_check);
+                            return Advance::Done(halt_outcome(h), self.points());
+                        }
+                    }
+                }
+            };
+            if e.period >= end {
+                cancelled(since_check);
+                let outcome = match self.jumped {
+                    Some((events, periods, stopped_at)) => Outcome::Periodic {
+                        events,
+                        periods,
+                        stopped_at,
+                    },
+                    None => Outcome::Unsettled,
+                };
+                return Advance::Done(outcome, self.points());
+            }
+            if e.period >= checkpoint {
+                self.pending = Some(e);
+                cancelled(since_check);
+                return Advance::Checkpoint;
+            }
+            let rec = Rec {
+                period: e.period,
+                phase: e.phase,
+                v: e.v,
+                kind: e.kind,
+            };
+            self.reached = e.period;
+            if self.ring.len() == self.keep {
+                self.ring.pop_front();
+            }
+            self.ring.push_back(rec);
+            if e.kind == EventKind::Release && self.periodicity.is_some() && self.jumped.is_none() {
+                self.release_cycle(&e, end);
+            }
+            if let Some(det) = self.detector.as_mut() {
+                if let Some(cycle) = det.push(rec) {
+                    let points = self.continue_cycle(cycle, end);
+                    cancelled(since_check);
+                    return Advance::Done(
+                        Outcome::Periodic {
+                            events: cycle.distinct_events,
+                            periods: cycle.distinct_periods,
+                            stopped_at: e.period,
+                        },
+                        points,
+                    );
+                }
+            }
+        }
+    }
+
+    /// At a release: if an earlier release had the same phase, jump over whole cycles
+    /// to shortly before `end`.
+    fn release_cycle(&mut self, e: &Event, end: i64) {
+        let n = self.recorded();
+        let bits = e.phase.to_bits();
+        match self.last_release {
+            Some((b, n0, p0)) if b == bits && e.period > p0 => {
+                let events = (n - n0) as usize;
+                let periods = e.period - p0;
+                // Leave enough whole cycles before T to record `keep` events for real.
+                let margin = periods * ((self.keep / events.max(1)) as i64 + 2);
+                let cycles = (end - e.period - margin).div_euclid(periods);
+                self.jumped = Some((events, periods, e.period));
+                if cycles > 0 {
+                    let mut st = *self.map.state();
+                    st.period += cycles * periods;
+                    self.map.set_state(st);
+                    // Older history now lies a whole number of cycles back: the
+                    // detector's period arithmetic would be off, so restart it.
+                    self.detector = self.periodicity.map(Detector::new);
+                }
+            }
+            _ => self.last_release = Some((bits, n, e.period)),
+        }
+    }
+
+    /// The last `keep` events before `end`, continuing the detected cycle.
+    fn continue_cycle(&self, cycle: Cycle, end: i64) -> Vec<SweepPoint> {
+        let det = self.detector.as_ref().expect("a detector found the cycle");
+        let p = cycle.events as i64;
+        let k = cycle.periods;
+        // Events are numbered 1..=n; the cycle is events n − p + 1 ..= n.
+        let n = self.recorded() as i64;
+        let base = n - p + 1;
+        let cyc: Vec<Rec> = (0..p as usize).rev().map(|b| *det.back(b)).collect();
+        let last = cyc
+            .iter()
+            .enumerate()
+            .map(|(i, c)| {
+                let m = (end - 1 - c.period).div_euclid(k).max(0);
+                base + i as i64 + m * p
+            })
+            .max()
+            .unwrap_or(n);
+        let first = (last - self.keep as i64 + 1).max(1);
+        let ring_first = n - self.ring.len() as i64 + 1;
+        (first..=last)
+            .map(|j| {
+                if j <= n {
+                    point(&self.ring[(j - ring_first) as usize])
+                } else {
+                    point(&cyc[((j - base) % p) as usize])
+                }
+            })
+            .collect()
+    }
+
+    /// Number of events recorded (pushed to the ring).
+    fn recorded(&self) -> u64 {
+        self.events - u64::from(self.pending.is_some())
+    }
+}
+
+fn point(r: &Rec) -> SweepPoint {
+    SweepPoint {
+        phase: r.phase,
+        v: r.v,
+        kind: r.kind,
+    }
+}
+
+fn halt_outcome(h: Halt) -> Outcome {
+    match h {
+        Halt::Resting { period, phase } => Outcome::Resting { period, phase },
+        Halt::NoLanding { period, phase } => Outcome::NoLanding { period, phase },
+    }
+}
+
+/// Whether any point is a stick or a release.
+pub fn has_sticking(points: &[SweepPoint]) -> bool {
+    points.iter().any(|p| p.kind != EventKind::Impact)
+}

@@ -1,0 +1,385 @@
+//! The command line (clap derive): one struct per subcommand and the shared argument
+//! groups. Every number is parsed and checked by the rule for it in
+//! [`super::rules`]; the rest of [`crate::config`] turns these raw arguments into
+//! engine values.
+
+use super::display::ColorChoice;
+use super::presets::Param;
+use super::rules;
+use super::table_spec::TableSpec;
+use crate::output::hitgrid::Marker;
+use crate::output::Format;
+use bouncemap_engine::sweep::Shard;
+use bouncemap_engine::Solver;
+use clap::{Args, Parser, Subcommand, ValueEnum};
+
+/// Explore the bouncing ball system with an exact impact map.
+///
+/// Without a subcommand it opens the terminal application.
+#[derive(Parser, Debug)]
+#[command(name = "bouncemap", version, about, long_about = None)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Option<Command>,
+    #[command(flatten)]
+    pub tui: TuiArgs,
+}
+
+/// Options of the terminal application (used without a subcommand).
+#[derive(Args, Debug, Clone, Default)]
+pub struct TuiArgs {
+    /// Start with this table: sine, quad, cubic, fd:D or PATH.toml.
+    #[arg(long = "table", value_name = "TABLE", value_parser = TableSpec::parse)]
+    pub tui_table: Option<TableSpec>,
+    /// Start with this amplitude α; valid (0, 1000].
+    #[arg(long = "alpha", value_parser = rules::ALPHA.real(), value_name = "A")]
+    pub tui_alpha: Option<f64>,
+    /// Start with this restitution r; valid (0, 1).
+    #[arg(long = "r", value_parser = rules::R.real(), value_name = "R")]
+    pub tui_r: Option<f64>,
+    /// Frame cap while interacting, frames per second; valid 1..=60 [default: 15].
+    #[arg(long, value_parser = rules::FPS.whole::<u32>(), value_name = "N")]
+    pub fps: Option<u32>,
+    /// Colours: auto (NO_COLOR honoured, else 256), never, 16, 256, truecolor.
+    #[arg(long, value_parser = ColorChoice::parse, value_name = "MODE")]
+    pub color: Option<ColorChoice>,
+    /// Plot glyphs: braille, halfblock or dot (for fonts without braille).
+    #[arg(long, value_parser = Marker::parse, value_name = "MARKER")]
+    pub marker: Option<Marker>,
+    /// Capture the mouse: click on the diagram sets α, drag zooms.
+    #[arg(long)]
+    pub mouse: bool,
+    /// Config file (TOML: keys and defaults); default ~/.config/bouncemap/config.toml.
+    #[arg(long, value_name = "PATH")]
+    pub config: Option<std::path::PathBuf>,
+}
+
+/// The headless subcommands.
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Iterate the impact map and print one record per event.
+    #[command(allow_negative_numbers = true)]
+    Orbit(OrbitArgs),
+    /// The (1, k) solutions: classification, eigenvalues, birth α and α_PD.
+    Fixed(FixedArgs),
+    /// The (2, 2k) solution near the (1, k) one, with the approximation beside it.
+    TwoCycle(TwoCycleArgs),
+    /// Power laws of the (2, 2k) branch near period doubling (the paper's Fig. 4, 5).
+    Scaling(ScalingArgs),
+    /// Sweep one parameter over a window: a bifurcation diagram (csv, json, braille).
+    Sweep(SweepArgs),
+    /// Join `sweep --shard I/N` output files into one.
+    Merge(MergeArgs),
+    /// Measure solver throughput (exact vs grid) and sweep timings on this machine.
+    Bench(BenchArgs),
+}
+
+/// The physical system: table shape, amplitude and restitution.
+#[derive(Args, Debug, Clone)]
+pub struct SystemArgs {
+    /// Table shape: sine, quad (= fd:0), cubic (= fd:1), fd:D with D in [0, 1], or PATH.toml.
+    #[arg(long, default_value = rules::DEFAULT_TABLE, value_parser = TableSpec::parse, value_name = "TABLE")]
+    pub table: TableSpec,
+    /// Amplitude α of the table, f(t) = α F(t); valid (0, 1000].
+    #[arg(long, default_value_t = rules::ALPHA.default, value_parser = rules::ALPHA.real(), value_name = "A")]
+    pub alpha: f64,
+    /// Coefficient of restitution r; valid (0, 1).
+    #[arg(long, default_value_t = rules::R.default, value_parser = rules::R.real(), value_name = "R")]
+    pub r: f64,
+}
+
+/// Next-impact solver selection.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, Default)]
+pub enum SolverArg {
+    /// Exact root isolation (no time grid).
+    #[default]
+    Exact,
+    /// The paper's fixed 10⁻² grid with bisection to 10⁻⁹, for comparison.
+    Grid,
+}
+
+impl From<SolverArg> for Solver {
+    fn from(s: SolverArg) -> Solver {
+        match s {
+            SolverArg::Exact => Solver::Exact,
+            SolverArg::Grid => Solver::Grid,
+        }
+    }
+}
+
+/// Where the ball starts.
+#[derive(Args, Debug, Clone)]
+pub struct InitialArgs {
+    /// Initial phase t̂0 in [0, 1).
+    #[arg(long, default_value_t = rules::T0.default, value_parser = rules::T0.real(), value_name = "PHASE")]
+    pub t0: f64,
+    /// Initial velocity v0 (default: f'(t0) + 0.5, a short hop leaving the table).
+    #[arg(long, value_name = "V", allow_hyphen_values = true)]
+    pub v0: Option<f64>,
+    /// Initial height above the table, in [0, 1000].
+    #[arg(long, default_value_t = rules::Z0.default, value_parser = rules::Z0.real(), value_name = "Z")]
+    pub z0: f64,
+}
+
+/// `bouncemap orbit`.
+#[derive(Args, Debug, Clone)]
+pub struct OrbitArgs {
+    #[command(flatten)]
+    pub system: SystemArgs,
+    #[command(flatten)]
+    pub initial: InitialArgs,
+    /// Number of events to print.
+    #[arg(long, default_value_t = rules::BOUNCES.default as u64, value_parser = rules::BOUNCES.whole::<u64>(), value_name = "N")]
+    pub bounces: u64,
+    /// Number of events to compute first without printing them.
+    #[arg(long, default_value_t = rules::SKIP.default as u64, value_parser = rules::SKIP.whole::<u64>(), value_name = "M")]
+    pub skip: u64,
+    /// Next-impact solver.
+    #[arg(long, value_enum, default_value_t = SolverArg::Exact)]
+    pub solver: SolverArg,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    pub format: Format,
+}
+
+/// `bouncemap fixed`.
+#[derive(Args, Debug, Clone)]
+pub struct FixedArgs {
+    #[command(flatten)]
+    pub system: SystemArgs,
+    /// Periods per bounce of the (1, k) solution; valid 1 to 100.
+    #[arg(long, default_value_t = rules::K.default as u32, value_parser = rules::K.whole::<u32>(), value_name = "K")]
+    pub k: u32,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    pub format: Format,
+}
+
+/// `bouncemap two-cycle`.
+#[derive(Args, Debug, Clone)]
+pub struct TwoCycleArgs {
+    #[command(flatten)]
+    pub system: SystemArgs,
+    /// k of the (1, k) solution the (2, 2k) one surrounds; valid 1 to 100.
+    #[arg(long, default_value_t = rules::K.default as u32, value_parser = rules::K.whole::<u32>(), value_name = "K")]
+    pub k: u32,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    pub format: Format,
+}
+
+/// `bouncemap scaling`.
+#[derive(Args, Debug, Clone)]
+pub struct ScalingArgs {
+    /// Values of D for F_D: a list (0.001,0.01,0.1) or a log-spaced range LO..HI[:N]
+    /// (default N = 13); each in (0, 1].
+    #[arg(long, default_value = "0.001,0.01,0.1", value_parser = parse_d_list, value_name = "D")]
+    pub d: DList,
+    /// Coefficient of restitution r; valid (0, 1).
+    #[arg(long, default_value_t = rules::R.default, value_parser = rules::R.real(), value_name = "R")]
+    pub r: f64,
+    /// k of the (1, k) solution; valid 1 to 100.
+    #[arg(long, default_value_t = rules::K.default as u32, value_parser = rules::K.whole::<u32>(), value_name = "K")]
+    pub k: u32,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    pub format: Format,
+}
+
+/// The D values of `scaling --d`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DList(pub Vec<f64>);
+
+/// `--d`: D1,D2,... or LO..HI[:N], every D in (0, 1].
+pub fn parse_d_list(s: &str) -> Result<DList, String> {
+    let one = |t: &str| rules::SCALING_D.parse(t).map_err(|e| format!("D: {e}"));
+    let s = s.trim();
+    if let Some((lo, rest)) = s.split_once("..") {
+        let (hi, n) = match rest.split_once(':') {
+            Some((h, n)) => (
+                h,
+                rules::D_POINTS
+                    .parse(n)
+                    .map_err(|e| format!("point count: {e}"))? as usize,
+            ),
+            None => (rest, rules::D_POINTS.default as usize),
+        };
+        let (lo, hi) = (one(lo)?, one(hi)?);
+        if lo >= hi {
+            return Err(format!(
+                "range {lo}..{hi} is empty: valid LO..HI with LO < HI"
+            ));
+        }
+        return Ok(DList(bouncemap_engine::orbits::scaling::log_spaced(
+            lo, hi, n,
+        )));
+    }
+    let v: Vec<f64> = s
+        .split(',')
+        .map(|t| one(t.trim()))
+        .collect::<Result<_, _>>()?;
+    Ok(DList(v))
+}
+
+/// Output format of `sweep`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, Default)]
+pub enum SweepFormat {
+    /// One row per recorded point.
+    #[default]
+    Csv,
+    /// One object per value with its points.
+    Json,
+    /// The diagram as braille text.
+    Braille,
+}
+
+/// `bouncemap sweep`.
+#[derive(Args, Debug, Clone)]
+#[command(allow_negative_numbers = true)]
+pub struct SweepArgs {
+    /// Load settings from a preset (fig3a … fig3f, fig4a … fig4c); other flags override them.
+    #[arg(long, value_name = "NAME")]
+    pub preset: Option<String>,
+    /// Table shape: sine, quad, cubic, fd:D or PATH.toml [default: fd:0.1].
+    #[arg(long, value_name = "TABLE", value_parser = TableSpec::parse)]
+    pub table: Option<TableSpec>,
+    /// Amplitude α: a number, or the swept window LO..HI [default: 0.45].
+    #[arg(long, value_name = "A|LO..HI", allow_hyphen_values = true)]
+    pub alpha: Option<String>,
+    /// Restitution r: a number, or the swept window LO..HI [default: 0.8].
+    #[arg(long, value_name = "R|LO..HI", allow_hyphen_values = true)]
+    pub r: Option<String>,
+    /// D of the fd:D table: a number, or the swept window LO..HI.
+    #[arg(long, value_name = "D|LO..HI", allow_hyphen_values = true)]
+    pub d: Option<String>,
+    /// The swept parameter [default: the one given as a window].
+    #[arg(long, value_enum)]
+    pub param: Option<Param>,
+    /// Number of parameter values [default: 1000].
+    #[arg(long, value_parser = rules::STEPS.whole::<usize>(), value_name = "N")]
+    pub steps: Option<usize>,
+    /// End of the transient T in table periods; points are the last events before T
+    /// [default: 5000000, the paper's].
+    #[arg(long, value_parser = rules::TRANSIENT.whole::<u64>(), value_name = "PERIODS")]
+    pub transient: Option<u64>,
+    /// Events recorded per value [default: 100].
+    #[arg(long, value_parser = rules::KEEP.whole::<usize>(), value_name = "M")]
+    pub keep: Option<usize>,
+    #[command(flatten)]
+    pub initial: InitialArgs,
+    /// Next-impact solver [default: exact].
+    #[arg(long, value_enum)]
+    pub solver: Option<SolverArg>,
+    /// Warm start: each value starts from its neighbour's final state.
+    #[arg(long)]
+    pub warm: bool,
+    /// Start each value slightly off its (1,1) fixed point (phase t* + 0.001, v = 1/2),
+    /// as the paper does, instead of --t0/--v0/--z0 (presets do this).
+    #[arg(long)]
+    pub near_fixed_point: bool,
+    /// Run every value to the full transient (no periodicity early stop).
+    #[arg(long)]
+    pub no_early_stop: bool,
+    /// Longest cycle (in events) the early stop detects.
+    #[arg(long, default_value_t = rules::MAX_PERIOD.default as usize, value_parser = rules::MAX_PERIOD.whole::<usize>(), value_name = "P")]
+    pub max_period: usize,
+    /// Agreement in phase and velocity promised by the early stop.
+    #[arg(long, default_value_t = rules::TOLERANCE.default, value_parser = rules::TOLERANCE.real(), value_name = "TOL")]
+    pub tolerance: f64,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = SweepFormat::Csv)]
+    pub format: SweepFormat,
+    /// Write to FILE instead of stdout.
+    #[arg(long, value_name = "FILE")]
+    pub out: Option<String>,
+    /// Compute only the I-th of N interleaved parts (1 ≤ I ≤ N); join them with `merge`.
+    #[arg(long, value_parser = parse_shard, value_name = "I/N")]
+    pub shard: Option<Shard>,
+    /// Braille width in characters [default: the terminal's].
+    #[arg(long, value_parser = rules::CELLS.whole::<u16>(), value_name = "COLS")]
+    pub width: Option<u16>,
+    /// Braille height in lines [default: the terminal's].
+    #[arg(long, value_parser = rules::CELLS.whole::<u16>(), value_name = "LINES")]
+    pub height: Option<u16>,
+    /// Worker threads [default: all cores].
+    #[arg(long, value_parser = rules::THREADS.whole::<usize>(), value_name = "N")]
+    pub threads: Option<usize>,
+}
+
+/// `I/N` with 1 ≤ I ≤ N.
+pub fn parse_shard(s: &str) -> Result<Shard, String> {
+    let bad = || format!("'{s}' is not a shard: valid I/N with 1 ≤ I ≤ N, e.g. 2/8");
+    let (i, n) = s.trim().split_once('/').ok_or_else(bad)?;
+    let i: usize = i.trim().parse().map_err(|_| bad())?;
+    let n: usize = n.trim().parse().map_err(|_| bad())?;
+    if n == 0 || i == 0 || i > n {
+        return Err(bad());
+    }
+    Ok(Shard {
+        index: i - 1,
+        count: n,
+    })
+}
+
+/// `bouncemap merge`.
+#[derive(Args, Debug, Clone)]
+pub struct MergeArgs {
+    /// Part files written by `sweep --shard I/N --out FILE` (all csv or all json).
+    #[arg(required = true, value_name = "FILE")]
+    pub files: Vec<String>,
+    /// Write to FILE instead of stdout.
+    #[arg(long, value_name = "FILE")]
+    pub out: Option<String>,
+}
+
+/// Output of `bench`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, Default)]
+pub enum BenchFormat {
+    #[default]
+    Text,
+    Json,
+}
+
+/// `bouncemap bench`.
+#[derive(Args, Debug, Clone)]
+pub struct BenchArgs {
+    /// A few seconds instead of a couple of minutes (shorter runs, noisier figures).
+    #[arg(long)]
+    pub quick: bool,
+    /// Also time this preset (fig3a … fig3f) at its full paper fidelity (can be long).
+    #[arg(long, value_name = "PRESET")]
+    pub panel: Option<String>,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = BenchFormat::Text)]
+    pub format: BenchFormat,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn shard_parsing_is_one_based() {
+        assert_eq!(parse_shard("1/4"), Ok(Shard { index: 0, count: 4 }));
+        assert_eq!(parse_shard("4/4"), Ok(Shard { index: 3, count: 4 }));
+        assert!(parse_shard("0/4").is_err());
+        assert!(parse_shard("5/4").is_err());
+        assert!(parse_shard("x").is_err());
+    }
+
+    #[test]
+    fn d_lists_and_ranges() {
+        assert_eq!(parse_d_list("0.1,0.5"), Ok(DList(vec![0.1, 0.5])));
+        let r = parse_d_list("0.001..0.1:3").unwrap().0;
+        assert_eq!(r.len(), 3);
+        assert!((r[1] - 0.01).abs() < 1e-15);
+        assert!(parse_d_list("0").unwrap_err().contains("(0, 1]"));
+        assert!(parse_d_list("0.1..0.01").unwrap_err().contains("empty"));
+    }
+
+    #[test]
+    fn the_command_line_is_well_formed() {
+        use clap::CommandFactory;
+        Cli::command().debug_assert();
+    }
+}

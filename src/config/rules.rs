@@ -1,0 +1,230 @@
+//! The one table of parameter rules: for every number a user can set, its flag and
+//! config key, its label in the terminal application, its valid range (from the
+//! engine's [`limits`]) and its default. The clap value parsers, the config file, the
+//! presets and the terminal application's parameter editor all parse and check through
+//! these, so a range or a default is stated once and every refusal reads the same.
+//!
+//! Refusals from [`Rule::parse`] name the value and the range but not the setting:
+//! each front end puts its own name in front (`--alpha`, `defaults.alpha`, `α`).
+
+use bouncemap_engine::limits::{self, Limit};
+
+/// One settable number.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Rule {
+    /// Flag and config-file key.
+    pub key: &'static str,
+    /// Label in the terminal application.
+    pub label: &'static str,
+    /// Accepted values.
+    pub limit: Limit,
+    /// The default where the setting is not given.
+    pub default: f64,
+}
+
+impl Rule {
+    /// Parse typed text: a number (whole numbers may be written as 5e6), then check it.
+    pub fn parse(&self, text: &str) -> Result<f64, String> {
+        let t = text.trim();
+        let x: f64 = t.parse().map_err(|_| {
+            let what = if self.limit.whole {
+                "a whole number"
+            } else {
+                "a number"
+            };
+            format!("'{t}' is not {what}: valid {}", self.limit.text)
+        })?;
+        self.check(x)
+    }
+
+    /// Check a number against the range.
+    pub fn check(&self, x: f64) -> Result<f64, String> {
+        if self.limit.contains(x) {
+            Ok(x)
+        } else {
+            Err(format!(
+                "{} is out of range: valid {}",
+                bouncemap_engine::error::fmt_value(x),
+                self.limit.text
+            ))
+        }
+    }
+
+    /// A clap value parser for an f64 setting.
+    pub fn real(&'static self) -> impl Fn(&str) -> Result<f64, String> + Clone + Send + Sync {
+        move |s| self.parse(s)
+    }
+
+    /// A clap value parser for a whole-number setting.
+    pub fn whole<T: TryFrom<u64>>(
+        &'static self,
+    ) -> impl Fn(&str) -> Result<T, String> + Clone + Send + Sync {
+        move |s| {
+            let x = self.parse(s)?;
+            T::try_from(x as u64)
+                .map_err(|_| format!("{s} is out of range: valid {}", self.limit.text))
+        }
+    }
+}
+
+const fn rule(key: &'static str, label: &'static str, limit: Limit, default: f64) -> Rule {
+    Rule {
+        key,
+        label,
+        limit,
+        default,
+    }
+}
+
+/// The table when none is given.
+pub const DEFAULT_TABLE: &str = "fd:0.1";
+
+/// Amplitude α.
+pub const ALPHA: Rule = rule("alpha", "α", limits::ALPHA, 0.45);
+/// Restitution r.
+pub const R: Rule = rule("r", "r", limits::R, 0.8);
+/// D of F_D (the default table is fd:0.1).
+pub const D: Rule = rule("d", "D", limits::D, 0.1);
+/// k of the (1, k) solution.
+pub const K: Rule = rule("k", "k", limits::K, 1.0);
+/// Initial phase t̂0.
+pub const T0: Rule = rule("t0", "t̂0", limits::PHASE, 0.0);
+/// Initial height above the table.
+pub const Z0: Rule = rule("z0", "z0", limits::HEIGHT, 0.0);
+/// Values in a sweep (the paper's 1000).
+pub const STEPS: Rule = rule("steps", "values", limits::STEPS, 1000.0);
+/// End of a sweep's transient (the paper's T = 5·10⁶).
+pub const TRANSIENT: Rule = rule("transient", "transient", limits::TRANSIENT, 5e6);
+/// Events recorded per value (the paper's 100).
+pub const KEEP: Rule = rule("keep", "keep", limits::KEEP, 100.0);
+/// Longest cycle the early stop detects.
+pub const MAX_PERIOD: Rule = rule("max-period", "max period", limits::MAX_PERIOD, 64.0);
+/// Agreement promised by the early stop.
+pub const TOLERANCE: Rule = rule("tolerance", "tolerance", limits::TOLERANCE, 1e-11);
+/// Events `orbit` prints.
+pub const BOUNCES: Rule = rule("bounces", "bounces", COUNT, 1000.0);
+/// Events `orbit` computes first without printing.
+pub const SKIP: Rule = rule("skip", "skip", COUNT, 0.0);
+/// Worker threads.
+pub const THREADS: Rule = rule(
+    "threads",
+    "threads",
+    Limit {
+        name: "threads",
+        lo: 1.0,
+        hi: 4096.0,
+        lo_open: false,
+        hi_open: false,
+        whole: true,
+        text: "a whole number in [1, 4096]",
+    },
+    1.0,
+);
+/// Frame cap of the terminal application.
+pub const FPS: Rule = rule(
+    "fps",
+    "fps",
+    Limit {
+        name: "fps",
+        lo: 1.0,
+        hi: 60.0,
+        lo_open: false,
+        hi_open: false,
+        whole: true,
+        text: "a whole number in 1..=60",
+    },
+    15.0,
+);
+/// Width or height of a text picture, in characters.
+pub const CELLS: Rule = rule(
+    "cells",
+    "cells",
+    Limit {
+        name: "cells",
+        lo: 10.0,
+        hi: 2000.0,
+        lo_open: false,
+        hi_open: false,
+        whole: true,
+        text: "a whole number of characters in [10, 2000]",
+    },
+    100.0,
+);
+/// D of `scaling` (the (2, 2k) branch needs f''' ≠ 0, so D > 0).
+pub const SCALING_D: Rule = rule(
+    "d",
+    "D",
+    Limit {
+        name: "D",
+        lo: 0.0,
+        hi: 1.0,
+        lo_open: true,
+        hi_open: false,
+        whole: false,
+        text: "(0, 1]",
+    },
+    0.1,
+);
+/// Points of a log-spaced D range.
+pub const D_POINTS: Rule = rule(
+    "points",
+    "points",
+    Limit {
+        name: "points",
+        lo: 2.0,
+        hi: 1000.0,
+        lo_open: false,
+        hi_open: false,
+        whole: true,
+        text: "a whole number in [2, 1000]",
+    },
+    13.0,
+);
+
+const COUNT: Limit = Limit {
+    name: "count",
+    lo: 0.0,
+    hi: 1e15,
+    lo_open: false,
+    hi_open: false,
+    whole: true,
+    text: "a whole number ≥ 0 (at most 1e15)",
+};
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_are_parsed_and_checked_against_the_engine_ranges() {
+        assert_eq!(ALPHA.parse(" 0.5 "), Ok(0.5));
+        assert_eq!(
+            ALPHA.parse("2000"),
+            Err("2000 is out of range: valid (0, 1000]".into())
+        );
+        assert_eq!(
+            ALPHA.parse("1e300"),
+            Err("1e300 is out of range: valid (0, 1000]".into())
+        );
+        assert!(ALPHA
+            .parse("abc")
+            .unwrap_err()
+            .starts_with("'abc' is not a number"));
+        // Whole numbers may use exponent notation; fractions are refused.
+        assert_eq!(TRANSIENT.parse("1e7"), Ok(1e7));
+        assert!(TRANSIENT.parse("2.5").is_err());
+        assert!(K.parse("0").is_err() && K.parse("100").is_ok() && K.parse("101").is_err());
+        let whole = TRANSIENT.whole::<u64>();
+        assert_eq!(whole("5e6"), Ok(5_000_000));
+    }
+
+    #[test]
+    fn defaults_lie_in_their_ranges() {
+        for r in [
+            ALPHA, R, D, K, T0, Z0, STEPS, TRANSIENT, KEEP, MAX_PERIOD, TOLERANCE, BOUNCES, SKIP,
+            THREADS, FPS, CELLS, SCALING_D, D_POINTS,
+        ] {
+            assert!(r.limit.contains(r.default), "{}", r.key);
+        }
+    }
+}

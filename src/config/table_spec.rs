@@ -1,0 +1,187 @@
+//! `--table`: the one parser of table names (`sine | quad | cubic | fd:D | PATH.toml`)
+//! and of table files, for the command line, the config file, presets and the terminal
+//! application alike.
+//!
+//! A table file:
+//! ```toml
+//! name = "my table"                # optional; shown in outputs (control characters escaped)
+//! [[piece]]
+//! start = 0.0                      # phase where the piece starts; the first must be 0
+//! coeffs = [0.0, 0.5, -1.0]        # ascending powers of the phase t̂
+//! [[piece]]
+//! start = 0.5
+//! coeffs = [0.5, -1.5, 1.0]
+//! ```
+
+use super::files::{read_text, SMALL_FILE};
+use super::InputError;
+use bouncemap_engine::{limits, Table};
+use serde::Deserialize;
+use std::fmt;
+use std::path::Path;
+
+/// What a `--table` argument names, before any file is read.
+#[derive(Clone, Debug, PartialEq)]
+pub enum TableSpec {
+    /// F = sin 2πt.
+    Sine,
+    /// The paper's F_D (quad = fd:0, cubic = fd:1).
+    Fd(f64),
+    /// A table file.
+    File(String),
+}
+
+/// The valid table names, as refusals state them.
+pub const TABLE_RANGE: &str = "sine, quad, cubic, fd:D with D in [0, 1], or a file PATH.toml";
+
+impl TableSpec {
+    /// Parse `sine | quad | cubic | fd:D | PATH.toml`.
+    pub fn parse(text: &str) -> Result<TableSpec, String> {
+        let s = text.trim();
+        match s {
+            "sine" => return Ok(TableSpec::Sine),
+            "quad" => return Ok(TableSpec::Fd(0.0)),
+            "cubic" => return Ok(TableSpec::Fd(1.0)),
+            _ => {}
+        }
+        if let Some(d) = s.strip_prefix("fd:") {
+            let x: f64 = d.trim().parse().map_err(|_| {
+                format!(
+                    "'{s}': D is not a number: valid fd:D with D in {}",
+                    limits::D.text
+                )
+            })?;
+            limits::D.check(x).map_err(|e| e.to_string())?;
+            return Ok(TableSpec::Fd(x));
+        }
+        if s.ends_with(".toml") {
+            return Ok(TableSpec::File(s.to_string()));
+        }
+        Err(format!(
+            "unknown table '{}': valid {TABLE_RANGE}",
+            escape(s)
+        ))
+    }
+
+    /// The table, reading the file if one is named.
+    pub fn load(&self) -> Result<Table, InputError> {
+        match self {
+            TableSpec::Sine => Ok(Table::sine()),
+            TableSpec::Fd(d) => Ok(Table::fd(*d)?),
+            TableSpec::File(path) => {
+                let text = read_text(Path::new(path), "table file", SMALL_FILE)
+                    .map_err(|e| InputError(format!("--table: {e}")))?;
+                parse_table_file(&text, path).map_err(|e| InputError(format!("--table: {e}")))
+            }
+        }
+    }
+
+    /// D, if this is an F_D table.
+    pub fn d(&self) -> Option<f64> {
+        match self {
+            TableSpec::Fd(d) => Some(*d),
+            _ => None,
+        }
+    }
+}
+
+impl fmt::Display for TableSpec {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            TableSpec::Sine => f.write_str("sine"),
+            TableSpec::Fd(d) => write!(f, "fd:{}", bouncemap_engine::error::fmt_value(*d)),
+            TableSpec::File(p) => f.write_str(p),
+        }
+    }
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TableFile {
+    name: Option<String>,
+    #[allow(dead_code)]
+    description: Option<String>,
+    piece: Vec<PieceFile>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct PieceFile {
+    start: f64,
+    coeffs: Vec<f64>,
+}
+
+/// A table from the text of a table file; `origin` names the file in refusals and is
+/// the table's name unless the file gives one.
+pub fn parse_table_file(text: &str, origin: &str) -> Result<Table, String> {
+    let bad = |msg: String| format!("table file {origin}: {msg}");
+    let file: TableFile =
+        toml::from_str(text).map_err(|e| bad(e.message().replace('\n', " ").trim().to_string()))?;
+    let pieces: Vec<(f64, Vec<f64>)> = file
+        .piece
+        .into_iter()
+        .map(|p| (p.start, p.coeffs))
+        .collect();
+    let name = escape(file.name.as_deref().unwrap_or(origin));
+    Table::piecewise(&name, &pieces).map_err(|e| bad(e.to_string()))
+}
+
+/// `text` with control characters (escape codes, newlines) written as escapes, so a
+/// name from a file can never disturb a terminal or break a line of output.
+pub fn escape(text: &str) -> String {
+    text.chars()
+        .flat_map(|c| {
+            let esc: Vec<char> = if c.is_control() {
+                c.escape_default().collect()
+            } else {
+                vec![c]
+            };
+            esc
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_parse_to_one_spec_each() {
+        assert_eq!(TableSpec::parse("sine"), Ok(TableSpec::Sine));
+        assert_eq!(TableSpec::parse("quad"), Ok(TableSpec::Fd(0.0)));
+        assert_eq!(TableSpec::parse(" cubic "), Ok(TableSpec::Fd(1.0)));
+        assert_eq!(TableSpec::parse("fd:0.25"), Ok(TableSpec::Fd(0.25)));
+        assert!(TableSpec::parse("fd:1.5").unwrap_err().contains("[0, 1]"));
+        assert!(TableSpec::parse("fd:x")
+            .unwrap_err()
+            .contains("not a number"));
+        assert!(TableSpec::parse("square")
+            .unwrap_err()
+            .contains("valid sine"));
+        assert_eq!(
+            TableSpec::parse("a/b.toml"),
+            Ok(TableSpec::File("a/b.toml".into()))
+        );
+        assert_eq!(TableSpec::Fd(0.1).to_string(), "fd:0.1");
+    }
+
+    #[test]
+    fn a_file_name_with_escape_codes_is_escaped() {
+        let t = parse_table_file(
+            "name = \"x\\u001b[2Jy\\nz\"\n[[piece]]\nstart = 0.0\ncoeffs = [0.0]\n",
+            "f.toml",
+        )
+        .unwrap();
+        assert_eq!(t.name(), "x\\u{1b}[2Jy\\nz");
+    }
+
+    #[test]
+    fn a_kink_is_refused_naming_the_file_and_the_breakpoint() {
+        let text = "[[piece]]\nstart = 0.0\ncoeffs = [0.0, 1.0]\n[[piece]]\nstart = 0.5\ncoeffs = [1.0, -1.0]\n";
+        let e = parse_table_file(text, "kink.toml").unwrap_err();
+        assert!(
+            e.starts_with("table file kink.toml: not C¹ at breakpoint t̂ = 0.5"),
+            "{e}"
+        );
+    }
+}

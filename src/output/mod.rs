@@ -1,0 +1,28 @@
+//! Everything the headless commands and the terminal application's exports write.
+//!
+//! * [`records`]: one `Serialize` record type per output, shared by the commands and
+//!   the terminal application's export, written through the `csv` crate (quoting done
+//!   right) and `serde_json`. Numbers are the shortest strings that read back to the
+//!   same f64 (exponent form where shorter).
+//! * [`hitgrid`]: the one hit-count grid behind every text picture; [`diagram`]: its
+//!   text form with axes and labels (`sweep --format braille`, the diagram export).
+//! * [`text`]: number formatting for aligned text columns.
+
+pub mod diagram;
+pub mod hitgrid;
+pub mod records;
+pub mod text;
+
+use clap::ValueEnum;
+
+/// Output format of a headless command.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, Default)]
+pub enum Format {
+    /// Aligned columns for people.
+    #[default]
+    Text,
+    /// Comma-separated values with a header row.
+    Csv,
+    /// JSON.
+    Json,
+}

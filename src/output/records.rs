@@ -1,0 +1,525 @@
+//! One record type per output, serialized to csv by the `csv` crate and to json by
+//! `serde_json`: a field is named and formatted in one place. Floats are written in the
+//! shortest form that reads back to the same f64 (NaN, which the engine never emits,
+//! would be `null` in json). Records that `merge` reads back also derive `Deserialize`,
+//! and their enums refuse anything but the documented names.
+
+use bouncemap_engine::orbits::{Complex, FixedPoint, StabilityWindow};
+use bouncemap_engine::sweep::{Outcome, SweepParam, SweepPoint, SweepSpec, ValueResult, Warm};
+use bouncemap_engine::{Event, EventKind, Solver};
+use serde::{Deserialize, Serialize};
+use std::io::Write;
+
+/// A csv writer over `out` that writes its header itself (so an empty table still has
+/// one): `header` then rows serialized in field order.
+pub fn csv_writer<W: Write>(out: W, header: &[&str]) -> csv::Result<csv::Writer<W>> {
+    let mut w = csv::WriterBuilder::new()
+        .has_headers(false)
+        .from_writer(out);
+    w.write_record(header)?;
+    Ok(w)
+}
+
+// ------------------------------------------------------------------ shared
+
+/// An event's kind.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Kind {
+    Impact,
+    Stick,
+    Release,
+}
+
+impl From<EventKind> for Kind {
+    fn from(k: EventKind) -> Kind {
+        match k {
+            EventKind::Impact => Kind::Impact,
+            EventKind::Stick => Kind::Stick,
+            EventKind::Release => Kind::Release,
+        }
+    }
+}
+
+/// A complex number (eigenvalue, multiplier).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct ComplexRecord {
+    pub re: f64,
+    pub im: f64,
+}
+
+impl From<Complex> for ComplexRecord {
+    fn from(z: Complex) -> Self {
+        ComplexRecord { re: z.re, im: z.im }
+    }
+}
+
+/// The solver's name in outputs.
+pub fn solver_name(s: Solver) -> &'static str {
+    match s {
+        Solver::Exact => "exact",
+        Solver::Grid => "grid",
+    }
+}
+
+// ------------------------------------------------------------------ orbit
+
+/// One event of `orbit` (a csv row, and an element of the json `events`).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct EventRecord {
+    pub index: u64,
+    pub period: i64,
+    pub phase: f64,
+    pub v: f64,
+    pub vrel: f64,
+    pub kind: Kind,
+}
+
+impl EventRecord {
+    pub const HEADER: [&'static str; 6] = ["index", "period", "phase", "v", "vrel", "kind"];
+
+    pub fn new(index: u64, e: &Event) -> EventRecord {
+        EventRecord {
+            index,
+            period: e.period,
+            phase: e.phase,
+            v: e.v,
+            vrel: e.vrel,
+            kind: e.kind.into(),
+        }
+    }
+}
+
+/// The fields of `orbit`'s json before its events.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct OrbitHeader<'a> {
+    pub table: &'a str,
+    pub alpha: f64,
+    pub r: f64,
+    pub solver: &'static str,
+}
+
+// ------------------------------------------------------------------ sweep
+
+/// What became of a value.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Status {
+    Periodic,
+    Unsettled,
+    Resting,
+    NoLanding,
+    /// Provisional: still running (the terminal application's export only).
+    Running,
+}
+
+impl From<&Outcome> for Status {
+    fn from(o: &Outcome) -> Status {
+        match o {
+            Outcome::Running { .. } => Status::Running,
+            Outcome::Periodic { .. } => Status::Periodic,
+            Outcome::Unsettled => Status::Unsettled,
+            Outcome::Resting { .. } => Status::Resting,
+            Outcome::NoLanding { .. } => Status::NoLanding,
+        }
+    }
+}
+
+/// One csv row of a sweep: one recorded point of one value. A value without points
+/// has one row with empty phase, v and kind. The second column is named after the
+/// swept parameter ([`SweepRow::header`]).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SweepRow {
+    pub index: usize,
+    pub value: f64,
+    pub phase: Option<f64>,
+    pub v: Option<f64>,
+    pub kind: Option<Kind>,
+    pub period: Option<usize>,
+    pub table_periods: Option<i64>,
+    pub status: Status,
+    pub sticking: bool,
+}
+
+impl SweepRow {
+    /// The csv header for a sweep of `param`.
+    pub fn header(param: SweepParam) -> [&'static str; 9] {
+        [
+            "index",
+            param.as_str(),
+            "phase",
+            "v",
+            "kind",
+            "period",
+            "table_periods",
+            "status",
+            "sticking",
+        ]
+    }
+
+    /// The rows of one value.
+    pub fn rows(r: &ValueResult) -> Vec<SweepRow> {
+        let row = |p: Option<&SweepPoint>| SweepRow {
+            index: r.index,
+            value: r.value,
+            phase: p.map(|p| p.phase),
+            v: p.map(|p| p.v),
+            kind: p.map(|p| p.kind.into()),
+            period: r.outcome.period(),
+            table_periods: r.outcome.table_periods(),
+            status: (&r.outcome).into(),
+            sticking: r.sticking,
+        };
+        if r.points.is_empty() {
+            vec![row(None)]
+        } else {
+            r.points.iter().map(|p| row(Some(p))).collect()
+        }
+    }
+}
+
+/// One recorded point in a sweep's json.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PointRecord {
+    pub phase: f64,
+    pub v: f64,
+    pub kind: Kind,
+}
+
+/// One value in a sweep's json.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SweepValue {
+    pub index: usize,
+    pub value: f64,
+    pub status: Status,
+    pub period: Option<usize>,
+    pub table_periods: Option<i64>,
+    /// Period at which the early stop happened.
+    pub stopped_at: Option<i64>,
+    pub sticking: bool,
+    /// Events computed.
+    pub events: u64,
+    pub points: Vec<PointRecord>,
+}
+
+impl From<&ValueResult> for SweepValue {
+    fn from(r: &ValueResult) -> SweepValue {
+        SweepValue {
+            index: r.index,
+            value: r.value,
+            status: (&r.outcome).into(),
+            period: r.outcome.period(),
+            table_periods: r.outcome.table_periods(),
+            stopped_at: match r.outcome {
+                Outcome::Periodic { stopped_at, .. } => Some(stopped_at),
+                _ => None,
+            },
+            sticking: r.sticking,
+            events: r.events,
+            points: r
+                .points
+                .iter()
+                .map(|p| PointRecord {
+                    phase: p.phase,
+                    v: p.v,
+                    kind: p.kind.into(),
+                })
+                .collect(),
+        }
+    }
+}
+
+/// How the values of a sweep start.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum InitialRecord {
+    /// `"near-fixed-point"`.
+    Named(String),
+    /// The state every value starts from (v0 null: f'(t0) + 0.5).
+    State { t0: f64, v0: Option<f64>, z0: f64 },
+}
+
+/// The early-stop settings of a sweep.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EarlyStop {
+    pub max_period: usize,
+    pub tolerance: f64,
+}
+
+/// The settings of a sweep, as its json states them.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SweepHeader {
+    pub table: String,
+    pub param: String,
+    pub lo: f64,
+    pub hi: f64,
+    pub steps: usize,
+    /// The fixed parameters (null for the swept one; d null unless the table is F_D).
+    pub alpha: Option<f64>,
+    pub r: Option<f64>,
+    pub d: Option<f64>,
+    pub transient: u64,
+    pub keep: usize,
+    pub solver: String,
+    /// `cold`, `warm` or `warm-backward`.
+    pub start: String,
+    pub initial: InitialRecord,
+    pub early_stop: Option<EarlyStop>,
+    /// `I/N`, or null for the whole sweep.
+    pub shard: Option<String>,
+}
+
+impl From<&SweepSpec> for SweepHeader {
+    fn from(spec: &SweepSpec) -> SweepHeader {
+        let fixed = |p: SweepParam, x: f64| (spec.param != p).then_some(x);
+        SweepHeader {
+            table: spec.table.name().to_string(),
+            param: spec.param.as_str().to_string(),
+            lo: spec.lo,
+            hi: spec.hi,
+            steps: spec.steps,
+            alpha: fixed(SweepParam::Alpha, spec.alpha),
+            r: fixed(SweepParam::R, spec.r),
+            d: match spec.param {
+                SweepParam::D => None,
+                _ => spec.table.d(),
+            },
+            transient: spec.transient,
+            keep: spec.keep,
+            solver: solver_name(spec.solver).to_string(),
+            start: match spec.warm {
+                Warm::Off => "cold",
+                w => w.as_str(),
+            }
+            .to_string(),
+            initial: if spec.initial.near_fixed_point {
+                InitialRecord::Named("near-fixed-point".into())
+            } else {
+                InitialRecord::State {
+                    t0: spec.initial.t0,
+                    v0: spec.initial.v0,
+                    z0: spec.initial.z0,
+                }
+            },
+            early_stop: spec.periodicity.map(|p| EarlyStop {
+                max_period: p.max_period,
+                tolerance: p.tolerance,
+            }),
+            shard: (spec.shard.count > 1)
+                .then(|| format!("{}/{}", spec.shard.index + 1, spec.shard.count)),
+        }
+    }
+}
+
+/// A sweep's json document: the settings and one object per value.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SweepDoc {
+    #[serde(flatten)]
+    pub header: SweepHeader,
+    pub values: Vec<SweepValue>,
+}
+
+// ------------------------------------------------------------------ fixed
+
+/// One (1, k) solution (json).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct FixedSolution {
+    pub phase: f64,
+    pub v: f64,
+    pub df: f64,
+    pub ddf: f64,
+    pub dddf: f64,
+    pub delta_kappa: f64,
+    pub jacobian: [[f64; 2]; 2],
+    pub eigenvalues: [ComplexRecord; 2],
+    pub flight: Option<f64>,
+    pub admissible: bool,
+    pub classification: &'static str,
+}
+
+impl From<&FixedPoint> for FixedSolution {
+    fn from(p: &FixedPoint) -> Self {
+        FixedSolution {
+            phase: p.phase,
+            v: p.v,
+            df: p.df,
+            ddf: p.ddf,
+            dddf: p.dddf,
+            delta_kappa: p.delta_kappa,
+            jacobian: p.jacobian,
+            eigenvalues: p.eigenvalues.map(Into::into),
+            flight: p.flight,
+            admissible: p.admissible,
+            classification: p.classification.as_str(),
+        }
+    }
+}
+
+/// One α window of stability (json).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct WindowRecord {
+    pub alpha_birth: f64,
+    pub phase_birth: f64,
+    pub alpha_end: f64,
+    pub phase_end: f64,
+    pub end: &'static str,
+}
+
+impl From<&StabilityWindow> for WindowRecord {
+    fn from(w: &StabilityWindow) -> Self {
+        WindowRecord {
+            alpha_birth: w.alpha_birth,
+            phase_birth: w.phase_birth,
+            alpha_end: w.alpha_end,
+            phase_end: w.phase_end,
+            end: w.end.as_str(),
+        }
+    }
+}
+
+/// `fixed`'s json.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct FixedDoc<'a> {
+    pub table: &'a str,
+    pub alpha: f64,
+    pub r: f64,
+    pub k: u32,
+    pub kappa_c: f64,
+    pub solutions: Vec<FixedSolution>,
+    pub alpha_birth: Option<f64>,
+    pub alpha_pd: Option<f64>,
+    pub windows: Vec<WindowRecord>,
+}
+
+/// One csv row of `fixed`: a (1, k) solution.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct FixedRow {
+    pub phase: f64,
+    pub v: f64,
+    pub df: f64,
+    pub ddf: f64,
+    pub dddf: f64,
+    pub delta_kappa: f64,
+    pub eig1_re: f64,
+    pub eig1_im: f64,
+    pub eig2_re: f64,
+    pub eig2_im: f64,
+    pub admissible: bool,
+    pub classification: &'static str,
+}
+
+impl FixedRow {
+    pub const HEADER: [&'static str; 12] = [
+        "phase",
+        "v",
+        "df",
+        "ddf",
+        "dddf",
+        "delta_kappa",
+        "eig1_re",
+        "eig1_im",
+        "eig2_re",
+        "eig2_im",
+        "admissible",
+        "classification",
+    ];
+}
+
+impl From<&FixedPoint> for FixedRow {
+    fn from(p: &FixedPoint) -> Self {
+        FixedRow {
+            phase: p.phase,
+            v: p.v,
+            df: p.df,
+            ddf: p.ddf,
+            dddf: p.dddf,
+            delta_kappa: p.delta_kappa,
+            eig1_re: p.eigenvalues[0].re,
+            eig1_im: p.eigenvalues[0].im,
+            eig2_re: p.eigenvalues[1].re,
+            eig2_im: p.eigenvalues[1].im,
+            admissible: p.admissible,
+            classification: p.classification.as_str(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The field names a record serializes with, read from an auto-generated header.
+    fn fields<T: Serialize>(record: &T) -> String {
+        let mut w = csv::Writer::from_writer(Vec::new());
+        w.serialize(record).unwrap();
+        let text = String::from_utf8(w.into_inner().unwrap()).unwrap();
+        text.lines().next().unwrap().to_string()
+    }
+
+    #[test]
+    fn headers_name_the_fields_in_order() {
+        let e = EventRecord {
+            index: 0,
+            period: 0,
+            phase: 0.0,
+            v: 0.0,
+            vrel: 0.0,
+            kind: Kind::Impact,
+        };
+        assert_eq!(fields(&e), EventRecord::HEADER.join(","));
+        let row = SweepRow {
+            index: 0,
+            value: 0.5,
+            phase: None,
+            v: None,
+            kind: None,
+            period: None,
+            table_periods: None,
+            status: Status::NoLanding,
+            sticking: false,
+        };
+        assert_eq!(
+            fields(&row),
+            SweepRow::header(SweepParam::Alpha)
+                .join(",")
+                .replace("alpha", "value")
+        );
+    }
+
+    #[test]
+    fn csv_fields_are_quoted_where_they_must_be() {
+        let mut w = csv_writer(Vec::new(), &["a", "b"]).unwrap();
+        w.write_record(["x,y", "say \"hi\""]).unwrap();
+        let text = String::from_utf8(w.into_inner().unwrap()).unwrap();
+        assert_eq!(text, "a,b\n\"x,y\",\"say \"\"hi\"\"\"\n");
+    }
+
+    #[test]
+    fn floats_are_shortest_round_trip() {
+        let mut w = csv_writer(Vec::new(), &["x"]).unwrap();
+        for x in [0.45, 1e300, 1e-300, 0.1 + 0.2] {
+            w.serialize([x]).unwrap();
+        }
+        let text = String::from_utf8(w.into_inner().unwrap()).unwrap();
+        let back: Vec<f64> = text.lines().skip(1).map(|l| l.parse().unwrap()).collect();
+        assert_eq!(back, vec![0.45, 1e300, 1e-300, 0.1 + 0.2]);
+        assert!(
+            text.contains("1e300") && text.lines().all(|l| l.len() <= 24),
+            "{text}"
+        );
+    }
+
+    #[test]
+    fn unknown_status_and_kind_names_are_refused() {
+        assert!(serde_json::from_str::<Status>("\"garbage\"").is_err());
+        assert!(serde_json::from_str::<Kind>("\"bounce\"").is_err());
+        assert_eq!(
+            serde_json::from_str::<Status>("\"no-landing\"").unwrap(),
+            Status::NoLanding
+        );
+    }
+}

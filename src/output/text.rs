@@ -1,0 +1,46 @@
+//! Numbers in aligned text columns: fixed digits for people, never more digits than an
+//! f64 holds.
+
+/// `x` with `digits` significant digits in fixed notation (scientific beyond 1e15 or
+/// below 1e-6), for aligned text columns that show no digits beyond f64 precision.
+pub fn significant(x: f64, digits: usize) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return format!("{x:.prec$}", prec = digits.saturating_sub(1));
+    }
+    let mag = x.abs().log10().floor() as i64;
+    if mag >= digits as i64 || mag < -6 {
+        return format!("{x:.prec$e}", prec = digits.saturating_sub(1));
+    }
+    let decimals = (digits as i64 - 1 - mag).max(0) as usize;
+    format!("{x:.decimals$}")
+}
+
+/// A complex number with 12 decimals: `re` or `re±imi`.
+pub fn complex(z: bouncemap_engine::orbits::Complex) -> String {
+    if z.im == 0.0 {
+        format!("{:.12}", z.re)
+    } else {
+        format!("{:.12}{:+.12}i", z.re, z.im)
+    }
+}
+
+/// The shortest decimal that reads back to the same f64, in exponent form where that is
+/// shorter (for messages, labels and captions).
+pub fn shortest(x: f64) -> String {
+    bouncemap_engine::error::fmt_value(x)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn significant_digits() {
+        assert_eq!(significant(0.5, 15), "0.500000000000000");
+        assert_eq!(significant(9_780.139_017_934_653, 15), "9780.13901793465");
+        assert_eq!(significant(-0.0123, 3), "-0.0123");
+        assert_eq!(significant(0.0, 4), "0.000");
+        assert_eq!(significant(1.5e-300, 3), "1.50e-300");
+        assert_eq!(shortest(1e300), "1e300");
+    }
+}

@@ -1,0 +1,527 @@
+//! The bifurcation diagram: the hit-count grid of the sweep (phase t̂ or v against α)
+//! with axes, a progress gauge and points/s in the title, the current α as a cursor
+//! line, the zoom cursor and window mark, and marks at the birth and the period
+//! doubling (α_PD) of the (1, k) solution. It owns its sweep: the points of every
+//! value (for re-binning on zoom, axis change and resize), the zoom stack, the cursor.
+
+use super::{compact, is_focused, panel, Component, Target};
+use crate::output::hitgrid::{HitGrid, Range};
+use crate::tui::keymap::Action;
+use crate::tui::layout::plot_area_within;
+use crate::tui::params::{fmt_num, ParamId, Touch};
+use crate::tui::plot::{draw_axes, render};
+use crate::tui::shared::{Effect, Focus, Shared};
+use crate::tui::workers::{Body, JobDone, Workers};
+use bouncemap_engine::sweep::{
+    InitialSpec, SweepBatch, SweepJob, SweepParam, SweepSpec, ValueResult,
+};
+use ratatui::buffer::Buffer;
+use ratatui::layout::Rect;
+use ratatui::style::Style;
+use ratatui::widgets::{Paragraph, Widget, Wrap};
+use std::time::Instant;
+
+/// Width of the y tick labels.
+const LABEL_W: u16 = 5;
+
+/// What the diagram's vertical axis shows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Axis {
+    Phase,
+    Velocity,
+}
+
+impl Axis {
+    /// The coordinate this axis shows.
+    pub fn pick(self, phase: f64, v: f64) -> f64 {
+        match self {
+            Axis::Phase => phase,
+            Axis::Velocity => v,
+        }
+    }
+}
+
+/// Progress of the sweep feeding the diagram.
+#[derive(Clone, Debug, PartialEq)]
+pub enum SweepStatus {
+    Idle,
+    Running,
+    Done,
+    Unavailable(String),
+}
+
+/// The bifurcation diagram panel.
+pub struct Diagram {
+    /// The latest result of every value (a later pass replaces an earlier one).
+    pub slots: Vec<Option<ValueResult>>,
+    /// Points received in this sweep (all passes), for points/s.
+    pub received: u64,
+    /// Points currently plotted.
+    pub plotted: usize,
+    pub values_done: usize,
+    pub values_total: usize,
+    pub status: SweepStatus,
+    pub gen: u64,
+    pub started: Option<Instant>,
+    pub elapsed: f64,
+    pub axis: Axis,
+    pub cursor: f64,
+    pub mark: Option<f64>,
+    pub zoom_stack: Vec<(f64, f64)>,
+    pub grid: HitGrid,
+    /// The plot's screen rectangle at the last layout (for the mouse).
+    pub plot_area: Rect,
+}
+
+impl Diagram {
+    pub fn new(shared: &Shared) -> Diagram {
+        let p = &shared.params;
+        Diagram {
+            slots: Vec::new(),
+            received: 0,
+            plotted: 0,
+            values_done: 0,
+            values_total: 0,
+            status: SweepStatus::Idle,
+            gen: 0,
+            started: None,
+            elapsed: 0.0,
+            axis: Axis::Phase,
+            cursor: p.alpha,
+            mark: None,
+            zoom_stack: Vec::new(),
+            grid: HitGrid::new(
+                0,
+                0,
+                shared.marker,
+                Range::new(p.lo, p.hi),
+                Range::new(0.0, 1.0),
+            ),
+            plot_area: Rect::default(),
+        }
+    }
+
+    /// Values a sweep computes when the screen decides: one per sub-column of the
+    /// diagram (at least 80).
+    pub fn sweep_columns(&self) -> usize {
+        self.grid.sub_size().0.max(80)
+    }
+
+    /// The sweep for the current parameters: the preset's number of values, or one α
+    /// value per sub-cell column.
+    pub fn sweep_spec(&self, shared: &Shared) -> SweepSpec {
+        let p = &shared.params;
+        let steps = p.steps.unwrap_or_else(|| self.sweep_columns());
+        let mut spec = SweepSpec::new(
+            p.table(),
+            p.alpha,
+            p.r,
+            SweepParam::Alpha,
+            p.lo,
+            p.hi,
+            steps,
+        );
+        spec.initial = InitialSpec {
+            t0: p.t0,
+            v0: p.v0,
+            z0: 0.0,
+            near_fixed_point: p.near_fixed_point,
+        };
+        spec.transient = p.transient;
+        spec.keep = p.keep;
+        spec
+    }
+
+    /// Periods of the provisional first pass: a tenth of the transient.
+    fn preview(transient: u64) -> u64 {
+        if transient >= 400 {
+            transient / 10
+        } else {
+            0
+        }
+    }
+
+    /// A new sweep of `values` values started under generation `gen`.
+    pub fn sweep_started(&mut self, gen: u64, values: usize, shared: &Shared) {
+        self.gen = gen;
+        self.slots = vec![None; values];
+        self.received = 0;
+        self.plotted = 0;
+        self.values_done = 0;
+        self.values_total = values;
+        self.elapsed = 0.0;
+        self.started = Some(Instant::now());
+        self.status = SweepStatus::Running;
+        self.rebin(shared);
+    }
+
+    /// Points per second of the running sweep.
+    pub fn sweep_rate(&self) -> f64 {
+        if self.elapsed > 0.0 {
+            self.received as f64 / self.elapsed
+        } else {
+            0.0
+        }
+    }
+
+    /// Store one value's batch, replacing an earlier pass of the same value in the
+    /// grid (its counts are taken out first).
+    pub fn add_batch(&mut self, b: &SweepBatch, shared: &Shared) {
+        if b.index >= self.slots.len() {
+            self.slots.resize(b.index + 1, None);
+            self.values_total = self.values_total.max(b.index + 1);
+        }
+        if let Some(old) = self.slots[b.index].take() {
+            for p in &old.points {
+                self.grid.remove(old.value, self.axis.pick(p.phase, p.v));
+            }
+            self.plotted -= old.points.len();
+            if old.complete {
+                self.values_done -= 1;
+            }
+        }
+        let mut rebin = false;
+        for p in &b.points {
+            let y = self.axis.pick(p.phase, p.v);
+            if !self.grid.y_range().contains(y) {
+                rebin = true;
+            }
+            self.grid.add(b.value, y);
+        }
+        self.received += b.points.len() as u64;
+        self.plotted += b.points.len();
+        if b.complete {
+            self.values_done += 1;
+        }
+        self.slots[b.index] = Some(b.data.clone());
+        if let Some(s) = self.started {
+            self.elapsed = s.elapsed().as_secs_f64();
+        }
+        if rebin {
+            self.rebin(shared);
+        }
+    }
+
+    /// Resize the grid to the plot area inside `pane` (re-binning from the stored
+    /// points when the size changed); sweep again if it grew wider than the sweep has
+    /// values.
+    pub fn set_pane(&mut self, pane: Rect, shared: &mut Shared) {
+        let plot = plot_area_within(pane, LABEL_W);
+        self.plot_area = plot;
+        if self.grid.size() != (plot.width, plot.height) || self.grid.marker() != shared.marker {
+            self.grid = HitGrid::new(
+                plot.width,
+                plot.height,
+                shared.marker,
+                self.grid.x_range(),
+                self.grid.y_range(),
+            );
+            self.rebin(shared);
+            // Grown wider than the sweep has values (a terminal enlarged, or one too
+            // small at start): sweep again at the new resolution, or every other
+            // column would stay empty.
+            let values = self.values_total;
+            if shared.params.steps.is_none() && values > 0 && self.sweep_columns() > values {
+                shared.effect(Effect::Start(Target::Diagram));
+            }
+        }
+    }
+
+    /// Re-bin from the stored points (window, axis or size changed).
+    pub fn rebin(&mut self, shared: &Shared) {
+        let x = Range::new(shared.params.lo, shared.params.hi);
+        let y = match self.axis {
+            Axis::Phase => Range::new(0.0, 1.0),
+            Axis::Velocity => v_range(
+                self.slots
+                    .iter()
+                    .flatten()
+                    .flat_map(|s| s.points.iter().map(|p| p.v)),
+                shared.params.k,
+            ),
+        };
+        let (w, h) = self.grid.size();
+        self.grid = HitGrid::new(w, h, shared.marker, x, y);
+        for s in self.slots.iter().flatten() {
+            for p in &s.points {
+                self.grid.add(s.value, self.axis.pick(p.phase, p.v));
+            }
+        }
+    }
+
+    fn move_cursor(&mut self, dir: i32, fine: bool, shared: &Shared) {
+        let (lo, hi) = (shared.params.lo, shared.params.hi);
+        let cols = (self.grid.sub_size().0).max(1) as f64;
+        let step = if fine {
+            (hi - lo) / cols
+        } else {
+            (hi - lo) / 20.0
+        };
+        self.cursor = (self.cursor + dir as f64 * step).clamp(lo, hi);
+    }
+
+    /// Set α to the cursor.
+    pub fn set_alpha_to_cursor(&mut self, shared: &mut Shared) {
+        let before = shared.params.clone();
+        let r = shared
+            .params
+            .set_text(ParamId::Alpha, &format!("{}", self.cursor));
+        shared.after_change(ParamId::Alpha, r, &before);
+    }
+
+    /// Zoom to [lo, hi] (clamped to valid α), pushing the current window.
+    pub fn zoom_to(&mut self, lo: f64, hi: f64, shared: &mut Shared) {
+        let lo = lo.max(1e-6);
+        let hi = hi.min(1000.0);
+        if hi - lo <= 1e-9 || hi.is_nan() || lo.is_nan() {
+            shared.say("zoom: the window is empty; mark two different α", true);
+            return;
+        }
+        self.zoom_stack.push((shared.params.lo, shared.params.hi));
+        self.set_window(lo, hi, shared);
+    }
+
+    fn set_window(&mut self, lo: f64, hi: f64, shared: &mut Shared) {
+        let before = shared.params.clone();
+        shared.params.lo = lo;
+        shared.params.hi = hi;
+        // A window the user chose is swept at the screen's resolution.
+        shared.params.steps = None;
+        shared.after_change(ParamId::Lo, Ok(()), &before);
+    }
+}
+
+impl Component for Diagram {
+    fn handle(&mut self, action: Action, shared: &mut Shared) -> bool {
+        let focused = shared.focus == Focus::Diagram;
+        match action {
+            Action::Left | Action::Right | Action::FineLeft | Action::FineRight if focused => {
+                let dir = if matches!(action, Action::Left | Action::FineLeft) {
+                    -1
+                } else {
+                    1
+                };
+                self.move_cursor(
+                    dir,
+                    matches!(action, Action::FineLeft | Action::FineRight),
+                    shared,
+                );
+            }
+            Action::Enter if focused => self.set_alpha_to_cursor(shared),
+            Action::Cancel => self.mark = None,
+            Action::ToggleAxis => {
+                self.axis = match self.axis {
+                    Axis::Phase => Axis::Velocity,
+                    Axis::Velocity => Axis::Phase,
+                };
+                self.rebin(shared);
+            }
+            Action::MarkWindow => match self.mark.take() {
+                None => self.mark = Some(self.cursor),
+                Some(m) => {
+                    let (lo, hi) = (m.min(self.cursor), m.max(self.cursor));
+                    self.zoom_to(lo, hi, shared);
+                }
+            },
+            Action::ZoomIn | Action::ZoomOut => {
+                let f = if action == Action::ZoomIn { 0.25 } else { 1.0 };
+                let c = self.cursor;
+                let w = shared.params.hi - shared.params.lo;
+                self.zoom_to(c - w * f, c + w * f, shared);
+            }
+            Action::ZoomBack => match self.zoom_stack.pop() {
+                Some((lo, hi)) => self.set_window(lo, hi, shared),
+                None => shared.say("zoom: already at the first window", true),
+            },
+            _ => return false,
+        }
+        true
+    }
+
+    fn changed(&mut self, id: ParamId, shared: &mut Shared) {
+        match id.touches() {
+            Touch::System => {
+                self.cursor = shared.params.alpha;
+                // An α sweep does not depend on α itself: only its cursor line moves.
+                if id != ParamId::Alpha {
+                    shared.effect(Effect::Start(Target::Diagram));
+                }
+            }
+            Touch::Start => {}
+            Touch::Sweep => {
+                let (lo, hi) = (shared.params.lo, shared.params.hi);
+                self.cursor = self.cursor.clamp(lo, hi);
+                shared.say(
+                    format!("sweeping α ∈ [{}, {}]", fmt_num(lo), fmt_num(hi)),
+                    false,
+                );
+                shared.effect(Effect::Start(Target::Diagram));
+            }
+        }
+    }
+
+    fn start(&mut self, shared: &mut Shared, workers: &Workers) {
+        let spec = self.sweep_spec(shared);
+        let steps = spec.steps;
+        let preview = Self::preview(spec.transient);
+        match SweepJob::new(spec) {
+            Ok(job) => {
+                let gen = workers.start_job(Target::Diagram, job.preview(preview));
+                self.sweep_started(gen, steps, shared);
+            }
+            Err(e) => {
+                workers.cancel(Target::Diagram);
+                self.sweep_started(0, 0, shared);
+                self.status = SweepStatus::Unavailable(e.to_string());
+            }
+        }
+    }
+
+    fn receive(&mut self, gen: u64, body: Body, shared: &mut Shared) {
+        if gen != self.gen {
+            return;
+        }
+        if let Some(b) = body.downcast_ref::<SweepBatch>() {
+            self.add_batch(b, shared);
+        } else if body.is::<JobDone>() {
+            self.status = SweepStatus::Done;
+            if let Some(s) = self.started {
+                self.elapsed = s.elapsed().as_secs_f64();
+            }
+        }
+        shared.dirty = true;
+    }
+
+    fn busy(&self) -> bool {
+        self.status == SweepStatus::Running
+    }
+
+    fn draw(&self, app: &Shared, area: Rect, buf: &mut Buffer) {
+        let focused = is_focused(app, Focus::Diagram);
+        let block = panel(app, title(self, app.paused), focused);
+        let inner = block.inner(area);
+        block.render(area, buf);
+        if let SweepStatus::Unavailable(why) = &self.status {
+            Paragraph::new(format!("Bifurcation diagram: {why}."))
+                .style(app.theme.dim())
+                .wrap(Wrap { trim: true })
+                .render(inner, buf);
+            return;
+        }
+        let x = self.grid.x_range();
+        let y = self.grid.y_range();
+        let plot = draw_axes(inner, buf, x, y, LABEL_W, &app.theme);
+        render(&self.grid, plot, buf, &app.theme, &[], Style::new());
+        // Marks of the (1, k) solution's birth and period doubling on the top row.
+        if let Some(Ok(info)) = &app.orbits {
+            for (a, ch) in [(info.birth, 'B'), (info.pd, 'P')] {
+                if let Some(col) = a.and_then(|a| column(x, plot, a)) {
+                    buf.set_string(col, plot.y, ch.to_string(), app.theme.mark());
+                    if plot.height > 1 {
+                        buf.set_string(col, plot.y + plot.height - 1, "╵", app.theme.mark());
+                    }
+                }
+            }
+        }
+        // The current α: a cursor line drawn only over empty cells so no data is hidden.
+        let vline = |buf: &mut Buffer, a: f64, glyph: &str, style: Style| {
+            if let Some(col) = column(x, plot, a) {
+                for row in plot.y..plot.y + plot.height {
+                    if let Some(cell) = buf.cell_mut((col, row)) {
+                        if cell.symbol() == " " {
+                            cell.set_symbol(glyph).set_style(style);
+                        } else {
+                            cell.set_style(style);
+                        }
+                    }
+                }
+            }
+        };
+        vline(buf, app.params.alpha, "│", app.theme.cursor());
+        if focused || self.mark.is_some() {
+            if (self.cursor - app.params.alpha).abs() > x.span() * 1e-9 {
+                vline(buf, self.cursor, "┆", app.theme.mark2());
+            }
+            if let Some(m) = self.mark {
+                vline(buf, m, "┃", app.theme.mark2());
+            }
+            let info = format!(
+                " cursor α={}{} ",
+                fmt_num(self.cursor),
+                self.mark
+                    .map_or(String::new(), |m| format!(", mark {}", fmt_num(m)))
+            );
+            let w = info.chars().count() as u16;
+            if plot.width > w {
+                buf.set_string(plot.x + plot.width - w, plot.y, info, app.theme.mark2());
+            }
+        }
+    }
+}
+
+fn gauge(frac: f64, w: usize) -> String {
+    let full = (frac.clamp(0.0, 1.0) * w as f64).round() as usize;
+    format!("{}{}", "█".repeat(full), "░".repeat(w - full))
+}
+
+/// The panel's title: what is plotted, and the sweep's progress.
+pub fn title(d: &Diagram, paused: bool) -> String {
+    let axis = match d.axis {
+        Axis::Phase => "t̂",
+        Axis::Velocity => "v",
+    };
+    let head = format!(" Bifurcation diagram: {axis} vs α ");
+    match &d.status {
+        SweepStatus::Running | SweepStatus::Done => {
+            let frac = d.values_done as f64 / d.values_total.max(1) as f64;
+            let state = if d.status == SweepStatus::Done {
+                format!("done {:.1}s", d.elapsed)
+            } else if paused {
+                "paused".into()
+            } else {
+                format!("{} pts/s", compact(d.sweep_rate()))
+            };
+            format!(
+                "{head}{} {:>3}% {} pts, {state} ",
+                gauge(frac, 10),
+                (frac * 100.0).round() as u32,
+                compact(d.plotted as f64)
+            )
+        }
+        SweepStatus::Idle | SweepStatus::Unavailable(_) => head,
+    }
+}
+
+/// Screen column of α in the plot.
+pub fn column(x: Range, plot: Rect, a: f64) -> Option<u16> {
+    if !x.contains(a) || plot.width == 0 {
+        return None;
+    }
+    Some(plot.x + ((x.frac(a) * plot.width as f64) as u16).min(plot.width - 1))
+}
+
+/// α at a screen column (for the mouse).
+pub fn alpha_at(x: Range, plot: Rect, col: u16) -> Option<f64> {
+    if col < plot.x || col >= plot.x + plot.width {
+        return None;
+    }
+    Some(x.lo + x.span() * ((col - plot.x) as f64 + 0.5) / plot.width as f64)
+}
+
+/// A velocity range covering `vs` with a margin (and k/2, the (1, k) velocity).
+pub fn v_range(vs: impl Iterator<Item = f64>, k: u32) -> Range {
+    let mut lo = f64::INFINITY;
+    let mut hi = f64::NEG_INFINITY;
+    for v in vs.filter(|v| v.is_finite()) {
+        lo = lo.min(v);
+        hi = hi.max(v);
+    }
+    let star = k as f64 / 2.0;
+    if !lo.is_finite() {
+        return Range::new(0.0, (2.0 * star).max(1.0));
+    }
+    lo = lo.min(star);
+    hi = hi.max(star);
+    let pad = ((hi - lo) * 0.15).max(0.05);
+    Range::new(lo - pad, hi + pad)
+}

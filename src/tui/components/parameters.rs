@@ -1,0 +1,146 @@
+//! The parameters panel: one row per value, the selected one highlighted; ↑/↓ select,
+//! ←/→ nudge, Enter types an exact value (the row shows the text being typed), and a
+//! refusal shows below in the error style.
+
+use super::{is_focused, panel, Component};
+use crate::tui::keymap::Action;
+use crate::tui::params::ParamId;
+use crate::tui::shared::{Focus, Shared};
+use ratatui::buffer::Buffer;
+use ratatui::layout::Rect;
+use ratatui::text::{Line, Span};
+use ratatui::widgets::{Paragraph, Widget, Wrap};
+
+/// The selected row and the text being typed.
+pub struct Parameters {
+    pub selected: usize,
+    pub editing: Option<String>,
+}
+
+impl Default for Parameters {
+    fn default() -> Self {
+        Parameters::new()
+    }
+}
+
+impl Parameters {
+    /// α selected, nothing typed.
+    pub fn new() -> Parameters {
+        Parameters {
+            selected: 2,
+            editing: None,
+        }
+    }
+
+    pub fn selected_param(&self) -> ParamId {
+        ParamId::ALL[self.selected]
+    }
+
+    /// A typed character while editing (Enter commits, Esc cancels).
+    pub fn edit_key(&mut self, key: crossterm::event::KeyCode, shared: &mut Shared) {
+        use crossterm::event::KeyCode;
+        let Some(buf) = self.editing.as_mut() else {
+            return;
+        };
+        match key {
+            KeyCode::Char(c) if buf.chars().count() < 64 => buf.push(c),
+            KeyCode::Backspace => {
+                buf.pop();
+            }
+            KeyCode::Esc => self.editing = None,
+            KeyCode::Enter => {
+                let text = self.editing.take().unwrap_or_default();
+                if text.trim().is_empty() {
+                    return;
+                }
+                let id = self.selected_param();
+                let before = shared.params.clone();
+                let r = shared.params.set_text(id, &text);
+                shared.after_change(id, r, &before);
+            }
+            _ => {}
+        }
+    }
+}
+
+impl Component for Parameters {
+    fn handle(&mut self, action: Action, shared: &mut Shared) -> bool {
+        if shared.focus != Focus::Params {
+            return false;
+        }
+        let n = ParamId::ALL.len();
+        match action {
+            Action::Up => self.selected = (self.selected + n - 1) % n,
+            Action::Down => self.selected = (self.selected + 1) % n,
+            Action::Left | Action::Right | Action::FineLeft | Action::FineRight => {
+                let dir = if matches!(action, Action::Left | Action::FineLeft) {
+                    -1
+                } else {
+                    1
+                };
+                let fine = matches!(action, Action::FineLeft | Action::FineRight);
+                let id = self.selected_param();
+                let before = shared.params.clone();
+                let r = shared.params.nudge(id, dir, fine);
+                shared.after_change(id, r, &before);
+            }
+            Action::Enter => self.editing = Some(String::new()),
+            _ => return false,
+        }
+        true
+    }
+
+    fn draw(&self, app: &Shared, area: Rect, buf: &mut Buffer) {
+        let focused = is_focused(app, Focus::Params);
+        let block = panel(app, " Parameters ".into(), focused);
+        let inner = block.inner(area);
+        block.render(area, buf);
+        let label_w = 10usize;
+        let mut lines: Vec<Line> = Vec::new();
+        for (i, id) in ParamId::ALL.iter().enumerate() {
+            let sel = i == self.selected;
+            let value = match (&self.editing, sel) {
+                (Some(text), true) => format!("{text}▏"),
+                _ => app.params.show(*id),
+            };
+            let text = format!(
+                "{}{:<label_w$}{}",
+                if sel { "›" } else { " " },
+                id.label(),
+                value
+            );
+            let style = if sel && (focused || self.editing.is_some()) {
+                app.theme.selected()
+            } else if sel {
+                app.theme.focus()
+            } else {
+                ratatui::style::Style::new()
+            };
+            let w = inner.width as usize;
+            let padded: String = if sel { format!("{text:<w$}") } else { text };
+            lines.push(Line::from(Span::styled(padded, style)));
+        }
+        let used = lines.len() as u16;
+        if let Some((msg, err)) = &app.message {
+            if inner.height > used {
+                let style = if *err {
+                    app.theme.error()
+                } else {
+                    app.theme.dim()
+                };
+                lines.push(Line::styled(msg.clone(), style));
+            }
+        } else if self.editing.is_some() && inner.height > used {
+            lines.push(Line::styled(
+                format!(
+                    "valid {}; Enter sets, Esc cancels",
+                    self.selected_param().range()
+                ),
+                app.theme.dim(),
+            ));
+        }
+        Paragraph::new(lines)
+            .wrap(Wrap { trim: false })
+            .render(inner, buf);
+    }
+}

@@ -1,0 +1,79 @@
+//! The status line: current parameters, what is computing, and key hints taken from
+//! the keymap.
+
+use super::diagram::{Diagram, SweepStatus};
+use super::phase_plot::PhasePlot;
+use crate::tui::keymap::Action;
+use crate::tui::params::fmt_num;
+use crate::tui::shared::Shared;
+use ratatui::buffer::Buffer;
+use ratatui::layout::Rect;
+use ratatui::text::{Line, Span};
+use ratatui::widgets::{Paragraph, Widget};
+
+pub fn draw(app: &Shared, diagram: &Diagram, phase: &PhasePlot, area: Rect, buf: &mut Buffer) {
+    let p = &app.params;
+    let params = format!(
+        " {} α={} r={} k={} ",
+        p.table_label(),
+        fmt_num(p.alpha),
+        fmt_num(p.r),
+        p.k
+    );
+    let work = if app.paused {
+        "PAUSED".to_string()
+    } else {
+        let mut w = Vec::new();
+        if diagram.status == SweepStatus::Running {
+            w.push(format!(
+                "sweep {}%",
+                (100 * diagram.values_done / diagram.values_total.max(1)).min(100)
+            ));
+        }
+        if !phase.done {
+            w.push("phase plot".into());
+        }
+        if app.orbits.is_none() {
+            w.push("orbits".into());
+        }
+        if w.is_empty() {
+            "idle".into()
+        } else {
+            format!("computing: {}", w.join(", "))
+        }
+    };
+    let k = |a| app.keymap.hint(a);
+    let hints = format!(
+        " {} help  {} pause  {} panel  {}/{}/{} step  {} presets  {} export  {} quit",
+        k(Action::Help),
+        k(Action::Pause),
+        k(Action::NextPanel),
+        k(Action::StepOne),
+        k(Action::StepTen),
+        k(Action::StepBack),
+        k(Action::Presets),
+        k(Action::Export),
+        k(Action::Quit)
+    );
+    let used = params.chars().count() + work.chars().count() + 3;
+    let room = (area.width as usize).saturating_sub(used);
+    let hints = if hints.chars().count() > room {
+        format!(" {} help  {} quit", k(Action::Help), k(Action::Quit))
+    } else {
+        hints
+    };
+    let line = Line::from(vec![
+        Span::styled(params, app.theme.selected()),
+        Span::styled(
+            format!(" {work} "),
+            if app.paused {
+                app.theme.error()
+            } else {
+                app.theme.focus()
+            },
+        ),
+        Span::styled("│", app.theme.dim()),
+        Span::styled(hints, app.theme.dim()),
+    ]);
+    Paragraph::new(line).render(area, buf);
+}

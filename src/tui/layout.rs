@@ -1,0 +1,64 @@
+//! Where each panel goes: the screen reflows from 120×40 down to 80×24; below that the
+//! too-small message replaces everything.
+
+use ratatui::layout::{Constraint, Layout, Rect};
+
+/// Smallest usable terminal.
+pub const MIN_W: u16 = 80;
+pub const MIN_H: u16 = 24;
+
+/// The panels' rectangles.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Panes {
+    pub params: Rect,
+    pub diagram: Rect,
+    pub phase: Rect,
+    pub stability: Rect,
+    pub bounce: Rect,
+    pub status: Rect,
+}
+
+/// Split the screen. None when it is too small.
+pub fn layout(area: Rect) -> Option<Panes> {
+    if area.width < MIN_W || area.height < MIN_H {
+        return None;
+    }
+    let [main, status] = Layout::vertical([Constraint::Min(0), Constraint::Length(1)]).areas(area);
+    let top_h = (main.height * 11 / 20).max(13);
+    let [top, bottom] =
+        Layout::vertical([Constraint::Length(top_h), Constraint::Min(0)]).areas(main);
+    let pw = if area.width >= 110 { 30 } else { 26 };
+    let [params, diagram] =
+        Layout::horizontal([Constraint::Length(pw), Constraint::Min(0)]).areas(top);
+    let [phase, stability, bounce] = Layout::horizontal([
+        Constraint::Ratio(1, 3),
+        Constraint::Ratio(1, 3),
+        Constraint::Ratio(1, 3),
+    ])
+    .areas(bottom);
+    Some(Panes {
+        params,
+        diagram,
+        phase,
+        stability,
+        bounce,
+        status,
+    })
+}
+
+/// The plot rectangle inside a bordered pane, leaving `label_w` columns (plus the axis)
+/// for the y tick labels on the left and one row for the x tick labels at the bottom.
+pub fn plot_area_within(pane: Rect, label_w: u16) -> Rect {
+    let inner = Rect {
+        x: pane.x + 1,
+        y: pane.y + 1,
+        width: pane.width.saturating_sub(2),
+        height: pane.height.saturating_sub(2),
+    };
+    Rect {
+        x: inner.x + label_w + 1,
+        y: inner.y,
+        width: inner.width.saturating_sub(label_w + 1),
+        height: inner.height.saturating_sub(1),
+    }
+}

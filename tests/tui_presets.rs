@@ -1,0 +1,40 @@
+//! The terminal application's presets are the headless ones: loading a preset in the
+//! picker makes the diagram run exactly the sweep `bouncemap sweep --preset NAME` runs.
+
+mod tui_common;
+
+use bouncemap::config::flags::{Cli, Command};
+use bouncemap::config::presets::PRESETS;
+use bouncemap::output::hitgrid::Marker;
+use bouncemap::tui::app::Overlay;
+use bouncemap::tui::keymap::Action;
+use clap::Parser;
+use tui_common::{app, size};
+
+#[test]
+fn every_preset_in_the_picker_runs_the_headless_sweep() {
+    for (i, (name, _)) in PRESETS.iter().enumerate() {
+        let Command::Sweep(args) = Cli::try_parse_from(["bouncemap", "sweep", "--preset", name])
+            .unwrap()
+            .command
+            .unwrap()
+        else {
+            unreachable!()
+        };
+        let headless = bouncemap::config::sweep::sweep_spec(&args).unwrap();
+        let mut a = app(Marker::Braille);
+        size(&mut a, 120, 40);
+        a.handle(Action::Presets);
+        a.overlay = Overlay::Presets { selected: i };
+        a.handle(Action::Enter);
+        assert_eq!(
+            a.message.as_ref().map(|m| m.1),
+            Some(false),
+            "{name}: {:?}",
+            a.message
+        );
+        let tui = a.diagram.sweep_spec(&a.shared);
+        assert_eq!(tui, headless, "{name}");
+        assert!(tui.initial.near_fixed_point, "{name}: the paper's start");
+    }
+}
