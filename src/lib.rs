@@ -76,14 +76,29 @@ pub fn main() -> ExitCode {
     }
 }
 
-/// Clap's message cut to one line, keeping the list of valid values if it gives one.
+/// Clap's message cut to one line: the first line, the items it introduces (the
+/// missing arguments after "...not provided:"), and the list of valid values if it
+/// gives one.
 fn one_line_clap_error(text: &str) -> String {
-    let mut lines = text.lines().map(str::trim).filter(|l| !l.is_empty());
+    let mut lines = text.lines();
     let mut msg = lines
         .next()
         .unwrap_or("error: invalid arguments")
+        .trim()
         .to_string();
-    if let Some(valid) = lines.find(|l| l.starts_with("[possible values")) {
+    if msg.ends_with(':') {
+        let items: Vec<&str> = lines
+            .by_ref()
+            .take_while(|l| l.starts_with(' ') && !l.trim().is_empty())
+            .map(str::trim)
+            .collect();
+        msg.push(' ');
+        msg.push_str(&items.join(", "));
+    }
+    if let Some(valid) = lines
+        .map(str::trim)
+        .find(|l| l.starts_with("[possible values"))
+    {
         msg.push(' ');
         msg.push_str(valid);
     }

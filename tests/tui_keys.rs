@@ -217,12 +217,18 @@ fn export_writes_csv_and_braille_text() {
     std::fs::create_dir_all(&dir).unwrap();
     let (csv, txt) = bouncemap::tui::export::export(&a, &dir).unwrap();
     let c = std::fs::read_to_string(&csv).unwrap();
-    assert_eq!(c.lines().count(), 2 + a.diagram.plotted);
-    // The same rows as `bouncemap sweep`'s csv.
+    // A sweep file as `bouncemap sweep` writes it: provenance, header row, rows, end.
+    assert!(
+        c.starts_with("# bouncemap ") && c.contains("\n# spec {"),
+        "{c}"
+    );
+    let data: Vec<&str> = c.lines().filter(|l| !l.starts_with('#')).collect();
+    assert_eq!(data.len(), 1 + a.diagram.plotted);
     assert_eq!(
-        c.lines().nth(1).unwrap(),
+        data[0],
         "index,alpha,phase,v,kind,period,table_periods,status,sticking"
     );
+    assert!(c.lines().last().unwrap().starts_with("# end 120 values"));
     let t = std::fs::read_to_string(&txt).unwrap();
     assert!(t.chars().any(|c| ('\u{2801}'..='\u{28ff}').contains(&c)));
     let (csv2, _) = bouncemap::tui::export::export(&a, &dir).unwrap();

@@ -22,6 +22,7 @@ use bouncemap_engine::map::{Event, EventKind, ImpactMap, State};
 use bouncemap_engine::orbits;
 use bouncemap_engine::sweep::{self, Outcome, SweepJob, SweepSpec};
 use bouncemap_engine::{Solver, System};
+use std::io::Write;
 use std::time::{Duration, Instant};
 
 /// One orbit on which both solvers are measured.
@@ -114,16 +115,19 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         None => None,
     };
     let date = today();
+    let mut out = std::io::BufWriter::new(std::io::stdout().lock());
     match args.format {
         BenchFormat::Text => {
-            println!("bouncemap bench  ({date}, {cores} cores)");
-            println!();
-            println!(
+            writeln!(out, "bouncemap bench  ({date}, {cores} cores)")?;
+            writeln!(out)?;
+            writeln!(
+                out,
                 "{:<9} {:<22} {:>12} {:>12} {:>7} {:>11} {:>11}  note",
                 "orbit", "system", "exact ev/s", "grid ev/s", "ratio", "exact err", "grid err"
-            );
+            )?;
             for r in &rows {
-                println!(
+                writeln!(
+                    out,
                     "{:<9} {:<22} {:>12.0} {:>12.0} {:>7.1} {:>11.1e} {:>11.1e}  {}",
                     r.case,
                     r.system,
@@ -133,31 +137,38 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
                     r.exact_err,
                     r.grid_err,
                     r.note
-                );
+                )?;
             }
-            println!();
-            println!("targets: exact/grid >= 10 on period-1, >= 4 chaotic");
-            println!();
-            println!(
+            writeln!(out)?;
+            writeln!(out, "targets: exact/grid >= 10 on period-1, >= 4 chaotic")?;
+            writeln!(out)?;
+            writeln!(
+                out,
                 "sweep fig3b (fd:0.1, alpha 0.45..0.60, 1000 values), exact solver, {cores} cores:"
-            );
-            println!(
+            )?;
+            writeln!(
+                out,
                 "  coarse pass (every value to t = {}):   {:.3} s   (target 1 s)",
                 sweep::DEFAULT_PREVIEW,
                 coarse.as_secs_f64()
-            );
-            println!(
+            )?;
+            writeln!(
+                out,
                 "  cancel to idle:                          {:.1} ms  (target 50 ms)",
                 cancel.as_secs_f64() * 1e3
-            );
-            print_panel(&format!("panel at T = {reduced_t}"), &reduced_run);
+            )?;
+            print_panel(&mut out, &format!("panel at T = {reduced_t}"), &reduced_run)?;
             let est = estimate_full(&reduced_run, reduced_t, sweep::PAPER_TRANSIENT);
-            println!(
+            writeln!(out,
                 "  estimated full panel at T = 5e6 (unsettled values scale with T): {:.0} s  (target 60 s)",
                 est
-            );
+            )?;
             if let Some((name, f)) = &full {
-                print_panel(&format!("{name} at paper fidelity (T = 5e6, keep 100)"), f);
+                print_panel(
+                    &mut out,
+                    &format!("{name} at paper fidelity (T = 5e6, keep 100)"),
+                    f,
+                )?;
             }
         }
         BenchFormat::Json => {
@@ -185,7 +196,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
                     j
                 }),
             });
-            println!("{doc}");
+            writeln!(out, "{doc}")?;
         }
     }
     Ok(())
@@ -233,8 +244,10 @@ fn time_panel(spec: &SweepSpec, executor: &Executor) -> Result<PanelRun, InputEr
     Ok(r)
 }
 
-fn print_panel(title: &str, r: &PanelRun) {
-    println!(
+fn print_panel(out: &mut impl Write, title: &str, r: &PanelRun) -> std::io::Result<()> {
+    writeln!(
+        out,
+
         "  {title}: {:.2} s  ({} values: {} periodic, {} unsettled, {} sticking, {} resting; {:.3e} events, {:.0}% in unsettled values, {:.2} M events/s)",
         r.wall.as_secs_f64(),
         r.values,
@@ -245,7 +258,7 @@ fn print_panel(title: &str, r: &PanelRun) {
         r.events_total as f64,
         100.0 * r.events_unsettled as f64 / (r.events_total.max(1)) as f64,
         r.events_total as f64 / r.wall.as_secs_f64() / 1e6
-    );
+    )
 }
 
 fn panel_json(r: &PanelRun, transient: u64) -> serde_json::Value {

@@ -7,14 +7,17 @@ pub mod bench;
 pub mod fixed;
 pub mod merge;
 pub mod orbit;
+pub mod progress;
 pub mod scaling;
 pub mod sweep;
 pub mod two_cycle;
 
 use crate::config::flags::Command;
 
-/// Run one subcommand.
+/// Run one subcommand. A SIGTERM, SIGINT or SIGHUP removes any output file still being
+/// written (the old one stays) and exits with 128 + the signal's number.
 pub fn run(cmd: Command) -> anyhow::Result<()> {
+    crate::output::sink::clean_up_on_signals()?;
     match cmd {
         Command::Orbit(a) => orbit::run(&a),
         Command::Fixed(a) => fixed::run(&a),

@@ -59,3 +59,50 @@ pub fn system(args: &SystemArgs) -> Result<System, InputError> {
 pub fn start(sys: &System, args: &InitialArgs) -> Result<State, InputError> {
     Ok(State::start(sys, args.t0, args.v0, args.z0)?)
 }
+
+/// Worker threads: `requested` (at most 4 × the cores, more only thrash), or one per
+/// core.
+pub fn threads(requested: Option<usize>) -> Result<usize, InputError> {
+    let cores = bouncemap_engine::jobs::available_cores();
+    let cap = 4 * cores;
+    match requested {
+        Some(n) if n > cap => Err(InputError(format!(
+            "--threads {n} is out of range: valid 1..={cap} (4 × the {cores} cores of this machine)"
+        ))),
+        Some(n) => Ok(n),
+        None => Ok(cores),
+    }
+}
+
+/// Memory this machine can still give, in bytes (MemAvailable of /proc/meminfo), if
+/// known.
+pub fn available_memory() -> Option<u64> {
+    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
+    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib * 1024)
+}
+
+/// Refuse, with the estimate, a run whose memory bound exceeds what the machine has.
+pub fn check_memory(estimate: u64, what: &str) -> Result<(), InputError> {
+    match available_memory() {
+        Some(avail) if estimate > avail => Err(InputError(format!(
+            "{what} needs about {} of memory and this machine has {} available: lower keep or the number of values",
+            bytes(estimate),
+            bytes(avail)
+        ))),
+        _ => Ok(()),
+    }
+}
+
+/// A byte count for people: 12.3 MB, 4.1 GB.
+pub fn bytes(n: u64) -> String {
+    let n = n as f64;
+    if n >= 1e9 {
+        format!("{:.1} GB", n / 1e9)
+    } else if n >= 1e6 {
+        format!("{:.1} MB", n / 1e6)
+    } else {
+        format!("{:.0} kB", n / 1e3)
+    }
+}

@@ -138,8 +138,12 @@ pub fn sweep_spec(args: &SweepArgs) -> Result<SweepSpec, InputError> {
         match (param, &table_arg, d) {
             (Param::D, Some(t), _) => {
                 if t.d().is_none() {
+                    let source = match (&args.table, &args.preset) {
+                        (None, Some(name)) => format!("--preset {name}: its table {t}"),
+                        _ => format!("--table {t}"),
+                    };
                     return Err(InputError(format!(
-                        "--table {t}: sweeping D needs an fd:D table: valid fd:D, quad or cubic"
+                        "{source} cannot sweep D: valid an fd:D table (fd:D, quad or cubic)"
                     )));
                 }
                 t.load()?

@@ -15,6 +15,7 @@
 
 use super::files::{read_text, SMALL_FILE};
 use super::InputError;
+pub use crate::output::text::escape;
 use bouncemap_engine::{limits, Table};
 use serde::Deserialize;
 use std::fmt;
@@ -124,21 +125,6 @@ pub fn parse_table_file(text: &str, origin: &str) -> Result<Table, String> {
         .collect();
     let name = escape(file.name.as_deref().unwrap_or(origin));
     Table::piecewise(&name, &pieces).map_err(|e| bad(e.to_string()))
-}
-
-/// `text` with control characters (escape codes, newlines) written as escapes, so a
-/// name from a file can never disturb a terminal or break a line of output.
-pub fn escape(text: &str) -> String {
-    text.chars()
-        .flat_map(|c| {
-            let esc: Vec<char> = if c.is_control() {
-                c.escape_default().collect()
-            } else {
-                vec![c]
-            };
-            esc
-        })
-        .collect()
 }
 
 #[cfg(test)]

@@ -9,30 +9,40 @@ use bouncemap_engine::sweep::{Outcome, SweepParam, SweepSpec, ValueResult};
 /// Width of the phase labels left of the plot.
 const GUTTER: usize = 6;
 
-/// The diagram `width` characters wide and `height` lines high: phase t̂ ∈ [0, 1)
-/// upwards against the swept parameter.
-pub fn braille_diagram(
-    spec: &SweepSpec,
-    results: &[ValueResult],
-    width: u16,
-    height: u16,
-) -> Vec<String> {
-    let cols = (width as usize).saturating_sub(GUTTER).max(4);
-    let rows = (height as usize).saturating_sub(4).max(2);
-    let mut grid = HitGrid::new(
-        cols as u16,
-        rows as u16,
-        Marker::Braille,
-        Range::new(spec.lo, spec.hi),
-        Range::new(0.0, 1.0),
-    );
-    let mut marks = vec![' '; cols];
-    for b in results {
-        for p in &b.points {
-            grid.add(b.value, p.phase);
+/// The diagram `width` characters wide and `height` lines high, phase t̂ ∈ [0, 1)
+/// upwards against the swept parameter, binned as values arrive (nothing else is kept).
+pub struct BrailleDiagram {
+    grid: HitGrid,
+    marks: Vec<char>,
+    cols: usize,
+    rows: usize,
+}
+
+impl BrailleDiagram {
+    pub fn new(spec: &SweepSpec, width: u16, height: u16) -> BrailleDiagram {
+        let cols = (width as usize).saturating_sub(GUTTER).max(4);
+        let rows = (height as usize).saturating_sub(4).max(2);
+        BrailleDiagram {
+            grid: HitGrid::new(
+                cols as u16,
+                rows as u16,
+                Marker::Braille,
+                Range::new(spec.lo, spec.hi),
+                Range::new(0.0, 1.0),
+            ),
+            marks: vec![' '; cols],
+            cols,
+            rows,
         }
-        if let Some((i, _)) = grid.sub_cell(b.value, 0.5) {
-            let m = &mut marks[i / 2];
+    }
+
+    /// Bin one value's points, and mark its column if it sticks or rests.
+    pub fn add(&mut self, b: &ValueResult) {
+        for p in &b.points {
+            self.grid.add(b.value, p.phase);
+        }
+        if let Some((i, _)) = self.grid.sub_cell(b.value, 0.5) {
+            let m = &mut self.marks[i / 2];
             if matches!(b.outcome, Outcome::Resting { .. }) {
                 *m = 'r';
             } else if b.sticking && *m != 'r' {
@@ -40,60 +50,66 @@ pub fn braille_diagram(
             }
         }
     }
-    let mut title = format!(
-        "{}  {} = {}..{}  {}  T = {}  keep {}  {} start",
-        spec.table.name(),
-        spec.param.as_str(),
-        shortest(spec.lo),
-        shortest(spec.hi),
-        fixed_params(spec),
-        spec.transient,
-        spec.keep,
-        spec.warm.as_str(),
-    );
-    if spec.initial.near_fixed_point {
-        title.push_str(", near (1,1)");
-    }
-    let mut lines = vec![title];
-    for (row, text) in grid.to_text().into_iter().enumerate() {
-        // Empty cells as the blank braille pattern, so every row is `cols` wide.
-        let glyphs: String = text
-            .chars()
-            .map(|c| if c == ' ' { '\u{2800}' } else { c })
-            .chain(std::iter::repeat('\u{2800}'))
-            .take(cols)
-            .collect();
-        let label = if row == 0 {
-            "1.0 ┤"
-        } else if row == rows / 2 {
-            "0.5 ┤"
-        } else if row + 1 == rows {
-            "0.0 ┤"
-        } else {
-            "    │"
-        };
-        lines.push(format!("{label:>GUTTER$}{glyphs}"));
-    }
-    lines.push(format!("{:>GUTTER$}{}", "└", "─".repeat(cols)));
-    let lo = shortest(spec.lo);
-    let hi = shortest(spec.hi);
-    let name = spec.param.as_str();
-    let pad = cols.saturating_sub(lo.len() + hi.len() + name.len());
-    let left = pad / 2;
-    lines.push(format!(
-        "{:GUTTER$}{lo}{}{name}{}{hi}",
-        "",
-        " ".repeat(left),
-        " ".repeat(pad - left)
-    ));
-    if marks.iter().any(|&m| m != ' ') {
+
+    /// The picture: a title, the plot with its phase axis, the parameter's axis and the
+    /// sticking/resting marks.
+    pub fn lines(&self, spec: &SweepSpec) -> Vec<String> {
+        let (cols, rows) = (self.cols, self.rows);
+        let mut title = format!(
+            "{}  {} = {}..{}  {}  T = {}  keep {}  {} start",
+            spec.table.name(),
+            spec.param.as_str(),
+            shortest(spec.lo),
+            shortest(spec.hi),
+            fixed_params(spec),
+            spec.transient,
+            spec.keep,
+            spec.warm.as_str(),
+        );
+        if spec.initial.near_fixed_point {
+            title.push_str(", near (1,1)");
+        }
+        let mut lines = vec![title];
+        for (row, text) in self.grid.to_text().into_iter().enumerate() {
+            // Empty cells as the blank braille pattern, so every row is `cols` wide.
+            let glyphs: String = text
+                .chars()
+                .map(|c| if c == ' ' { '\u{2800}' } else { c })
+                .chain(std::iter::repeat('\u{2800}'))
+                .take(cols)
+                .collect();
+            let label = if row == 0 {
+                "1.0 ┤"
+            } else if row == rows / 2 {
+                "0.5 ┤"
+            } else if row + 1 == rows {
+                "0.0 ┤"
+            } else {
+                "    │"
+            };
+            lines.push(format!("{label:>GUTTER$}{glyphs}"));
+        }
+        lines.push(format!("{:>GUTTER$}{}", "└", "─".repeat(cols)));
+        let lo = shortest(spec.lo);
+        let hi = shortest(spec.hi);
+        let name = spec.param.as_str();
+        let pad = cols.saturating_sub(lo.len() + hi.len() + name.len());
+        let left = pad / 2;
         lines.push(format!(
-            "{:>GUTTER$}{}",
-            "s/r ",
-            marks.iter().collect::<String>()
+            "{:GUTTER$}{lo}{}{name}{}{hi}",
+            "",
+            " ".repeat(left),
+            " ".repeat(pad - left)
         ));
+        if self.marks.iter().any(|&m| m != ' ') {
+            lines.push(format!(
+                "{:>GUTTER$}{}",
+                "s/r ",
+                self.marks.iter().collect::<String>()
+            ));
+        }
+        lines
     }
-    lines
 }
 
 fn fixed_params(spec: &SweepSpec) -> String {
@@ -136,7 +152,9 @@ mod tests {
             sticking: false,
             events: 1,
         };
-        let lines = braille_diagram(&spec, &[r], 30, 10);
+        let mut d = BrailleDiagram::new(&spec, 30, 10);
+        d.add(&r);
+        let lines = d.lines(&spec);
         assert_eq!(lines.len(), 1 + 6 + 2);
         assert!(lines[1].starts_with(" 1.0 ┤⠁"), "{:?}", lines[1]);
         assert!(lines[8].contains("alpha"));

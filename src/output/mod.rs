@@ -4,13 +4,18 @@
 //!   the terminal application's export, written through the `csv` crate (quoting done
 //!   right) and `serde_json`. Numbers are the shortest strings that read back to the
 //!   same f64 (exponent form where shorter).
+//! * [`sweep_file`]: the sweep file (csv or json) with its provenance: the streaming
+//!   writer, and the reader that checks parts for `merge`.
+//! * [`sink`]: standard output, or a file written atomically (temporary, then rename).
 //! * [`hitgrid`]: the one hit-count grid behind every text picture; [`diagram`]: its
-//!   text form with axes and labels (`sweep --format braille`, the diagram export).
+//!   text form with axes and labels (`sweep --format braille`).
 //! * [`text`]: number formatting for aligned text columns.
 
 pub mod diagram;
 pub mod hitgrid;
 pub mod records;
+pub mod sink;
+pub mod sweep_file;
 pub mod text;
 
 use clap::ValueEnum;

@@ -249,7 +249,8 @@ pub struct EarlyStop {
     pub tolerance: f64,
 }
 
-/// The settings of a sweep, as its json states them.
+/// The settings of a sweep: its full specification, as its files state it (the shard
+/// is in the file's provenance, see [`super::sweep_file`]).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SweepHeader {
@@ -269,8 +270,6 @@ pub struct SweepHeader {
     pub start: String,
     pub initial: InitialRecord,
     pub early_stop: Option<EarlyStop>,
-    /// `I/N`, or null for the whole sweep.
-    pub shard: Option<String>,
 }
 
 impl From<&SweepSpec> for SweepHeader {
@@ -309,18 +308,8 @@ impl From<&SweepSpec> for SweepHeader {
                 max_period: p.max_period,
                 tolerance: p.tolerance,
             }),
-            shard: (spec.shard.count > 1)
-                .then(|| format!("{}/{}", spec.shard.index + 1, spec.shard.count)),
         }
     }
-}
-
-/// A sweep's json document: the settings and one object per value.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct SweepDoc {
-    #[serde(flatten)]
-    pub header: SweepHeader,
-    pub values: Vec<SweepValue>,
 }
 
 // ------------------------------------------------------------------ fixed

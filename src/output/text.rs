@@ -30,6 +30,21 @@ pub fn shortest(x: f64) -> String {
     bouncemap_engine::error::fmt_value(x)
 }
 
+/// `text` with control characters (escape codes, newlines) written as escapes, so a
+/// name from a file can never disturb a terminal or break a line of output.
+pub fn escape(text: &str) -> String {
+    text.chars()
+        .flat_map(|c| {
+            let esc: Vec<char> = if c.is_control() {
+                c.escape_default().collect()
+            } else {
+                vec![c]
+            };
+            esc
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

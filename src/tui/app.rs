@@ -140,6 +140,7 @@ impl App {
             Action::Help => self.shared.overlay = Overlay::Help,
             Action::Presets => self.shared.overlay = Overlay::Presets { selected: 0 },
             Action::Export => self.shared.effect(Effect::Export),
+            Action::Suspend => self.shared.effect(Effect::Suspend),
             Action::NextPanel | Action::PrevPanel => {
                 self.shared.focus = match self.shared.focus {
                     Focus::Params => Focus::Diagram,

@@ -1,9 +1,12 @@
-//! `e`: write the current diagram next to each other in a directory, as csv (the same
-//! rows as `bouncemap sweep`, after a `#` line stating the run) and as the braille text
-//! of the plot.
+//! `e`: write the current diagram next to each other in a directory: a sweep file (the
+//! same format as `bouncemap sweep`, with the run's specification and provenance; its
+//! values are those the diagram holds so far) and the braille text of the plot. Both
+//! written atomically.
 
 use super::app::App;
-use crate::output::records::{csv_writer, SweepRow};
+use crate::output::records::SweepHeader;
+use crate::output::sink::AtomicFile;
+use crate::output::sweep_file::{Layout, SweepWriter};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
@@ -23,35 +26,31 @@ pub fn export(app: &App, dir: &Path) -> Result<(PathBuf, PathBuf), String> {
         })
         .find(|(c, t)| !c.exists() && !t.exists())
         .ok_or("export: no free file name")?;
-    let fail =
-        |p: &Path, e: &dyn std::fmt::Display| format!("export: cannot write {}: {e}", p.display());
-    let spec = d.sweep_spec(app);
-    let p = &app.params;
-    let mut body = format!(
-        "# table={} r={} k={} window=[{}, {}] transient={} keep={}\n",
-        p.table_label(),
-        p.r,
-        p.k,
-        p.lo,
-        p.hi,
-        p.transient,
-        p.keep
-    )
-    .into_bytes();
-    {
-        let mut w =
-            csv_writer(&mut body, &SweepRow::header(spec.param)).map_err(|e| fail(&csv, &e))?;
-        for r in d.slots.iter().flatten() {
-            for row in SweepRow::rows(r) {
-                w.serialize(row).map_err(|e| fail(&csv, &e))?;
-            }
+    // The sweep the stored values come from (the screen may have changed since).
+    let spec = d.running.clone().unwrap_or_else(|| d.sweep_spec(app));
+    let values: Vec<_> = d.slots.iter().flatten().collect();
+    let mut f = AtomicFile::create(&csv).map_err(|e| format!("export: {e}"))?;
+    let written = (|| -> std::io::Result<()> {
+        let mut w = SweepWriter::begin(
+            &mut f,
+            Layout::Csv,
+            &SweepHeader::from(&spec),
+            "1/1",
+            values.len(),
+        )?;
+        for r in &values {
+            w.value(r)?;
         }
-        w.flush().map_err(|e| fail(&csv, &e))?;
-    }
-    let mut out = std::fs::File::create(&csv).map_err(|e| fail(&csv, &e))?;
-    out.write_all(&body).map_err(|e| fail(&csv, &e))?;
+        w.end()?;
+        Ok(())
+    })();
+    written.map_err(|e| format!("export: cannot write {}: {e}", csv.display()))?;
+    f.commit().map_err(|e| format!("export: {e}"))?;
+    let mut t = AtomicFile::create(&txt).map_err(|e| format!("export: {e}"))?;
     let mut text = d.grid.to_text().join("\n");
     text.push('\n');
-    std::fs::write(&txt, text).map_err(|e| fail(&txt, &e))?;
+    t.write_all(text.as_bytes())
+        .map_err(|e| format!("export: cannot write {}: {e}", txt.display()))?;
+    t.commit().map_err(|e| format!("export: {e}"))?;
     Ok((csv, txt))
 }

@@ -33,11 +33,12 @@ pub enum Action {
     ZoomBack,
     Presets,
     Export,
+    Suspend,
 }
 
 impl Action {
     /// Every action, in help order.
-    pub const ALL: [Action; 24] = [
+    pub const ALL: [Action; 25] = [
         Action::Up,
         Action::Down,
         Action::Left,
@@ -60,6 +61,7 @@ impl Action {
         Action::Presets,
         Action::Export,
         Action::Pause,
+        Action::Suspend,
         Action::Help,
         Action::Quit,
     ];
@@ -91,6 +93,7 @@ impl Action {
             Action::ZoomBack => "zoom_back",
             Action::Presets => "presets",
             Action::Export => "export",
+            Action::Suspend => "suspend",
         }
     }
 
@@ -125,6 +128,7 @@ impl Action {
             Action::ZoomBack => "diagram: back to the previous window",
             Action::Presets => "presets: the paper's figures",
             Action::Export => "export the diagram (csv and braille text)",
+            Action::Suspend => "stop bouncemap (the shell's fg continues it)",
         }
     }
 }
@@ -325,6 +329,7 @@ impl Default for Keymap {
         let pairs: Vec<(Key, Action)> = vec![
             (Key::ch('q'), Action::Quit),
             (ctrl('c'), Action::Quit),
+            (ctrl('z'), Action::Suspend),
             (Key::ch(' '), Action::Pause),
             (Key::ch('?'), Action::Help),
             (Key::plain(Tab), Action::NextPanel),
@@ -369,13 +374,52 @@ impl Keymap {
         Key::from_event(ev).and_then(|k| self.map.get(&k).copied())
     }
 
-    /// Replace the keys of `action` by `keys` (other actions keep theirs unless a key
-    /// is taken over).
-    pub fn bind(&mut self, action: Action, keys: &[Key]) {
-        self.map.retain(|_, a| *a != action);
-        for k in keys {
-            self.map.insert(*k, action);
+    /// Ctrl-C, which always quits.
+    pub const CTRL_C: Key = Key {
+        ctrl: true,
+        alt: false,
+        shift: false,
+        code: KeyName::Char('c'),
+    };
+
+    /// The default bindings with those of `config` (action → its keys) in place of the
+    /// configured actions' defaults. Refused: a key bound to two actions (in the config,
+    /// or in the config and by default to an action the config leaves alone), Ctrl-C for
+    /// anything but quitting, and quit without a key.
+    pub fn with(config: &[(Action, Vec<Key>)]) -> Result<Keymap, String> {
+        let mut km = Keymap::default();
+        let mut owner: BTreeMap<Key, Action> = BTreeMap::new();
+        for (a, keys) in config {
+            for k in keys {
+                if *k == Self::CTRL_C && *a != Action::Quit {
+                    return Err(format!("keys.{a}: ctrl-c always quits: valid another key"));
+                }
+                if let Some(b) = owner.insert(*k, *a) {
+                    if b != *a {
+                        return Err(format!(
+                            "keys: {k} is bound to both {b} and {a}: valid one action per key"
+                        ));
+                    }
+                }
+            }
+            km.map.retain(|_, x| x != a);
         }
+        for (k, a) in owner {
+            if let Some(b) = km.map.get(&k) {
+                return Err(format!(
+                    "keys.{a}: {k} is {b}'s key by default: valid one action per key (rebind {b} too)"
+                ));
+            }
+            km.map.insert(k, a);
+        }
+        if km.keys_for(Action::Quit).is_empty() {
+            return Err(
+                "keys.quit: quit has no key left: valid at least one key (ctrl-c also always quits)"
+                    .into(),
+            );
+        }
+        km.map.insert(Self::CTRL_C, Action::Quit);
+        Ok(km)
     }
 
     /// Keys bound to an action, in a stable order.
@@ -479,8 +523,7 @@ mod tests {
 
     #[test]
     fn help_is_generated_from_the_bindings() {
-        let mut k = Keymap::default();
-        k.bind(Action::StepOne, &[Key::ch('s')]);
+        let k = Keymap::with(&[(Action::StepOne, vec![Key::ch('s')])]).unwrap();
         let help = k.help();
         let line = help
             .iter()
@@ -489,6 +532,36 @@ mod tests {
         assert_eq!(line.0, "s");
         assert_eq!(k.action(&ev(KeyCode::Char('n'), KeyModifiers::NONE)), None);
         assert_eq!(help.len(), Action::ALL.len());
+    }
+
+    #[test]
+    fn configs_that_bind_a_key_twice_or_leave_quit_unbound_are_refused() {
+        let q = Key::ch('q');
+        for (config, want) in [
+            (vec![(Action::Quit, vec![])], "quit has no key"),
+            (vec![(Action::Up, vec![q])], "q is quit's key by default"),
+            (
+                vec![
+                    (Action::Up, vec![Key::ch('x')]),
+                    (Action::Down, vec![Key::ch('x')]),
+                ],
+                "bound to both",
+            ),
+            (
+                vec![(Action::Help, vec![Keymap::CTRL_C])],
+                "ctrl-c always quits",
+            ),
+        ] {
+            let e = Keymap::with(&config).unwrap_err();
+            assert!(e.contains(want), "{config:?}: {e}");
+        }
+        // Moving quit away from q frees q for another action; Ctrl-C still quits.
+        let k = Keymap::with(&[(Action::Quit, vec![Key::ch('Q')]), (Action::Up, vec![q])]).unwrap();
+        assert_eq!(k.keys_for(Action::Quit), vec![Key::ch('Q'), Keymap::CTRL_C]);
+        assert_eq!(
+            k.action(&ev(KeyCode::Char('q'), KeyModifiers::NONE)),
+            Some(Action::Up)
+        );
     }
 
     #[test]

@@ -7,9 +7,10 @@
 //! * [`params`]: the editable values (checked by the shared rules); [`keymap`]: keys →
 //!   actions, and the help overlay generated from the same table; [`settings`]: the
 //!   config file.
-//! * [`runtime`]: the event loop; [`workers`]: background work, latest-wins, on the
-//!   engine's executor or threads of its own; [`analysis`]: the orbit analysis the
-//!   stability panel shows; [`terminal`]: setup and restore on every way out.
+//! * [`runtime`]: the event loop; [`input`]: keys, mouse and terminal signals, parsed
+//!   here; [`workers`]: background work, latest-wins, on the engine's executor or
+//!   threads of its own; [`analysis`]: the orbit analysis the stability panel shows;
+//!   [`terminal`]: setup and restore on every way out, and around a stop.
 //! * [`plot`]: drawing the shared hit-count grid; [`theme`]: styles; [`export`]: `e`.
 //!
 //! Invariants: the UI thread never waits on a computation (sweeps, the phase plot and
@@ -21,6 +22,7 @@ pub mod analysis;
 pub mod app;
 pub mod components;
 pub mod export;
+pub mod input;
 pub mod keymap;
 pub mod layout;
 pub mod params;
@@ -98,22 +100,24 @@ pub fn build_app(opts: &Options, config: &Config) -> Result<App, InputError> {
 
 /// Open the terminal application. Bad options or config: [`InputError`] (status 2).
 pub fn run(opts: Options) -> anyhow::Result<()> {
+    // Options and config first: bad ones are refused with or without a terminal.
+    let config = match Config::locate(opts.config.as_deref()) {
+        Some(path) => Config::load(&path).map_err(InputError)?,
+        None => Config::default(),
+    };
+    let mut app = build_app(&opts, &config)?;
     if !(std::io::stdin().is_terminal() && std::io::stdout().is_terminal()) {
         return Err(InputError(
             "the terminal application needs a terminal on stdin and stdout; for scripts use the headless commands (bouncemap orbit --help, bouncemap --help)".into(),
         )
         .into());
     }
-    let config = match Config::locate(opts.config.as_deref()) {
-        Some(path) => Config::load(&path).map_err(InputError)?,
-        None => Config::default(),
-    };
-    let mut app = build_app(&opts, &config)?;
     let stop = terminal::signal_flag()?;
     terminal::spawn_watchdog(stop.clone());
     let workers = workers::Workers::new(Executor::all_cores()?);
+    let inputs = input::Inputs::start()?;
     let mut term = terminal::setup(app.mouse)?;
-    let result = runtime::run(&mut term, &mut app, &workers, &stop);
+    let result = runtime::run(&mut term, &mut app, &workers, &inputs, &stop);
     terminal::restore();
     workers.cancel_all();
     if let Some(status) = terminal::signal_status(stop.load(std::sync::atomic::Ordering::SeqCst)) {

@@ -389,8 +389,13 @@ fn round_to(x: f64, q: f64) -> f64 {
     (x / q).round() * q
 }
 
-/// A number with up to 6 significant decimals, trailing zeros trimmed.
+/// A number with up to 6 decimals, trailing zeros trimmed (exponent form for huge and
+/// tiny magnitudes).
 pub fn fmt_num(x: f64) -> String {
+    let a = x.abs();
+    if a >= 1e7 || (a != 0.0 && a < 1e-4) {
+        return shortest(x);
+    }
     let s = format!("{x:.6}");
     let s = s.trim_end_matches('0').trim_end_matches('.');
     if s == "-0" {

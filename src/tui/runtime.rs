@@ -1,14 +1,18 @@
 //! The event loop (after oha's monitor): carry out queued effects, drain the worker
 //! channel, draw if something changed and the frame cap allows, then wait for input
 //! until the next frame is due. Nothing here waits on a computation, and with nothing
-//! changing it blocks in `poll` and writes nothing.
+//! changing it blocks on the input channel and writes nothing. Ctrl-C always quits;
+//! a stop (Ctrl-Z, SIGTSTP) restores the terminal first and takes it back on `fg`.
 
 use super::app::{App, Effect, Focus};
 use super::components::diagram::alpha_at;
 use super::export::export;
+use super::input::{Input, Inputs};
 use super::terminal::{self, Term};
 use super::workers::Workers;
-use crossterm::event::{self, Event, KeyEventKind, MouseButton, MouseEventKind};
+use crossterm::event::{
+    KeyCode, KeyEvent, KeyEventKind, KeyModifiers, MouseButton, MouseEvent, MouseEventKind,
+};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
 
@@ -25,6 +29,7 @@ pub fn run(
     term: &mut Term,
     app: &mut App,
     workers: &Workers,
+    inputs: &Inputs,
     stop: &AtomicUsize,
 ) -> anyhow::Result<()> {
     let frame = Duration::from_secs_f64(1.0 / app.fps.max(1) as f64);
@@ -33,8 +38,6 @@ pub fn run(
     // Start of a mouse drag on the diagram (column).
     let mut drag_from: Option<u16> = None;
     loop {
-        // A hang-up without a signal is the watchdog's (terminal::spawn_watchdog): the
-        // event reader never returns then, so a check here would not run.
         if stop.load(Ordering::Relaxed) != 0 {
             break;
         }
@@ -42,7 +45,7 @@ pub fn run(
         let size = term.size()?;
         app.set_size(ratatui::layout::Rect::new(0, 0, size.width, size.height));
         for e in app.take_effects() {
-            apply(e, app, workers);
+            apply(e, app, workers, term)?;
         }
         for m in workers.rx.try_iter().take(DRAIN_MAX) {
             app.receive(m);
@@ -70,78 +73,98 @@ pub fn run(
         } else {
             Duration::from_millis(500)
         };
-        if event::poll(timeout)? {
-            // Take every pending event before drawing again.
-            loop {
-                let ev = event::read()?;
-                last_input = Instant::now();
-                handle_event(app, ev, &mut drag_from);
-                if app.quit || !event::poll(Duration::ZERO)? {
-                    break;
+        // Take every pending input before drawing again.
+        let mut next = inputs.next(timeout);
+        while let Some(ev) = next {
+            match ev {
+                Input::Key(k) => {
+                    last_input = Instant::now();
+                    handle_key(app, k);
+                }
+                Input::Mouse(m) => {
+                    last_input = Instant::now();
+                    handle_mouse(app, m, &mut drag_from);
+                }
+                Input::Resize => app.dirty = true,
+                Input::Suspend => suspend(app, term)?,
+                // Continued after a stop we did not take (SIGSTOP): redraw everything.
+                Input::Continue => {
+                    terminal::redraw_all(term)?;
+                    app.dirty = true;
+                }
+                Input::Hangup => {
+                    // The terminal is gone: stop as for SIGHUP.
+                    stop.store(signal_hook::consts::SIGHUP as usize, Ordering::SeqCst);
                 }
             }
+            if app.quit || stop.load(Ordering::Relaxed) != 0 {
+                break;
+            }
+            next = inputs.try_next();
         }
     }
     workers.cancel_all();
     Ok(())
 }
 
-fn handle_event(app: &mut App, ev: Event, drag_from: &mut Option<u16>) {
-    match ev {
-        Event::Key(k) if k.kind != KeyEventKind::Release => {
-            let action = app.keymap.action(&k);
-            if app.editing() {
-                if action == Some(super::keymap::Action::Quit)
-                    && k.modifiers
-                        .contains(crossterm::event::KeyModifiers::CONTROL)
-                {
-                    app.quit = true;
-                } else {
-                    app.edit_key(k.code);
-                }
-            } else if let Some(a) = action {
-                app.handle(a);
-            }
-        }
-        Event::Resize(..) => app.dirty = true,
-        Event::Mouse(m) => {
-            let plot = app.diagram.plot_area;
-            let x = app.diagram.grid.x_range();
-            match m.kind {
-                MouseEventKind::Down(MouseButton::Left) => {
-                    *drag_from = alpha_at(x, plot, m.column)
-                        .filter(|_| m.row >= plot.y && m.row < plot.y + plot.height)
-                        .map(|_| m.column);
-                }
-                MouseEventKind::Up(MouseButton::Left) => {
-                    if let Some(from) = drag_from.take() {
-                        let a = alpha_at(x, plot, from);
-                        let b = alpha_at(
-                            x,
-                            plot,
-                            m.column
-                                .clamp(plot.x, plot.x + plot.width.saturating_sub(1)),
-                        );
-                        if let (Some(a), Some(b)) = (a, b) {
-                            if from == m.column {
-                                app.diagram.cursor = a;
-                                app.focus = Focus::Diagram;
-                                app.set_alpha_to_cursor();
-                            } else {
-                                app.zoom_to(a.min(b), a.max(b));
-                            }
-                        }
-                    }
-                }
-                _ => {}
-            }
-            app.dirty = true;
-        }
-        _ => {}
+/// Stop (Ctrl-Z, SIGTSTP) with the terminal restored; take it back when continued.
+fn suspend(app: &mut App, term: &mut Term) -> anyhow::Result<()> {
+    terminal::suspend(term, app.mouse)?;
+    app.dirty = true;
+    Ok(())
+}
+
+fn handle_key(app: &mut App, k: KeyEvent) {
+    if k.kind == KeyEventKind::Release {
+        return;
+    }
+    // Ctrl-C quits whatever the bindings say, typing or not.
+    if k.code == KeyCode::Char('c') && k.modifiers.contains(KeyModifiers::CONTROL) {
+        app.quit = true;
+        return;
+    }
+    if app.editing() {
+        app.edit_key(k.code);
+    } else if let Some(a) = app.keymap.action(&k) {
+        app.handle(a);
     }
 }
 
-fn apply(e: Effect, app: &mut App, workers: &Workers) {
+fn handle_mouse(app: &mut App, m: MouseEvent, drag_from: &mut Option<u16>) {
+    let plot = app.diagram.plot_area;
+    let x = app.diagram.grid.x_range();
+    match m.kind {
+        MouseEventKind::Down(MouseButton::Left) => {
+            *drag_from = alpha_at(x, plot, m.column)
+                .filter(|_| m.row >= plot.y && m.row < plot.y + plot.height)
+                .map(|_| m.column);
+        }
+        MouseEventKind::Up(MouseButton::Left) => {
+            if let Some(from) = drag_from.take() {
+                let a = alpha_at(x, plot, from);
+                let b = alpha_at(
+                    x,
+                    plot,
+                    m.column
+                        .clamp(plot.x, plot.x + plot.width.saturating_sub(1)),
+                );
+                if let (Some(a), Some(b)) = (a, b) {
+                    if from == m.column {
+                        app.diagram.cursor = a;
+                        app.focus = Focus::Diagram;
+                        app.set_alpha_to_cursor();
+                    } else {
+                        app.zoom_to(a.min(b), a.max(b));
+                    }
+                }
+            }
+        }
+        _ => {}
+    }
+    app.dirty = true;
+}
+
+fn apply(e: Effect, app: &mut App, workers: &Workers, term: &mut Term) -> anyhow::Result<()> {
     match e {
         Effect::Start(t) => app.start(t, workers),
         // Parked workers (sweep, phase plot) keep their progress; work started while
@@ -158,5 +181,7 @@ fn apply(e: Effect, app: &mut App, workers: &Workers) {
             };
             app.message = Some(msg);
         }
+        Effect::Suspend => suspend(app, term)?,
     }
+    Ok(())
 }

@@ -160,6 +160,7 @@ impl Config {
             c.sweep = d.sweep.map(|[a, b]| (a, b));
         }
         if let Some(keys) = f.keys {
+            let mut config = Vec::new();
             for (name, spec) in keys {
                 let action = Action::from_name(&name).ok_or_else(|| {
                     let all: Vec<&str> = Action::ALL.iter().map(|a| a.name()).collect();
@@ -174,8 +175,9 @@ impl Config {
                     .map(|k| Key::parse(k))
                     .collect::<Result<Vec<_>, _>>()
                     .map_err(|e| format!("keys.{name}: {e}"))?;
-                c.keymap.bind(action, &keys);
+                config.push((action, keys));
             }
+            c.keymap = Keymap::with(&config)?;
         }
         Ok(c)
     }

@@ -33,6 +33,8 @@ pub enum Effect {
     Start(Target),
     Pause(bool),
     Export,
+    /// Stop the process (as Ctrl-Z does in any full-screen program).
+    Suspend,
 }
 
 /// What every panel may read and change.

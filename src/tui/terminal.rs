@@ -1,7 +1,8 @@
 //! The terminal: raw mode and the alternate screen on entry, and their undoing on every
 //! way out — normal quit, panic (a hook restores before the message is printed), and
 //! SIGTERM/SIGHUP/SIGINT (a flag the event loop checks several times a second; the
-//! process then exits with status 128 + the signal's number, as a shell expects).
+//! process then exits with status 128 + the signal's number, as a shell expects) — and
+//! around a stop (Ctrl-Z, SIGTSTP): restored while stopped, taken back on `fg`.
 //! Frames are wrapped in synchronized updates so slow links never show half a frame.
 
 use crossterm::event::{DisableMouseCapture, EnableMouseCapture};
@@ -26,6 +27,12 @@ static HOOK: Once = Once::new();
 /// Enter raw mode and the alternate screen; capture the mouse only if asked.
 pub fn setup(mouse: bool) -> io::Result<Term> {
     install_panic_hook();
+    enter(mouse)?;
+    let backend = CrosstermBackend::new(BufWriter::with_capacity(1 << 16, io::stdout()));
+    Terminal::new(backend)
+}
+
+fn enter(mouse: bool) -> io::Result<()> {
     terminal::enable_raw_mode()?;
     ACTIVE.store(true, Ordering::SeqCst);
     MOUSE.store(mouse, Ordering::SeqCst);
@@ -41,8 +48,25 @@ pub fn setup(mouse: bool) -> io::Result<Term> {
     if mouse {
         execute!(out, EnableMouseCapture)?;
     }
-    let backend = CrosstermBackend::new(BufWriter::with_capacity(1 << 16, io::stdout()));
-    Terminal::new(backend)
+    Ok(())
+}
+
+/// Stop the process as the shell's job control expects, with the terminal restored
+/// (cooked mode, the main screen, the cursor shown); on `fg` take it back and redraw.
+pub fn suspend(term: &mut Term, mouse: bool) -> io::Result<()> {
+    restore();
+    // Stops here (the default action of SIGTSTP) until continued.
+    let _ = signal_hook::low_level::emulate_default_handler(signal_hook::consts::SIGTSTP);
+    enter(mouse)?;
+    redraw_all(term)
+}
+
+/// Clear the screen and forget what is on it, so the next frame is drawn whole.
+/// (`Terminal::clear` would ask the terminal for the cursor position, an answer only
+/// crossterm's own input reader can read; input here is read by [`super::input`].)
+pub fn redraw_all(term: &mut Term) -> io::Result<()> {
+    let size = term.size()?;
+    term.resize(ratatui::layout::Rect::new(0, 0, size.width, size.height))
 }
 
 /// Leave the alternate screen and raw mode. Safe to call more than once, and from the
@@ -113,11 +137,10 @@ const WATCH_EVERY: std::time::Duration = std::time::Duration::from_millis(250);
 const STOP_GRACE: std::time::Duration = std::time::Duration::from_secs(1);
 
 /// Guard against a terminal that disappears without a signal (an SSH link dropped, a
-/// terminal emulator killed). crossterm 0.29's event reader then reads end-of-file in a
-/// loop that never returns (crossterm issue #793), so the event loop cannot notice. This
-/// thread ends the process when the terminal is gone, or when a stop signal (SIGTERM,
-/// SIGHUP, SIGINT) has not been answered within a second, restoring the terminal first
-/// where there still is one.
+/// terminal emulator killed) and against a stop signal (SIGTERM, SIGHUP, SIGINT) left
+/// unanswered: this thread ends the process when the terminal is gone, or when the
+/// signal has not been answered within a second, restoring the terminal first where
+/// there still is one. (End of input also reaches the event loop as a hang-up.)
 pub fn spawn_watchdog(stop: Arc<AtomicUsize>) {
     let _ = std::thread::Builder::new()
         .name("terminal-watchdog".into())

@@ -83,6 +83,17 @@ const fn whole(name: &'static str, lo: f64, hi: f64, text: &'static str) -> Limi
 /// Amplitude α of the table, f = α F. Above 1000 flights span so many periods that the
 /// f64 height of the ball loses the precision the solver promises.
 pub const ALPHA: Limit = open_closed("alpha", 0.0, 1000.0, "(0, 1000]");
+/// The largest table the solver's guarantees are established for is the sine at
+/// α = 1000: every flight then stays far inside the range where (period, phase) keeps
+/// its precision and the work bounds hold. Any table, at any α, is held to the sine's
+/// extremes there: α·max|F| ≤ [`MAX_DISPLACEMENT`], α·max|F'| ≤ [`MAX_VELOCITY`],
+/// α·max|F''| ≤ [`MAX_ACCELERATION`].
+pub const MAX_DISPLACEMENT: f64 = 1000.0;
+/// See [`MAX_DISPLACEMENT`] (the sine at α = 1000: 2π·1000 = 6283.2).
+pub const MAX_VELOCITY: f64 = 6300.0;
+/// See [`MAX_DISPLACEMENT`] (the sine at α = 1000: 4π²·1000 = 39478.4).
+pub const MAX_ACCELERATION: f64 = 40_000.0;
+
 /// Coefficient of restitution r.
 pub const R: Limit = Limit {
     name: "r",

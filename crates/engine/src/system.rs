@@ -15,10 +15,28 @@ pub struct System {
 }
 
 impl System {
-    /// Validate α ([`limits::ALPHA`]) and r ([`limits::R`]).
+    /// Validate α ([`limits::ALPHA`]), r ([`limits::R`]) and the size of the table's
+    /// motion f = αF ([`limits::MAX_DISPLACEMENT`] and the bounds after it).
     pub fn new(table: Table, alpha: f64, r: f64) -> Result<System, EngineError> {
         limits::ALPHA.check(alpha)?;
         limits::R.check(r)?;
+        let (lo, hi) = table.range();
+        for (what, size, bound) in [
+            ("max|F|", lo.abs().max(hi.abs()), limits::MAX_DISPLACEMENT),
+            ("max|F'|", table.velocity_bound(), limits::MAX_VELOCITY),
+            ("max|F''|", table.accel_bound(), limits::MAX_ACCELERATION),
+        ] {
+            let product = alpha * size;
+            if product.is_nan() || product > bound {
+                return Err(EngineError::InvalidTable(format!(
+                    "table {} at alpha = {}: alpha·{what} = {} is out of range: valid at most {} (the sine's at alpha = 1000, up to where the solver's guarantees are established)",
+                    table.name(),
+                    crate::error::fmt_value(alpha),
+                    crate::error::fmt_value(product),
+                    crate::error::fmt_value(bound)
+                )));
+            }
+        }
         Ok(System { table, alpha, r })
     }
 
@@ -55,4 +73,33 @@ impl System {
 /// κ_c(r) = −2(1 + r²)/(1 + r)².
 pub fn kappa_c(r: f64) -> f64 {
     -2.0 * (1.0 + r * r) / ((1.0 + r) * (1.0 + r))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_builtin_table_is_accepted_up_to_alpha_1000() {
+        for t in [
+            Table::sine(),
+            Table::fd(0.0).unwrap(),
+            Table::fd(1.0).unwrap(),
+        ] {
+            assert!(System::new(t, 1000.0, 0.8).is_ok());
+        }
+    }
+
+    #[test]
+    fn a_table_wilder_than_the_sine_at_alpha_1000_is_refused_naming_the_bound() {
+        // F = 1e15 (t̂² − t̂)² … as a C¹ quartic on one piece: F(0) = F(1), F'(0) = F'(1).
+        let c = 1e15;
+        let t = Table::piecewise("huge", &[(0.0, vec![0.0, 0.0, c, -2.0 * c, c])]).unwrap();
+        let e = System::new(t, 0.45, 0.8).unwrap_err().to_string();
+        assert!(
+            e.starts_with("table huge at alpha = 0.45: alpha·max|F|"),
+            "{e}"
+        );
+        assert!(e.contains("valid at most 1000"), "{e}");
+    }
 }

@@ -71,6 +71,8 @@ pub struct Diagram {
     pub grid: HitGrid,
     /// The plot's screen rectangle at the last layout (for the mouse).
     pub plot_area: Rect,
+    /// The sweep the stored results come from.
+    pub running: Option<SweepSpec>,
 }
 
 impl Diagram {
@@ -98,6 +100,7 @@ impl Diagram {
                 Range::new(0.0, 1.0),
             ),
             plot_area: Rect::default(),
+            running: None,
         }
     }
 
@@ -364,10 +367,11 @@ impl Component for Diagram {
         let spec = self.sweep_spec(shared);
         let steps = spec.steps;
         let preview = Self::preview(spec.transient);
-        match SweepJob::new(spec) {
+        match SweepJob::new(spec.clone()) {
             Ok(job) => {
                 let gen = workers.start_job(Target::Diagram, job.preview(preview));
                 self.sweep_started(gen, steps, shared);
+                self.running = Some(spec);
             }
             Err(e) => {
                 workers.cancel(Target::Diagram);

@@ -14,7 +14,10 @@ pub fn draw(app: &Shared, area: Rect, buf: &mut Buffer) {
             "{}×{} here; needs at least {MIN_W}×{MIN_H}.",
             area.width, area.height
         )),
-        Line::from("Enlarge the window, or press q to quit."),
+        Line::from(format!(
+            "Enlarge the window, or press {} to quit.",
+            app.keymap.hint(crate::tui::keymap::Action::Quit)
+        )),
     ];
     let h = (lines.len() as u16).min(area.height);
     let y = area.y + area.height.saturating_sub(h) / 2;

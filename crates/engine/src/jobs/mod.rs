@@ -33,6 +33,7 @@ mod gate;
 pub use gate::{Gate, POLL};
 
 use crate::error::EngineError;
+use std::collections::HashMap;
 use std::ops::Deref;
 use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
 use std::sync::mpsc::{self, Receiver, Sender};
@@ -50,11 +51,8 @@ pub trait Job: Send + Sync + 'static {
     /// What the job streams to its consumer.
     type Output: Send + 'static;
 
-    /// The size of the item table (item indices are below it).
-    fn items(&self) -> usize;
-
-    /// The passes: each lists the items it works on, in the order they are handed out.
-    fn passes(&self) -> Vec<Vec<usize>>;
+    /// The passes, each over items 0..len in natural or spread order.
+    fn passes(&self) -> Vec<Pass>;
 
     /// Units of progress in the whole job (e.g. values of a sweep); a unit is done when
     /// a complete result for it is emitted.
@@ -71,6 +69,27 @@ pub trait Job: Send + Sync + 'static {
         state: &mut Option<Self::State>,
         cx: &Context<'_, Self::Output>,
     );
+}
+
+/// One pass of a job: items 0..`len`, handed out in index order or spread over the
+/// range (bit-reversed: every prefix covers the whole range coarsely, as a preview
+/// wants).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Pass {
+    pub len: usize,
+    pub spread: bool,
+}
+
+impl Pass {
+    /// Items 0..len in index order.
+    pub fn natural(len: usize) -> Pass {
+        Pass { len, spread: false }
+    }
+
+    /// Items 0..len spread over the range.
+    pub fn spread(len: usize) -> Pass {
+        Pass { len, spread: true }
+    }
 }
 
 /// A generation counter and a pause gate, shared by the owner of jobs and their workers.
@@ -379,10 +398,11 @@ pub fn available_cores() -> usize {
 }
 
 fn run_passes<J: Job>(job: &J, shared: &Shared<J::Output>, window: Option<&Window>) {
-    let states: Vec<Mutex<Option<J::State>>> = (0..job.items()).map(|_| Mutex::new(None)).collect();
+    // Only the items that carry something to the next pass hold a state.
+    let states: Mutex<HashMap<usize, J::State>> = Mutex::new(HashMap::new());
     let passes = job.passes();
     let last = passes.len().saturating_sub(1);
-    for (p, order) in passes.iter().enumerate() {
+    for (p, pass) in passes.iter().enumerate() {
         if shared.stopped() {
             return;
         }
@@ -390,11 +410,21 @@ fn run_passes<J: Job>(job: &J, shared: &Shared<J::Output>, window: Option<&Windo
             shared,
             pass: p as u32,
         };
+        let order = pass.spread.then(|| bit_reversed_order(pass.len));
         let win = if p == last { window } else { None };
-        for_each(order.len(), shared, win, &|k| {
-            let item = order[k];
-            let mut slot = states[item].lock().unwrap_or_else(|e| e.into_inner());
+        for_each(pass.len, shared, win, &|k| {
+            let item = order.as_ref().map_or(k, |o| o[k]);
+            let mut slot = states
+                .lock()
+                .unwrap_or_else(|e| e.into_inner())
+                .remove(&item);
             job.work(p, item, &mut slot, &cx);
+            if let Some(st) = slot {
+                states
+                    .lock()
+                    .unwrap_or_else(|e| e.into_inner())
+                    .insert(item, st);
+            }
         });
     }
 }
@@ -564,11 +594,8 @@ mod tests {
     impl Job for Sums {
         type State = (u64, u64);
         type Output = (usize, u64, bool);
-        fn items(&self) -> usize {
-            self.n
-        }
-        fn passes(&self) -> Vec<Vec<usize>> {
-            vec![bit_reversed_order(self.n), (0..self.n).collect()]
+        fn passes(&self) -> Vec<Pass> {
+            vec![Pass::spread(self.n), Pass::natural(self.n)]
         }
         fn units(&self) -> usize {
             self.n

@@ -7,9 +7,9 @@
 //! (provisional results only, nothing is kept).
 
 use super::run::{has_sticking, Advance, ValueRun};
-use super::{SweepSpec, Warm};
+use super::{chain_len, SweepSpec, Warm};
 use crate::error::EngineError;
-use crate::jobs::{bit_reversed_order, Context, Job};
+use crate::jobs::{Context, Job, Pass};
 use crate::map::{EventKind, ImpactMap, State};
 
 /// One recorded event of a value.
@@ -97,12 +97,13 @@ pub struct Carried {
     run: ValueRun,
 }
 
-/// A sweep, ready to run on an executor.
+/// A sweep, ready to run on an executor. Its items are the shard's chains (single
+/// values without continuation), computed from their position, not stored.
 pub struct SweepJob {
     spec: SweepSpec,
-    /// Value indices of the shard, in chain order.
-    values: Vec<usize>,
-    chains: Vec<Vec<usize>>,
+    /// Values and chains in the shard.
+    values: usize,
+    chains: usize,
     /// Hand values out in index order (for writers that stream in order) instead of
     /// spread over the window.
     in_order: bool,
@@ -114,8 +115,11 @@ impl SweepJob {
     /// Validate the spec and lay out the items.
     pub fn new(spec: SweepSpec) -> Result<SweepJob, EngineError> {
         spec.validate()?;
-        let chains = spec.chains();
-        let values = chains.iter().flatten().copied().collect();
+        let len = chain_len(spec.warm);
+        let all_chains = spec.steps.div_ceil(len);
+        let shard = spec.shard;
+        let chains = all_chains / shard.count + usize::from(shard.index < all_chains % shard.count);
+        let values = spec.shard_values();
         Ok(SweepJob {
             spec,
             values,
@@ -144,12 +148,36 @@ impl SweepJob {
         &self.spec
     }
 
-    fn order(&self, n: usize) -> Vec<usize> {
+    fn pass(&self, n: usize) -> Pass {
         if self.in_order {
-            (0..n).collect()
+            Pass::natural(n)
         } else {
-            bit_reversed_order(n)
+            Pass::spread(n)
         }
+    }
+
+    /// The value indices of the shard's chain `c`, in the order they are run.
+    pub fn chain(&self, c: usize) -> Vec<usize> {
+        let len = chain_len(self.spec.warm);
+        let g = self.spec.shard.index + c * self.spec.shard.count;
+        let range = g * len..((g + 1) * len).min(self.spec.steps);
+        if self.spec.warm == Warm::Backward {
+            range.rev().collect()
+        } else {
+            range.collect()
+        }
+    }
+
+    /// The shard's value at position `p` (ascending).
+    pub fn value_index(&self, p: usize) -> usize {
+        let len = chain_len(self.spec.warm);
+        let g = self.spec.shard.index + (p / len) * self.spec.shard.count;
+        g * len + p % len
+    }
+
+    /// Values in the shard.
+    pub fn values(&self) -> usize {
+        self.values
     }
 
     fn preview_end(&self) -> Option<i64> {
@@ -219,22 +247,15 @@ impl Job for SweepJob {
     type State = Carried;
     type Output = ValueResult;
 
-    fn items(&self) -> usize {
-        self.values.len().max(self.chains.len())
-    }
-
     fn units(&self) -> usize {
-        self.values.len()
+        self.values
     }
 
-    fn passes(&self) -> Vec<Vec<usize>> {
-        let last = if self.spec.warm == Warm::Off {
-            self.order(self.values.len())
-        } else {
-            self.order(self.chains.len())
-        };
+    fn passes(&self) -> Vec<Pass> {
+        // Without continuation chains are single values, so both passes are over values.
+        let last = self.pass(self.chains);
         match self.preview_end() {
-            Some(_) => vec![self.order(self.values.len()), last],
+            Some(_) => vec![self.pass(self.values), last],
             None => vec![last],
         }
     }
@@ -250,7 +271,7 @@ impl Job for SweepJob {
         let warm = self.spec.warm != Warm::Off;
         if let (Some(preview), 0) = (self.preview_end(), pass) {
             // Pass 0: one value from its cold start to the preview transient.
-            let index = self.values[item];
+            let index = self.value_index(item);
             let Some((value, mut run)) = self.new_run(index, None) else {
                 return;
             };
@@ -262,7 +283,7 @@ impl Job for SweepJob {
         }
         if warm {
             let mut prev: Option<State> = None;
-            for &index in &self.chains[item] {
+            for index in self.chain(item) {
                 let Some((value, mut run)) = self.new_run(index, prev.as_ref()) else {
                     return;
                 };
@@ -278,7 +299,7 @@ impl Job for SweepJob {
         let carried = match state.take() {
             Some(c) => Some(c),
             None if self.preview_end().is_none() => {
-                let index = self.values[item];
+                let index = self.value_index(item);
                 self.new_run(index, None)
                     .map(|(value, run)| Carried { index, value, run })
             }
@@ -287,6 +308,48 @@ impl Job for SweepJob {
         };
         if let Some(mut c) = carried {
             self.advance(c.index, c.value, &mut c.run, end, false, cx);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sweep::{Shard, SweepParam};
+    use crate::table::Table;
+
+    #[test]
+    fn chains_and_positions_are_the_specs_chains() {
+        for steps in [1, 5, 31, 32, 33, 100, 257] {
+            for warm in Warm::ALL {
+                for count in 1..=5 {
+                    for index in 0..count {
+                        let mut spec = SweepSpec::new(
+                            Table::fd(0.1).unwrap(),
+                            0.45,
+                            0.8,
+                            SweepParam::Alpha,
+                            0.4,
+                            0.5,
+                            steps,
+                        );
+                        spec.warm = warm;
+                        spec.shard = Shard { index, count };
+                        let job = SweepJob::new(spec.clone()).unwrap();
+                        let want = spec.chains();
+                        assert_eq!(job.chains, want.len(), "{steps} {warm:?} {index}/{count}");
+                        for (c, chain) in want.iter().enumerate() {
+                            assert_eq!(job.chain(c), *chain);
+                        }
+                        let mut ascending: Vec<usize> = want.into_iter().flatten().collect();
+                        ascending.sort();
+                        assert_eq!(job.values(), ascending.len());
+                        for (p, i) in ascending.iter().enumerate() {
+                            assert_eq!(job.value_index(p), *i);
+                        }
+                    }
+                }
+            }
         }
     }
 }

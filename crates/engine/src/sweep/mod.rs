@@ -169,6 +169,8 @@ pub enum Warm {
 }
 
 impl Warm {
+    pub const ALL: [Warm; 3] = [Warm::Off, Warm::Forward, Warm::Backward];
+
     /// Name used in outputs: `cold`, `warm`, `warm-backward`.
     pub fn as_str(self) -> &'static str {
         match self {
@@ -176,6 +178,11 @@ impl Warm {
             Warm::Forward => "warm",
             Warm::Backward => "warm-backward",
         }
+    }
+
+    /// The mode named `name` (as [`Self::as_str`] writes it).
+    pub fn from_name(name: &str) -> Option<Warm> {
+        Warm::ALL.into_iter().find(|w| w.as_str() == name)
     }
 }
 
@@ -202,6 +209,32 @@ pub struct Shard {
 impl Shard {
     /// The whole sweep.
     pub const WHOLE: Shard = Shard { index: 0, count: 1 };
+
+    /// Whether value `index` of a sweep with continuation `warm` belongs to this part:
+    /// chains of [`chain_len`] consecutive values are dealt out round-robin.
+    pub fn holds(&self, index: usize, warm: Warm) -> bool {
+        (index / chain_len(warm)) % self.count == self.index
+    }
+}
+
+/// Values per chain: one without continuation, [`WARM_CHAIN`] with it.
+pub fn chain_len(warm: Warm) -> usize {
+    if warm == Warm::Off {
+        1
+    } else {
+        WARM_CHAIN
+    }
+}
+
+/// Value `i` of `steps` evenly spaced values from `lo` to `hi` (both ends exact).
+pub fn grid_value(lo: f64, hi: f64, steps: usize, i: usize) -> f64 {
+    if steps <= 1 {
+        lo
+    } else if i + 1 == steps {
+        hi
+    } else {
+        lo + (hi - lo) * (i as f64) / ((steps - 1) as f64)
+    }
 }
 
 /// Everything that defines a sweep.
@@ -272,13 +305,7 @@ impl SweepSpec {
 
     /// The value with index `i`.
     pub fn value(&self, i: usize) -> f64 {
-        if self.steps <= 1 {
-            self.lo
-        } else if i + 1 == self.steps {
-            self.hi
-        } else {
-            self.lo + (self.hi - self.lo) * (i as f64) / ((self.steps - 1) as f64)
-        }
+        grid_value(self.lo, self.hi, self.steps, i)
     }
 
     /// The system at a value of the swept parameter.
@@ -327,7 +354,9 @@ impl SweepSpec {
 
     /// Values in this sweep's shard.
     pub fn shard_values(&self) -> usize {
-        self.chains().iter().map(Vec::len).sum()
+        (0..self.steps)
+            .filter(|&i| self.shard.holds(i, self.warm))
+            .count()
     }
 
     /// Check every setting; the message names the setting, the value and the range.

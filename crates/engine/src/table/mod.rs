@@ -25,6 +25,10 @@ use std::fmt;
 /// Tolerance for the periodicity, continuity and C¹ checks of a piecewise table.
 pub const C1_TOLERANCE: f64 = 1e-9;
 
+/// Largest size of F, F' or F'' on a piece (a crude bound from the coefficients)
+/// for which their extrema are computed reliably in f64.
+pub const MAX_COEFFICIENT_SIZE: f64 = 1e100;
+
 /// Highest polynomial degree accepted for a piece.
 pub const MAX_TABLE_DEGREE: usize = MAX_COEFFS - 2;
 
@@ -99,7 +103,8 @@ pub struct Table {
     shape: Shape,
     /// D for the paper's F_D family, None otherwise.
     d: Option<f64>,
-    /// An upper bound of |F''| over a period.
+    /// Upper bounds of |F'| and |F''| over a period.
+    velocity_bound: f64,
     accel_bound: f64,
     /// Rigorous bounds (min, max) of F over a period.
     range: (f64, f64),
@@ -114,6 +119,7 @@ impl Table {
             name: "sine".into(),
             shape: Shape::Sine,
             d: None,
+            velocity_bound: 2.0 * PI,
             accel_bound: 4.0 * PI * PI,
             range: (-1.0, 1.0),
             max_degree: 0,
@@ -188,6 +194,30 @@ impl Table {
             }
         }
         let n = pieces.len();
+        // Coefficients so large that the extrema of F, F', F'' cannot be computed in
+        // f64 (products overflow) are refused here; the system checks the extrema.
+        for (i, (start, coeffs)) in pieces.iter().enumerate() {
+            let end = if i + 1 < n { pieces[i + 1].0 } else { 1.0 };
+            let p = Poly::new(coeffs).shift(*start);
+            let (len, mut q) = (end - start, p);
+            for order in 0..3 {
+                // |q(s)| ≤ Σ |q_k| len^k on [0, len].
+                let crude: f64 = q
+                    .coeffs()
+                    .iter()
+                    .enumerate()
+                    .map(|(k, c)| c.abs() * len.powi(k as i32))
+                    .sum();
+                if crude.is_nan() || crude > MAX_COEFFICIENT_SIZE {
+                    return Err(bad(format!(
+                        "piece {}: its derivative of order {order} reaches {} in size: valid at most {MAX_COEFFICIENT_SIZE:e}",
+                        i + 1,
+                        crate::error::fmt_value(crude)
+                    )));
+                }
+                q = q.derivative();
+            }
+        }
         let built: Vec<Piece> = (0..n)
             .map(|i| {
                 let start = pieces[i].0;
@@ -233,7 +263,8 @@ impl Table {
             });
         Table {
             name,
-            accel_bound: accel_bound(&pieces),
+            velocity_bound: derivative_bound(&pieces, |p| (&p.d1, &p.d2)),
+            accel_bound: derivative_bound(&pieces, |p| (&p.d2, &p.d3)),
             range,
             max_degree: pieces.iter().map(|p| p.f.degree()).max().unwrap_or(0),
             shape: Shape::Piecewise(pieces),
@@ -328,6 +359,11 @@ impl Table {
         self.accel_bound
     }
 
+    /// An upper bound of |F'| over a period (rigorous, padded).
+    pub fn velocity_bound(&self) -> f64 {
+        self.velocity_bound
+    }
+
     /// Highest polynomial degree among the pieces (0 for the sine, which has none).
     pub fn max_degree(&self) -> usize {
         self.max_degree
@@ -370,13 +406,15 @@ impl Table {
     }
 }
 
-/// Max |F''| over the pieces: endpoints and the critical points of F''.
-fn accel_bound(pieces: &[Piece]) -> f64 {
+/// Max |G| over the pieces for a derivative G (given with its own derivative):
+/// endpoints and the critical points of G, padded.
+fn derivative_bound(pieces: &[Piece], of: impl Fn(&Piece) -> (&Poly, &Poly)) -> f64 {
     let mut m: f64 = 0.0;
     for p in pieces {
-        m = m.max(p.d2.eval(0.0).abs()).max(p.d2.eval(p.len()).abs());
-        for &c in p.d3.roots_in(0.0, p.len()).as_slice() {
-            m = m.max(p.d2.eval(c).abs());
+        let (g, dg) = of(p);
+        m = m.max(g.eval(0.0).abs()).max(g.eval(p.len()).abs());
+        for &c in dg.roots_in(0.0, p.len()).as_slice() {
+            m = m.max(g.eval(c).abs());
         }
     }
     m * (1.0 + 1e-12) + 1e-12

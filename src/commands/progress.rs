@@ -1,0 +1,111 @@
+//! Progress of a long headless computation on stderr: a bar redrawn in place when
+//! stderr is a terminal; otherwise (a batch log) a first line stating the command and
+//! what it computes, one line every [`LOG_EVERY`] (values done, rate, estimated time
+//! left; `BOUNCEMAP_PROGRESS_EVERY=SECONDS` changes the interval) and a last line.
+
+use bouncemap_engine::jobs::Progress as JobProgress;
+use std::io::{IsTerminal, Write};
+use std::time::{Duration, Instant};
+
+/// Interval of the log lines when stderr is not a terminal.
+pub const LOG_EVERY: Duration = Duration::from_secs(30);
+
+/// Progress reporting for one computation.
+pub struct Progress {
+    what: &'static str,
+    terminal: bool,
+    every: Duration,
+    last: Instant,
+}
+
+impl Progress {
+    /// Start reporting `what` (`sweep`) over `total` units; `spec` states the run in
+    /// the log's first line.
+    pub fn start(what: &'static str, total: usize, spec: &str) -> Progress {
+        let terminal = std::io::stderr().is_terminal();
+        let every = std::env::var("BOUNCEMAP_PROGRESS_EVERY")
+            .ok()
+            .and_then(|s| s.parse::<f64>().ok())
+            .filter(|s| *s > 0.0 && s.is_finite())
+            .map_or(LOG_EVERY, Duration::from_secs_f64);
+        if !terminal {
+            let argv: Vec<String> = std::env::args().map(|a| shell_word(&a)).collect();
+            let _ = writeln!(
+                std::io::stderr(),
+                "bouncemap: {what} of {total} values started: {}\nbouncemap: {what} specification: {spec}",
+                argv.join(" ")
+            );
+        }
+        Progress {
+            what,
+            terminal,
+            every,
+            last: Instant::now(),
+        }
+    }
+
+    /// Report `p` if it is time to.
+    pub fn update(&mut self, p: &JobProgress) {
+        let now = Instant::now();
+        if self.terminal {
+            let width = 30;
+            let filled = (p.fraction() * width as f64) as usize;
+            eprint!(
+                "\r\x1b[2K{} [{}{}] {}/{} values  {:.2} M events/s  {:.0} s",
+                self.what,
+                "#".repeat(filled),
+                "-".repeat(width - filled),
+                p.done,
+                p.total,
+                p.events_per_second() / 1e6,
+                p.elapsed.as_secs_f64()
+            );
+        } else if now.duration_since(self.last) >= self.every {
+            self.last = now;
+            let _ = writeln!(std::io::stderr(), "bouncemap: {}", line(self.what, p));
+        }
+    }
+
+    /// The last report.
+    pub fn finish(self, p: &JobProgress) {
+        if self.terminal {
+            eprint!("\r\x1b[2K");
+        } else {
+            let _ = writeln!(
+                std::io::stderr(),
+                "bouncemap: {} finished: {}",
+                self.what,
+                line(self.what, p)
+            );
+        }
+    }
+}
+
+fn line(what: &str, p: &JobProgress) -> String {
+    let secs = p.elapsed.as_secs_f64();
+    let rate = p.done as f64 / secs.max(1e-9);
+    let left = if p.done > 0 && p.done < p.total {
+        format!(", about {:.0} s left", (p.total - p.done) as f64 / rate)
+    } else {
+        String::new()
+    };
+    format!(
+        "{what} {}/{} values ({:.1}%) in {secs:.0} s, {rate:.1} values/s, {:.2} M events/s{left}",
+        p.done,
+        p.total,
+        100.0 * p.fraction(),
+        p.events_per_second() / 1e6
+    )
+}
+
+/// `a` quoted for a shell if it needs it.
+fn shell_word(a: &str) -> String {
+    if !a.is_empty()
+        && a.chars()
+            .all(|c| c.is_ascii_alphanumeric() || "-_./:=,@+%".contains(c))
+    {
+        a.to_string()
+    } else {
+        format!("'{}'", a.replace('\'', "'\\''"))
+    }
+}
