@@ -3,8 +3,10 @@
 //! through [`crate::output`]. Input problems are [`crate::config::InputError`]s, which
 //! the binary reports with status 2.
 
+pub mod basins;
 pub mod bench;
 pub mod fixed;
+pub mod lyapunov;
 pub mod merge;
 pub mod orbit;
 pub mod progress;
@@ -24,6 +26,8 @@ pub fn run(cmd: Command) -> anyhow::Result<()> {
         Command::TwoCycle(a) => two_cycle::run(&a),
         Command::Scaling(a) => scaling::run(&a),
         Command::Sweep(a) => sweep::run(&a),
+        Command::Lyapunov(a) => lyapunov::run(&a),
+        Command::Basins(a) => basins::run(&a),
         Command::Merge(a) => merge::run(&a),
         Command::Bench(a) => bench::run(&a),
     }

@@ -13,6 +13,8 @@ pub const LOG_EVERY: Duration = Duration::from_secs(30);
 /// Progress reporting for one computation.
 pub struct Progress {
     what: &'static str,
+    /// What the units are called (`values`, `starts`).
+    unit: &'static str,
     terminal: bool,
     every: Duration,
     last: Instant,
@@ -22,6 +24,16 @@ impl Progress {
     /// Start reporting `what` (`sweep`) over `total` units; `spec` states the run in
     /// the log's first line.
     pub fn start(what: &'static str, total: usize, spec: &str) -> Progress {
+        Progress::start_units(what, "values", total, spec)
+    }
+
+    /// [`Self::start`] for units called `unit`.
+    pub fn start_units(
+        what: &'static str,
+        unit: &'static str,
+        total: usize,
+        spec: &str,
+    ) -> Progress {
         let terminal = std::io::stderr().is_terminal();
         let every = std::env::var("BOUNCEMAP_PROGRESS_EVERY")
             .ok()
@@ -32,12 +44,13 @@ impl Progress {
             let argv: Vec<String> = std::env::args().map(|a| shell_word(&a)).collect();
             let _ = writeln!(
                 std::io::stderr(),
-                "bouncemap: {what} of {total} values started: {}\nbouncemap: {what} specification: {spec}",
+                "bouncemap: {what} of {total} {unit} started: {}\nbouncemap: {what} specification: {spec}",
                 argv.join(" ")
             );
         }
         Progress {
             what,
+            unit,
             terminal,
             every,
             last: Instant::now(),
@@ -51,18 +64,23 @@ impl Progress {
             let width = 30;
             let filled = (p.fraction() * width as f64) as usize;
             eprint!(
-                "\r\x1b[2K{} [{}{}] {}/{} values  {:.2} M events/s  {:.0} s",
+                "\r\x1b[2K{} [{}{}] {}/{} {}  {:.2} M events/s  {:.0} s",
                 self.what,
                 "#".repeat(filled),
                 "-".repeat(width - filled),
                 p.done,
                 p.total,
+                self.unit,
                 p.events_per_second() / 1e6,
                 p.elapsed.as_secs_f64()
             );
         } else if now.duration_since(self.last) >= self.every {
             self.last = now;
-            let _ = writeln!(std::io::stderr(), "bouncemap: {}", line(self.what, p));
+            let _ = writeln!(
+                std::io::stderr(),
+                "bouncemap: {}",
+                line(self.what, self.unit, p)
+            );
         }
     }
 
@@ -75,13 +93,13 @@ impl Progress {
                 std::io::stderr(),
                 "bouncemap: {} finished: {}",
                 self.what,
-                line(self.what, p)
+                line(self.what, self.unit, p)
             );
         }
     }
 }
 
-fn line(what: &str, p: &JobProgress) -> String {
+fn line(what: &str, unit: &str, p: &JobProgress) -> String {
     let secs = p.elapsed.as_secs_f64();
     let rate = p.done as f64 / secs.max(1e-9);
     let left = if p.done > 0 && p.done < p.total {
@@ -90,7 +108,7 @@ fn line(what: &str, p: &JobProgress) -> String {
         String::new()
     };
     format!(
-        "{what} {}/{} values ({:.1}%) in {secs:.0} s, {rate:.1} values/s, {:.2} M events/s{left}",
+        "{what} {}/{} {unit} ({:.1}%) in {secs:.0} s, {rate:.1} {unit}/s, {:.2} M events/s{left}",
         p.done,
         p.total,
         100.0 * p.fraction(),

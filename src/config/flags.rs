@@ -68,6 +68,12 @@ pub enum Command {
     Scaling(ScalingArgs),
     /// Sweep one parameter over a window: a bifurcation diagram (csv, json, braille).
     Sweep(SweepArgs),
+    /// Both Lyapunov exponents of one orbit, per impact and per table period.
+    #[command(allow_negative_numbers = true)]
+    Lyapunov(LyapunovArgs),
+    /// Basins of attraction: which attractor each start (t̂0, w0) ends on.
+    #[command(allow_negative_numbers = true)]
+    Basins(BasinsArgs),
     /// Join `sweep --shard I/N` output files into one.
     Merge(MergeArgs),
     /// Measure solver throughput (exact vs grid) and sweep timings on this machine.
@@ -286,6 +292,17 @@ pub struct SweepArgs {
     /// Agreement in phase and velocity promised by the early stop.
     #[arg(long, default_value_t = rules::TOLERANCE.default, value_parser = rules::TOLERANCE.real(), value_name = "TOL")]
     pub tolerance: f64,
+    /// Add a `lyapunov` column: the largest Lyapunov exponent per impact of each
+    /// value's orbit (exact on cycles, QR over 10⁴ impacts otherwise; -inf when it sticks).
+    #[arg(long)]
+    pub lyapunov: bool,
+    /// Initial conditions per value: the start above and N − 1 more spread over the
+    /// basin box (t̂0 ∈ [0, 1), w0 ∈ [0, W]); adds an `attractor` column [default: 1].
+    #[arg(long, value_parser = rules::STARTS.whole::<usize>(), value_name = "N")]
+    pub starts: Option<usize>,
+    /// Top W of the extra starts' launch velocities [default: max(1, 2α·max|F'|)].
+    #[arg(long, value_parser = rules::W_MAX.real(), value_name = "W")]
+    pub w_max: Option<f64>,
     /// Output format.
     #[arg(long, value_enum, default_value_t = SweepFormat::Csv)]
     pub format: SweepFormat,
@@ -304,6 +321,91 @@ pub struct SweepArgs {
     /// Worker threads [default: all cores].
     #[arg(long, value_parser = rules::THREADS.whole::<usize>(), value_name = "N")]
     pub threads: Option<usize>,
+}
+
+/// `bouncemap lyapunov`.
+#[derive(Args, Debug, Clone)]
+pub struct LyapunovArgs {
+    #[command(flatten)]
+    pub system: SystemArgs,
+    #[command(flatten)]
+    pub initial: InitialArgs,
+    /// Start slightly off the (1,1) fixed point (phase t* + 0.001, v = 1/2), as sweeps
+    /// do with this flag, instead of --t0/--v0/--z0.
+    #[arg(long)]
+    pub near_fixed_point: bool,
+    /// End of the transient in table periods (an orbit that settles on a cycle earlier
+    /// stops there).
+    #[arg(long, default_value_t = rules::LYAPUNOV_TRANSIENT.default as u64, value_parser = rules::LYAPUNOV_TRANSIENT.whole::<u64>(), value_name = "PERIODS")]
+    pub transient: u64,
+    /// Impacts measured by QR on an orbit that has not settled on a cycle.
+    #[arg(long, default_value_t = rules::IMPACTS.default as u64, value_parser = rules::IMPACTS.whole::<u64>(), value_name = "M")]
+    pub impacts: u64,
+    /// Run the full transient and measure by QR even on a cycle (a second method).
+    #[arg(long)]
+    pub no_early_stop: bool,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    pub format: Format,
+}
+
+/// Output format of `basins`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, Default)]
+pub enum BasinsFormat {
+    /// One row per start: t0, w0, attractor.
+    #[default]
+    Csv,
+    /// The attractors: kinds, periods, points, exponents, basin fractions.
+    Json,
+    /// The picture in braille with a legend.
+    Braille,
+}
+
+/// `bouncemap basins`.
+#[derive(Args, Debug, Clone)]
+pub struct BasinsArgs {
+    #[command(flatten)]
+    pub system: SystemArgs,
+    /// Starts along t̂0 × along w0, e.g. 200x100; at most 4000 per side and 10⁶ in all.
+    #[arg(long, default_value = "200x100", value_parser = parse_grid, value_name = "NXxNY")]
+    pub grid: (usize, usize),
+    /// Top W of the launch velocities w0 = v0 − f'(t̂0) ∈ [0, W]; valid (0, 1000]
+    /// [default: max(1, 2α·max|F'|), twice the table's largest velocity].
+    #[arg(long, value_parser = rules::W_MAX.real(), value_name = "W")]
+    pub w_max: Option<f64>,
+    /// End of each start's transient in table periods (early stop on cycles).
+    #[arg(long, default_value_t = rules::BASIN_TRANSIENT.default as u64, value_parser = rules::BASIN_TRANSIENT.whole::<u64>(), value_name = "PERIODS")]
+    pub transient: u64,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = BasinsFormat::Csv)]
+    pub format: BasinsFormat,
+    /// Write to FILE instead of stdout.
+    #[arg(long, value_name = "FILE")]
+    pub out: Option<String>,
+    /// Braille width in characters [default: the terminal's].
+    #[arg(long, value_parser = rules::CELLS.whole::<u16>(), value_name = "COLS")]
+    pub width: Option<u16>,
+    /// Braille height in lines [default: the terminal's].
+    #[arg(long, value_parser = rules::CELLS.whole::<u16>(), value_name = "LINES")]
+    pub height: Option<u16>,
+    /// Worker threads [default: all cores].
+    #[arg(long, value_parser = rules::THREADS.whole::<usize>(), value_name = "N")]
+    pub threads: Option<usize>,
+}
+
+/// `NXxNY`: grid sides, each in 1..=4000, at most 10⁶ points.
+pub fn parse_grid(s: &str) -> Result<(usize, usize), String> {
+    use bouncemap_engine::attractors::basins::{MAX_POINTS, MAX_SIDE};
+    let bad = || {
+        format!("'{s}' is not a grid: valid NXxNY with each side in 1..={MAX_SIDE} and at most {MAX_POINTS} points, e.g. 200x100")
+    };
+    let (a, b) = s.trim().split_once(['x', 'X']).ok_or_else(bad)?;
+    let nx: usize = a.trim().parse().map_err(|_| bad())?;
+    let ny: usize = b.trim().parse().map_err(|_| bad())?;
+    if nx == 0 || ny == 0 || nx > MAX_SIDE || ny > MAX_SIDE || nx * ny > MAX_POINTS {
+        return Err(bad());
+    }
+    Ok((nx, ny))
 }
 
 /// `I/N` with 1 ≤ I ≤ N.
@@ -365,6 +467,18 @@ mod tests {
         assert!(parse_shard("0/4").is_err());
         assert!(parse_shard("5/4").is_err());
         assert!(parse_shard("x").is_err());
+    }
+
+    #[test]
+    fn grids_are_sides_within_range() {
+        assert_eq!(parse_grid("200x100"), Ok((200, 100)));
+        assert_eq!(parse_grid(" 3X4 "), Ok((3, 4)));
+        for bad in ["200", "0x10", "4001x1", "2000x2000", "ax1", "1x"] {
+            assert!(
+                parse_grid(bad).unwrap_err().contains("valid NXxNY"),
+                "{bad}"
+            );
+        }
     }
 
     #[test]

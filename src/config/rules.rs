@@ -101,6 +101,56 @@ pub const KEEP: Rule = rule("keep", "keep", limits::KEEP, 100.0);
 pub const MAX_PERIOD: Rule = rule("max-period", "max period", limits::MAX_PERIOD, 64.0);
 /// Agreement promised by the early stop.
 pub const TOLERANCE: Rule = rule("tolerance", "tolerance", limits::TOLERANCE, 1e-11);
+/// End of `lyapunov`'s transient, in table periods.
+pub const LYAPUNOV_TRANSIENT: Rule = rule("transient", "transient", limits::TRANSIENT, 1e4);
+/// Impacts over which `lyapunov` measures an unsettled orbit.
+pub const IMPACTS: Rule = rule(
+    "impacts",
+    "impacts",
+    Limit {
+        name: "impacts",
+        lo: 1.0,
+        hi: 1e10,
+        lo_open: false,
+        hi_open: false,
+        whole: true,
+        text: "a whole number in [1, 1e10]",
+    },
+    1e5,
+);
+/// End of each basin start's transient, in table periods.
+pub const BASIN_TRANSIENT: Rule = rule("transient", "transient", limits::TRANSIENT, 5e3);
+/// Top W of the launch velocities of basins and of sweep starts (0: the default
+/// max(1, 2α·max|F'|)).
+pub const W_MAX: Rule = rule(
+    "w-max",
+    "W",
+    Limit {
+        name: "w-max",
+        lo: 0.0,
+        hi: 1000.0,
+        lo_open: true,
+        hi_open: false,
+        whole: false,
+        text: "(0, 1000] (launch velocity relative to the table)",
+    },
+    1.0,
+);
+/// Initial conditions per value of a sweep.
+pub const STARTS: Rule = rule(
+    "starts",
+    "starts",
+    Limit {
+        name: "starts",
+        lo: 1.0,
+        hi: 1000.0,
+        lo_open: false,
+        hi_open: false,
+        whole: true,
+        text: "a whole number in [1, 1000]",
+    },
+    1.0,
+);
 /// Events `orbit` prints.
 pub const BOUNCES: Rule = rule("bounces", "bounces", COUNT, 1000.0);
 /// Events `orbit` computes first without printing.
@@ -221,8 +271,29 @@ mod tests {
     #[test]
     fn defaults_lie_in_their_ranges() {
         for r in [
-            ALPHA, R, D, K, T0, Z0, STEPS, TRANSIENT, KEEP, MAX_PERIOD, TOLERANCE, BOUNCES, SKIP,
-            THREADS, FPS, CELLS, SCALING_D, D_POINTS,
+            ALPHA,
+            R,
+            D,
+            K,
+            T0,
+            Z0,
+            STEPS,
+            TRANSIENT,
+            KEEP,
+            MAX_PERIOD,
+            TOLERANCE,
+            BOUNCES,
+            SKIP,
+            THREADS,
+            FPS,
+            CELLS,
+            SCALING_D,
+            D_POINTS,
+            LYAPUNOV_TRANSIENT,
+            IMPACTS,
+            BASIN_TRANSIENT,
+            W_MAX,
+            STARTS,
         ] {
             assert!(r.limit.contains(r.default), "{}", r.key);
         }

@@ -192,6 +192,9 @@ pub fn sweep_spec(args: &SweepArgs) -> Result<SweepSpec, InputError> {
         tolerance: args.tolerance,
     });
     spec.shard = args.shard.unwrap_or(Shard::WHOLE);
+    spec.lyapunov = args.lyapunov;
+    spec.starts = args.starts.unwrap_or(rules::STARTS.default as usize);
+    spec.w_max = args.w_max;
     spec.validate()
         .map_err(|e| InputError(format!("sweep: {e}")))?;
     Ok(spec)

@@ -151,6 +151,8 @@ mod tests {
             outcome: Outcome::Unsettled,
             sticking: false,
             events: 1,
+            lyapunov: None,
+            attractors: Vec::new(),
         };
         let mut d = BrailleDiagram::new(&spec, 30, 10);
         d.add(&r);

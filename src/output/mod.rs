@@ -9,8 +9,11 @@
 //! * [`sink`]: standard output, or a file written atomically (temporary, then rename).
 //! * [`hitgrid`]: the one hit-count grid behind every text picture; [`diagram`]: its
 //!   text form with axes and labels (`sweep --format braille`).
+//! * [`basin_map`]: a basin picture on character cells, and each attractor's number,
+//!   texture and legend line (`basins --format braille`, the basins panel).
 //! * [`text`]: number formatting for aligned text columns.
 
+pub mod basin_map;
 pub mod diagram;
 pub mod hitgrid;
 pub mod records;

@@ -127,10 +127,14 @@ impl From<&Outcome> for Status {
 
 /// One csv row of a sweep: one recorded point of one value. A value without points
 /// has one row with empty phase, v and kind. The second column is named after the
-/// swept parameter ([`SweepRow::header`]).
+/// swept parameter ([`SweepRow::header`]). With `--lyapunov` a `lyapunov` column
+/// follows, with several starts an `attractor` column (the attractor's number at this
+/// value, 1 = largest basin; period, table_periods and status are then the attractor's).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct SweepRow {
     pub index: usize,
+    #[serde(alias = "alpha", alias = "r", alias = "d")]
     pub value: f64,
     pub phase: Option<f64>,
     pub v: Option<f64>,
@@ -139,12 +143,32 @@ pub struct SweepRow {
     pub table_periods: Option<i64>,
     pub status: Status,
     pub sticking: bool,
+    /// None: no such column.
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "present"
+    )]
+    pub lyapunov: Option<Exponent>,
+    /// None: no such column.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub attractor: Option<usize>,
+}
+
+/// A field that is there (even if empty or null) is `Some`.
+fn present<'de, D, T>(d: D) -> Result<Option<T>, D::Error>
+where
+    D: serde::Deserializer<'de>,
+    T: Deserialize<'de>,
+{
+    T::deserialize(d).map(Some)
 }
 
 impl SweepRow {
-    /// The csv header for a sweep of `param`.
-    pub fn header(param: SweepParam) -> [&'static str; 9] {
-        [
+    /// The csv header of a sweep of `param`, with the `lyapunov` and `attractor`
+    /// columns when asked.
+    pub fn header(param: SweepParam, lyapunov: bool, attractors: bool) -> Vec<&'static str> {
+        let mut h = vec![
             "index",
             param.as_str(),
             "phase",
@@ -154,26 +178,59 @@ impl SweepRow {
             "table_periods",
             "status",
             "sticking",
-        ]
+        ];
+        if lyapunov {
+            h.push("lyapunov");
+        }
+        if attractors {
+            h.push("attractor");
+        }
+        h
     }
 
-    /// The rows of one value.
-    pub fn rows(r: &ValueResult) -> Vec<SweepRow> {
-        let row = |p: Option<&SweepPoint>| SweepRow {
-            index: r.index,
-            value: r.value,
-            phase: p.map(|p| p.phase),
-            v: p.map(|p| p.v),
-            kind: p.map(|p| p.kind.into()),
-            period: r.outcome.period(),
-            table_periods: r.outcome.table_periods(),
-            status: (&r.outcome).into(),
-            sticking: r.sticking,
-        };
+    /// The csv header of the sweep `spec`.
+    pub fn header_of(spec: &SweepSpec) -> Vec<&'static str> {
+        SweepRow::header(spec.param, spec.lyapunov, spec.starts > 1)
+    }
+
+    /// The rows of one value, with a `lyapunov` column and with an `attractor` column
+    /// (for `several` starts) as asked.
+    pub fn rows(r: &ValueResult, lyapunov: bool, several: bool) -> Vec<SweepRow> {
+        let row =
+            |p: Option<&SweepPoint>, o: &Outcome, l: Option<f64>, a: Option<usize>| SweepRow {
+                index: r.index,
+                value: r.value,
+                phase: p.map(|p| p.phase),
+                v: p.map(|p| p.v),
+                kind: p.map(|p| p.kind.into()),
+                period: o.period(),
+                table_periods: o.table_periods(),
+                status: o.into(),
+                sticking: r.sticking,
+                lyapunov: lyapunov.then_some(Exponent(l)),
+                attractor: a,
+            };
+        if several && !r.attractors.is_empty() {
+            let mut out = Vec::new();
+            for (n, a) in r.attractors.iter().enumerate() {
+                let pts = &r.points[a.points.clone()];
+                if pts.is_empty() {
+                    out.push(row(None, &a.outcome, a.lyapunov, Some(n + 1)));
+                }
+                for p in pts {
+                    out.push(row(Some(p), &a.outcome, a.lyapunov, Some(n + 1)));
+                }
+            }
+            return out;
+        }
+        let attractor = several.then_some(1);
         if r.points.is_empty() {
-            vec![row(None)]
+            vec![row(None, &r.outcome, r.lyapunov, attractor)]
         } else {
-            r.points.iter().map(|p| row(Some(p))).collect()
+            r.points
+                .iter()
+                .map(|p| row(Some(p), &r.outcome, r.lyapunov, attractor))
+                .collect()
         }
     }
 }
@@ -185,6 +242,9 @@ pub struct PointRecord {
     pub phase: f64,
     pub v: f64,
     pub kind: Kind,
+    /// With several starts: the number of the attractor the point lies on.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub attractor: Option<usize>,
 }
 
 /// One value in a sweep's json.
@@ -201,11 +261,28 @@ pub struct SweepValue {
     pub sticking: bool,
     /// Events computed.
     pub events: u64,
+    /// With `--lyapunov`: the largest exponent per impact (`"-inf"` when it sticks).
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "present"
+    )]
+    pub lyapunov: Option<Exponent>,
+    /// With several starts: the attractors, largest basin first (numbered from 1).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub attractors: Vec<AttractorRecord>,
     pub points: Vec<PointRecord>,
 }
 
-impl From<&ValueResult> for SweepValue {
-    fn from(r: &ValueResult) -> SweepValue {
+impl SweepValue {
+    /// The json of one value, with its exponent and attractors as asked.
+    pub fn new(r: &ValueResult, lyapunov: bool, several: bool) -> SweepValue {
+        let attractor_of = |i: usize| {
+            r.attractors
+                .iter()
+                .position(|a| a.points.contains(&i))
+                .map(|n| n + 1)
+        };
         SweepValue {
             index: r.index,
             value: r.value,
@@ -218,13 +295,31 @@ impl From<&ValueResult> for SweepValue {
             },
             sticking: r.sticking,
             events: r.events,
+            lyapunov: lyapunov.then_some(Exponent(r.lyapunov)),
+            attractors: r
+                .attractors
+                .iter()
+                .enumerate()
+                .map(|(n, a)| AttractorRecord {
+                    id: n + 1,
+                    kind: a.kind.into(),
+                    events: a.events,
+                    periods: a.periods,
+                    phase: r.points.get(a.points.start).map(|p| p.phase),
+                    v: r.points.get(a.points.start).map(|p| p.v),
+                    lyapunov: Exponent(a.lyapunov),
+                    fraction: a.fraction,
+                })
+                .collect(),
             points: r
                 .points
                 .iter()
-                .map(|p| PointRecord {
+                .enumerate()
+                .map(|(i, p)| PointRecord {
                     phase: p.phase,
                     v: p.v,
                     kind: p.kind.into(),
+                    attractor: if several { attractor_of(i) } else { None },
                 })
                 .collect(),
         }
@@ -270,6 +365,27 @@ pub struct SweepHeader {
     pub start: String,
     pub initial: InitialRecord,
     pub early_stop: Option<EarlyStop>,
+    /// A `lyapunov` column (absent from files without one).
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub lyapunov: bool,
+    /// Initial conditions per value (absent when 1).
+    #[serde(default = "one", skip_serializing_if = "is_one")]
+    pub starts: usize,
+    /// W of the extra starts' box (absent: the default of each value's system).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub w_max: Option<f64>,
+}
+
+fn is_false(b: &bool) -> bool {
+    !*b
+}
+
+fn one() -> usize {
+    1
+}
+
+fn is_one(n: &usize) -> bool {
+    *n == 1
 }
 
 impl From<&SweepSpec> for SweepHeader {
@@ -308,6 +424,9 @@ impl From<&SweepSpec> for SweepHeader {
                 max_period: p.max_period,
                 tolerance: p.tolerance,
             }),
+            lyapunov: spec.lyapunov,
+            starts: spec.starts,
+            w_max: spec.w_max,
         }
     }
 }
@@ -460,23 +579,27 @@ mod tests {
             kind: Kind::Impact,
         };
         assert_eq!(fields(&e), EventRecord::HEADER.join(","));
-        let row = SweepRow {
-            index: 0,
-            value: 0.5,
-            phase: None,
-            v: None,
-            kind: None,
-            period: None,
-            table_periods: None,
-            status: Status::NoLanding,
-            sticking: false,
-        };
-        assert_eq!(
-            fields(&row),
-            SweepRow::header(SweepParam::Alpha)
-                .join(",")
-                .replace("alpha", "value")
-        );
+        for (lyapunov, several) in [(false, false), (true, false), (false, true), (true, true)] {
+            let row = SweepRow {
+                index: 0,
+                value: 0.5,
+                phase: None,
+                v: None,
+                kind: None,
+                period: None,
+                table_periods: None,
+                status: Status::NoLanding,
+                sticking: false,
+                lyapunov: lyapunov.then_some(Exponent(None)),
+                attractor: several.then_some(1),
+            };
+            assert_eq!(
+                fields(&row),
+                SweepRow::header(SweepParam::Alpha, lyapunov, several)
+                    .join(",")
+                    .replace("alpha", "value")
+            );
+        }
     }
 
     #[test]
@@ -511,4 +634,216 @@ mod tests {
             Status::NoLanding
         );
     }
+}
+
+// ------------------------------------------------------------------ attractors
+
+/// A Lyapunov exponent in outputs: a number, `-inf` for a superstable (sticking or
+/// resting) orbit (a string in json, which has no infinities), empty/null where the
+/// orbit has none.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Exponent(pub Option<f64>);
+
+impl Serialize for Exponent {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        match self.0 {
+            Some(x) if x == f64::NEG_INFINITY => s.serialize_str("-inf"),
+            Some(x) if x.is_finite() => s.serialize_f64(x),
+            _ => s.serialize_none(),
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for Exponent {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Exponent, D::Error> {
+        #[derive(Deserialize)]
+        #[serde(untagged)]
+        enum Raw {
+            Number(f64),
+            Text(String),
+        }
+        match Option::<Raw>::deserialize(d)? {
+            None => Ok(Exponent(None)),
+            Some(Raw::Number(x)) => Ok(Exponent(Some(x))),
+            Some(Raw::Text(t)) if t == "-inf" => Ok(Exponent(Some(f64::NEG_INFINITY))),
+            Some(Raw::Text(t)) if t.is_empty() => Ok(Exponent(None)),
+            Some(Raw::Text(t)) => t
+                .parse::<f64>()
+                .map(|x| Exponent(Some(x)))
+                .map_err(|_| serde::de::Error::custom(format!("'{t}' is not an exponent"))),
+        }
+    }
+}
+
+/// The kind of an attractor.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum AttractorKind {
+    Periodic,
+    Sticking,
+    Chaotic,
+    Unsettled,
+    Resting,
+    Escaping,
+}
+
+impl From<bouncemap_engine::attractors::Kind> for AttractorKind {
+    fn from(k: bouncemap_engine::attractors::Kind) -> Self {
+        use bouncemap_engine::attractors::Kind as K;
+        match k {
+            K::Periodic => AttractorKind::Periodic,
+            K::Sticking => AttractorKind::Sticking,
+            K::Chaotic => AttractorKind::Chaotic,
+            K::Unsettled => AttractorKind::Unsettled,
+            K::Resting => AttractorKind::Resting,
+            K::Escaping => AttractorKind::Escaping,
+        }
+    }
+}
+
+/// `lyapunov`'s result (the csv row; json adds the system and the start).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct LyapunovRow {
+    /// What the orbit settled on.
+    pub kind: AttractorKind,
+    /// Events and table periods per cycle, for cycles.
+    pub events: Option<usize>,
+    pub periods: Option<i64>,
+    /// `cycle` (eigenvalues of the cycle's Jacobian) or `qr`; empty where none.
+    pub method: Option<&'static str>,
+    /// The exponents per impact, largest first.
+    pub lambda1: Exponent,
+    pub lambda2: Exponent,
+    /// The exponents per table period.
+    pub lambda1_per_period: Exponent,
+    pub lambda2_per_period: Exponent,
+    /// Standard errors per impact over the measurement's blocks (0 for a cycle).
+    pub stderr1: Option<f64>,
+    pub stderr2: Option<f64>,
+    /// λ1 + λ2 per impact, and 2 ln r beside it.
+    pub sum: Exponent,
+    pub two_ln_r: f64,
+    /// Impacts measured and the table periods they took.
+    pub impacts: Option<u64>,
+    pub measured_periods: Option<f64>,
+}
+
+impl LyapunovRow {
+    pub const HEADER: [&'static str; 14] = [
+        "kind",
+        "events",
+        "periods",
+        "method",
+        "lambda1",
+        "lambda2",
+        "lambda1_per_period",
+        "lambda2_per_period",
+        "stderr1",
+        "stderr2",
+        "sum",
+        "two_ln_r",
+        "impacts",
+        "measured_periods",
+    ];
+
+    pub fn new(found: &bouncemap_engine::attractors::Found, r: f64) -> LyapunovRow {
+        use bouncemap_engine::attractors::lyapunov::Spectrum;
+        let none = Exponent(None);
+        let inf = Exponent(Some(f64::NEG_INFINITY));
+        let mut row = LyapunovRow {
+            kind: found.kind.into(),
+            events: found.events,
+            periods: found.periods,
+            method: None,
+            lambda1: none,
+            lambda2: none,
+            lambda1_per_period: none,
+            lambda2_per_period: none,
+            stderr1: None,
+            stderr2: None,
+            sum: none,
+            two_ln_r: 2.0 * r.ln(),
+            impacts: None,
+            measured_periods: None,
+        };
+        match found.spectrum {
+            Some(Spectrum::Finite(e)) => {
+                row.method = Some(e.method.as_str());
+                row.lambda1 = Exponent(Some(e.per_impact[0]));
+                row.lambda2 = Exponent(Some(e.per_impact[1]));
+                row.lambda1_per_period = Exponent(Some(e.per_period[0]));
+                row.lambda2_per_period = Exponent(Some(e.per_period[1]));
+                row.stderr1 = Some(e.stderr[0]).filter(|x| x.is_finite());
+                row.stderr2 = Some(e.stderr[1]).filter(|x| x.is_finite());
+                row.sum = Exponent(Some(e.per_impact[0] + e.per_impact[1]));
+                row.impacts = Some(e.impacts);
+                row.measured_periods = Some(e.periods);
+            }
+            Some(Spectrum::Sticking) => {
+                row.lambda1 = inf;
+                row.lambda2 = inf;
+                row.lambda1_per_period = inf;
+                row.lambda2_per_period = inf;
+                row.sum = inf;
+            }
+            Some(Spectrum::Grazing) | None => {}
+        }
+        row
+    }
+}
+
+/// `lyapunov`'s json.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct LyapunovDoc<'a> {
+    pub table: &'a str,
+    pub alpha: f64,
+    pub r: f64,
+    pub start: InitialRecord,
+    pub transient: u64,
+    #[serde(flatten)]
+    pub result: LyapunovRow,
+}
+
+/// One attractor of a basin picture or of a sweep value (json).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AttractorRecord {
+    /// 1, 2, …: largest basin first.
+    pub id: usize,
+    pub kind: AttractorKind,
+    pub events: Option<usize>,
+    pub periods: Option<i64>,
+    /// A point on it: phase and velocity right after an event.
+    pub phase: Option<f64>,
+    pub v: Option<f64>,
+    /// Largest exponent per impact.
+    pub lyapunov: Exponent,
+    /// Share of the starts that ended on it.
+    pub fraction: f64,
+}
+
+/// One csv row of `basins`: a start and its attractor's id.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct BasinRow {
+    pub t0: f64,
+    pub w0: f64,
+    pub attractor: Option<usize>,
+}
+
+impl BasinRow {
+    pub const HEADER: [&'static str; 3] = ["t0", "w0", "attractor"];
+}
+
+/// `basins`'s json.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct BasinsDoc<'a> {
+    pub table: &'a str,
+    pub alpha: f64,
+    pub r: f64,
+    /// Starts along t̂0 and along w0, and the top of w0.
+    pub grid: [usize; 2],
+    pub w_max: f64,
+    pub transient: u64,
+    pub starts: usize,
+    pub attractors: Vec<AttractorRecord>,
 }

@@ -113,6 +113,9 @@ pub struct SweepWriter<W: Write> {
     inner: Inner<W>,
     values: usize,
     rows: usize,
+    /// The optional columns: `lyapunov`, and `attractor` (several starts).
+    lyapunov: bool,
+    several: bool,
 }
 
 enum Inner<W: Write> {
@@ -137,7 +140,7 @@ impl<W: Write> SweepWriter<W> {
                 writeln!(out, "# spec-hash {}", prov.spec_hash)?;
                 writeln!(out, "# shard {}", prov.shard)?;
                 writeln!(out, "# values {}", prov.values)?;
-                let head = SweepRow::header(param_of(header)).join(",");
+                let head = header_row(header).join(",");
                 writeln!(out, "{head}")?;
                 // The rows from here on are hashed.
                 let out = Hashing {
@@ -171,14 +174,16 @@ impl<W: Write> SweepWriter<W> {
             inner,
             values: 0,
             rows: 0,
+            lyapunov: header.lyapunov,
+            several: header.starts > 1,
         })
     }
 
     /// One value.
     pub fn value(&mut self, r: &ValueResult) -> io::Result<()> {
         match self.inner {
-            Inner::Csv(_) => self.rows(&SweepRow::rows(r)),
-            Inner::Json { .. } => self.json(&SweepValue::from(r)),
+            Inner::Csv(_) => self.rows(&SweepRow::rows(r, self.lyapunov, self.several)),
+            Inner::Json { .. } => self.json(&SweepValue::new(r, self.lyapunov, self.several)),
         }
     }
 
@@ -233,6 +238,11 @@ impl<W: Write> SweepWriter<W> {
 }
 
 /// The swept parameter a header names.
+/// The csv header row of the sweep `h`.
+pub fn header_row(h: &SweepHeader) -> Vec<&'static str> {
+    SweepRow::header(param_of(h), h.lyapunov, h.starts > 1)
+}
+
 fn param_of(h: &SweepHeader) -> SweepParam {
     SweepParam::ALL
         .into_iter()
@@ -374,7 +384,8 @@ fn read_csv(name: &str, text: &str) -> Result<Part, String> {
         .map_err(|_| format!("{name}: line 5: '{}' is not a count", clip(&values_text)))?;
     let shard = parse_shard(&shard_text).map_err(|e| format!("{name}: line 4: {e}"))?;
     let head = next_line("header row", 6)?;
-    let want = SweepRow::header(param_of(&header)).join(",");
+    let columns = header_row(&header);
+    let want = columns.join(",");
     if head != want {
         return Err(format!(
             "{name}: line 6: header '{}' is not '{want}'",
@@ -393,7 +404,8 @@ fn read_csv(name: &str, text: &str) -> Result<Part, String> {
         .from_reader(body.as_bytes());
     let mut out: Vec<PartValue> = Vec::new();
     let mut rows = 0usize;
-    let width = SweepRow::header(SweepParam::Alpha).len();
+    let width = columns.len();
+    let names = csv::StringRecord::from(columns.clone());
     for (k, rec) in reader.records().enumerate() {
         // Rows are one line each (no field holds a newline): row k is line 7 + k.
         let line = 7 + k;
@@ -402,7 +414,7 @@ fn read_csv(name: &str, text: &str) -> Result<Part, String> {
         if rec.len() != width {
             return Err(malformed(format!("{} fields, expected {width}", rec.len())));
         }
-        let row: SweepRow = rec.deserialize(None).map_err(|e| match e.kind() {
+        let row: SweepRow = rec.deserialize(Some(&names)).map_err(|e| match e.kind() {
             csv::ErrorKind::Deserialize { err, .. } => malformed(one_line(&err.kind().to_string())),
             _ => malformed(one_line(&e.to_string())),
         })?;
@@ -487,7 +499,8 @@ fn check_values(part: &Part) -> Result<(), String> {
             }
         }
         let want = grid_value(h.lo, h.hi, h.steps, i);
-        check_value(v, want, h.keep).map_err(|e| format!("value {i}: {e}"))?;
+        check_value(v, want, h.keep.saturating_mul(h.starts.max(1)))
+            .map_err(|e| format!("value {i}: {e}"))?;
     }
     let expected = match part.shard {
         Some(s) => (0..h.steps).filter(|&i| s.holds(i, warm)).count(),
@@ -518,9 +531,14 @@ fn check_value(v: &PartValue, want: f64, keep: usize) -> Result<(), String> {
         PartValue::Csv { rows, .. } => {
             let r0 = &rows[0];
             for r in rows {
+                // Rows of one attractor (all rows, with one start) share its outcome.
+                let same_attractor = rows.iter().find(|x| x.attractor == r.attractor);
+                let a0 = same_attractor.unwrap_or(r0);
                 if (r.period, r.table_periods, r.status, r.sticking)
-                    != (r0.period, r0.table_periods, r0.status, r0.sticking)
+                    != (a0.period, a0.table_periods, a0.status, r0.sticking)
                     || r.value.to_bits() != r0.value.to_bits()
+                    || r.lyapunov.is_some() != r0.lyapunov.is_some()
+                    || r.attractor.is_some() != r0.attractor.is_some()
                 {
                     return Err("its rows disagree on the value's outcome".into());
                 }

@@ -87,6 +87,8 @@ pub fn fill(app: &mut App) {
                 outcome: Outcome::Unsettled,
                 sticking: false,
                 events: 100,
+                lyapunov: None,
+                attractors: Vec::new(),
             },
         ));
     }

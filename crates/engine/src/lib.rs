@@ -6,13 +6,16 @@
 //! * [`impact`]: next-contact solvers (exact per shape, and the paper's grid);
 //!   [`map`]: the impact map with chattering, sticking and release.
 //! * [`orbits`]: (1, k) and (2, 2k) solutions, stability windows, scaling laws.
+//! * [`tangent`]: the Jacobian of one event; [`attractors`]: what orbits settle on,
+//!   Lyapunov exponents, basins of attraction.
 //! * [`jobs`]: the executor for computations over many work items; [`sweep`]: the
-//!   bifurcation diagram, its first client.
+//!   bifurcation diagram, its first client; [`attractors::basins`]: the basin picture.
 //!
 //! No terminal, no files, no printing, no global state: errors are [`EngineError`]
 //! values; the binary turns them into messages and exit codes. Everything but the
 //! executor's workers is synchronous.
 
+pub mod attractors;
 pub mod error;
 pub mod exact_sum;
 pub mod impact;
@@ -24,6 +27,7 @@ pub mod poly;
 pub mod sweep;
 pub mod system;
 pub mod table;
+pub mod tangent;
 #[cfg(test)]
 mod test_rng;
 

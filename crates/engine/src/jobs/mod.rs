@@ -244,13 +244,17 @@ impl<T> Context<'_, T> {
     /// Hand a result to the consumer; `complete` marks a unit of progress done. Nothing
     /// is sent once the job was cancelled.
     pub fn emit(&self, data: T, complete: bool) {
+        self.emit_units(data, usize::from(complete));
+    }
+
+    /// Hand a result to the consumer that completes `units` units of progress (e.g. a
+    /// chunk of grid points). Nothing is sent once the job was cancelled.
+    pub fn emit_units(&self, data: T, units: usize) {
         let s = self.shared;
         if s.stopped() {
             return;
         }
-        if complete {
-            s.counters.done.fetch_add(1, Ordering::Relaxed);
-        }
+        s.counters.done.fetch_add(units, Ordering::Relaxed);
         let batch = Batch {
             generation: s.generation,
             pass: self.pass,

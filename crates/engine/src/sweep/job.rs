@@ -7,7 +7,8 @@
 //! (provisional results only, nothing is kept).
 
 use super::run::{has_sticking, Advance, ValueRun};
-use super::{chain_len, SweepSpec, Warm};
+use super::{chain_len, SweepSpec, Warm, LYAPUNOV_SAMPLE};
+use crate::attractors::{self, box_start, default_w_max, Kind, Registry, Settle};
 use crate::error::EngineError;
 use crate::jobs::{Context, Job, Pass};
 use crate::map::{EventKind, ImpactMap, State};
@@ -88,6 +89,33 @@ pub struct ValueResult {
     pub sticking: bool,
     /// Events computed for this value.
     pub events: u64,
+    /// With [`SweepSpec::lyapunov`], the largest Lyapunov exponent per impact of the
+    /// (first start's) orbit: from the eigenvalues of its cycle, −∞ when it sticks or
+    /// rests, by QR over [`LYAPUNOV_SAMPLE`] impacts when unsettled; None when not
+    /// asked, for provisional results, and where there is none (no landing, grazing).
+    pub lyapunov: Option<f64>,
+    /// With [`SweepSpec::starts`] > 1, the attractors the starts ended on, largest basin
+    /// first. Each attractor's points (of the first start that found it) are
+    /// `points[a.points.clone()]`; `points` is then their concatenation. Empty with one
+    /// start.
+    pub attractors: Vec<ValueAttractor>,
+}
+
+/// One attractor found at a value of a sweep with several starts.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ValueAttractor {
+    pub kind: Kind,
+    /// Events and table periods per cycle, for cycles.
+    pub events: Option<usize>,
+    pub periods: Option<i64>,
+    /// The largest exponent per impact (−∞ sticking or resting; None where none).
+    pub lyapunov: Option<f64>,
+    /// Share of the starts that ended on it.
+    pub fraction: f64,
+    /// The outcome of the first start that found it.
+    pub outcome: Outcome,
+    /// Its recorded points in [`ValueResult::points`].
+    pub points: std::ops::Range<usize>,
 }
 
 /// A run carried from the preview pass to the final one.
@@ -182,7 +210,91 @@ impl SweepJob {
 
     fn preview_end(&self) -> Option<i64> {
         let (p, end) = (self.preview as i64, self.spec.transient as i64);
-        (p > 0 && p < end).then_some(p)
+        (p > 0 && p < end && self.spec.starts == 1).then_some(p)
+    }
+
+    /// How a start is settled and identified, sampling `sample` events if unsettled.
+    fn settle(&self, sample: u64) -> Settle {
+        Settle {
+            transient: self.spec.transient,
+            periodicity: self.spec.periodicity,
+            sample,
+            solver: self.spec.solver,
+        }
+    }
+
+    /// A value with several starts: run each to its attractor and emit them all.
+    fn several_starts(&self, index: usize, cx: &Context<'_, ValueResult>) {
+        let value = self.spec.value(index);
+        let Ok(sys) = self.spec.system_at(value) else {
+            return;
+        };
+        let w_max = self.spec.w_max.unwrap_or_else(|| default_w_max(&sys));
+        let sample = if self.spec.lyapunov {
+            LYAPUNOV_SAMPLE
+        } else {
+            Settle::BASINS.sample
+        };
+        let settle = self.settle(sample);
+        let mut registry = Registry::new();
+        // Per attractor id: the points and outcome of the first start that found it.
+        let mut first: Vec<(Vec<SweepPoint>, Outcome)> = Vec::new();
+        let mut lead: Option<(Outcome, Option<f64>)> = None;
+        let mut events = 0;
+        for s in 0..self.spec.starts {
+            let start = if s == 0 {
+                self.spec.initial_state(&sys).ok()
+            } else {
+                let (t0, w0) = box_start(s - 1, w_max);
+                attractors::launch(&sys, t0, w0)
+            };
+            let Some(start) = start else { continue };
+            let Some((found, outcome, points, n)) =
+                attractors::settle(&sys, start, &settle, self.spec.keep, &mut |n| cx.tick(n))
+            else {
+                return;
+            };
+            events += n;
+            let id = registry.assign(&found);
+            if id == first.len() {
+                first.push((points, outcome));
+            }
+            lead.get_or_insert((outcome, found.lyapunov()));
+        }
+        let Some((outcome, lyapunov)) = lead else {
+            return;
+        };
+        let mut points = Vec::new();
+        let mut list = Vec::new();
+        for id in registry.ranked() {
+            let a = &registry.attractors()[id];
+            let (p, o) = &first[id];
+            let from = points.len();
+            points.extend_from_slice(p);
+            list.push(ValueAttractor {
+                kind: a.kind,
+                events: a.events,
+                periods: a.periods,
+                lyapunov: a.lyapunov,
+                fraction: registry.fraction(id),
+                outcome: *o,
+                points: from..points.len(),
+            });
+        }
+        cx.emit(
+            ValueResult {
+                index,
+                value,
+                complete: true,
+                sticking: has_sticking(&points),
+                points,
+                outcome,
+                events,
+                lyapunov: lyapunov.filter(|_| self.spec.lyapunov),
+                attractors: list,
+            },
+            true,
+        );
     }
 
     fn new_run(&self, index: usize, warm_from: Option<&State>) -> Option<(f64, ValueRun)> {
@@ -227,6 +339,17 @@ impl SweepJob {
             Advance::Cancelled => return None,
         };
         let complete = complete && !provisional;
+        let lyapunov = match complete && self.spec.lyapunov {
+            true => {
+                let sys = run.system().clone();
+                let settle = self.settle(LYAPUNOV_SAMPLE);
+                let found = attractors::identify(&sys, &settle, &outcome, run.state(), &mut |n| {
+                    cx.tick(n)
+                })?;
+                found.lyapunov()
+            }
+            false => None,
+        };
         cx.emit(
             ValueResult {
                 index,
@@ -236,6 +359,8 @@ impl SweepJob {
                 points,
                 outcome,
                 events: run.events(),
+                lyapunov,
+                attractors: Vec::new(),
             },
             complete,
         );
@@ -269,6 +394,10 @@ impl Job for SweepJob {
     ) {
         let end = self.spec.transient as i64;
         let warm = self.spec.warm != Warm::Off;
+        if self.spec.starts > 1 {
+            self.several_starts(self.value_index(item), cx);
+            return;
+        }
         if let (Some(preview), 0) = (self.preview_end(), pass) {
             // Pass 0: one value from its cold start to the preview transient.
             let index = self.value_index(item);

@@ -68,7 +68,7 @@ mod job;
 pub mod run;
 
 pub use detect::Periodicity;
-pub use job::{Outcome, SweepJob, SweepPoint, ValueResult};
+pub use job::{Outcome, SweepJob, SweepPoint, ValueAttractor, ValueResult};
 
 use crate::error::EngineError;
 use crate::impact::Solver;
@@ -87,6 +87,10 @@ pub const PAPER_TRANSIENT: u64 = 5_000_000;
 pub const PAPER_KEEP: usize = 100;
 /// Default preview transient of pass 0, in periods.
 pub const DEFAULT_PREVIEW: u64 = 1_000;
+/// The most initial conditions per value.
+pub const MAX_STARTS: usize = 1000;
+/// Impacts over which an unsettled value's exponent is measured (QR).
+pub const LYAPUNOV_SAMPLE: u64 = 10_000;
 /// Phase offset from the (1, 1) fixed point of a `near_fixed_point` start.
 pub const FIXED_POINT_OFFSET: f64 = 1e-3;
 
@@ -198,6 +202,14 @@ pub fn fixed_point_phase(sys: &System) -> Option<f64> {
         .map(|p| p.phase)
 }
 
+/// The paper's start next to the (1, 1) solution: phase t̂* + [`FIXED_POINT_OFFSET`],
+/// v = ½ (at least the table's velocity), if there is a (1, 1) solution.
+pub fn near_fixed_point(sys: &System) -> Option<State> {
+    let t = fixed_point_phase(sys)?;
+    let (_, phase) = crate::impact::normalize(0, t + FIXED_POINT_OFFSET);
+    State::launch(sys, 0, phase, 0.5_f64.max(sys.df(phase)), 0.0).ok()
+}
+
 /// Which interleaved part of a sweep to compute: chains c with c % count == index.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Shard {
@@ -264,6 +276,14 @@ pub struct SweepSpec {
     /// Early stop on detected cycles; None runs every value to T (brute force).
     pub periodicity: Option<Periodicity>,
     pub shard: Shard,
+    /// Measure each value's largest Lyapunov exponent (see [`ValueResult::lyapunov`]).
+    pub lyapunov: bool,
+    /// Initial conditions per value: the cold start and `starts − 1` more spread over
+    /// the box t̂0 ∈ [0, 1), w0 ∈ [0, W] ([`crate::attractors::box_start`]); with more
+    /// than one, each value reports its attractors ([`ValueResult::attractors`]).
+    pub starts: usize,
+    /// W of that box; None: [`crate::attractors::default_w_max`] of each value's system.
+    pub w_max: Option<f64>,
 }
 
 impl SweepSpec {
@@ -300,6 +320,9 @@ impl SweepSpec {
             warm: Warm::Off,
             periodicity: Some(Periodicity::default()),
             shard: Shard::WHOLE,
+            lyapunov: false,
+            starts: 1,
+            w_max: None,
         }
     }
 
@@ -321,11 +344,8 @@ impl SweepSpec {
     pub fn initial_state(&self, sys: &System) -> Result<State, EngineError> {
         let i = self.initial;
         if i.near_fixed_point {
-            if let Some(t) = fixed_point_phase(sys) {
-                let (_, phase) = crate::impact::normalize(0, t + FIXED_POINT_OFFSET);
-                if let Ok(s) = State::launch(sys, 0, phase, 0.5_f64.max(sys.df(phase)), 0.0) {
-                    return Ok(s);
-                }
+            if let Some(s) = near_fixed_point(sys) {
+                return Ok(s);
             }
         }
         State::start(sys, i.t0, i.v0, i.z0)
@@ -381,6 +401,28 @@ impl SweepSpec {
         if let Some(p) = self.periodicity {
             limits::MAX_PERIOD.check(p.max_period as f64)?;
             limits::TOLERANCE.check(p.tolerance)?;
+        }
+        if !(1..=MAX_STARTS).contains(&self.starts) {
+            return Err(EngineError::InvalidParameter {
+                name: "starts",
+                value: self.starts.to_string(),
+                range: "a whole number in [1, 1000]",
+            });
+        }
+        if self.starts > 1 && self.warm != Warm::Off {
+            return Err(EngineError::Inconsistent(format!(
+                "starts = {} needs cold starts: continuation follows one orbit from value to value, several starts look for every attractor at each value",
+                self.starts
+            )));
+        }
+        if let Some(w) = self.w_max {
+            if !(w > 0.0 && w <= limits::MAX_INITIAL) {
+                return Err(EngineError::InvalidParameter {
+                    name: "w-max",
+                    value: crate::error::fmt_value(w),
+                    range: "(0, 1000] (launch velocity relative to the table)",
+                });
+            }
         }
         if self.shard.count == 0 || self.shard.index >= self.shard.count {
             return Err(EngineError::InvalidParameter {

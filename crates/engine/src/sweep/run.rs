@@ -82,6 +82,11 @@ impl ValueRun {
         self.reached
     }
 
+    /// The system the run is on.
+    pub fn system(&self) -> &crate::system::System {
+        self.map.system()
+    }
+
     /// The map's current state (after the latest computed event).
     pub fn state(&self) -> State {
         *self.map.state()

@@ -1,0 +1,151 @@
+//! `bouncemap basins`: the basins of attraction of one system over a grid of starts
+//! (t̂0, w0), each run to its attractor (see [`bouncemap_engine::attractors::basins`]).
+//!
+//! csv: one row per start (t0, w0, attractor number), w0 rows from the bottom, t0
+//! fastest; json: the attractors with kinds, periods, points, exponents and basin
+//! fractions; braille: the picture with one texture per attractor and a legend.
+//! Attractors are numbered 1, 2, … from the largest basin down.
+
+use super::progress::Progress;
+use crate::config::flags::{BasinsArgs, BasinsFormat};
+use crate::config::{self, rules, InputError};
+use crate::output::basin_map;
+use crate::output::records::{csv_writer, AttractorRecord, BasinRow, BasinsDoc, Exponent};
+use crate::output::sink::Sink;
+use crate::output::text::shortest;
+use bouncemap_engine::attractors::basins::{BasinSpec, Basins, BasinsJob};
+use bouncemap_engine::attractors::{default_w_max, Settle};
+use bouncemap_engine::jobs::{Control, Executor};
+use std::io::Write;
+use std::time::Duration;
+
+pub fn run(args: &BasinsArgs) -> anyhow::Result<()> {
+    let sys = config::system(&args.system)?;
+    let (nx, ny) = args.grid;
+    let spec = BasinSpec {
+        w_max: args.w_max.unwrap_or_else(|| default_w_max(&sys)),
+        nx,
+        ny,
+        settle: Settle {
+            transient: args.transient,
+            ..Settle::BASINS
+        },
+        sys,
+    };
+    spec.validate().map_err(InputError::from)?;
+    let threads = config::threads(args.threads)?;
+    let mut sink = Sink::open(args.out.as_deref()).map_err(InputError)?;
+    let basins = compute(&spec, &Executor::new(threads)?)?;
+    write(&spec, &basins, args, &mut sink).map_err(|e| sink.describe(e))?;
+    sink.finish()
+}
+
+/// Run the picture to the end with progress on stderr.
+fn compute(spec: &BasinSpec, executor: &Executor) -> anyhow::Result<Basins> {
+    let job = BasinsJob::new(spec.clone())?;
+    let handle = executor.start(job, &Control::new());
+    let mut basins = Basins::new(spec);
+    let mut progress = Progress::start_units("basins", "starts", spec.len(), &title(spec));
+    loop {
+        match handle.receiver().recv_timeout(Duration::from_millis(200)) {
+            Ok(b) => {
+                basins.absorb(b.data);
+            }
+            Err(std::sync::mpsc::RecvTimeoutError::Timeout) => {}
+            Err(std::sync::mpsc::RecvTimeoutError::Disconnected) => break,
+        }
+        progress.update(&handle.progress());
+    }
+    let summary = handle.wait();
+    progress.finish(&summary.progress);
+    if !basins.complete() {
+        anyhow::bail!(
+            "the basin picture stopped after {} of {} starts",
+            basins.covered(),
+            spec.len()
+        );
+    }
+    Ok(basins)
+}
+
+fn title(spec: &BasinSpec) -> String {
+    format!(
+        "{}  alpha = {}  r = {}  grid {}x{}  w0 ∈ [0, {}]  T = {}",
+        spec.sys.table.name(),
+        shortest(spec.sys.alpha),
+        shortest(spec.sys.r),
+        spec.nx,
+        spec.ny,
+        shortest(spec.w_max),
+        spec.settle.transient
+    )
+}
+
+fn write(
+    spec: &BasinSpec,
+    basins: &Basins,
+    args: &BasinsArgs,
+    out: &mut Sink,
+) -> anyhow::Result<()> {
+    let reg = basins.registry();
+    let number = basin_map::numbers(reg);
+    match args.format {
+        BasinsFormat::Csv => {
+            let mut w = csv_writer(&mut *out, &BasinRow::HEADER)?;
+            for (k, l) in basins.labels().iter().enumerate() {
+                let (t0, w0) = spec.start(k);
+                w.serialize(BasinRow {
+                    t0,
+                    w0,
+                    attractor: l.map(|id| number[id as usize]),
+                })?;
+            }
+            w.flush()?;
+        }
+        BasinsFormat::Json => {
+            let doc = BasinsDoc {
+                table: spec.sys.table.name(),
+                alpha: spec.sys.alpha,
+                r: spec.sys.r,
+                grid: [spec.nx, spec.ny],
+                w_max: spec.w_max,
+                transient: spec.settle.transient,
+                starts: reg.starts(),
+                attractors: reg
+                    .ranked()
+                    .into_iter()
+                    .map(|id| {
+                        let a = &reg.attractors()[id];
+                        AttractorRecord {
+                            id: number[id],
+                            kind: a.kind.into(),
+                            events: a.events,
+                            periods: a.periods,
+                            phase: a.point.map(|p| p.0),
+                            v: a.point.map(|p| p.1),
+                            lyapunov: Exponent(a.lyapunov),
+                            fraction: reg.fraction(id),
+                        }
+                    })
+                    .collect(),
+            };
+            serde_json::to_writer(&mut *out, &doc)?;
+            writeln!(out)?;
+        }
+        BasinsFormat::Braille => {
+            let term = crossterm::terminal::size().ok();
+            let w = args
+                .width
+                .or(term.map(|t| t.0))
+                .unwrap_or(rules::CELLS.default as u16);
+            let h = args
+                .height
+                .or(term.map(|t| t.1.saturating_sub(2)))
+                .unwrap_or(30);
+            for line in basin_map::lines(basins, &title(spec), spec.w_max, w as usize, h as usize) {
+                writeln!(out, "{line}")?;
+            }
+        }
+    }
+    Ok(())
+}

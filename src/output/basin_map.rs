@@ -1,0 +1,180 @@
+//! A basin picture on a grid of character cells, and what each attractor is called in
+//! it: the one place for an attractor's number, its texture (a braille pattern that
+//! tells attractors apart without colour), its legend line and its colour slot. Used by
+//! `basins --format braille` and by the terminal application's basins panel.
+//!
+//! Each character cell shows the attractor most of the grid points under it went to
+//! (while the picture fills in, a point not yet computed takes the label of the coarser
+//! point whose block it lies in).
+
+use super::text::significant;
+use bouncemap_engine::attractors::basins::Basins;
+use bouncemap_engine::attractors::{Attractor, Kind, Registry};
+
+/// Textures for attractor numbers 1, 2, … (the last repeats beyond).
+pub const TEXTURES: [char; 8] = ['⣿', '⠶', '⢕', '⡇', '⠉', '⣀', '⠑', '⠂'];
+
+/// The texture of the attractor shown as number `number` (1-based).
+pub fn texture(number: usize) -> char {
+    TEXTURES[number.saturating_sub(1).min(TEXTURES.len() - 1)]
+}
+
+/// The numbering of a registry's attractors: `number[id]` (1-based, largest basin
+/// first, see [`Registry::ranked`]).
+pub fn numbers(reg: &Registry) -> Vec<usize> {
+    let mut number = vec![0; reg.attractors().len()];
+    for (rank, id) in reg.ranked().into_iter().enumerate() {
+        number[id] = rank + 1;
+    }
+    number
+}
+
+/// "periodic (1, 1)", "sticking (3, 2)", "chaotic".
+pub fn describe(a: &Attractor) -> String {
+    match a.period_label() {
+        Some(p) => format!("{} {p}", a.kind.as_str()),
+        None => a.kind.as_str().to_string(),
+    }
+}
+
+/// A largest exponent for people: `-inf` (superstable), `—` where none.
+pub fn exponent(l: Option<f64>) -> String {
+    match l {
+        Some(x) if x == f64::NEG_INFINITY => "-inf".into(),
+        Some(x) => significant(x, 4),
+        None => "—".into(),
+    }
+}
+
+/// One legend line: texture, number, kind and period, exponent, basin share.
+pub fn legend_line(reg: &Registry, id: usize, number: usize) -> String {
+    let a = &reg.attractors()[id];
+    let point = a
+        .point
+        .map(|(t, v)| format!("  t̂ {t:.6} v {}", significant(v, 6)))
+        .unwrap_or_default();
+    format!(
+        "{} {number} {:<18} λ {:>9}  basin {:>5.1}%{point}",
+        texture(number),
+        describe(a),
+        exponent(a.lyapunov),
+        100.0 * reg.fraction(id),
+    )
+}
+
+/// Whether attractors of this kind are drawn in a colour of their own (resting and
+/// escaping are drawn dim).
+pub fn is_attractor(kind: Kind) -> bool {
+    !matches!(kind, Kind::Resting | Kind::Escaping)
+}
+
+/// The attractor id shown in each of `cols` × `rows` character cells, top row (largest
+/// w0) first.
+pub fn cells(b: &Basins, cols: usize, rows: usize) -> Vec<Vec<Option<u32>>> {
+    let (nx, ny) = b.grid();
+    let mut out = vec![vec![None; cols]; rows];
+    let mut counts: Vec<u32> = Vec::new();
+    for (row, line) in out.iter_mut().enumerate() {
+        // Grid rows under this character row (row 0 is the top: the largest w0).
+        let (j0, j1) = span(rows - 1 - row, rows, ny);
+        for (col, cell) in line.iter_mut().enumerate() {
+            let (i0, i1) = span(col, cols, nx);
+            counts.clear();
+            for j in j0..j1 {
+                for i in i0..i1 {
+                    if let Some(l) = b.preview_label(i, j) {
+                        let l = l as usize;
+                        if counts.len() <= l {
+                            counts.resize(l + 1, 0);
+                        }
+                        counts[l] += 1;
+                    }
+                }
+            }
+            *cell = counts
+                .iter()
+                .enumerate()
+                .filter(|(_, &n)| n > 0)
+                .max_by_key(|(i, &n)| (n, std::cmp::Reverse(*i)))
+                .map(|(i, _)| i as u32);
+        }
+    }
+    out
+}
+
+/// Grid indices [a, b) under cell `k` of `cells` over `n` grid points (at least one).
+fn span(k: usize, cells: usize, n: usize) -> (usize, usize) {
+    let a = k * n / cells;
+    let b = ((k + 1) * n / cells).max(a + 1).min(n);
+    (a.min(n - 1), b)
+}
+
+/// The picture as text: a title, the picture with its w0 axis, the t̂0 axis and the
+/// legend.
+pub fn lines(b: &Basins, title: &str, w_max: f64, width: usize, height: usize) -> Vec<String> {
+    const GUTTER: usize = 7;
+    let reg = b.registry();
+    let number = numbers(reg);
+    let cols = width.saturating_sub(GUTTER).max(4);
+    let legend = reg.attractors().len();
+    let rows = height.saturating_sub(4 + legend).max(4);
+    let mut out = vec![title.to_string()];
+    for (row, line) in cells(b, cols, rows).into_iter().enumerate() {
+        let glyphs: String = line
+            .iter()
+            .map(|l| l.map_or(' ', |id| texture(number[id as usize])))
+            .collect();
+        let label = if row == 0 {
+            format!("{} ┤", significant(w_max, 3))
+        } else if row + 1 == rows {
+            "0 ┤".to_string()
+        } else if row == rows / 2 {
+            "w0 │".to_string()
+        } else {
+            "│".to_string()
+        };
+        out.push(format!("{label:>GUTTER$}{glyphs}"));
+    }
+    out.push(format!("{:>GUTTER$}{}", "└", "─".repeat(cols)));
+    let pad = cols.saturating_sub(3 + 2 + 1);
+    out.push(format!(
+        "{:GUTTER$}0{}t̂0{}1",
+        "",
+        " ".repeat(pad / 2),
+        " ".repeat(pad - pad / 2)
+    ));
+    for id in reg.ranked() {
+        out.push(format!("  {}", legend_line(reg, id, number[id])));
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn spans_tile_the_grid() {
+        for (cells, n) in [(10, 200), (7, 3), (80, 80), (3, 1)] {
+            let mut covered = vec![0; n];
+            for k in 0..cells {
+                let (a, b) = span(k, cells, n);
+                assert!(a < b && b <= n);
+                for c in &mut covered[a..b] {
+                    *c += 1;
+                }
+            }
+            assert!(covered.iter().all(|&c| c >= 1), "{cells} {n}");
+        }
+    }
+
+    #[test]
+    fn textures_are_distinct() {
+        let mut t = TEXTURES.to_vec();
+        t.sort();
+        t.dedup();
+        assert_eq!(t.len(), TEXTURES.len());
+        assert_eq!(texture(1), '⣿');
+        assert_eq!(texture(100), '⠂');
+    }
+}
