@@ -224,9 +224,10 @@ fn export_writes_csv_and_braille_text() {
     );
     let data: Vec<&str> = c.lines().filter(|l| !l.starts_with('#')).collect();
     assert_eq!(data.len(), 1 + a.diagram.plotted);
+    // The diagram measures every value's exponent (its strip), so the file has it too.
     assert_eq!(
         data[0],
-        "index,alpha,phase,v,kind,period,table_periods,status,sticking"
+        "index,alpha,phase,v,kind,period,table_periods,status,sticking,lyapunov"
     );
     assert!(c.lines().last().unwrap().starts_with("# end 120 values"));
     let t = std::fs::read_to_string(&txt).unwrap();

@@ -11,9 +11,12 @@
 //!   text form with axes and labels (`sweep --format braille`).
 //! * [`basin_map`]: a basin picture on character cells, and each attractor's number,
 //!   texture and legend line (`basins --format braille`, the basins panel).
+//! * [`classes`]: what a value's orbit is (period 1, 2, 4, 8, other, sticking, chaotic),
+//!   as the diagram colours it.
 //! * [`text`]: number formatting for aligned text columns.
 
 pub mod basin_map;
+pub mod classes;
 pub mod diagram;
 pub mod hitgrid;
 pub mod records;

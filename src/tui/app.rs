@@ -5,6 +5,7 @@
 //!
 //! `App` dereferences to its [`Shared`] state (`app.params`, `app.focus`, ...).
 
+use super::components::basins::BasinsPanel;
 use super::components::bounce::Bounce;
 use super::components::diagram::Diagram;
 use super::components::parameters::Parameters;
@@ -31,6 +32,7 @@ pub struct App {
     pub phase: PhasePlot,
     pub stability: Stability,
     pub bounce: Bounce,
+    pub basins: BasinsPanel,
     pub presets: PresetPicker,
 }
 
@@ -56,6 +58,7 @@ impl App {
             phase: PhasePlot::new(marker),
             stability: Stability::default(),
             bounce: Bounce::new(&shared.params),
+            basins: BasinsPanel::default(),
             presets: PresetPicker::new(),
             shared,
         };
@@ -66,7 +69,7 @@ impl App {
     }
 
     /// The shared state and every stateful panel, in routing order.
-    fn parts(&mut self) -> (&mut Shared, [&mut dyn Component; 5]) {
+    fn parts(&mut self) -> (&mut Shared, [&mut dyn Component; 6]) {
         let App {
             shared,
             parameters,
@@ -74,9 +77,13 @@ impl App {
             phase,
             stability,
             bounce,
+            basins,
             ..
         } = self;
-        (shared, [parameters, diagram, bounce, phase, stability])
+        (
+            shared,
+            [parameters, diagram, bounce, phase, stability, basins],
+        )
     }
 
     /// The shared state and the panel whose background work `t` is.
@@ -86,12 +93,14 @@ impl App {
             diagram,
             phase,
             stability,
+            basins,
             ..
         } = self;
         let c: &mut dyn Component = match t {
             Target::Diagram => diagram,
             Target::Phase => phase,
             Target::Orbits => stability,
+            Target::Basins => basins,
         };
         (shared, c)
     }
@@ -246,6 +255,7 @@ impl App {
         if let Some(p) = layout(area) {
             self.diagram.set_pane(p.diagram, &mut self.shared);
             self.phase.set_pane(p.phase, &self.shared);
+            self.basins.set_pane(p.phase, &mut self.shared);
         }
     }
 
@@ -260,7 +270,11 @@ impl App {
         let s = &self.shared;
         self.parameters.draw(s, p.params, buf);
         self.diagram.draw(s, p.diagram, buf);
-        self.phase.draw(s, p.phase, buf);
+        if self.basins.shown {
+            self.basins.draw(s, p.phase, buf);
+        } else {
+            self.phase.draw(s, p.phase, buf);
+        }
         self.stability.draw(s, p.stability, buf);
         self.bounce.draw(s, p.bounce, buf);
         status::draw(s, &self.diagram, &self.phase, p.status, buf);

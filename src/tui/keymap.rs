@@ -31,6 +31,9 @@ pub enum Action {
     ZoomIn,
     ZoomOut,
     ZoomBack,
+    ColorBy,
+    AllAttractors,
+    ToggleBasins,
     Presets,
     Export,
     Suspend,
@@ -38,7 +41,7 @@ pub enum Action {
 
 impl Action {
     /// Every action, in help order.
-    pub const ALL: [Action; 25] = [
+    pub const ALL: [Action; 28] = [
         Action::Up,
         Action::Down,
         Action::Left,
@@ -58,6 +61,9 @@ impl Action {
         Action::ZoomIn,
         Action::ZoomOut,
         Action::ZoomBack,
+        Action::ColorBy,
+        Action::AllAttractors,
+        Action::ToggleBasins,
         Action::Presets,
         Action::Export,
         Action::Pause,
@@ -91,6 +97,9 @@ impl Action {
             Action::ZoomIn => "zoom_in",
             Action::ZoomOut => "zoom_out",
             Action::ZoomBack => "zoom_back",
+            Action::ColorBy => "color_by",
+            Action::AllAttractors => "all_attractors",
+            Action::ToggleBasins => "basins",
             Action::Presets => "presets",
             Action::Export => "export",
             Action::Suspend => "suspend",
@@ -126,6 +135,9 @@ impl Action {
             Action::ZoomIn => "diagram: zoom in about the cursor",
             Action::ZoomOut => "diagram: zoom out about the cursor",
             Action::ZoomBack => "diagram: back to the previous window",
+            Action::ColorBy => "diagram: colour by orbit class / attractor / density",
+            Action::AllAttractors => "diagram: all attractors (8 starts per value) or one start",
+            Action::ToggleBasins => "basins of attraction in place of the phase plot (and back)",
             Action::Presets => "presets: the paper's figures",
             Action::Export => "export the diagram (csv and braille text)",
             Action::Suspend => "stop bouncemap (the shell's fg continues it)",
@@ -359,6 +371,9 @@ impl Default for Keymap {
             (Key::ch('-'), Action::ZoomOut),
             (Key::ch('z'), Action::ZoomBack),
             (Key::plain(Backspace), Action::ZoomBack),
+            (Key::ch('c'), Action::ColorBy),
+            (Key::ch('a'), Action::AllAttractors),
+            (Key::ch('B'), Action::ToggleBasins),
             (Key::ch('p'), Action::Presets),
             (Key::ch('e'), Action::Export),
         ];

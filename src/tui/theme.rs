@@ -3,6 +3,7 @@
 //! readable.
 
 use crate::config::display::ColorMode;
+use crate::output::classes::Class;
 use ratatui::style::{Color, Modifier, Style};
 
 /// Styles for one colour mode.
@@ -116,6 +117,83 @@ impl Theme {
     /// The table curve in the bounce panel.
     pub fn table_curve(&self) -> Style {
         self.fg(Color::Yellow, 179, (215, 175, 95))
+    }
+
+    /// A class of orbit in the diagram (period colours). Without colour the classes
+    /// differ by modifiers: period 1 bold, 2 plain, 4 underlined, 8 underlined bold,
+    /// other cycles italic, sticking reversed, chaos dim, unresolved dim italic.
+    pub fn class(&self, c: Class) -> Style {
+        if self.mode == ColorMode::None {
+            let m = match c {
+                Class::Period1 => Modifier::BOLD,
+                Class::Period2 => Modifier::empty(),
+                Class::Period4 => Modifier::UNDERLINED,
+                Class::Period8 => Modifier::UNDERLINED | Modifier::BOLD,
+                Class::Periodic => Modifier::ITALIC,
+                Class::Sticking => Modifier::REVERSED,
+                Class::Chaotic => Modifier::DIM,
+                Class::Unresolved => Modifier::DIM | Modifier::ITALIC,
+            };
+            return Style::new().add_modifier(m);
+        }
+        match c {
+            Class::Period1 => self.fg(Color::LightCyan, 51, (80, 220, 255)),
+            Class::Period2 => self.fg(Color::LightGreen, 84, (90, 230, 120)),
+            Class::Period4 => self.fg(Color::Yellow, 226, (250, 230, 60)),
+            Class::Period8 => self.fg(Color::LightRed, 209, (255, 140, 80)),
+            Class::Periodic => self.fg(Color::LightBlue, 111, (130, 170, 255)),
+            Class::Sticking => self.fg(Color::Gray, 246, (150, 150, 150)),
+            Class::Chaotic => self.fg(Color::LightMagenta, 207, (255, 90, 220)),
+            Class::Unresolved => self.fg(Color::White, 255, (240, 240, 240)),
+        }
+    }
+
+    /// The colour of attractor number `n` (0-based) in the basins panel and the
+    /// all-attractors diagram; None without colour.
+    pub fn attractor_color(&self, n: usize) -> Option<Color> {
+        const P16: [Color; 6] = [
+            Color::LightCyan,
+            Color::Yellow,
+            Color::LightMagenta,
+            Color::LightGreen,
+            Color::LightRed,
+            Color::LightBlue,
+        ];
+        const P256: [u8; 6] = [51, 226, 207, 84, 209, 111];
+        const RGB: [(u8, u8, u8); 6] = [
+            (80, 220, 255),
+            (250, 230, 60),
+            (255, 90, 220),
+            (90, 230, 120),
+            (255, 140, 80),
+            (130, 170, 255),
+        ];
+        let i = n % P16.len();
+        self.pick(P16[i], P256[i], RGB[i])
+    }
+
+    /// Attractor number `n` (0-based): its colour, or without colour a modifier
+    /// (bold, plain, underlined, italic, reversed, dim).
+    pub fn attractor(&self, n: usize) -> Style {
+        match self.attractor_color(n) {
+            Some(c) => Style::new().fg(c),
+            None => {
+                const M: [Modifier; 6] = [
+                    Modifier::BOLD,
+                    Modifier::empty(),
+                    Modifier::UNDERLINED,
+                    Modifier::ITALIC,
+                    Modifier::REVERSED,
+                    Modifier::DIM,
+                ];
+                Style::new().add_modifier(M[n % M.len()])
+            }
+        }
+    }
+
+    /// Resting and escaping starts in the basins panel.
+    pub fn nowhere(&self) -> Option<Color> {
+        self.pick(Color::DarkGray, 238, (68, 68, 68))
     }
 
     /// The ball's flight in the bounce panel.

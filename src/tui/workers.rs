@@ -7,7 +7,7 @@
 //! only the target panel reads, so a new panel needs no new message type here.
 //!
 //! Two kinds of work:
-//! * jobs over many items (the diagram's sweep) run on the engine's [`Executor`], which
+//! * jobs over many items (the diagram's sweep, the basin picture) run on the engine's [`Executor`], which
 //!   owns its pool; their batches are forwarded as messages, then [`JobDone`];
 //! * interactive work (the phase plot, the orbit analysis) runs on a thread of its own,
 //!   so it never waits behind a job, paused or not.
@@ -27,10 +27,16 @@ pub enum Target {
     Diagram,
     Phase,
     Orbits,
+    Basins,
 }
 
 impl Target {
-    pub const ALL: [Target; 3] = [Target::Diagram, Target::Phase, Target::Orbits];
+    pub const ALL: [Target; 4] = [
+        Target::Diagram,
+        Target::Phase,
+        Target::Orbits,
+        Target::Basins,
+    ];
 }
 
 /// What a message carries; the target panel knows its type.

@@ -10,6 +10,7 @@
 //! Draw-only pieces (the status line, the help and preset overlays, the too-small
 //! message) are plain functions.
 
+pub mod basins;
 pub mod bounce;
 pub mod diagram;
 pub mod help;

@@ -1,13 +1,19 @@
 //! The bifurcation diagram: the hit-count grid of the sweep (phase t̂ or v against α)
 //! with axes, a progress gauge and points/s in the title, the current α as a cursor
 //! line, the zoom cursor and window mark, and marks at the birth and the period
-//! doubling (α_PD) of the (1, k) solution. It owns its sweep: the points of every
-//! value (for re-binning on zoom, axis change and resize), the zoom stack, the cursor.
+//! doubling (α_PD) of the (1, k) solution. Points are coloured by the class of their
+//! value's orbit, by attractor, or by density ([`colouring`], legend in the bottom
+//! border), with the largest Lyapunov exponent in a strip underneath ([`strip`]). With
+//! all attractors on, every value runs [`ALL_STARTS`] starts and shows each attractor
+//! found. It owns its sweep: the points of every value (for re-binning on zoom, axis
+//! change and resize), the zoom stack, the cursor.
+
+pub mod colouring;
+pub mod strip;
 
 use super::{compact, is_focused, panel, Component, Target};
 use crate::output::hitgrid::{HitGrid, Range};
 use crate::tui::keymap::Action;
-use crate::tui::layout::plot_area_within;
 use crate::tui::params::{fmt_num, ParamId, Touch};
 use crate::tui::plot::{draw_axes, render};
 use crate::tui::shared::{Effect, Focus, Shared};
@@ -15,14 +21,53 @@ use crate::tui::workers::{Body, JobDone, Workers};
 use bouncemap_engine::sweep::{
     InitialSpec, SweepBatch, SweepJob, SweepParam, SweepSpec, ValueResult,
 };
+use colouring::{point_labels, ColorBy, LabelGrid};
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::style::Style;
 use ratatui::widgets::{Paragraph, Widget, Wrap};
 use std::time::Instant;
+use strip::{STRIP_FROM, STRIP_ROWS};
 
 /// Width of the y tick labels.
 const LABEL_W: u16 = 5;
+/// Starts per value while all attractors are shown.
+pub const ALL_STARTS: usize = 8;
+
+/// The diagram's inner area split into the plot with its axes and the Lyapunov strip
+/// (when there is room for both).
+pub fn split(inner: Rect) -> (Rect, Option<Rect>) {
+    if inner.height < STRIP_FROM {
+        return (inner, None);
+    }
+    let main = Rect {
+        height: inner.height - STRIP_ROWS,
+        ..inner
+    };
+    let strip = Rect {
+        y: inner.y + main.height,
+        height: STRIP_ROWS,
+        ..inner
+    };
+    (main, Some(strip))
+}
+
+/// The plot rectangle of the diagram pane (as [`draw_axes`] lays it out).
+fn plot_rect(pane: Rect) -> Rect {
+    let inner = Rect {
+        x: pane.x + 1,
+        y: pane.y + 1,
+        width: pane.width.saturating_sub(2),
+        height: pane.height.saturating_sub(2),
+    };
+    let (main, _) = split(inner);
+    Rect {
+        x: main.x + LABEL_W + 1,
+        y: main.y,
+        width: main.width.saturating_sub(LABEL_W + 1),
+        height: main.height.saturating_sub(1),
+    }
+}
 
 /// What the diagram's vertical axis shows.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -73,6 +118,12 @@ pub struct Diagram {
     pub plot_area: Rect,
     /// The sweep the stored results come from.
     pub running: Option<SweepSpec>,
+    /// What the colours show.
+    pub color_by: ColorBy,
+    /// Several starts per value, every attractor drawn.
+    pub all_attractors: bool,
+    /// Label counts per cell of `grid`.
+    pub labels: LabelGrid,
 }
 
 impl Diagram {
@@ -101,6 +152,9 @@ impl Diagram {
             ),
             plot_area: Rect::default(),
             running: None,
+            color_by: ColorBy::Class,
+            all_attractors: false,
+            labels: LabelGrid::default(),
         }
     }
 
@@ -132,6 +186,11 @@ impl Diagram {
         };
         spec.transient = p.transient;
         spec.keep = p.keep;
+        // The strip and the period colours need every value's exponent.
+        spec.lyapunov = true;
+        if self.all_attractors {
+            spec.starts = ALL_STARTS;
+        }
         spec
     }
 
@@ -175,8 +234,11 @@ impl Diagram {
             self.values_total = self.values_total.max(b.index + 1);
         }
         if let Some(old) = self.slots[b.index].take() {
-            for p in &old.points {
-                self.grid.remove(old.value, self.axis.pick(p.phase, p.v));
+            let labels = point_labels(&old, self.color_by);
+            for (p, l) in old.points.iter().zip(labels) {
+                let y = self.axis.pick(p.phase, p.v);
+                self.labels.count(&self.grid, old.value, y, l, false);
+                self.grid.remove(old.value, y);
             }
             self.plotted -= old.points.len();
             if old.complete {
@@ -184,12 +246,14 @@ impl Diagram {
             }
         }
         let mut rebin = false;
-        for p in &b.points {
+        let labels = point_labels(b, self.color_by);
+        for (p, l) in b.points.iter().zip(labels) {
             let y = self.axis.pick(p.phase, p.v);
             if !self.grid.y_range().contains(y) {
                 rebin = true;
             }
             self.grid.add(b.value, y);
+            self.labels.count(&self.grid, b.value, y, l, true);
         }
         self.received += b.points.len() as u64;
         self.plotted += b.points.len();
@@ -209,7 +273,7 @@ impl Diagram {
     /// points when the size changed); sweep again if it grew wider than the sweep has
     /// values.
     pub fn set_pane(&mut self, pane: Rect, shared: &mut Shared) {
-        let plot = plot_area_within(pane, LABEL_W);
+        let plot = plot_rect(pane);
         self.plot_area = plot;
         if self.grid.size() != (plot.width, plot.height) || self.grid.marker() != shared.marker {
             self.grid = HitGrid::new(
@@ -245,9 +309,13 @@ impl Diagram {
         };
         let (w, h) = self.grid.size();
         self.grid = HitGrid::new(w, h, shared.marker, x, y);
+        self.labels = LabelGrid::new(w, h);
         for s in self.slots.iter().flatten() {
-            for p in &s.points {
-                self.grid.add(s.value, self.axis.pick(p.phase, p.v));
+            let labels = point_labels(s, self.color_by);
+            for (p, l) in s.points.iter().zip(labels) {
+                let y = self.axis.pick(p.phase, p.v);
+                self.grid.add(s.value, y);
+                self.labels.count(&self.grid, s.value, y, l, true);
             }
         }
     }
@@ -318,6 +386,32 @@ impl Component for Diagram {
                     Axis::Velocity => Axis::Phase,
                 };
                 self.rebin(shared);
+            }
+            Action::ColorBy => {
+                self.color_by = self.color_by.next(self.all_attractors);
+                self.rebin(shared);
+                let what = match self.color_by {
+                    ColorBy::Class => "colours: the class of each value's orbit",
+                    ColorBy::Attractor => "colours: the attractor (1 = largest basin)",
+                    ColorBy::Density => "colours: point density",
+                };
+                shared.say(what, false);
+            }
+            Action::AllAttractors => {
+                self.all_attractors = !self.all_attractors;
+                if self.all_attractors {
+                    self.color_by = ColorBy::Attractor;
+                    shared.say(
+                        format!("all attractors: {ALL_STARTS} starts per value over the basin box"),
+                        false,
+                    );
+                } else {
+                    if self.color_by == ColorBy::Attractor {
+                        self.color_by = ColorBy::Class;
+                    }
+                    shared.say("one start per value", false);
+                }
+                shared.effect(Effect::Start(Target::Diagram));
             }
             Action::MarkWindow => match self.mark.take() {
                 None => self.mark = Some(self.cursor),
@@ -402,9 +496,11 @@ impl Component for Diagram {
 
     fn draw(&self, app: &Shared, area: Rect, buf: &mut Buffer) {
         let focused = is_focused(app, Focus::Diagram);
-        let block = panel(app, title(self, app.paused), focused);
+        let block = panel(app, title(self, app.paused), focused)
+            .title_bottom(colouring::legend(self.color_by, &app.theme));
         let inner = block.inner(area);
         block.render(area, buf);
+        let (main, strip_area) = split(inner);
         if let SweepStatus::Unavailable(why) = &self.status {
             Paragraph::new(format!("Bifurcation diagram: {why}."))
                 .style(app.theme.dim())
@@ -414,8 +510,12 @@ impl Component for Diagram {
         }
         let x = self.grid.x_range();
         let y = self.grid.y_range();
-        let plot = draw_axes(inner, buf, x, y, LABEL_W, &app.theme);
+        let plot = draw_axes(main, buf, x, y, LABEL_W, &app.theme);
         render(&self.grid, plot, buf, &app.theme, &[], Style::new());
+        self.labels.paint(plot, buf, &app.theme, self.color_by);
+        if let Some(a) = strip_area {
+            strip::draw(&self.slots, x, a, LABEL_W, buf, &app.theme);
+        }
         // Marks of the (1, k) solution's birth and period doubling on the top row.
         if let Some(Ok(info)) = &app.orbits {
             for (a, ch) in [(info.birth, 'B'), (info.pd, 'P')] {
@@ -474,7 +574,11 @@ pub fn title(d: &Diagram, paused: bool) -> String {
         Axis::Phase => "t̂",
         Axis::Velocity => "v",
     };
-    let head = format!(" Bifurcation diagram: {axis} vs α ");
+    let head = if d.all_attractors {
+        format!(" Bifurcation diagram: {axis} vs α, all attractors ({ALL_STARTS} starts) ")
+    } else {
+        format!(" Bifurcation diagram: {axis} vs α ")
+    };
     match &d.status {
         SweepStatus::Running | SweepStatus::Done => {
             let frac = d.values_done as f64 / d.values_total.max(1) as f64;

@@ -1,0 +1,361 @@
+//! The attractor views of the terminal application: period colours and their legend,
+//! the Lyapunov strip, all attractors (`a`), the basins panel (`B`), their keys, and
+//! the basins panel filling in and restarting with real workers. Data come from the
+//! engine (sweeps and basin jobs run here), never from literals.
+
+mod tui_common;
+
+use bouncemap::config::display::ColorMode;
+use bouncemap::output::classes::Class;
+use bouncemap::output::hitgrid::Marker;
+use bouncemap::tui::app::{App, Effect};
+use bouncemap::tui::components::diagram::colouring::ColorBy;
+use bouncemap::tui::components::diagram::ALL_STARTS;
+use bouncemap::tui::components::{Component, Target};
+use bouncemap::tui::keymap::{Action, Key, Keymap};
+use bouncemap::tui::params::{ParamId, Params};
+use bouncemap::tui::theme::Theme;
+use bouncemap::tui::workers::{Msg, Workers};
+use bouncemap_engine::attractors::basins::{BasinSpec, Basins, BasinsJob};
+use bouncemap_engine::jobs::{Control, Executor};
+use bouncemap_engine::sweep::{self, SweepParam, SweepSpec};
+use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
+use ratatui::buffer::Buffer;
+use ratatui::layout::Rect;
+use ratatui::style::Modifier;
+use std::time::{Duration, Instant};
+use tui_common::{buffer_text, size, sweep_msg};
+
+fn key(a: &mut App, c: char) {
+    if let Some(act) = a
+        .keymap
+        .action(&KeyEvent::new(KeyCode::Char(c), KeyModifiers::NONE))
+    {
+        a.handle(act);
+    }
+}
+
+/// The cubic table at α = 0.47, r = 0.8 (the (1,1) solution beside a sticking cycle).
+fn cubic_app(mode: ColorMode) -> App {
+    let mut params = Params::default();
+    params.set_text(ParamId::Table, "cubic").unwrap();
+    params.set_text(ParamId::Alpha, "0.47").unwrap();
+    let mut a = App::new(
+        params,
+        Keymap::default(),
+        Theme::new(mode),
+        Marker::Braille,
+        15,
+    );
+    a.take_effects();
+    a
+}
+
+/// Feed the diagram the results of a real sweep of the app's table over [lo, hi].
+fn feed_sweep(a: &mut App, lo: f64, hi: f64, steps: usize) {
+    let p = &a.params;
+    let mut spec = SweepSpec::new(p.table(), p.alpha, p.r, SweepParam::Alpha, lo, hi, steps);
+    spec.initial.near_fixed_point = true;
+    spec.transient = 200_000;
+    spec.keep = 16;
+    spec.lyapunov = true;
+    let res = sweep::collect(&spec, &Executor::new(2).unwrap()).unwrap();
+    a.params.lo = lo;
+    a.params.hi = hi;
+    let shared = &a.shared;
+    a.diagram.sweep_started(1, steps, shared);
+    for r in res {
+        a.receive(sweep_msg(1, r));
+    }
+    a.receive(Msg::new(
+        Target::Diagram,
+        1,
+        bouncemap::tui::workers::JobDone,
+    ));
+    // A fixed clock for the title.
+    a.diagram.started = None;
+    a.diagram.elapsed = 2.0;
+}
+
+#[test]
+fn period_colours_follow_the_class_of_each_value() {
+    let mut a = cubic_app(ColorMode::Ansi256);
+    size(&mut a, 120, 40);
+    // fig3e's window around α_PD: period 1, then period 2.
+    feed_sweep(&mut a, 0.46, 0.50, 60);
+    let area = Rect::new(0, 0, 90, 24);
+    let mut buf = Buffer::empty(area);
+    a.diagram.draw(&a.shared, area, &mut buf);
+    let theme = Theme::new(ColorMode::Ansi256);
+    let colour = |c: Class| theme.class(c).fg.unwrap();
+    let mut seen = std::collections::BTreeSet::new();
+    for cell in buf.content() {
+        if ('\u{2801}'..='\u{28ff}').contains(&cell.symbol().chars().next().unwrap()) {
+            for c in Class::ALL {
+                if cell.fg == colour(c) {
+                    seen.insert(c);
+                }
+            }
+        }
+    }
+    assert!(
+        seen.contains(&Class::Period1) && seen.contains(&Class::Period2),
+        "{seen:?}"
+    );
+    let legend = buffer_text(&buf);
+    assert!(
+        legend.contains("period 1 2 4 8 n stick chaos ?"),
+        "{legend}"
+    );
+    // `c` switches to density colouring: no class colours left on the plot.
+    key(&mut a, 'c');
+    assert_eq!(a.diagram.color_by, ColorBy::Density);
+    let mut buf = Buffer::empty(area);
+    a.diagram.draw(&a.shared, area, &mut buf);
+    assert!(!buf
+        .content()
+        .iter()
+        .any(|c| c.fg == colour(Class::Period2) && c.symbol() != " "));
+    assert!(buffer_text(&buf).contains("density sparse"));
+}
+
+#[test]
+fn without_colour_the_classes_differ_by_modifier() {
+    let mut a = cubic_app(ColorMode::None);
+    size(&mut a, 120, 40);
+    feed_sweep(&mut a, 0.46, 0.50, 60);
+    let area = Rect::new(0, 0, 90, 24);
+    let mut buf = Buffer::empty(area);
+    a.diagram.draw(&a.shared, area, &mut buf);
+    let theme = Theme::new(ColorMode::None);
+    let p1 = theme.class(Class::Period1).add_modifier;
+    let p2 = theme.class(Class::Period2).add_modifier;
+    assert_ne!(p1, p2);
+    let plot: Vec<_> = buf
+        .content()
+        .iter()
+        .filter(|c| ('\u{2801}'..='\u{28ff}').contains(&c.symbol().chars().next().unwrap()))
+        .collect();
+    assert!(plot.iter().any(|c| c.modifier.contains(Modifier::BOLD)));
+    assert!(plot.iter().any(|c| c.modifier == p2));
+    assert!(plot.iter().all(|c| c.fg == ratatui::style::Color::Reset));
+}
+
+#[test]
+fn the_lyapunov_strip_shows_negative_zero_and_positive_exponents() {
+    let mut params = Params::default();
+    params.set_text(ParamId::Table, "cubic").unwrap();
+    let mut a = App::new(
+        params,
+        Keymap::default(),
+        Theme::new(ColorMode::None),
+        Marker::Braille,
+        15,
+    );
+    size(&mut a, 120, 40);
+    // The end of the cascade: period 8, 16, 32, chaos, then sticking cycles.
+    feed_sweep(&mut a, 0.570, 0.576, 49);
+    let lyap: Vec<f64> = a
+        .diagram
+        .slots
+        .iter()
+        .flatten()
+        .filter_map(|s| s.lyapunov)
+        .collect();
+    assert!(lyap.iter().any(|&l| l > 0.02), "{lyap:?}");
+    assert!(lyap.iter().any(|&l| l < 0.0 && l.is_finite()));
+    assert!(lyap.contains(&f64::NEG_INFINITY));
+    let area = Rect::new(0, 0, 90, 24);
+    let mut buf = Buffer::empty(area);
+    a.diagram.draw(&a.shared, area, &mut buf);
+    let s = buffer_text(&buf);
+    let strip: Vec<&str> = s.lines().rev().skip(1).take(3).collect();
+    assert!(strip.iter().any(|l| l.contains('┄')), "zero line:\n{s}");
+    assert!(strip[0].contains('▁'), "−∞ marks on the bottom row:\n{s}");
+    assert!(strip.iter().any(|l| l.contains("0┤")), "{s}");
+    insta::assert_snapshot!(s);
+}
+
+#[test]
+fn all_attractors_key_runs_several_starts_and_colours_by_attractor() {
+    let mut a = cubic_app(ColorMode::None);
+    assert!(!a.diagram.all_attractors);
+    key(&mut a, 'a');
+    assert!(a.diagram.all_attractors);
+    assert_eq!(a.diagram.color_by, ColorBy::Attractor);
+    assert!(a.take_effects().contains(&Effect::Start(Target::Diagram)));
+    let spec = a.diagram.sweep_spec(&a.shared);
+    assert_eq!(spec.starts, ALL_STARTS);
+    // Two branches between α = 0.45 and 0.50 on the cubic table: the (1,1) solution
+    // and a sticking cycle, at every value.
+    let mut spec = SweepSpec {
+        lo: 0.45,
+        hi: 0.48,
+        alpha: 0.45,
+        steps: 4,
+        transient: 20_000,
+        keep: 8,
+        ..spec
+    };
+    spec.initial.near_fixed_point = false;
+    let res = sweep::collect(&spec, &Executor::new(2).unwrap()).unwrap();
+    for r in &res {
+        assert!(
+            r.attractors.len() >= 2,
+            "α = {}: {:?}",
+            r.value,
+            r.attractors
+        );
+    }
+    // `c` cycles attractor → density → class → attractor.
+    key(&mut a, 'c');
+    assert_eq!(a.diagram.color_by, ColorBy::Density);
+    key(&mut a, 'c');
+    assert_eq!(a.diagram.color_by, ColorBy::Class);
+    key(&mut a, 'c');
+    assert_eq!(a.diagram.color_by, ColorBy::Attractor);
+    key(&mut a, 'a');
+    assert!(!a.diagram.all_attractors);
+    assert_eq!(a.diagram.sweep_spec(&a.shared).starts, 1);
+    assert_eq!(a.diagram.color_by, ColorBy::Class);
+}
+
+/// A basins panel filled from the engine's job, as the runtime would feed it.
+fn filled_basins(a: &mut App, w: u16, h: u16) {
+    size(a, w, h);
+    a.handle(Action::ToggleBasins);
+    assert!(a.basins.shown);
+    let fx = a.take_effects();
+    assert!(fx.contains(&Effect::Start(Target::Basins)), "{fx:?}");
+    let spec = BasinSpec {
+        nx: 34,
+        ny: 18,
+        ..BasinSpec::new(a.system())
+    };
+    a.basins.basins = Some(Basins::new(&spec));
+    a.basins.spec = Some(spec.clone());
+    a.basins.gen = 7;
+    let ex = Executor::new(2).unwrap();
+    let mut batches = Vec::new();
+    ex.run(BasinsJob::new(spec).unwrap(), &Control::new(), |b| {
+        batches.push(b)
+    });
+    for b in batches {
+        a.receive(Msg::new(Target::Basins, 7, b));
+    }
+    a.receive(Msg::new(
+        Target::Basins,
+        7,
+        bouncemap::tui::workers::JobDone,
+    ));
+}
+
+#[test]
+fn the_basins_panel_shows_both_attractors_with_a_legend() {
+    let mut a = cubic_app(ColorMode::None);
+    filled_basins(&mut a, 120, 40);
+    let b = a.basins.basins.as_ref().unwrap();
+    assert!(b.complete());
+    let t = tui_common::render(&mut a, 120, 40);
+    let s = tui_common::text(&t);
+    assert!(s.contains("Basins t̂0×w0 · 2 found · done"), "{s}");
+    assert!(s.contains("periodic (1, 1) λ -0.2231"), "{s}");
+    assert!(s.contains("sticking (82, 1) λ -inf"), "{s}");
+    assert!(
+        !s.contains("Phase plot"),
+        "the basins take the phase plot's place"
+    );
+    // Textures of both attractors in the picture.
+    assert!(s.contains('⣿') && s.contains('⠶'), "{s}");
+    insta::assert_snapshot!(s);
+    // B again: the phase plot is back, the basins job is stopped.
+    key(&mut a, 'B');
+    assert!(!a.basins.shown);
+    let s = tui_common::text(&tui_common::render(&mut a, 120, 40));
+    assert!(s.contains("Phase plot"));
+}
+
+#[test]
+fn basins_restart_when_alpha_or_r_change_and_not_otherwise() {
+    let mut a = cubic_app(ColorMode::None);
+    size(&mut a, 120, 40);
+    a.handle(Action::ToggleBasins);
+    a.take_effects();
+    // α nudged: the basins restart; a window edge of the diagram does not touch them.
+    a.handle(Action::Right);
+    assert!(a.take_effects().contains(&Effect::Start(Target::Basins)));
+    a.params.lo = 0.2;
+    let before = a.params.clone();
+    a.shared.after_change(ParamId::Lo, Ok(()), &before);
+    a.handle(Action::Down);
+    a.handle(Action::Left);
+    assert_eq!(a.selected_param(), ParamId::R);
+    assert!(a.take_effects().contains(&Effect::Start(Target::Basins)));
+    // Hidden: no restarts.
+    a.handle(Action::ToggleBasins);
+    a.take_effects();
+    a.handle(Action::Left);
+    assert!(!a.take_effects().contains(&Effect::Start(Target::Basins)));
+}
+
+#[test]
+fn the_new_keys_are_configurable_and_listed_in_the_help() {
+    let km = Keymap::with(&[(Action::AllAttractors, vec![Key::ch('A')])]).unwrap();
+    let ev = |c| KeyEvent::new(KeyCode::Char(c), KeyModifiers::NONE);
+    assert_eq!(km.action(&ev('A')), Some(Action::AllAttractors));
+    assert_eq!(km.action(&ev('a')), None);
+    assert_eq!(
+        Keymap::default().action(&ev('B')),
+        Some(Action::ToggleBasins)
+    );
+    assert_eq!(Keymap::default().action(&ev('c')), Some(Action::ColorBy));
+    let help = Keymap::default().help();
+    for a in [Action::ColorBy, Action::AllAttractors, Action::ToggleBasins] {
+        assert!(help.iter().any(|(_, d)| *d == a.describe()), "{a}");
+    }
+    for name in ["color_by", "all_attractors", "basins"] {
+        assert!(Action::from_name(name).is_some(), "{name}");
+    }
+}
+
+#[test]
+fn the_basins_panel_fills_in_and_restarts_with_real_workers() {
+    let workers = Workers::new(Executor::new(bouncemap_engine::jobs::available_cores()).unwrap());
+    let mut a = cubic_app(ColorMode::None);
+    size(&mut a, 120, 40);
+    a.handle(Action::ToggleBasins);
+    a.take_effects();
+    let t0 = Instant::now();
+    a.start(Target::Basins, &workers);
+    let fill = |a: &mut App, until: &dyn Fn(&App) -> bool| -> Duration {
+        let t = Instant::now();
+        while t.elapsed() < Duration::from_secs(20) {
+            if let Ok(m) = workers.rx.recv_timeout(Duration::from_millis(5)) {
+                a.receive(m);
+                if until(a) {
+                    return t.elapsed();
+                }
+            }
+        }
+        panic!("the basins never got there");
+    };
+    let done = fill(&mut a, &|a| {
+        a.basins.done && a.basins.basins.as_ref().unwrap().complete()
+    });
+    eprintln!(
+        "basins panel complete in {done:?} (grid {:?})",
+        a.basins.basins.as_ref().unwrap().grid()
+    );
+    assert!(t0.elapsed() < Duration::from_secs(2), "{:?}", t0.elapsed());
+    // α changes: the old picture is dropped, a new one starts at once.
+    a.handle(Action::Right);
+    assert!(a.take_effects().contains(&Effect::Start(Target::Basins)));
+    let old = a.basins.gen;
+    let t = Instant::now();
+    a.start(Target::Basins, &workers);
+    assert_ne!(a.basins.gen, old);
+    let first = fill(&mut a, &|a| a.basins.basins.as_ref().unwrap().covered() > 0);
+    eprintln!("first chunk after the change in {:?}", t.elapsed());
+    assert!(first < Duration::from_millis(500), "{first:?}");
+    workers.cancel_all();
+}
