@@ -88,7 +88,11 @@ fn text(
         args.transient
     )?;
     let period = match (found.events, found.periods) {
-        (Some(n), Some(k)) => format!(" ({n}, {k}): {n} events every {k} table periods"),
+        (Some(n), Some(k)) => format!(
+            " ({n}, {k}): {n} event{} every {k} table period{}",
+            if n == 1 { "" } else { "s" },
+            if k == 1 { "" } else { "s" }
+        ),
         _ => String::new(),
     };
     writeln!(out, "orbit: {}{period}", found.kind.as_str())?;
