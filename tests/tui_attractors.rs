@@ -272,7 +272,7 @@ fn the_basins_panel_shows_both_attractors_with_a_legend() {
     key(&mut a, 'B');
     assert!(!a.basins.shown);
     let s = tui_common::text(&tui_common::render(&mut a, 120, 40));
-    assert!(s.contains("Phase plot"));
+    assert!(s.contains("Phase (t̂, v)"));
 }
 
 #[test]

@@ -125,27 +125,63 @@ fn typed_values_are_set_or_refused_inline_with_the_range() {
 fn diagram_zoom_marks_stack_and_enter_sets_alpha() {
     let mut a = app(Marker::Braille);
     size(&mut a, 120, 40);
+    let (lo0, hi0) = (a.params.lo, a.params.hi);
+    let step = (hi0 - lo0) / 20.0;
     press(&mut a, KeyCode::Tab, KeyModifiers::NONE);
     assert_eq!(a.focus, Focus::Diagram);
+    let c0 = a.diagram.cursor;
     key(&mut a, 'm');
     press(&mut a, KeyCode::Right, KeyModifiers::NONE);
     press(&mut a, KeyCode::Right, KeyModifiers::NONE);
     key(&mut a, 'm');
     assert!(
-        (a.params.lo - 0.45).abs() < 1e-9 && (a.params.hi - 0.51).abs() < 1e-9,
+        (a.params.lo - c0).abs() < 1e-9 && (a.params.hi - (c0 + 2.0 * step)).abs() < 1e-9,
         "{:?}",
         (a.params.lo, a.params.hi)
     );
+    assert_eq!(
+        a.diagram.y_view, None,
+        "same height: a horizontal zoom only"
+    );
     assert!(a.take_effects().contains(&Effect::Start(Target::Diagram)));
     key(&mut a, '+');
-    assert!((a.params.hi - a.params.lo - 0.03).abs() < 1e-9);
+    assert!((a.params.hi - a.params.lo - step).abs() < 1e-9);
     key(&mut a, 'z');
     key(&mut a, 'z');
-    assert_eq!((a.params.lo, a.params.hi), (0.1, 0.7));
+    assert_eq!((a.params.lo, a.params.hi), (lo0, hi0));
     key(&mut a, 'z');
     assert!(
         a.message.as_ref().unwrap().1,
         "empty zoom stack is reported"
+    );
+    // Two corners in one column at different heights: a vertical zoom, no new sweep.
+    let y_before = a.diagram.ycursor;
+    key(&mut a, 'm');
+    for _ in 0..4 {
+        press(&mut a, KeyCode::Up, KeyModifiers::NONE);
+    }
+    assert!(a.diagram.ycursor > y_before);
+    a.take_effects();
+    key(&mut a, 'm');
+    let (ylo, yhi) = a.diagram.y_view.expect("a vertical window");
+    assert!((ylo - y_before).abs() < 1e-12 && yhi > ylo);
+    assert_eq!(a.diagram.grid.y_range().lo, ylo);
+    assert!(!a.take_effects().contains(&Effect::Start(Target::Diagram)));
+    assert_eq!((a.params.lo, a.params.hi), (lo0, hi0));
+    key(&mut a, 'z');
+    assert_eq!(a.diagram.y_view, None);
+    assert_eq!(a.diagram.grid.y_range().lo, 0.0);
+    // A box: both directions at once.
+    key(&mut a, 'm');
+    press(&mut a, KeyCode::Right, KeyModifiers::NONE);
+    press(&mut a, KeyCode::Down, KeyModifiers::NONE);
+    press(&mut a, KeyCode::Down, KeyModifiers::NONE);
+    key(&mut a, 'm');
+    assert!(a.diagram.y_view.is_some() && a.params.hi - a.params.lo < hi0 - lo0);
+    key(&mut a, 'z');
+    assert_eq!(
+        ((a.params.lo, a.params.hi), a.diagram.y_view),
+        ((lo0, hi0), None)
     );
     press(&mut a, KeyCode::Left, KeyModifiers::NONE);
     a.take_effects();
@@ -185,7 +221,21 @@ fn toggle_axis_pause_help_presets_export_quit() {
     press(&mut a, KeyCode::Enter, KeyModifiers::NONE);
     assert_eq!(a.params.table_label(), "sine");
     assert!(a.take_effects().contains(&Effect::Start(Target::Diagram)));
+    // α is placed just below the sine's α_PD (the fixed command's value), inside the
+    // preset's window, not clamped to its edge.
+    let sys = a.system();
+    let pd = bouncemap_engine::orbits::stability_windows(&sys.table, sys.r, 1).unwrap()[0]
+        .alpha_pd()
+        .unwrap();
+    assert!(
+        a.params.alpha < pd && a.params.alpha > a.params.lo,
+        "{} vs {pd}",
+        a.params.alpha
+    );
+    assert!(pd - a.params.alpha < 0.05 * (a.params.hi - a.params.lo));
     key(&mut a, 'e');
+    assert!(a.editing());
+    press(&mut a, KeyCode::Enter, KeyModifiers::NONE);
     assert_eq!(a.take_effects(), vec![Effect::Export]);
     press(&mut a, KeyCode::Char('c'), KeyModifiers::CONTROL);
     assert!(a.quit);
@@ -209,13 +259,33 @@ fn stale_generations_are_dropped() {
 }
 
 #[test]
-fn export_writes_csv_and_braille_text() {
+fn export_writes_csv_and_braille_text_under_a_typed_name() {
     let mut a = app(Marker::Braille);
     size(&mut a, 120, 40);
     fill(&mut a);
     let dir = std::env::temp_dir().join(format!("bouncemap-export-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let (csv, txt) = bouncemap::tui::export::export(&a, &dir).unwrap();
+    // `e` opens the name prompt with the first free default name; Esc cancels.
+    key(&mut a, 'e');
+    assert!(a.editing());
+    assert!(a
+        .export_name
+        .as_ref()
+        .unwrap()
+        .starts_with("bouncemap-diagram-"));
+    press(&mut a, KeyCode::Esc, KeyModifiers::NONE);
+    assert!(!a.editing() && a.take_effects().is_empty());
+    key(&mut a, 'e');
+    a.export_name = Some(String::new());
+    for c in dir.join("run").to_str().unwrap().chars() {
+        press(&mut a, KeyCode::Char(c), KeyModifiers::NONE);
+    }
+    press(&mut a, KeyCode::Enter, KeyModifiers::NONE);
+    assert!(a.take_effects().contains(&Effect::Export));
+    assert!(!a.editing());
+    let stem = std::path::PathBuf::from(a.export_pending.clone().unwrap());
+    let (csv, txt) = bouncemap::tui::export::export(&a, &stem).unwrap();
+    assert_eq!(csv, dir.join("run.csv"));
     let c = std::fs::read_to_string(&csv).unwrap();
     // A sweep file as `bouncemap sweep` writes it: provenance, header row, rows, end.
     assert!(
@@ -230,9 +300,23 @@ fn export_writes_csv_and_braille_text() {
         "index,alpha,phase,v,kind,period,table_periods,status,sticking,lyapunov"
     );
     assert!(c.lines().last().unwrap().starts_with("# end 120 values"));
+    // The text has a title with the window, axes and labels.
     let t = std::fs::read_to_string(&txt).unwrap();
     assert!(t.chars().any(|c| ('\u{2801}'..='\u{28ff}').contains(&c)));
-    let (csv2, _) = bouncemap::tui::export::export(&a, &dir).unwrap();
-    assert_ne!(csv, csv2, "never overwrites");
+    let first = t.lines().next().unwrap();
+    assert!(
+        first.contains("alpha = ") && first.contains("fd:0.1"),
+        "{t}"
+    );
+    assert!(
+        t.contains("1.0 ┤") && t.contains("0.0 ┤") && t.contains("alpha"),
+        "{t}"
+    );
+    // An existing name is refused and the files stay as they were.
+    let e = bouncemap::tui::export::export(&a, &stem).unwrap_err();
+    assert!(e.contains("exists"), "{e}");
+    assert_eq!(std::fs::read_to_string(&csv).unwrap(), c);
+    let next = bouncemap::tui::export::free_name(&dir);
+    assert_eq!(next, "bouncemap-diagram-1");
     std::fs::remove_dir_all(&dir).unwrap();
 }

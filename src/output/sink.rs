@@ -225,6 +225,18 @@ impl Write for Sink {
     }
 }
 
+/// The first `PREFIX-N` (N = 1, 2, …) in `dir` for which no `PREFIX-N.EXT` exists for
+/// any of `exts` (e.g. ".csv", ".txt").
+pub fn free_stem(dir: &Path, prefix: &str, exts: &[&str]) -> String {
+    (1..100_000)
+        .map(|n| format!("{prefix}-{n}"))
+        .find(|stem| {
+            exts.iter()
+                .all(|e| !dir.join(format!("{stem}{e}")).exists())
+        })
+        .unwrap_or_else(|| prefix.to_string())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

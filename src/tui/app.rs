@@ -12,7 +12,7 @@ use super::components::parameters::Parameters;
 use super::components::phase_plot::PhasePlot;
 use super::components::presets::PresetPicker;
 use super::components::stability::Stability;
-use super::components::{help, status, too_small, Component, Target};
+use super::components::{help, legend, status, too_small, Component, Target};
 use super::keymap::{Action, Keymap};
 use super::layout::{layout, Panes};
 use super::params::{ParamId, Params};
@@ -125,9 +125,16 @@ impl App {
             return;
         }
         match self.shared.overlay {
-            Overlay::Help => {
-                if matches!(action, Action::Help | Action::Cancel | Action::Enter) {
-                    self.shared.overlay = Overlay::None;
+            Overlay::Help | Overlay::Legend => {
+                match action {
+                    Action::Up => {
+                        self.shared.help_scroll = self.shared.help_scroll.saturating_sub(1)
+                    }
+                    Action::Down => self.shared.help_scroll = (self.shared.help_scroll + 1).min(60),
+                    Action::Help | Action::Legend | Action::Cancel | Action::Enter => {
+                        self.shared.overlay = Overlay::None
+                    }
+                    _ => {}
                 }
                 return;
             }
@@ -146,9 +153,23 @@ impl App {
                 let p = self.shared.paused;
                 self.shared.effect(Effect::Pause(p));
             }
-            Action::Help => self.shared.overlay = Overlay::Help,
+            Action::Help => {
+                self.shared.overlay = Overlay::Help;
+                self.shared.help_scroll = 0;
+            }
+            Action::Legend => {
+                self.shared.overlay = Overlay::Legend;
+                self.shared.help_scroll = 0;
+            }
             Action::Presets => self.shared.overlay = Overlay::Presets { selected: 0 },
-            Action::Export => self.shared.effect(Effect::Export),
+            Action::Export => {
+                let dir = std::env::current_dir().unwrap_or_else(|_| ".".into());
+                self.shared.export_name = Some(crate::output::sink::free_stem(
+                    &dir,
+                    "bouncemap-diagram",
+                    &[".csv", ".txt"],
+                ));
+            }
             Action::Suspend => self.shared.effect(Effect::Suspend),
             Action::NextPanel | Action::PrevPanel => {
                 self.shared.focus = match self.shared.focus {
@@ -172,16 +193,33 @@ impl App {
         self.announce();
     }
 
-    /// A typed character while editing a parameter (Enter commits, Esc cancels).
+    /// A typed character while editing a parameter or an export's file name (Enter
+    /// commits, Esc cancels).
     pub fn edit_key(&mut self, key: crossterm::event::KeyCode) {
+        use crossterm::event::KeyCode;
         self.shared.dirty = true;
+        if let Some(name) = self.shared.export_name.as_mut() {
+            match key {
+                KeyCode::Char(c) if name.chars().count() < 200 => name.push(c),
+                KeyCode::Backspace => {
+                    name.pop();
+                }
+                KeyCode::Esc => self.shared.export_name = None,
+                KeyCode::Enter => {
+                    self.shared.export_pending = self.shared.export_name.take();
+                    self.shared.effect(Effect::Export);
+                }
+                _ => {}
+            }
+            return;
+        }
         self.parameters.edit_key(key, &mut self.shared);
         self.announce();
     }
 
-    /// Whether a parameter is being typed.
+    /// Whether a parameter or a file name is being typed.
     pub fn editing(&self) -> bool {
-        self.parameters.editing.is_some()
+        self.parameters.editing.is_some() || self.shared.export_name.is_some()
     }
 
     /// Tell every panel about the rows changed by the last action.
@@ -219,9 +257,9 @@ impl App {
         self.announce();
     }
 
-    /// Set α to the diagram's value at its cursor (the mouse's click).
-    pub fn set_alpha_to_cursor(&mut self) {
-        self.diagram.set_alpha_to_cursor(&mut self.shared);
+    /// Set the swept parameter to the diagram's cursor (the mouse's click).
+    pub fn set_value_to_cursor(&mut self) {
+        self.diagram.set_value_to_cursor(&mut self.shared);
         self.announce();
     }
 
@@ -280,6 +318,7 @@ impl App {
         status::draw(s, &self.diagram, &self.phase, p.status, buf);
         match s.overlay {
             Overlay::Help => help::draw(s, area, buf),
+            Overlay::Legend => legend::draw(s, s.help_scroll, area, buf),
             Overlay::Presets { selected } => self.presets.draw(s, selected, area, buf),
             Overlay::None => {}
         }

@@ -41,7 +41,7 @@ use crate::config::InputError;
 use crate::output::hitgrid::Marker;
 use app::App;
 use bouncemap_engine::jobs::Executor;
-use params::{ParamId, Params, SINE_WINDOW};
+use params::{ParamId, Params};
 use settings::Config;
 use std::io::IsTerminal;
 use std::path::PathBuf;
@@ -71,11 +71,9 @@ pub fn build_app(opts: &Options, config: &Config) -> Result<App, InputError> {
         InputError(format!("{file}{e}"))
     })?;
     if let Some(spec) = &opts.table {
+        // A table of another kind brings its own window, α placed in it (--alpha wins).
         let table = spec.load()?;
-        p.set_table(spec.clone(), table);
-        if *spec == TableSpec::Sine {
-            (p.lo, p.hi) = SINE_WINDOW;
-        }
+        p.change_table(spec.clone(), table);
     }
     if let Some(a) = opts.alpha {
         p.set_text(ParamId::Alpha, &a.to_string())

@@ -1,14 +1,88 @@
-//! The parameters the user edits: table, D, α, r, k, initial state, sweep window,
-//! transient and keep. Each row parses and checks typed text through the shared rule
-//! for it ([`crate::config::rules`], the same ranges and messages as the command line)
-//! and knows its coarse and fine steps; a refused value leaves everything unchanged and
-//! comes back as a one-line message naming the valid range.
+//! The parameters the user edits: table, D, α, r, k, initial state, the diagram's
+//! swept parameter, window, start mode, transient and keep. Each row parses and checks
+//! typed text through the shared rule for it ([`crate::config::rules`], the same ranges
+//! and messages as the command line) and knows its coarse and fine steps; a refused
+//! value leaves everything unchanged and comes back as a one-line message naming the
+//! valid range.
+//!
+//! Where α goes when the table's kind changes or a preset loads: just below α_PD of the
+//! (1, k) solution when that lies in the window (the last stable period-1 value, the
+//! most telling place to start stepping), else the window's middle.
 
 use crate::config::presets::Preset;
 use crate::config::rules::{self, Rule};
 use crate::config::table_spec::{TableSpec, TABLE_RANGE};
 use crate::output::text::shortest;
+use bouncemap_engine::orbits::stability_windows;
+use bouncemap_engine::sweep::{SweepParam, Warm};
 use bouncemap_engine::{State, System, Table, DEFAULT_HOP};
+
+/// How every value of the diagram's sweep starts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum StartMode {
+    /// Next to the (1, 1) solution (the paper's start, `sweep --near-fixed-point`).
+    NearFixedPoint,
+    /// From t̂0, v0 (`sweep` without flags).
+    Cold,
+    /// Each value from its lower neighbour's final state (`sweep --warm`).
+    Warm,
+    /// Each value from its upper neighbour's final state (hysteresis with `Warm`).
+    WarmBackward,
+}
+
+impl StartMode {
+    pub const ALL: [StartMode; 4] = [
+        StartMode::NearFixedPoint,
+        StartMode::Cold,
+        StartMode::Warm,
+        StartMode::WarmBackward,
+    ];
+
+    /// How the row shows it.
+    pub fn label(self) -> &'static str {
+        match self {
+            StartMode::NearFixedPoint => "near (1,1)",
+            StartMode::Cold => "cold t̂0,v0",
+            StartMode::Warm => "warm →",
+            StartMode::WarmBackward => "warm ←",
+        }
+    }
+
+    /// The name typed or written in the config file.
+    pub fn key(self) -> &'static str {
+        match self {
+            StartMode::NearFixedPoint => "near-fixed-point",
+            StartMode::Cold => "cold",
+            StartMode::Warm => "warm",
+            StartMode::WarmBackward => "warm-backward",
+        }
+    }
+
+    /// The mode named `text`.
+    pub fn parse(text: &str) -> Result<StartMode, String> {
+        StartMode::ALL
+            .into_iter()
+            .find(|m| m.key() == text.trim())
+            .ok_or_else(|| {
+                format!(
+                    "'{}' is not a start mode: valid {}",
+                    text.trim(),
+                    START_RANGE
+                )
+            })
+    }
+
+    /// Continuation along the sweep.
+    pub fn warm(self) -> Warm {
+        match self {
+            StartMode::Warm => Warm::Forward,
+            StartMode::WarmBackward => Warm::Backward,
+            _ => Warm::Off,
+        }
+    }
+}
+
+const START_RANGE: &str = "near-fixed-point, cold, warm, warm-backward";
 
 /// Every editable value.
 #[derive(Clone, Debug, PartialEq)]
@@ -32,16 +106,32 @@ pub struct Params {
     pub keep: usize,
     /// Values in the diagram's sweep; None: one per column of the plot.
     pub steps: Option<usize>,
-    /// Start every value near the (1, 1) fixed point (the paper's start) instead of
-    /// from t̂0, v0.
-    pub near_fixed_point: bool,
+    /// The diagram's swept parameter (its window is `lo..hi`).
+    pub param: SweepParam,
+    /// How every value of the diagram starts.
+    pub start: StartMode,
 }
 
-/// The window, transient and keep the application opens with.
-pub const START_WINDOW: (f64, f64) = (0.1, 0.7);
-/// The sine's interesting window (its α is about 40 times smaller than F_D's).
-pub const SINE_WINDOW: (f64, f64) = (0.005, 0.05);
-pub const START_TRANSIENT: u64 = 2000;
+/// The window and transient the application opens with: fd:0.1's (1, 1) branch,
+/// its period doubling at α_PD = 0.50997, the narrow (2, 2) window up to 0.51184 and
+/// the chaos after it, with the paper's start (values next to the (1, 1) solution).
+pub const START_WINDOW: (f64, f64) = (0.45, 0.60);
+/// The sine's window (the paper's Fig. 3(f): its α is about 20 times smaller).
+pub const SINE_WINDOW: (f64, f64) = (0.02, 0.04);
+/// Windows of r and D sweeps.
+pub const R_WINDOW: (f64, f64) = (0.5, 0.95);
+pub const D_WINDOW: (f64, f64) = (0.0, 1.0);
+pub const START_TRANSIENT: u64 = 20_000;
+
+/// The window a sweep of `param` opens with on `table`.
+pub fn default_window(param: SweepParam, table: &TableSpec) -> (f64, f64) {
+    match (param, table) {
+        (SweepParam::Alpha, TableSpec::Sine) => SINE_WINDOW,
+        (SweepParam::Alpha, _) => START_WINDOW,
+        (SweepParam::R, _) => R_WINDOW,
+        (SweepParam::D, _) => D_WINDOW,
+    }
+}
 
 impl Default for Params {
     fn default() -> Self {
@@ -60,7 +150,8 @@ impl Default for Params {
             transient: START_TRANSIENT,
             keep: rules::KEEP.default as usize,
             steps: None,
-            near_fixed_point: false,
+            param: SweepParam::Alpha,
+            start: StartMode::NearFixedPoint,
         }
     }
 }
@@ -75,8 +166,10 @@ pub enum ParamId {
     K,
     T0,
     V0,
+    Sweep,
     Lo,
     Hi,
+    Start,
     Transient,
     Keep,
 }
@@ -88,12 +181,12 @@ pub enum Touch {
     System,
     /// Only the initial state: the phase plot and the bounce panel.
     Start,
-    /// Only the sweep (window, transient, keep).
+    /// Only the sweep (swept parameter, window, start mode, transient, keep).
     Sweep,
 }
 
 impl ParamId {
-    pub const ALL: [ParamId; 11] = [
+    pub const ALL: [ParamId; 13] = [
         ParamId::Table,
         ParamId::D,
         ParamId::Alpha,
@@ -101,8 +194,10 @@ impl ParamId {
         ParamId::K,
         ParamId::T0,
         ParamId::V0,
+        ParamId::Sweep,
         ParamId::Lo,
         ParamId::Hi,
+        ParamId::Start,
         ParamId::Transient,
         ParamId::Keep,
     ];
@@ -111,21 +206,25 @@ impl ParamId {
     pub fn rule(self) -> Option<Rule> {
         match self {
             ParamId::D => Some(rules::D),
-            ParamId::Alpha | ParamId::Lo | ParamId::Hi => Some(rules::ALPHA),
+            ParamId::Alpha => Some(rules::ALPHA),
             ParamId::R => Some(rules::R),
             ParamId::K => Some(rules::K),
             ParamId::T0 => Some(rules::T0),
             ParamId::Transient => Some(rules::TRANSIENT),
             ParamId::Keep => Some(rules::KEEP),
-            ParamId::Table | ParamId::V0 => None,
+            ParamId::Table | ParamId::V0 | ParamId::Sweep | ParamId::Start => None,
+            // The window's rule is the swept parameter's (see `Params::window_rule`).
+            ParamId::Lo | ParamId::Hi => None,
         }
     }
 
     pub fn label(self) -> &'static str {
         match self {
             ParamId::Table => "table",
-            ParamId::Lo => "α from",
-            ParamId::Hi => "α to",
+            ParamId::Sweep => "sweep",
+            ParamId::Lo => " from",
+            ParamId::Hi => " to",
+            ParamId::Start => "start",
             ParamId::V0 => "v0",
             other => other.rule().map_or("", |r| r.label),
         }
@@ -135,7 +234,12 @@ impl ParamId {
         match self {
             ParamId::Table | ParamId::D | ParamId::Alpha | ParamId::R | ParamId::K => Touch::System,
             ParamId::T0 | ParamId::V0 => Touch::Start,
-            ParamId::Lo | ParamId::Hi | ParamId::Transient | ParamId::Keep => Touch::Sweep,
+            ParamId::Sweep
+            | ParamId::Lo
+            | ParamId::Hi
+            | ParamId::Start
+            | ParamId::Transient
+            | ParamId::Keep => Touch::Sweep,
         }
     }
 
@@ -144,8 +248,10 @@ impl ParamId {
         match self {
             ParamId::Table => format!("{TABLE_RANGE} (a file is read when typed)"),
             ParamId::V0 => "auto, or a number ≥ f'(t̂0) with |v0 − f'(t̂0)| ≤ 1000".into(),
-            ParamId::Lo => format!("{} and below α to", rules::ALPHA.limit.text),
-            ParamId::Hi => format!("{} and above α from", rules::ALPHA.limit.text),
+            ParamId::Sweep => "alpha, r, or d (for an fd:D table)".into(),
+            ParamId::Start => START_RANGE.into(),
+            ParamId::Lo => "the swept parameter's range, below the window's end".into(),
+            ParamId::Hi => "the swept parameter's range, above the window's start".into(),
             other => other
                 .rule()
                 .map_or(String::new(), |r| r.limit.text.to_string()),
@@ -167,6 +273,64 @@ impl Params {
         }
     }
 
+    /// The rule of the window's ends: the swept parameter's.
+    pub fn window_rule(&self) -> Rule {
+        match self.param {
+            SweepParam::Alpha => rules::ALPHA,
+            SweepParam::R => rules::R,
+            SweepParam::D => rules::D,
+        }
+    }
+
+    /// The current value of `param` (D: of the fd:D table, if it is one).
+    pub fn value(&self, param: SweepParam) -> Option<f64> {
+        match param {
+            SweepParam::Alpha => Some(self.alpha),
+            SweepParam::R => Some(self.r),
+            SweepParam::D => self.table.d(),
+        }
+    }
+
+    /// The row that edits `param`.
+    pub fn row_of(param: SweepParam) -> ParamId {
+        match param {
+            SweepParam::Alpha => ParamId::Alpha,
+            SweepParam::R => ParamId::R,
+            SweepParam::D => ParamId::D,
+        }
+    }
+
+    /// The swept parameter's symbol (α, r, D).
+    pub fn symbol(param: SweepParam) -> &'static str {
+        match param {
+            SweepParam::Alpha => "α",
+            SweepParam::R => "r",
+            SweepParam::D => "D",
+        }
+    }
+
+    /// α just below α_PD of the (1, k) solution if that lies inside the window (an α
+    /// window only), else the window's middle; α unchanged for r and D sweeps.
+    pub fn place_alpha(&mut self) {
+        if self.param != SweepParam::Alpha {
+            return;
+        }
+        let (lo, hi) = (self.lo, self.hi);
+        let pd = stability_windows(&self.table(), self.r, self.k)
+            .ok()
+            .and_then(|w| w.first().and_then(|w| w.alpha_pd()))
+            .filter(|a| *a > lo && *a <= hi);
+        let a = match pd {
+            Some(pd) => (pd - 0.02 * (hi - lo)).max(lo),
+            None => 0.5 * (lo + hi),
+        };
+        let mut next = self.clone();
+        next.alpha = round_to(a, 1e-6);
+        if next.validate(ParamId::Alpha).is_ok() {
+            *self = next;
+        }
+    }
+
     /// The validated system. Every value is kept valid by the setters.
     pub fn system(&self) -> System {
         System::new(self.table(), self.alpha, self.r).expect("parameters are validated on entry")
@@ -174,7 +338,9 @@ impl Params {
 
     /// The initial state, with the same default as `bouncemap orbit`.
     pub fn initial(&self, sys: &System) -> Result<State, String> {
-        State::start(sys, self.t0, self.v0, 0.0).map_err(|e| e.to_string())
+        // The application starts on the table (no z0): say so without naming z0.
+        State::start(sys, self.t0, self.v0, 0.0)
+            .map_err(|e| e.to_string().replace(" (or give z0 > 0)", ""))
     }
 
     /// Use `table` (already loaded) named `spec`.
@@ -197,8 +363,10 @@ impl Params {
             ParamId::K => self.k.to_string(),
             ParamId::T0 => n(self.t0),
             ParamId::V0 => self.v0.map_or("auto".into(), n),
+            ParamId::Sweep => Params::symbol(self.param).into(),
             ParamId::Lo => n(self.lo),
             ParamId::Hi => n(self.hi),
+            ParamId::Start => self.start.label().into(),
             ParamId::Transient => self.transient.to_string(),
             ParamId::Keep => self.keep.to_string(),
         }
@@ -219,9 +387,22 @@ impl Params {
                 let n = order.len() as i32;
                 let (spec, table) = order[((here as i32 + dir).rem_euclid(n)) as usize].clone();
                 let mut next = self.clone();
-                next.set_table(spec, table);
+                next.change_table(spec, table);
                 next.validate(id)?;
                 *self = next;
+                return Ok(());
+            }
+            ParamId::Sweep => {
+                let all = self.sweepable();
+                let here = all.iter().position(|p| *p == self.param).unwrap_or(0);
+                let n = all.len() as i32;
+                let next = all[((here as i32 + dir).rem_euclid(n)) as usize];
+                return self.set_param(next);
+            }
+            ParamId::Start => {
+                let all = StartMode::ALL;
+                let here = all.iter().position(|m| *m == self.start).unwrap_or(0);
+                self.start = all[((here as i32 + dir).rem_euclid(4)) as usize];
                 return Ok(());
             }
             ParamId::D => round_to(
@@ -245,10 +426,57 @@ impl Params {
                 self.hi + step((self.hi - self.lo) * 0.1, (self.hi - self.lo) * 0.01),
                 1e-9,
             ),
-            ParamId::Transient => self.transient as f64 + step(100.0, 10.0),
+            ParamId::Transient => {
+                // Coarse steps scale the transient by 10, fine ones by 2.
+                let f = if fine { 2.0 } else { 10.0 };
+                let t = self.transient as f64;
+                (if s > 0.0 { t * f } else { (t / f).floor() }).max(1.0)
+            }
             ParamId::Keep => self.keep as f64 + step(50.0, 10.0),
         };
         self.set_value(id, value)
+    }
+
+    /// The parameters a diagram can sweep on this table (D for fd:D only).
+    pub fn sweepable(&self) -> Vec<SweepParam> {
+        SweepParam::ALL
+            .into_iter()
+            .filter(|p| *p != SweepParam::D || self.table.d().is_some())
+            .collect()
+    }
+
+    /// Sweep `param`: its default window, α placed for an α sweep.
+    pub fn set_param(&mut self, param: SweepParam) -> Result<(), String> {
+        if param == SweepParam::D && self.table.d().is_none() {
+            return Err(format!(
+                "sweep: D needs an fd:D table (this is {}); valid {}",
+                self.table_label(),
+                ParamId::Sweep.range()
+            ));
+        }
+        self.param = param;
+        (self.lo, self.hi) = default_window(param, &self.table);
+        self.steps = None;
+        self.place_alpha();
+        Ok(())
+    }
+
+    /// Use another table; a table of another kind (sine, F_D, a file) brings its own
+    /// α window, and α is placed in it (an r or D sweep keeps its window; D becomes α
+    /// on a table without D).
+    pub fn change_table(&mut self, spec: TableSpec, table: Table) {
+        let kind_changed = !same_kind(&spec, &self.table);
+        self.set_table(spec, table);
+        if self.param == SweepParam::D && self.table.d().is_none() {
+            self.param = SweepParam::Alpha;
+            (self.lo, self.hi) = default_window(SweepParam::Alpha, &self.table);
+            self.steps = None;
+            self.place_alpha();
+        } else if kind_changed && self.param == SweepParam::Alpha {
+            (self.lo, self.hi) = default_window(SweepParam::Alpha, &self.table);
+            self.steps = None;
+            self.place_alpha();
+        }
     }
 
     /// Set a row from typed text. Refusals name the valid range; nothing changes then.
@@ -263,10 +491,27 @@ impl Params {
                     _ => spec.load().map_err(|e| e.0)?,
                 };
                 let mut next = self.clone();
-                next.set_table(spec, table);
+                next.change_table(spec, table);
                 next.validate(id)?;
                 *self = next;
                 Ok(())
+            }
+            ParamId::Sweep => {
+                let p = SweepParam::ALL
+                    .into_iter()
+                    .find(|p| p.as_str() == t || Params::symbol(*p) == t)
+                    .ok_or_else(|| {
+                        refuse(format!("'{t}' is not a parameter: valid {}", id.range()))
+                    })?;
+                self.set_param(p)
+            }
+            ParamId::Start => {
+                self.start = StartMode::parse(t).map_err(refuse)?;
+                Ok(())
+            }
+            ParamId::Lo | ParamId::Hi => {
+                let x = self.window_rule().parse(t).map_err(refuse)?;
+                self.set_value(id, x)
             }
             ParamId::V0 if t == "auto" || t.is_empty() => {
                 let mut next = self.clone();
@@ -295,12 +540,19 @@ impl Params {
 
     /// Set a numeric row to `x`, checking it and what depends on it.
     fn set_value(&mut self, id: ParamId, x: f64) -> Result<(), String> {
-        if let Some(rule) = id.rule() {
-            rule.check(x).map_err(|e| format!("{}: {e}", id.label()))?;
+        let rule = match id {
+            ParamId::Lo | ParamId::Hi => Some(self.window_rule()),
+            _ => id.rule(),
+        };
+        if let Some(rule) = rule {
+            rule.check(x)
+                .map_err(|e| format!("{}: {e}", id.label().trim()))?;
         }
         let mut next = self.clone();
         match id {
-            ParamId::Table => unreachable!("the table row is not numeric"),
+            ParamId::Table | ParamId::Sweep | ParamId::Start => {
+                unreachable!("the table, sweep and start rows are not numeric")
+            }
             ParamId::D => {
                 let spec = TableSpec::Fd(x);
                 let table = spec.load().map_err(|e| e.0)?;
@@ -327,10 +579,13 @@ impl Params {
         if matches!(id, ParamId::Lo | ParamId::Hi) && self.lo >= self.hi {
             let v = if id == ParamId::Lo { self.lo } else { self.hi };
             return Err(format!(
-                "{}: {} is out of range; valid {}",
-                id.label(),
+                "{} {}: {} is out of range; valid {} {} {}",
+                Params::symbol(self.param),
+                id.label().trim(),
                 shortest(v),
-                id.range()
+                self.window_rule().limit.text,
+                if id == ParamId::Lo { "below" } else { "above" },
+                shortest(if id == ParamId::Lo { self.hi } else { self.lo })
             ));
         }
         // The start must stay valid for the new system (v0 above the table's velocity).
@@ -346,13 +601,15 @@ impl Params {
         Ok(())
     }
 
-    /// These parameters with the settings of a preset: its table, r, window, values,
-    /// transient, keep and start (k = 1; α kept inside the window).
+    /// These parameters with the settings of a preset: its table, swept parameter, r,
+    /// window, values, transient, keep and start (k = 1; α placed in the window, just
+    /// below α_PD where that is in it).
     pub fn with_preset(&self, p: &Preset) -> Result<Params, String> {
         let spec = p.sweep_spec().map_err(|e| e.0)?;
         let mut next = self.clone();
         let table = spec.table.clone();
         next.set_table(p.table.clone(), table);
+        next.param = spec.param;
         next.r = spec.r;
         next.k = 1;
         next.lo = spec.lo;
@@ -360,8 +617,17 @@ impl Params {
         next.steps = Some(spec.steps);
         next.transient = spec.transient;
         next.keep = spec.keep;
-        next.near_fixed_point = spec.initial.near_fixed_point;
-        next.alpha = self.alpha.clamp(spec.lo, spec.hi);
+        next.start = match (spec.initial.near_fixed_point, spec.warm) {
+            (true, _) => StartMode::NearFixedPoint,
+            (false, Warm::Forward) => StartMode::Warm,
+            (false, Warm::Backward) => StartMode::WarmBackward,
+            (false, Warm::Off) => StartMode::Cold,
+        };
+        if spec.param == SweepParam::Alpha {
+            next.place_alpha();
+        } else {
+            next.alpha = spec.alpha;
+        }
         next.validate(ParamId::Table)?;
         Ok(next)
     }

@@ -152,7 +152,7 @@ fn handle_mouse(app: &mut App, m: MouseEvent, drag_from: &mut Option<u16>) {
                     if from == m.column {
                         app.diagram.cursor = a;
                         app.focus = Focus::Diagram;
-                        app.set_alpha_to_cursor();
+                        app.set_value_to_cursor();
                     } else {
                         app.zoom_to(a.min(b), a.max(b));
                     }
@@ -171,8 +171,8 @@ fn apply(e: Effect, app: &mut App, workers: &Workers, term: &mut Term) -> anyhow
         // paused parks at once.
         Effect::Pause(p) => workers.pause(p),
         Effect::Export => {
-            let dir = std::env::current_dir().unwrap_or_else(|_| ".".into());
-            let msg = match export(app, &dir) {
+            let name = app.export_pending.take().unwrap_or_default();
+            let msg = match export(app, std::path::Path::new(name.trim())) {
                 Ok((c, t)) => (
                     format!("exported {} and {}", c.display(), t.display()),
                     false,

@@ -17,8 +17,9 @@
 //! k = 1
 //! t0 = 0.0
 //! v0 = "auto"          # or a number
-//! sweep = [0.1, 0.7]
-//! transient = 1000
+//! sweep = [0.45, 0.6]   # the diagram's α window
+//! start = "near-fixed-point"   # or cold, warm, warm-backward
+//! transient = 20000
 //! keep = 100
 //! [keys]
 //! step_one = "n"
@@ -57,6 +58,7 @@ struct Defaults {
     t0: Option<f64>,
     v0: Option<toml::Value>,
     sweep: Option<[f64; 2]>,
+    start: Option<String>,
     transient: Option<toml::Value>,
     keep: Option<toml::Value>,
 }
@@ -142,6 +144,7 @@ impl Config {
             push(ParamId::K, d.k.map(|x| x.to_string()));
             push(ParamId::Alpha, d.alpha.map(|x| x.to_string()));
             push(ParamId::T0, d.t0.map(|x| x.to_string()));
+            push(ParamId::Start, d.start);
             for (id, v) in [
                 (ParamId::V0, d.v0),
                 (ParamId::Transient, d.transient),
@@ -216,6 +219,8 @@ fn key_of(id: ParamId) -> &'static str {
         ParamId::Table => "table",
         ParamId::V0 => "v0",
         ParamId::Lo | ParamId::Hi => "sweep",
+        ParamId::Start => "start",
+        ParamId::Sweep => "param",
         other => other.rule().map_or("", |r| r.key),
     }
 }

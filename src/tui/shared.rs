@@ -23,6 +23,7 @@ pub enum Focus {
 pub enum Overlay {
     None,
     Help,
+    Legend,
     Presets { selected: usize },
 }
 
@@ -52,6 +53,12 @@ pub struct Shared {
     pub paused: bool,
     pub quit: bool,
     pub dirty: bool,
+    /// First line shown of the help or legend overlay (when it scrolls).
+    pub help_scroll: usize,
+    /// The file name being typed for an export (None: not typing one).
+    pub export_name: Option<String>,
+    /// The name an export was asked for, until the runtime writes it.
+    pub export_pending: Option<String>,
     /// The orbit analysis for the current parameters (None while it computes).
     pub orbits: Option<Result<OrbitInfo, String>>,
     pub(super) effects: Vec<Effect>,
@@ -75,6 +82,9 @@ impl Shared {
             paused: false,
             quit: false,
             dirty: true,
+            help_scroll: 0,
+            export_name: None,
+            export_pending: None,
             orbits: None,
             effects: Vec::new(),
             changed: Vec::new(),

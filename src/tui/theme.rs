@@ -64,6 +64,16 @@ impl Theme {
         self.fg(Color::Magenta, 170, (215, 95, 215))
     }
 
+    /// A line's style where it crosses data: its own colour, or reverse video without
+    /// colour (a dim or bold cell alone would vanish in a dense region).
+    pub fn over_data(&self, style: Style) -> Style {
+        if self.mode == ColorMode::None {
+            Style::new().add_modifier(Modifier::REVERSED)
+        } else {
+            style
+        }
+    }
+
     /// Marks of analytic values (birth, α_PD, fixed points).
     pub fn mark(&self) -> Style {
         self.fg(Color::LightRed, 196, (255, 60, 60))

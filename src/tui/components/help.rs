@@ -1,4 +1,5 @@
-//! The `?` overlay, generated from the keymap that dispatches keys.
+//! The `?` overlay, generated from the keymap that dispatches keys; it scrolls where it
+//! does not fit (80×24).
 
 use crate::tui::shared::Shared;
 use ratatui::buffer::Buffer;
@@ -13,7 +14,7 @@ pub fn draw(app: &Shared, area: Rect, buf: &mut Buffer) {
         .max()
         .unwrap_or(4)
         .min(24);
-    let mut lines: Vec<Line> = help
+    let mut lines: Vec<Line<'static>> = help
         .into_iter()
         .map(|(k, d)| {
             Line::from(vec![
@@ -23,27 +24,38 @@ pub fn draw(app: &Shared, area: Rect, buf: &mut Buffer) {
         })
         .collect();
     lines.push(Line::styled(
-        " Enter types a value in the parameters panel; Esc or ? closes this help.",
+        " Enter types a value in the parameters panel; l explains the marks; Esc closes.",
         app.theme.dim(),
     ));
-    if lines.len() as u16 + 2 > area.height {
-        // Short terminal: two columns, descriptions cut to fit.
-        let half = lines.len().div_ceil(2);
-        let col_w = (area.width.saturating_sub(3) / 2) as usize;
-        let cut = |l: &Line| -> String {
-            let s: String = l.spans.iter().map(|s| s.content.as_ref()).collect();
-            if s.chars().count() > col_w {
-                s.chars().take(col_w.saturating_sub(1)).collect::<String>() + "…"
-            } else {
-                format!("{s:<col_w$}")
-            }
-        };
-        lines = (0..half)
-            .map(|i| {
-                let right = lines.get(i + half).map(cut).unwrap_or_default();
-                Line::from(format!("{} {}", cut(&lines[i]), right))
-            })
-            .collect();
+    scrolled(app, "Keys", lines, app.help_scroll, area, buf);
+}
+
+/// An overlay of `lines`, showing the window starting at `scroll` (clamped) with a
+/// scroll note when they do not all fit.
+pub fn scrolled(
+    app: &Shared,
+    title: &str,
+    lines: Vec<Line<'static>>,
+    scroll: usize,
+    area: Rect,
+    buf: &mut Buffer,
+) {
+    let room = area.height.saturating_sub(2) as usize;
+    if lines.len() <= room {
+        super::overlay(app, title, lines, area, buf);
+        return;
     }
-    super::overlay(app, "Keys", lines, area, buf);
+    let shown = room.saturating_sub(1).max(1);
+    let first = scroll.min(lines.len() - shown);
+    let mut window: Vec<Line> = lines[first..first + shown].to_vec();
+    window.push(Line::styled(
+        format!(
+            " ↑/↓ scroll · lines {}–{} of {}",
+            first + 1,
+            first + shown,
+            lines.len()
+        ),
+        app.theme.dim(),
+    ));
+    super::overlay(app, title, window, area, buf);
 }

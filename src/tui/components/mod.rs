@@ -14,6 +14,7 @@ pub mod basins;
 pub mod bounce;
 pub mod diagram;
 pub mod help;
+pub mod legend;
 pub mod parameters;
 pub mod phase_plot;
 pub mod presets;

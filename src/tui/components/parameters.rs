@@ -1,6 +1,8 @@
 //! The parameters panel: one row per value, the selected one highlighted; ↑/↓ select,
-//! ←/→ nudge, Enter types an exact value (the row shows the text being typed), and a
-//! refusal shows below in the error style.
+//! ←/→ nudge, Enter types an exact value (the row shows the text being typed, and the
+//! valid range below it). Refusals and notes go to the status line, which has the
+//! screen's width. When the rows do not fit (80×24) the panel scrolls with the
+//! selection.
 
 use super::{is_focused, panel, Component};
 use crate::tui::keymap::Action;
@@ -96,19 +98,39 @@ impl Component for Parameters {
         let inner = block.inner(area);
         block.render(area, buf);
         let label_w = 10usize;
+        let w = inner.width as usize;
+        // Rows shown: all if they fit, else a window that keeps the selected one visible
+        // (one row is kept for the hint while typing).
+        let hint = self.editing.is_some();
+        let room = (inner.height as usize)
+            .saturating_sub(usize::from(hint))
+            .max(1);
+        let n = ParamId::ALL.len();
+        let first = if n <= room {
+            0
+        } else {
+            self.selected.saturating_sub(room / 2).min(n - room)
+        };
         let mut lines: Vec<Line> = Vec::new();
-        for (i, id) in ParamId::ALL.iter().enumerate() {
+        for (i, id) in ParamId::ALL.iter().enumerate().skip(first).take(room) {
             let sel = i == self.selected;
             let value = match (&self.editing, sel) {
                 (Some(text), true) => format!("{text}▏"),
                 _ => app.params.show(*id),
             };
-            let text = format!(
-                "{}{:<label_w$}{}",
-                if sel { "›" } else { " " },
-                id.label(),
-                value
-            );
+            // The sweep window's rows name the swept parameter.
+            let label = match id {
+                ParamId::Lo | ParamId::Hi => format!(
+                    "{}{}",
+                    crate::tui::params::Params::symbol(app.params.param),
+                    id.label()
+                ),
+                _ => id.label().to_string(),
+            };
+            // Pad by display width (t̂ is two characters in one column).
+            let pad = label_w.saturating_sub(Line::from(label.as_str()).width());
+            let marker = if sel { "›" } else { " " };
+            let text = format!("{marker}{label}{}{value}", " ".repeat(pad));
             let style = if sel && (focused || self.editing.is_some()) {
                 app.theme.selected()
             } else if sel {
@@ -116,21 +138,10 @@ impl Component for Parameters {
             } else {
                 ratatui::style::Style::new()
             };
-            let w = inner.width as usize;
             let padded: String = if sel { format!("{text:<w$}") } else { text };
             lines.push(Line::from(Span::styled(padded, style)));
         }
-        let used = lines.len() as u16;
-        if let Some((msg, err)) = &app.message {
-            if inner.height > used {
-                let style = if *err {
-                    app.theme.error()
-                } else {
-                    app.theme.dim()
-                };
-                lines.push(Line::styled(msg.clone(), style));
-            }
-        } else if self.editing.is_some() && inner.height > used {
+        if hint {
             lines.push(Line::styled(
                 format!(
                     "valid {}; Enter sets, Esc cancels",

@@ -147,7 +147,7 @@ impl Component for PhasePlot {
 
     fn draw(&self, app: &Shared, area: Rect, buf: &mut Buffer) {
         let state = if self.note.is_some() {
-            "orbit ended".to_string()
+            "ended".to_string()
         } else if self.done {
             "done".into()
         } else if app.paused {
@@ -156,7 +156,7 @@ impl Component for PhasePlot {
             "running".into()
         };
         let title = format!(
-            " Phase plot (t̂, v): {} pts, {state} ",
+            " Phase (t̂, v) {} pts, {state} ",
             compact(self.points.len() as f64)
         );
         let block = panel(app, title, false);
@@ -209,8 +209,15 @@ impl Component for PhasePlot {
             }
         }
         if let Some(n) = &self.note {
-            let s: String = n.chars().take(plot.width as usize).collect();
-            buf.set_string(plot.x, plot.y, s, app.theme.error());
+            // The whole note, wrapped over the plot's top rows.
+            let area = Rect {
+                height: plot.height.min(4),
+                ..plot
+            };
+            ratatui::widgets::Paragraph::new(n.as_str())
+                .style(app.theme.error())
+                .wrap(ratatui::widgets::Wrap { trim: true })
+                .render(area, buf);
         }
     }
 }

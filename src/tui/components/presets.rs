@@ -1,5 +1,6 @@
 //! The preset picker: the paper's figures (the same presets as `sweep --preset`),
-//! ↑/↓ to choose, Enter to load, Esc to close.
+//! ↑/↓ to choose, Enter to load, Esc to close; the chosen one's description in full
+//! and its settings below the list.
 
 use crate::config::presets::{self, Preset};
 use crate::tui::keymap::Action;
@@ -98,11 +99,54 @@ fn render(picker: &PresetPicker, app: &Shared, selected: usize, area: Rect, buf:
             })
             .collect()
     };
+    // What the selected preset shows, in full.
+    if let Some((_, p)) = picker.list.get(selected) {
+        let width = (area.width as usize).saturating_sub(8).clamp(30, 100);
+        lines.push(Line::from(""));
+        for l in wrap(&p.description, width) {
+            lines.push(Line::styled(format!(" {l}"), app.theme.focus()));
+        }
+        lines.push(Line::styled(
+            format!(
+                " {} values, transient {} periods, keep {}, start {}",
+                p.steps,
+                p.transient,
+                p.keep,
+                p.sweep_spec()
+                    .map(|s| if s.initial.near_fixed_point {
+                        "near (1,1)"
+                    } else {
+                        "cold"
+                    })
+                    .unwrap_or("?")
+            ),
+            app.theme.dim(),
+        ));
+    }
     lines.push(Line::styled(
         " ↑/↓ choose, Enter load, Esc close",
         app.theme.dim(),
     ));
     super::overlay(app, "Presets", lines, area, buf);
+}
+
+/// `text` in lines of at most `width` characters, broken at spaces.
+fn wrap(text: &str, width: usize) -> Vec<String> {
+    let mut out = Vec::new();
+    let mut line = String::new();
+    for word in text.split_whitespace() {
+        if !line.is_empty() && line.chars().count() + 1 + word.chars().count() > width {
+            out.push(std::mem::take(&mut line));
+        }
+        if !line.is_empty() {
+            line.push(' ');
+        }
+        line.push_str(word);
+    }
+    if !line.is_empty() {
+        out.push(line);
+    }
+    out
 }
 
 /// `text` cut to at most `max` characters, with an ellipsis where it was cut.

@@ -1,5 +1,6 @@
-//! The status line: current parameters, what is computing, and key hints taken from
-//! the keymap.
+//! The status line: current parameters, then the latest message (a refusal naming the
+//! valid range, a note) if there is one, else what is computing and key hints taken
+//! from the keymap (shortened to fit at 80 columns).
 
 use super::diagram::{Diagram, SweepStatus};
 use super::phase_plot::PhasePlot;
@@ -20,6 +21,38 @@ pub fn draw(app: &Shared, diagram: &Diagram, phase: &PhasePlot, area: Rect, buf:
         fmt_num(p.r),
         p.k
     );
+    if let Some(name) = &app.export_name {
+        let line = Line::from(vec![
+            Span::styled(" export to: ", app.theme.focus()),
+            Span::styled(format!("{name}▏"), app.theme.selected()),
+            Span::styled(
+                "  (.csv and .txt are added; Enter writes, Esc cancels)",
+                app.theme.dim(),
+            ),
+        ]);
+        Paragraph::new(line).render(area, buf);
+        return;
+    }
+    if let Some((msg, err)) = &app.message {
+        // The message has the rest of the line; cut with an ellipsis if it must be.
+        let room = (area.width as usize).saturating_sub(params.chars().count() + 2);
+        let text: String = if msg.chars().count() > room {
+            msg.chars().take(room.saturating_sub(1)).collect::<String>() + "…"
+        } else {
+            msg.clone()
+        };
+        let style = if *err {
+            app.theme.error()
+        } else {
+            app.theme.focus()
+        };
+        let line = Line::from(vec![
+            Span::styled(params, app.theme.selected()),
+            Span::styled(format!(" {text}"), style),
+        ]);
+        Paragraph::new(line).render(area, buf);
+        return;
+    }
     let work = if app.paused {
         "PAUSED".to_string()
     } else {
@@ -44,8 +77,9 @@ pub fn draw(app: &Shared, diagram: &Diagram, phase: &PhasePlot, area: Rect, buf:
     };
     let k = |a| app.keymap.hint(a);
     let hints = format!(
-        " {} help  {} pause  {} panel  {}/{}/{} step  {} presets  {} export  {} quit",
+        " {} help  {} legend  {} pause  {} panel  {}/{}/{} step  {} presets  {} export  {} quit",
         k(Action::Help),
+        k(Action::Legend),
         k(Action::Pause),
         k(Action::NextPanel),
         k(Action::StepOne),
@@ -57,10 +91,20 @@ pub fn draw(app: &Shared, diagram: &Diagram, phase: &PhasePlot, area: Rect, buf:
     );
     let used = params.chars().count() + work.chars().count() + 3;
     let room = (area.width as usize).saturating_sub(used);
-    let hints = if hints.chars().count() > room {
-        format!(" {} help  {} quit", k(Action::Help), k(Action::Quit))
-    } else {
+    let short = format!(
+        " {}:help {}:legend {}:pause {}:presets {}:quit",
+        k(Action::Help),
+        k(Action::Legend),
+        k(Action::Pause),
+        k(Action::Presets),
+        k(Action::Quit)
+    );
+    let hints = if hints.chars().count() <= room {
         hints
+    } else if short.chars().count() <= room {
+        short
+    } else {
+        format!(" {}:help {}:quit", k(Action::Help), k(Action::Quit))
     };
     let line = Line::from(vec![
         Span::styled(params, app.theme.selected()),

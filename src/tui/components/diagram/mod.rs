@@ -9,12 +9,16 @@
 //! change and resize), the zoom stack, the cursor.
 
 pub mod colouring;
+mod navigation;
+pub mod readout;
 pub mod strip;
+
+pub use navigation::Zoom;
 
 use super::{compact, is_focused, panel, Component, Target};
 use crate::output::hitgrid::{HitGrid, Range};
 use crate::tui::keymap::Action;
-use crate::tui::params::{fmt_num, ParamId, Touch};
+use crate::tui::params::{fmt_num, ParamId, Params, StartMode, Touch};
 use crate::tui::plot::{draw_axes, render};
 use crate::tui::shared::{Effect, Focus, Shared};
 use crate::tui::workers::{Body, JobDone, Workers};
@@ -110,9 +114,16 @@ pub struct Diagram {
     pub started: Option<Instant>,
     pub elapsed: f64,
     pub axis: Axis,
+    /// The cursor: a value of the swept parameter, and a height on the vertical axis.
     pub cursor: f64,
-    pub mark: Option<f64>,
-    pub zoom_stack: Vec<(f64, f64)>,
+    pub ycursor: f64,
+    /// The first corner of a window being marked (value, height).
+    pub mark: Option<(f64, f64)>,
+    /// The vertical window, if zoomed vertically (else the axis's full range).
+    pub y_view: Option<(f64, f64)>,
+    pub zoom_stack: Vec<Zoom>,
+    /// The next start adds the values between the stored ones (the plot grew wider).
+    pub refine: bool,
     pub grid: HitGrid,
     /// The plot's screen rectangle at the last layout (for the mouse).
     pub plot_area: Rect,
@@ -140,9 +151,12 @@ impl Diagram {
             started: None,
             elapsed: 0.0,
             axis: Axis::Phase,
-            cursor: p.alpha,
+            cursor: p.value(p.param).unwrap_or(p.lo),
+            ycursor: 0.5,
             mark: None,
+            y_view: None,
             zoom_stack: Vec::new(),
+            refine: false,
             grid: HitGrid::new(
                 0,
                 0,
@@ -164,34 +178,35 @@ impl Diagram {
         self.grid.sub_size().0.max(80)
     }
 
-    /// The sweep for the current parameters: the preset's number of values, or one α
+    /// The sweep for the current parameters: the preset's number of values, or one
     /// value per sub-cell column.
     pub fn sweep_spec(&self, shared: &Shared) -> SweepSpec {
         let p = &shared.params;
         let steps = p.steps.unwrap_or_else(|| self.sweep_columns());
-        let mut spec = SweepSpec::new(
-            p.table(),
-            p.alpha,
-            p.r,
-            SweepParam::Alpha,
-            p.lo,
-            p.hi,
-            steps,
-        );
+        let mut spec = SweepSpec::new(p.table(), p.alpha, p.r, p.param, p.lo, p.hi, steps);
         spec.initial = InitialSpec {
             t0: p.t0,
             v0: p.v0,
             z0: 0.0,
-            near_fixed_point: p.near_fixed_point,
+            near_fixed_point: p.start == StartMode::NearFixedPoint,
         };
+        spec.warm = p.start.warm();
         spec.transient = p.transient;
         spec.keep = p.keep;
         // The strip and the period colours need every value's exponent.
         spec.lyapunov = true;
         if self.all_attractors {
             spec.starts = ALL_STARTS;
+            // Several starts look for every attractor at each value: cold starts.
+            spec.warm = bouncemap_engine::sweep::Warm::Off;
         }
         spec
+    }
+
+    /// The current value of the swept parameter (where its line is drawn).
+    pub fn current(shared: &Shared) -> f64 {
+        let p = &shared.params;
+        p.value(p.param).unwrap_or(p.lo)
     }
 
     /// Periods of the provisional first pass: a tenth of the transient.
@@ -285,10 +300,11 @@ impl Diagram {
             );
             self.rebin(shared);
             // Grown wider than the sweep has values (a terminal enlarged, or one too
-            // small at start): sweep again at the new resolution, or every other
-            // column would stay empty.
+            // small at start): add the values between the stored ones, or every other
+            // column would stay empty. Shrinking only re-bins.
             let values = self.values_total;
-            if shared.params.steps.is_none() && values > 0 && self.sweep_columns() > values {
+            if shared.params.steps.is_none() && values > 1 && self.sweep_columns() > values {
+                self.refine = true;
                 shared.effect(Effect::Start(Target::Diagram));
             }
         }
@@ -297,9 +313,10 @@ impl Diagram {
     /// Re-bin from the stored points (window, axis or size changed).
     pub fn rebin(&mut self, shared: &Shared) {
         let x = Range::new(shared.params.lo, shared.params.hi);
-        let y = match self.axis {
-            Axis::Phase => Range::new(0.0, 1.0),
-            Axis::Velocity => v_range(
+        let y = match (self.y_view, self.axis) {
+            (Some((lo, hi)), _) => Range::new(lo, hi),
+            (None, Axis::Phase) => Range::new(0.0, 1.0),
+            (None, Axis::Velocity) => v_range(
                 self.slots
                     .iter()
                     .flatten()
@@ -319,47 +336,6 @@ impl Diagram {
             }
         }
     }
-
-    fn move_cursor(&mut self, dir: i32, fine: bool, shared: &Shared) {
-        let (lo, hi) = (shared.params.lo, shared.params.hi);
-        let cols = (self.grid.sub_size().0).max(1) as f64;
-        let step = if fine {
-            (hi - lo) / cols
-        } else {
-            (hi - lo) / 20.0
-        };
-        self.cursor = (self.cursor + dir as f64 * step).clamp(lo, hi);
-    }
-
-    /// Set α to the cursor.
-    pub fn set_alpha_to_cursor(&mut self, shared: &mut Shared) {
-        let before = shared.params.clone();
-        let r = shared
-            .params
-            .set_text(ParamId::Alpha, &format!("{}", self.cursor));
-        shared.after_change(ParamId::Alpha, r, &before);
-    }
-
-    /// Zoom to [lo, hi] (clamped to valid α), pushing the current window.
-    pub fn zoom_to(&mut self, lo: f64, hi: f64, shared: &mut Shared) {
-        let lo = lo.max(1e-6);
-        let hi = hi.min(1000.0);
-        if hi - lo <= 1e-9 || hi.is_nan() || lo.is_nan() {
-            shared.say("zoom: the window is empty; mark two different α", true);
-            return;
-        }
-        self.zoom_stack.push((shared.params.lo, shared.params.hi));
-        self.set_window(lo, hi, shared);
-    }
-
-    fn set_window(&mut self, lo: f64, hi: f64, shared: &mut Shared) {
-        let before = shared.params.clone();
-        shared.params.lo = lo;
-        shared.params.hi = hi;
-        // A window the user chose is swept at the screen's resolution.
-        shared.params.steps = None;
-        shared.after_change(ParamId::Lo, Ok(()), &before);
-    }
 }
 
 impl Component for Diagram {
@@ -378,14 +354,19 @@ impl Component for Diagram {
                     shared,
                 );
             }
-            Action::Enter if focused => self.set_alpha_to_cursor(shared),
+            Action::Up | Action::Down if focused => {
+                self.move_ycursor(if action == Action::Up { 1 } else { -1 });
+            }
+            Action::Enter if focused => self.set_value_to_cursor(shared),
             Action::Cancel => self.mark = None,
             Action::ToggleAxis => {
                 self.axis = match self.axis {
                     Axis::Phase => Axis::Velocity,
                     Axis::Velocity => Axis::Phase,
                 };
+                self.y_view = None;
                 self.rebin(shared);
+                self.ycursor = self.grid.y_range().lo + 0.5 * self.grid.y_range().span();
             }
             Action::ColorBy => {
                 self.color_by = self.color_by.next(self.all_attractors);
@@ -413,43 +394,51 @@ impl Component for Diagram {
                 }
                 shared.effect(Effect::Start(Target::Diagram));
             }
-            Action::MarkWindow => match self.mark.take() {
-                None => self.mark = Some(self.cursor),
-                Some(m) => {
-                    let (lo, hi) = (m.min(self.cursor), m.max(self.cursor));
-                    self.zoom_to(lo, hi, shared);
-                }
-            },
+            Action::MarkWindow => self.mark_corner(shared),
             Action::ZoomIn | Action::ZoomOut => {
                 let f = if action == Action::ZoomIn { 0.25 } else { 1.0 };
                 let c = self.cursor;
                 let w = shared.params.hi - shared.params.lo;
                 self.zoom_to(c - w * f, c + w * f, shared);
             }
-            Action::ZoomBack => match self.zoom_stack.pop() {
-                Some((lo, hi)) => self.set_window(lo, hi, shared),
-                None => shared.say("zoom: already at the first window", true),
-            },
+            Action::ZoomBack => self.zoom_back(shared),
             _ => return false,
         }
         true
     }
 
     fn changed(&mut self, id: ParamId, shared: &mut Shared) {
+        let p = &shared.params;
+        let swept = Params::row_of(p.param);
         match id.touches() {
             Touch::System => {
-                self.cursor = shared.params.alpha;
-                // An α sweep does not depend on α itself: only its cursor line moves.
-                if id != ParamId::Alpha {
+                self.cursor = Diagram::current(shared);
+                // A sweep does not depend on the value it sweeps: only its line moves.
+                if id != swept {
                     shared.effect(Effect::Start(Target::Diagram));
                 }
             }
-            Touch::Start => {}
+            Touch::Start => {
+                // A cold sweep starts from t̂0, v0.
+                if p.start == StartMode::Cold {
+                    shared.effect(Effect::Start(Target::Diagram));
+                }
+            }
             Touch::Sweep => {
-                let (lo, hi) = (shared.params.lo, shared.params.hi);
+                let (lo, hi) = (p.lo, p.hi);
+                if id == ParamId::Sweep {
+                    self.cursor = Diagram::current(shared);
+                    self.zoom_stack.clear();
+                }
                 self.cursor = self.cursor.clamp(lo, hi);
                 shared.say(
-                    format!("sweeping α ∈ [{}, {}]", fmt_num(lo), fmt_num(hi)),
+                    format!(
+                        "sweeping {} ∈ [{}, {}], start {}",
+                        Params::symbol(p.param),
+                        fmt_num(lo),
+                        fmt_num(hi),
+                        p.start.label()
+                    ),
                     false,
                 );
                 shared.effect(Effect::Start(Target::Diagram));
@@ -459,6 +448,9 @@ impl Component for Diagram {
 
     fn start(&mut self, shared: &mut Shared, workers: &Workers) {
         let spec = self.sweep_spec(shared);
+        if std::mem::take(&mut self.refine) && self.start_refinement(&spec, shared, workers) {
+            return;
+        }
         let steps = spec.steps;
         let preview = Self::preview(spec.transient);
         match SweepJob::new(spec.clone()) {
@@ -496,8 +488,14 @@ impl Component for Diagram {
 
     fn draw(&self, app: &Shared, area: Rect, buf: &mut Buffer) {
         let focused = is_focused(app, Focus::Diagram);
-        let block = panel(app, title(self, app.paused), focused)
+        let mut block = panel(app, title(self, app), focused)
             .title_bottom(colouring::legend(self.color_by, &app.theme));
+        if focused || self.mark.is_some() {
+            block = block.title(
+                ratatui::text::Line::styled(readout::text(self, app), app.theme.mark2())
+                    .right_aligned(),
+            );
+        }
         let inner = block.inner(area);
         block.render(area, buf);
         let (main, strip_area) = split(inner);
@@ -516,18 +514,18 @@ impl Component for Diagram {
         if let Some(a) = strip_area {
             strip::draw(&self.slots, x, a, LABEL_W, buf, &app.theme);
         }
-        // Marks of the (1, k) solution's birth and period doubling on the top row.
-        if let Some(Ok(info)) = &app.orbits {
-            for (a, ch) in [(info.birth, 'B'), (info.pd, 'P')] {
+        // Marks of the (1, k) solution's birth and period doubling (α sweeps), on the
+        // x axis's row so they never cover data.
+        if let (Some(Ok(info)), SweepParam::Alpha) = (&app.orbits, app.params.param) {
+            let axis_row = plot.y + plot.height;
+            for (a, ch) in [(info.birth, "B"), (info.pd, "P")] {
                 if let Some(col) = a.and_then(|a| column(x, plot, a)) {
-                    buf.set_string(col, plot.y, ch.to_string(), app.theme.mark());
-                    if plot.height > 1 {
-                        buf.set_string(col, plot.y + plot.height - 1, "╵", app.theme.mark());
-                    }
+                    buf.set_string(col, axis_row, ch, app.theme.mark());
                 }
             }
         }
-        // The current α: a cursor line drawn only over empty cells so no data is hidden.
+        // Vertical lines: drawn as a glyph over empty cells, as a style over data (in
+        // reverse video without colour, so they stay visible in dense regions).
         let vline = |buf: &mut Buffer, a: f64, glyph: &str, style: Style| {
             if let Some(col) = column(x, plot, a) {
                 for row in plot.y..plot.y + plot.height {
@@ -535,29 +533,35 @@ impl Component for Diagram {
                         if cell.symbol() == " " {
                             cell.set_symbol(glyph).set_style(style);
                         } else {
-                            cell.set_style(style);
+                            cell.set_style(app.theme.over_data(style));
                         }
                     }
                 }
             }
         };
-        vline(buf, app.params.alpha, "│", app.theme.cursor());
+        let hline = |buf: &mut Buffer, v: f64, glyph: &str, style: Style| {
+            if !y.contains(v) || plot.height == 0 {
+                return;
+            }
+            let row =
+                plot.y + (((1.0 - y.frac(v)) * plot.height as f64) as u16).min(plot.height - 1);
+            for col in plot.x..plot.x + plot.width {
+                if let Some(cell) = buf.cell_mut((col, row)) {
+                    if cell.symbol() == " " {
+                        cell.set_symbol(glyph).set_style(style);
+                    }
+                }
+            }
+        };
+        vline(buf, Diagram::current(app), "│", app.theme.cursor());
         if focused || self.mark.is_some() {
-            if (self.cursor - app.params.alpha).abs() > x.span() * 1e-9 {
+            if (self.cursor - Diagram::current(app)).abs() > x.span() * 1e-9 {
                 vline(buf, self.cursor, "┆", app.theme.mark2());
             }
-            if let Some(m) = self.mark {
-                vline(buf, m, "┃", app.theme.mark2());
-            }
-            let info = format!(
-                " cursor α={}{} ",
-                fmt_num(self.cursor),
-                self.mark
-                    .map_or(String::new(), |m| format!(", mark {}", fmt_num(m)))
-            );
-            let w = info.chars().count() as u16;
-            if plot.width > w {
-                buf.set_string(plot.x + plot.width - w, plot.y, info, app.theme.mark2());
+            hline(buf, self.ycursor, "┄", app.theme.mark2());
+            if let Some((mx, my)) = self.mark {
+                vline(buf, mx, "┃", app.theme.mark2());
+                hline(buf, my, "━", app.theme.mark2());
             }
         }
     }
@@ -569,15 +573,17 @@ fn gauge(frac: f64, w: usize) -> String {
 }
 
 /// The panel's title: what is plotted, and the sweep's progress.
-pub fn title(d: &Diagram, paused: bool) -> String {
+pub fn title(d: &Diagram, app: &Shared) -> String {
+    let paused = app.paused;
     let axis = match d.axis {
         Axis::Phase => "t̂",
         Axis::Velocity => "v",
     };
+    let sym = Params::symbol(app.params.param);
     let head = if d.all_attractors {
-        format!(" Bifurcation diagram: {axis} vs α, all attractors ({ALL_STARTS} starts) ")
+        format!(" Diagram {axis} vs {sym}, all attractors ")
     } else {
-        format!(" Bifurcation diagram: {axis} vs α ")
+        format!(" Bifurcation diagram: {axis} vs {sym} ")
     };
     match &d.status {
         SweepStatus::Running | SweepStatus::Done => {

@@ -1,0 +1,195 @@
+//! Moving around the diagram: the cursor (a value of the swept parameter and a height),
+//! setting the swept parameter to the cursor, zooming (about the cursor, to a window
+//! or box marked with two corners, vertically by marking two heights in one column),
+//! the zoom stack, and refining the sweep when the plot grows wider.
+
+use super::{Diagram, SweepStatus};
+use crate::tui::params::{ParamId, Params};
+use crate::tui::shared::Shared;
+use crate::tui::workers::{Target, Workers};
+use bouncemap_engine::sweep::{Shard, SweepJob, SweepSpec, ValueResult, Warm};
+
+/// A window to go back to.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Zoom {
+    pub lo: f64,
+    pub hi: f64,
+    pub y: Option<(f64, f64)>,
+}
+
+impl Diagram {
+    pub(super) fn move_cursor(&mut self, dir: i32, fine: bool, shared: &Shared) {
+        let (lo, hi) = (shared.params.lo, shared.params.hi);
+        let cols = (self.grid.sub_size().0).max(1) as f64;
+        let step = if fine {
+            (hi - lo) / cols
+        } else {
+            (hi - lo) / 20.0
+        };
+        self.cursor = (self.cursor + dir as f64 * step).clamp(lo, hi);
+    }
+
+    /// Move the height cursor by one character row.
+    pub(super) fn move_ycursor(&mut self, dir: i32) {
+        let y = self.grid.y_range();
+        let rows = self.grid.size().1.max(1) as f64;
+        self.ycursor = (self.ycursor + dir as f64 * y.span() / rows).clamp(y.lo, y.hi);
+    }
+
+    /// Set the swept parameter (α, r or D) to the cursor.
+    pub fn set_value_to_cursor(&mut self, shared: &mut Shared) {
+        let id = Params::row_of(shared.params.param);
+        let before = shared.params.clone();
+        let r = shared.params.set_text(id, &format!("{}", self.cursor));
+        shared.after_change(id, r, &before);
+    }
+
+    /// Mark a corner at the cursor; the second corner zooms: to the window between the
+    /// two values, and to the heights between them too when they differ by more than a
+    /// row (a box); two corners in one column zoom vertically only.
+    pub(super) fn mark_corner(&mut self, shared: &mut Shared) {
+        let Some((mx, my)) = self.mark.take() else {
+            self.mark = Some((self.cursor, self.ycursor));
+            return;
+        };
+        let y = self.grid.y_range();
+        let row = y.span() / self.grid.size().1.max(1) as f64;
+        let col = (shared.params.hi - shared.params.lo) / self.grid.size().0.max(1) as f64;
+        let tall = (my - self.ycursor).abs() > row;
+        let wide = (mx - self.cursor).abs() > col;
+        let y_box = tall.then(|| (my.min(self.ycursor), my.max(self.ycursor)));
+        match (wide, tall) {
+            (true, _) => {
+                let (lo, hi) = (mx.min(self.cursor), mx.max(self.cursor));
+                self.zoom_to(lo, hi, shared);
+                if y_box.is_some() {
+                    self.y_view = y_box;
+                    self.rebin(shared);
+                }
+            }
+            (false, true) => {
+                self.push_zoom(shared);
+                self.y_view = y_box;
+                self.rebin(shared);
+                shared.say("zoomed vertically; z goes back", false);
+            }
+            (false, false) => shared.say(
+                "zoom: the two corners are the same point; mark two different values or heights",
+                true,
+            ),
+        }
+    }
+
+    fn push_zoom(&mut self, shared: &Shared) {
+        self.zoom_stack.push(Zoom {
+            lo: shared.params.lo,
+            hi: shared.params.hi,
+            y: self.y_view,
+        });
+    }
+
+    /// Zoom to [lo, hi] (clamped to the swept parameter's range), pushing the current
+    /// window.
+    pub fn zoom_to(&mut self, lo: f64, hi: f64, shared: &mut Shared) {
+        let limit = shared.params.window_rule().limit;
+        let lo = lo.max(if limit.lo_open {
+            limit.lo + 1e-9
+        } else {
+            limit.lo
+        });
+        let hi = hi.min(if limit.hi_open {
+            limit.hi - 1e-9
+        } else {
+            limit.hi
+        });
+        if hi - lo <= 1e-9 || hi.is_nan() || lo.is_nan() {
+            shared.say("zoom: the window is empty; mark two different values", true);
+            return;
+        }
+        self.push_zoom(shared);
+        self.set_window(lo, hi, shared);
+    }
+
+    /// Back to the previous window.
+    pub(super) fn zoom_back(&mut self, shared: &mut Shared) {
+        match self.zoom_stack.pop() {
+            Some(z) => {
+                let x_changed = (z.lo, z.hi) != (shared.params.lo, shared.params.hi);
+                self.y_view = z.y;
+                if x_changed {
+                    self.set_window(z.lo, z.hi, shared);
+                } else {
+                    self.rebin(shared);
+                }
+            }
+            None => shared.say("zoom: already at the first window", true),
+        }
+    }
+
+    fn set_window(&mut self, lo: f64, hi: f64, shared: &mut Shared) {
+        let before = shared.params.clone();
+        shared.params.lo = lo;
+        shared.params.hi = hi;
+        // A window the user chose is swept at the screen's resolution.
+        shared.params.steps = None;
+        shared.after_change(ParamId::Lo, Ok(()), &before);
+    }
+
+    /// The plot grew wider than the sweep has values: compute only the values halfway
+    /// between the stored ones (the odd indices of a grid of 2n − 1 values, shard 2/2),
+    /// keeping every stored result. Only for a finished or running cold sweep of the
+    /// same specification; false if a full sweep is needed instead.
+    pub(super) fn start_refinement(
+        &mut self,
+        spec: &SweepSpec,
+        shared: &Shared,
+        workers: &Workers,
+    ) -> bool {
+        let Some(old) = self.running.clone() else {
+            return false;
+        };
+        let same = SweepSpec {
+            steps: spec.steps,
+            ..old.clone()
+        } == *spec;
+        if !same || spec.warm != Warm::Off || old.steps < 2 || self.status == SweepStatus::Idle {
+            return false;
+        }
+        let steps = 2 * (old.steps - 1) + 1;
+        let full = SweepSpec {
+            steps,
+            ..old.clone()
+        };
+        let part = SweepSpec {
+            shard: Shard { index: 1, count: 2 },
+            ..full.clone()
+        };
+        let Ok(job) = SweepJob::new(part) else {
+            return false;
+        };
+        let gen = workers.start_job(Target::Diagram, job);
+        let old_slots = std::mem::take(&mut self.slots);
+        self.sweep_started(gen, steps, shared);
+        for (i, s) in old_slots.into_iter().enumerate() {
+            if let Some(mut r) = s {
+                r.index = 2 * i;
+                self.keep_result(r);
+            }
+        }
+        self.rebin(shared);
+        self.running = Some(full);
+        true
+    }
+
+    /// Store a result without re-binning (the caller re-bins once).
+    fn keep_result(&mut self, r: ValueResult) {
+        self.plotted += r.points.len();
+        if r.complete {
+            self.values_done += 1;
+        }
+        let i = r.index;
+        if i < self.slots.len() {
+            self.slots[i] = Some(r);
+        }
+    }
+}

@@ -1,0 +1,119 @@
+//! The `l` overlay: what every mark, line and colour on the screen means, panel by
+//! panel. One meaning per symbol across the panels; the period colours are drawn in
+//! their own styles so the legend shows them as the diagram does.
+
+use crate::output::basin_map::TEXTURES;
+use crate::output::classes::Class;
+use crate::tui::shared::Shared;
+use ratatui::buffer::Buffer;
+use ratatui::layout::Rect;
+use ratatui::text::{Line, Span};
+
+/// (symbol, meaning) rows under a panel's heading.
+pub const SECTIONS: &[(&str, &[(&str, &str)])] = &[
+    (
+        "Bifurcation diagram",
+        &[
+            (
+                "⣿ dots",
+                "recorded events (phase t̂ or velocity v) of each value's orbit",
+            ),
+            ("│", "the current value of the swept parameter (α, r or D)"),
+            (
+                "┆ ┄",
+                "the cursor (diagram focused): value and height; readout top right",
+            ),
+            (
+                "┃ ━",
+                "first corner of a window being marked (m twice zooms)",
+            ),
+            (
+                "B  P",
+                "on the axis: birth and period doubling (α_PD) of the (1,k) solution",
+            ),
+            (
+                "λ strip",
+                "largest Lyapunov exponent per impact; ┄ zero; ▁ = −∞ (sticking)",
+            ),
+        ],
+    ),
+    (
+        "Phase plot",
+        &[
+            ("⣿ dots", "every event (t̂, v) of the orbit from t̂0, v0"),
+            ("bright", "the latest 40 events"),
+            ("◆ ◇", "the (1,k) solution: stable, unstable"),
+            ("✕", "the two points of the (2,2k) solution"),
+            ("▣", "the state stepped to in the bounce panel"),
+        ],
+    ),
+    (
+        "Basins (B)",
+        &[
+            (
+                "▀ halves",
+                "one start (t̂0, w0) per half cell, coloured by its attractor",
+            ),
+            ("grey", "starts that come to rest or do not land"),
+            (
+                "no colour",
+                "each cell shows its attractor's texture (legend lines)",
+            ),
+        ],
+    ),
+];
+
+/// The legend's lines.
+pub fn lines(app: &Shared) -> Vec<Line<'static>> {
+    let mut out = Vec::new();
+    out.push(Line::styled(
+        " Period colours (diagram, c switches)",
+        app.theme.focus(),
+    ));
+    let mut spans = vec![Span::raw("   ")];
+    for c in Class::ALL {
+        spans.push(Span::styled(c.label().to_string(), app.theme.class(c)));
+        spans.push(Span::raw(format!(" {}  ", short(c))));
+    }
+    out.push(Line::from(spans));
+    let mut density = vec![Span::raw("   density (c): ")];
+    for (l, t) in ["sparse", "·", "·", "dense"].into_iter().enumerate() {
+        density.push(Span::styled(t, app.theme.density(l)));
+        density.push(Span::raw(" "));
+    }
+    out.push(Line::from(density));
+    for (heading, rows) in SECTIONS {
+        out.push(Line::styled(format!(" {heading}"), app.theme.focus()));
+        for (sym, meaning) in rows.iter() {
+            out.push(Line::from(vec![
+                Span::styled(format!("   {sym:<9} "), app.theme.mark2()),
+                Span::raw(meaning.to_string()),
+            ]));
+        }
+    }
+    let t: String = TEXTURES.iter().take(4).collect();
+    out.push(Line::styled(
+        format!(" basins textures without colour: {t} … = attractors 1, 2, 3, 4 …"),
+        app.theme.dim(),
+    ));
+    out
+}
+
+fn short(c: Class) -> &'static str {
+    match c {
+        Class::Period1 => "period 1",
+        Class::Period2 => "2",
+        Class::Period4 => "4",
+        Class::Period8 => "8",
+        Class::Periodic => "other",
+        Class::Sticking => "sticks",
+        Class::Chaotic => "λ>0",
+        Class::Unresolved => "unsettled",
+    }
+}
+
+/// Draw the legend overlay, scrolled by `scroll` lines if it does not fit.
+pub fn draw(app: &Shared, scroll: usize, area: Rect, buf: &mut Buffer) {
+    let all = lines(app);
+    super::help::scrolled(app, "Legend (l or Esc closes)", all, scroll, area, buf);
+}
