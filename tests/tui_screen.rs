@@ -287,3 +287,42 @@ fn parameter_values_line_up() {
     assert_eq!(col("t̂0"), col("v0"));
     assert_eq!(col("v0"), col("keep"));
 }
+
+/// A table file typed at run time is loaded, named in the panel, and kept in the
+/// table row's cycle.
+#[test]
+fn table_files_load_at_run_time_and_show_their_name() {
+    let mut a = app(Marker::Braille);
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/tables/quintic.toml");
+    let name = bouncemap::config::table_spec::TableSpec::parse(path)
+        .unwrap()
+        .load()
+        .unwrap()
+        .name()
+        .to_string();
+    a.handle(Action::Up);
+    a.handle(Action::Up);
+    assert_eq!(a.selected_param(), ParamId::Table);
+    a.handle(Action::Enter);
+    for c in path.chars() {
+        a.edit_key(crossterm::event::KeyCode::Char(c));
+    }
+    a.edit_key(crossterm::event::KeyCode::Enter);
+    assert_eq!(a.params.table_label(), name);
+    assert!(a.take_effects().contains(&Effect::Start(Target::Diagram)));
+    let s = text(&render(&mut a, 120, 40));
+    assert!(s.contains(&name), "{s}");
+    // sine, F_D, the file, sine …
+    a.handle(Action::Right);
+    assert_eq!(a.params.table_label(), "sine");
+    a.handle(Action::Left);
+    assert_eq!(a.params.table_label(), name);
+    // A missing file is refused in one line, nothing changes.
+    a.handle(Action::Enter);
+    for c in "/nonexistent/t.toml".chars() {
+        a.edit_key(crossterm::event::KeyCode::Char(c));
+    }
+    a.edit_key(crossterm::event::KeyCode::Enter);
+    assert!(a.message.as_ref().unwrap().1);
+    assert_eq!(a.params.table_label(), name);
+}
