@@ -4,6 +4,7 @@
 //! the binary reports with status 2.
 
 pub mod bench;
+pub mod figure;
 pub mod fixed;
 pub mod merge;
 pub mod orbit;
@@ -26,5 +27,6 @@ pub fn run(cmd: Command) -> anyhow::Result<()> {
         Command::Sweep(a) => sweep::run(&a),
         Command::Merge(a) => merge::run(&a),
         Command::Bench(a) => bench::run(&a),
+        Command::Figure(a) => figure::run(&a),
     }
 }

@@ -10,8 +10,10 @@
 //! * [`hitgrid`]: the one hit-count grid behind every text picture; [`diagram`]: its
 //!   text form with axes and labels (`sweep --format braille`).
 //! * [`text`]: number formatting for aligned text columns.
+//! * [`figure`]: publication figures (SVG, and PNG rendered with the fonts compiled in).
 
 pub mod diagram;
+pub mod figure;
 pub mod hitgrid;
 pub mod records;
 pub mod sink;
