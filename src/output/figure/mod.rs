@@ -46,6 +46,12 @@ impl Color {
     /// The band of values whose orbit sticks.
     pub const STICKING: Color = Color(190, 215, 245);
 
+    /// The colour mixed with white, `f` of the way (0: itself, 1: white).
+    pub fn tint(self, f: f64) -> Color {
+        let m = |c: u8| (c as f64 + (255.0 - c as f64) * f).round() as u8;
+        Color(m(self.0), m(self.1), m(self.2))
+    }
+
     /// `#rrggbb`.
     pub fn hex(self) -> String {
         format!("#{:02x}{:02x}{:02x}", self.0, self.1, self.2)

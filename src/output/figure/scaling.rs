@@ -79,6 +79,7 @@ pub fn fig4_lower(row: &ScalingRow) -> Panel {
     );
     let mut p = Panel::new(Axis::new(LOG_DK, x0, x1), y);
     let mut fits = Vec::new();
+    let mut paper_lines = Vec::new();
     type Pair<'a> = (&'a str, Color, Option<Fit>, Option<(f64, f64)>);
     let pairs: [Pair; 2] = [
         (
@@ -109,19 +110,21 @@ pub fn fig4_lower(row: &ScalingRow) -> Panel {
             ));
         }
         if let Some(pf) = paper {
-            p.layers.push(Layer::Lines {
+            // Lighter, on top of the fit: the two nearly coincide.
+            paper_lines.push(Layer::Lines {
                 name: format!("paper's fit log10 \u{394}{what}"),
                 lines: vec![line_through(pf, x0, x1)],
-                color,
+                color: color.tint(0.5),
                 dash: Dash::Dashed,
-                width: 0.8,
+                width: 0.9,
             });
             fits.push((
-                Swatch::line(color, Dash::Dashed),
+                Swatch::line(color.tint(0.5), Dash::Dashed),
                 format!("paper: {}, {}", fmt_fixed(pf.0, 3), fmt_fixed(pf.1, 3)),
             ));
         }
     }
+    p.layers.extend(paper_lines);
     for (name, points, marker, color) in [
         ("exact log10 \u{394}T", exact_t, Marker::Disc, Color::BLUE),
         ("exact log10 \u{394}t", exact_s, Marker::Disc, Color::RED),
