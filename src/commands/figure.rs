@@ -12,7 +12,8 @@ use crate::config::presets::preset;
 use crate::config::{self, InputError};
 use crate::output::figure::diagram::{self, diagram_panel, DiagramAxis};
 use crate::output::figure::scaling::{self as scaling_fig, FIG5_D};
-use crate::output::figure::{self, shapes, Figure, ImageFormat, DEFAULT_DPI};
+use crate::output::figure::text::plain;
+use crate::output::figure::{self, shapes, Figure, ImageFormat, Layer, DEFAULT_DPI};
 use crate::output::sink::AtomicFile;
 use bouncemap_engine::jobs::{Control, Executor, Progress as JobProgress};
 use bouncemap_engine::orbits::scaling::{log_spaced, scaling_row, ScalingRow};
@@ -52,6 +53,14 @@ pub fn run(args: &FigureArgs) -> anyhow::Result<()> {
         )),
         _ => None,
     };
+    if let Some(spec) = &diagram_spec {
+        // Every point is held until the figure is drawn: the results and their copy
+        // in the figure.
+        config::check_memory(
+            spec.steps as u64 * (spec.keep as u64 * 48 + 512),
+            "this diagram",
+        )?;
+    }
     let threads = config::threads(args.threads)?;
     // The files are created now: a path that cannot be written is refused before any
     // computing, and nothing is put in place until the figure is complete.
@@ -205,7 +214,7 @@ fn build(
         }
         FigureName::Fig4 => {
             let mut upper = Vec::new();
-            let mut caption = String::new();
+            let mut caption = Vec::new();
             for (letter, d) in ['a', 'b', 'c'].into_iter().zip(FIG4_D) {
                 let spec = preset_spec(&format!("fig4{letter}"), q)?;
                 let values = run_sweep(&spec, executor, &format!("fig4 ({letter})"))?;
@@ -213,17 +222,25 @@ fn build(
                 p.title = Some(format!("$D$ = {d}"));
                 upper.push(p);
                 if caption.is_empty() {
-                    caption = format!(
-                        "(a)\u{2013}(c): bifurcation diagrams enlarged near the period-doubling point, r = {}: the last {} events before t = {} for each of {} values of \u{3b1}. Dashed: t\u{302} = 0 and 1.",
+                    caption.push(plain(&format!(
+                        "(a)\u{2013}(c): bifurcation diagrams enlarged near the period-doubling point, r = {}: the last {} events before t = {} for each of {} values of \u{3b1}.",
                         spec.r,
                         spec.keep,
                         figure::fmt_count(spec.transient),
                         spec.steps
-                    );
+                    )));
                 }
             }
+            let shaded = upper
+                .iter()
+                .any(|p| p.layers.iter().any(|l| matches!(l, Layer::Bands { .. })));
+            caption.push(if shaded {
+                diagram::STICKING_NOTE.to_string()
+            } else {
+                "Dashed: $t\u{302}$ = 0 and 1, the domain of $t\u{302}$.".to_string()
+            });
             let rows = scaling_rows(&FIG4_D, threads, "fig4 (d)-(f)")?;
-            Ok(scaling_fig::fig4(upper, &rows, &caption))
+            Ok(scaling_fig::fig4(upper, &rows, caption))
         }
         FigureName::Fig5 => {
             let rows = scaling_rows(&fig5_d(), threads, "fig5")?;

@@ -25,6 +25,9 @@ pub mod shapes;
 pub mod svg;
 pub mod text;
 
+pub use diagram::{diagram_view, DiagramAxis};
+pub use phase::phase_view;
+
 use crate::output::sink::AtomicFile;
 use serde::Serialize;
 use std::io::Write;
@@ -501,6 +504,68 @@ mod tests {
         assert_eq!(fmt_fixed(-0.5, 1), "\u{2212}0.5");
         assert_eq!(fmt_fixed(-0.0001, 2), "0.00");
         assert_eq!(fmt_fixed(2.5, 0), "2");
+    }
+
+    #[test]
+    fn the_terminal_views_export_as_svg_and_png() {
+        use bouncemap_engine::map::EventKind;
+        use bouncemap_engine::sweep::{Outcome, SweepParam, SweepPoint, SweepSpec, ValueResult};
+        let spec = SweepSpec::new(
+            bouncemap_engine::Table::fd(0.1).unwrap(),
+            0.45,
+            0.8,
+            SweepParam::Alpha,
+            0.45,
+            0.6,
+            3,
+        );
+        let values: Vec<ValueResult> = (0..3)
+            .map(|i| ValueResult {
+                index: i,
+                value: spec.value(i),
+                complete: true,
+                points: vec![SweepPoint {
+                    phase: 0.2,
+                    v: 0.5,
+                    kind: EventKind::Impact,
+                }],
+                outcome: Outcome::Unsettled,
+                sticking: i == 2,
+                events: 1,
+            })
+            .collect();
+        let dir = std::env::temp_dir().join(format!("bouncemap-export-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let fig = diagram_view(
+            &spec,
+            &values,
+            Some((0.5, 0.6)),
+            DiagramAxis::Velocity,
+            "fd:0.1  r = 0.8  zoom 0.5..0.6",
+        );
+        assert_eq!(fig.panels[0].x.lo, 0.5);
+        let (svg, png) = export(&fig, &dir.join("bouncemap-diagram-1")).unwrap();
+        assert_eq!(svg, dir.join("bouncemap-diagram-1.svg"));
+        assert!(std::fs::read_to_string(&svg)
+            .unwrap()
+            .contains("zoom 0.5..0.6"));
+        assert_eq!(&std::fs::read(&png).unwrap()[..4], b"\x89PNG");
+        let phase = phase_view(&[(0.1, 0.4), (0.7, -0.2)], "orbit");
+        write(
+            &phase,
+            &dir.join("p.svg"),
+            ImageFormat::Svg,
+            Some((4.0, 3.0)),
+            100,
+        )
+        .unwrap();
+        let text = std::fs::read_to_string(dir.join("p.svg")).unwrap();
+        assert!(
+            text.contains("width=\"288pt\" height=\"216pt\""),
+            "4 × 3 inches"
+        );
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]

@@ -4,7 +4,6 @@
 //! corrected). The numbers are [`bouncemap_engine::orbits::scaling::scaling_row`]'s,
 //! the same as `bouncemap scaling` prints.
 
-use super::text::plain;
 use super::{
     fmt_fixed, Axis, Color, Corner, Dash, Figure, Layer, Legend, Marker, Panel, Swatch, COLUMN,
     FULL_WIDTH,
@@ -164,8 +163,9 @@ pub fn fig4_lower(row: &ScalingRow) -> Panel {
     p
 }
 
-/// Fig. 4: the enlarged diagrams `upper` (a)–(c) above the scaling panels (d)–(f).
-pub fn fig4(upper: Vec<Panel>, rows: &[ScalingRow], upper_caption: &str) -> Figure {
+/// Fig. 4: the enlarged diagrams `upper` (a)–(c) above the scaling panels (d)–(f);
+/// `upper_caption` (markup lines) describes the diagrams.
+pub fn fig4(upper: Vec<Panel>, rows: &[ScalingRow], upper_caption: Vec<String>) -> Figure {
     let mut panels = upper;
     panels.extend(rows.iter().map(fig4_lower));
     for (i, p) in panels.iter_mut().enumerate() {
@@ -175,12 +175,10 @@ pub fn fig4(upper: Vec<Panel>, rows: &[ScalingRow], upper_caption: &str) -> Figu
         name: "fig4".into(),
         panels,
         columns: 3,
-        caption: vec![
-            plain(upper_caption),
-            format!(
-                "(d)\u{2013}(f): $\u{394}T$ (blue) and $\u{394}t$ (red) of the (2, 2) solution against $\u{394}\u{3ba}$ = $\u{3ba}_c$ \u{2212} $f\u{308}$($t\u{302}$*), r = 0.8: exact solutions (discs, \u{394}\u{3ba} from 10\u{207b}\u{2079} to 10\u{207b}\u{2077}), orbits of the impact map (circles, 10\u{207b}\u{2076} to 10\u{207b}\u{2075}), least-squares fits log$_{{10}}$ $\u{394}T$ = $a_T$ log$_{{10}}$ $\u{394}\u{3ba}$ + $b_T$ and log$_{{10}}$ $\u{394}t$ = $a_t$ log$_{{10}}$ $\u{394}\u{3ba}$ + $b_t$ to the exact solutions (solid) and the paper's printed fits (dashed)."
-            ),
-        ],
+        caption: upper_caption
+            .into_iter()
+            .chain(["(d)\u{2013}(f): $\u{394}T$ (blue) and $\u{394}t$ (red) of the (2, 2) solution against $\u{394}\u{3ba}$ = $\u{3ba}_c$ \u{2212} $f\u{308}$($t\u{302}$*), r = 0.8: exact solutions (discs, \u{394}\u{3ba} from 10\u{207b}\u{2079} to 10\u{207b}\u{2077}), orbits of the impact map (circles, 10\u{207b}\u{2076} to 10\u{207b}\u{2075}), least-squares fits log$_{10}$ $\u{394}T$ = $a_T$ log$_{10}$ $\u{394}\u{3ba}$ + $b_T$ and log$_{10}$ $\u{394}t$ = $a_t$ log$_{10}$ $\u{394}\u{3ba}$ + $b_t$ to the exact solutions (solid) and the paper's printed fits (dashed).".to_string()])
+            .collect(),
         size: (FULL_WIDTH, 5.4),
     }
 }

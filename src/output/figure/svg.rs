@@ -49,6 +49,27 @@ fn n(v: f64) -> String {
     }
 }
 
+/// A length given in hundredths of a point, as short as SVG allows: 5 → ".05",
+/// −150 → "-1.5".
+fn hundredths(v: i64) -> String {
+    let (int, frac) = (v.abs() / 100, v.abs() % 100);
+    let mut s = String::from(if v < 0 { "-" } else { "" });
+    if int != 0 {
+        s.push_str(&int.to_string());
+    }
+    if frac != 0 {
+        if frac % 10 == 0 {
+            let _ = write!(s, ".{}", frac / 10);
+        } else {
+            let _ = write!(s, ".{frac:02}");
+        }
+    }
+    if v == 0 {
+        s.push('0');
+    }
+    s
+}
+
 fn esc(s: &str) -> String {
     let mut out = String::with_capacity(s.len());
     for c in s.chars() {
@@ -316,27 +337,30 @@ fn layer(out: &mut String, f: &Frame, p: &Panel, l: &Layer) {
                     .entry(((x / DOT_CELL) as i64, (y / DOT_CELL) as i64))
                     .or_default() += 1;
             }
-            let mut levels: BTreeMap<u32, String> = BTreeMap::new();
+            // One path per opacity step; each dot a zero-length stroke with round caps
+            // (a disc), moved to by whole hundredths of a point so the relative moves
+            // add up exactly.
+            let mut levels: BTreeMap<u32, (String, (i64, i64))> = BTreeMap::new();
             for ((i, j), count) in cells {
                 let alpha = 1.0 - (1.0 - DOT_ALPHA).powi(count.min(1000) as i32);
                 let level = ((alpha * DOT_LEVELS as f64).ceil() as u32).clamp(1, DOT_LEVELS);
-                let (cx, cy) = ((i as f64 + 0.5) * DOT_CELL, (j as f64 + 0.5) * DOT_CELL);
-                let r = DOT_RADIUS;
-                let _ = write!(
-                    levels.entry(level).or_default(),
-                    "M{} {}a{r} {r} 0 1 0 {} 0a{r} {r} 0 1 0 -{} 0",
-                    n(cx - r),
-                    n(cy),
-                    n(2.0 * r),
-                    n(2.0 * r)
+                let at = (
+                    ((i as f64 + 0.5) * DOT_CELL * 100.0).round() as i64,
+                    ((j as f64 + 0.5) * DOT_CELL * 100.0).round() as i64,
                 );
+                let (d, last) = levels.entry(level).or_default();
+                let (dx, dy) = (hundredths(at.0 - last.0), hundredths(at.1 - last.1));
+                let sep = if dy.starts_with('-') { "" } else { " " };
+                let _ = write!(d, "m{dx}{sep}{dy}h0");
+                *last = at;
             }
-            for (level, d) in levels {
+            for (level, (d, _)) in levels {
                 let _ = writeln!(
                     out,
-                    "<path fill=\"{}\" fill-opacity=\"{}\" d=\"{d}\"/>",
+                    "<path fill=\"none\" stroke=\"{}\" stroke-opacity=\"{}\" stroke-width=\"{}\" stroke-linecap=\"round\" d=\"{d}\"/>",
                     color.hex(),
-                    n(level as f64 / DOT_LEVELS as f64)
+                    n(level as f64 / DOT_LEVELS as f64),
+                    n(2.0 * DOT_RADIUS)
                 );
             }
         }
@@ -708,6 +732,22 @@ pub fn to_svg(fig: &Figure, size: (f64, f64)) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn hundredths_are_short_and_exact() {
+        for (v, t) in [
+            (5, ".05"),
+            (50, ".5"),
+            (150, "1.5"),
+            (-30, "-.3"),
+            (0, "0"),
+            (1234, "12.34"),
+            (-200, "-2"),
+        ] {
+            assert_eq!(hundredths(v), t);
+            assert_eq!((t.parse::<f64>().unwrap() * 100.0).round() as i64, v);
+        }
+    }
 
     #[test]
     fn svg_numbers_are_short() {
