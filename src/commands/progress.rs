@@ -63,6 +63,11 @@ impl Progress {
     pub fn update(&mut self, p: &JobProgress) {
         let now = Instant::now();
         if self.terminal {
+            // At most ten redraws a second.
+            if now.duration_since(self.last) < Duration::from_millis(100) && p.done < p.total {
+                return;
+            }
+            self.last = now;
             let width = 30;
             let filled = (p.fraction() * width as f64) as usize;
             let rate = if p.events > 0 {

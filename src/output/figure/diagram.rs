@@ -122,7 +122,11 @@ pub fn diagram_panel<'a>(
         points,
         color: Color::BLACK,
     });
-    panel.title = Some(table_title(&spec.table));
+    panel.title = Some(if spec.param == SweepParam::D {
+        "$F_D$".to_string()
+    } else {
+        table_title(&spec.table)
+    });
     panel
 }
 
@@ -154,9 +158,13 @@ pub fn spec_caption(spec: &SweepSpec) -> String {
         bouncemap_engine::sweep::Warm::Off => "",
         _ => ", continued from its neighbour",
     };
+    let table = if spec.param == SweepParam::D {
+        "fd:D"
+    } else {
+        spec.table.name()
+    };
     plain(&format!(
-        "{}, {fixed}: the last {} events before t = {} for each of {} values of {param} in [{}, {}], {start}{warm}.",
-        spec.table.name(),
+        "{table}, {fixed}: the last {} events before t = {} for each of {} values of {param} in [{}, {}], {start}{warm}.",
         spec.keep,
         fmt_count(spec.transient),
         spec.steps,
@@ -171,10 +179,13 @@ pub const STICKING_NOTE: &str = "Shaded: values whose orbit sticks to the table 
 /// One sweep as a one-column figure (`figure diagram`, `figure fig3a` …).
 pub fn diagram_figure(name: &str, spec: &SweepSpec, values: &[ValueResult]) -> Figure {
     let mut panel = diagram_panel(spec, values, None, DiagramAxis::Phase);
-    if spec.param == SweepParam::Alpha {
-        if let Some(t) = &panel.title {
-            panel.title = Some(format!("{t}, $r$ = {}", spec.r));
-        }
+    let fixed = match spec.param {
+        SweepParam::Alpha => format!("$r$ = {}", spec.r),
+        SweepParam::R => format!("$\u{3b1}$ = {}", spec.alpha),
+        SweepParam::D => format!("$\u{3b1}$ = {}, $r$ = {}", spec.alpha, spec.r),
+    };
+    if let Some(t) = &panel.title {
+        panel.title = Some(format!("{t}, {fixed}"));
     }
     Figure {
         name: name.into(),
