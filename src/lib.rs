@@ -37,8 +37,22 @@ pub fn main() -> ExitCode {
                 let _ = e.print();
                 return ExitCode::SUCCESS;
             }
-            _ => {
-                eprintln!("{}", one_line_clap_error(&e.render().to_string()));
+            kind => {
+                let mut msg = one_line_clap_error(&e.render().to_string()).replace(
+                    "requires a subcommand but one was not provided",
+                    "needs a NAME",
+                );
+                if matches!(
+                    kind,
+                    ErrorKind::InvalidSubcommand | ErrorKind::MissingSubcommand
+                ) {
+                    let names = subcommand_names(std::env::args().skip(1));
+                    if !names.is_empty() {
+                        msg.push_str(": valid ");
+                        msg.push_str(&names.join(", "));
+                    }
+                }
+                eprintln!("{msg}");
                 return ExitCode::from(2);
             }
         },
@@ -103,6 +117,23 @@ fn one_line_clap_error(text: &str) -> String {
         msg.push_str(valid);
     }
     msg
+}
+
+/// The subcommands the command line `args` had reached (those of `bouncemap figure`
+/// after `figure`, ...): the valid names where an unknown or missing one was refused.
+fn subcommand_names(args: impl Iterator<Item = String>) -> Vec<String> {
+    use clap::CommandFactory;
+    let mut cmd = config::flags::Cli::command();
+    for a in args {
+        let Some(sub) = cmd.find_subcommand(&a).cloned() else {
+            continue;
+        };
+        cmd = sub;
+    }
+    cmd.get_subcommands()
+        .map(|c| c.get_name().to_string())
+        .filter(|n| n != "help")
+        .collect()
 }
 
 fn is_broken_pipe(e: &anyhow::Error) -> bool {

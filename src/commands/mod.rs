@@ -5,6 +5,7 @@
 
 pub mod basins;
 pub mod bench;
+pub mod figure;
 pub mod fixed;
 pub mod lyapunov;
 pub mod merge;
@@ -30,5 +31,6 @@ pub fn run(cmd: Command) -> anyhow::Result<()> {
         Command::Basins(a) => basins::run(&a),
         Command::Merge(a) => merge::run(&a),
         Command::Bench(a) => bench::run(&a),
+        Command::Figure(a) => figure::run(&a),
     }
 }

@@ -2,6 +2,7 @@
 //! stderr is a terminal; otherwise (a batch log) a first line stating the command and
 //! what it computes, one line every [`LOG_EVERY`] (values done, rate, estimated time
 //! left; `BOUNCEMAP_PROGRESS_EVERY=SECONDS` changes the interval) and a last line.
+//! [`Progress::bar`] draws only the bar and says nothing in a batch log (figures).
 
 use bouncemap_engine::jobs::Progress as JobProgress;
 use std::io::{IsTerminal, Write};
@@ -12,10 +13,12 @@ pub const LOG_EVERY: Duration = Duration::from_secs(30);
 
 /// Progress reporting for one computation.
 pub struct Progress {
-    what: &'static str,
+    what: String,
     /// What the units are called (`values`, `starts`).
     unit: &'static str,
     terminal: bool,
+    /// Lines in a batch log (false: the bar on a terminal, nothing otherwise).
+    log: bool,
     every: Duration,
     last: Instant,
 }
@@ -49,10 +52,23 @@ impl Progress {
             );
         }
         Progress {
-            what,
+            what: what.to_string(),
             unit,
             terminal,
+            log: true,
             every,
+            last: Instant::now(),
+        }
+    }
+
+    /// Report `what` as a bar when stderr is a terminal, and nothing otherwise.
+    pub fn bar(what: &str) -> Progress {
+        Progress {
+            what: what.to_string(),
+            unit: "values",
+            terminal: std::io::stderr().is_terminal(),
+            log: false,
+            every: LOG_EVERY,
             last: Instant::now(),
         }
     }
@@ -61,25 +77,34 @@ impl Progress {
     pub fn update(&mut self, p: &JobProgress) {
         let now = Instant::now();
         if self.terminal {
+            // At most ten redraws a second.
+            if now.duration_since(self.last) < Duration::from_millis(100) && p.done < p.total {
+                return;
+            }
+            self.last = now;
             let width = 30;
             let filled = (p.fraction() * width as f64) as usize;
+            let rate = if p.events > 0 {
+                format!("  {:.2} M events/s", p.events_per_second() / 1e6)
+            } else {
+                String::new()
+            };
             eprint!(
-                "\r\x1b[2K{} [{}{}] {}/{} {}  {:.2} M events/s  {:.0} s",
+                "\r\x1b[2K{} [{}{}] {}/{} {}{rate}  {:.0} s",
                 self.what,
                 "#".repeat(filled),
                 "-".repeat(width - filled),
                 p.done,
                 p.total,
                 self.unit,
-                p.events_per_second() / 1e6,
                 p.elapsed.as_secs_f64()
             );
-        } else if now.duration_since(self.last) >= self.every {
+        } else if self.log && now.duration_since(self.last) >= self.every {
             self.last = now;
             let _ = writeln!(
                 std::io::stderr(),
                 "bouncemap: {}",
-                line(self.what, self.unit, p)
+                line(&self.what, self.unit, p)
             );
         }
     }
@@ -88,12 +113,12 @@ impl Progress {
     pub fn finish(self, p: &JobProgress) {
         if self.terminal {
             eprint!("\r\x1b[2K");
-        } else {
+        } else if self.log {
             let _ = writeln!(
                 std::io::stderr(),
                 "bouncemap: {} finished: {}",
                 self.what,
-                line(self.what, self.unit, p)
+                line(&self.what, self.unit, p)
             );
         }
     }

@@ -7,68 +7,19 @@ use crate::config::flags::ScalingArgs;
 use crate::output::records::csv_writer;
 use crate::output::Format;
 use bouncemap_engine::orbits::scaling::{
-    analytic_intercepts_corrected, analytic_intercepts_paper, exact_fits, least_squares,
-    log_spaced, simulated_point, Fit, SimulatedPoint, PAPER_FIG4_FITS,
+    scaling_row, Fit, ScalingRow as Row, EXACT_RANGE, SIM_BOUNCES, SIM_RANGE,
 };
-use bouncemap_engine::Table;
 use serde::Serialize;
 use std::io::{self, BufWriter, Write};
 
-/// Δκ range and count of the exact fits.
-pub const EXACT_RANGE: (f64, f64, usize) = (1e-9, 1e-7, 9);
-/// Δκ range and count of the simulated fits.
-pub const SIM_RANGE: (f64, f64, usize) = (1e-6, 1e-5, 5);
-/// Impact budget per simulated point (the paper ran 5·10⁶ periods).
-pub const SIM_BOUNCES: u64 = 5_000_000;
-
-struct Row {
-    d: f64,
-    exact: Option<(Fit, Fit)>,
-    sim_points: Vec<SimulatedPoint>,
-    sim: Option<(Fit, Fit)>,
-    paper_analytic: (f64, f64),
-    corrected_analytic: Option<(f64, f64)>,
-    paper_fit: Option<(f64, f64, f64, f64)>,
-}
-
 pub fn run(args: &ScalingArgs) -> anyhow::Result<()> {
     let (r, k) = (args.r, args.k);
-    let mut rows = Vec::new();
-    for &d in &args.d.0 {
-        let table = Table::fd(d)?;
-        let exact = exact_fits(
-            &table,
-            r,
-            k,
-            &log_spaced(EXACT_RANGE.0, EXACT_RANGE.1, EXACT_RANGE.2),
-        );
-        let sim_points: Vec<SimulatedPoint> = log_spaced(SIM_RANGE.0, SIM_RANGE.1, SIM_RANGE.2)
-            .into_iter()
-            .filter_map(|dk| simulated_point(&table, r, k, dk, SIM_BOUNCES))
-            .filter(|p| p.delta_t > 0.0 && p.delta_big_t > 0.0)
-            .collect();
-        let x: Vec<f64> = sim_points.iter().map(|p| p.delta_kappa.log10()).collect();
-        let yt: Vec<f64> = sim_points.iter().map(|p| p.delta_big_t.log10()).collect();
-        let ys: Vec<f64> = sim_points.iter().map(|p| p.delta_t.log10()).collect();
-        let sim = least_squares(&x, &yt).zip(least_squares(&x, &ys));
-        let paper_fit = (r == 0.8 && k == 1)
-            .then(|| {
-                PAPER_FIG4_FITS
-                    .iter()
-                    .find(|p| (p.0 - d).abs() <= 1e-12 * d)
-            })
-            .flatten()
-            .map(|p| (p.1, p.2, p.3, p.4));
-        rows.push(Row {
-            d,
-            exact,
-            sim_points,
-            sim,
-            paper_analytic: analytic_intercepts_paper(d, r, k),
-            corrected_analytic: analytic_intercepts_corrected(&table, r, k)?,
-            paper_fit,
-        });
-    }
+    let rows: Vec<Row> = args
+        .d
+        .0
+        .iter()
+        .map(|&d| scaling_row(d, r, k))
+        .collect::<Result<_, _>>()?;
     let mut out = BufWriter::new(io::stdout().lock());
     match args.format {
         Format::Json => {

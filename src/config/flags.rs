@@ -7,6 +7,7 @@ use super::display::ColorChoice;
 use super::presets::Param;
 use super::rules;
 use super::table_spec::TableSpec;
+use crate::output::figure::ImageFormat;
 use crate::output::hitgrid::Marker;
 use crate::output::Format;
 use bouncemap_engine::sweep::Shard;
@@ -78,6 +79,8 @@ pub enum Command {
     Merge(MergeArgs),
     /// Measure solver throughput (exact vs grid) and sweep timings on this machine.
     Bench(BenchArgs),
+    /// The paper's figures, or any sweep, as SVG or PNG.
+    Figure(FigureArgs),
 }
 
 /// The physical system: table shape, amplitude and restitution.
@@ -239,10 +242,11 @@ pub enum SweepFormat {
     Braille,
 }
 
-/// `bouncemap sweep`.
+/// What a sweep computes: the flags shared by `sweep` and `figure diagram`, turned into
+/// a [`SweepSpec`](bouncemap_engine::sweep::SweepSpec) by
+/// [`crate::config::sweep::sweep_spec_from`].
 #[derive(Args, Debug, Clone)]
-#[command(allow_negative_numbers = true)]
-pub struct SweepArgs {
+pub struct SweepSpecArgs {
     /// Load settings from a preset (fig3a … fig3f, fig4a … fig4c); other flags override them.
     #[arg(long, value_name = "NAME")]
     pub preset: Option<String>,
@@ -303,6 +307,14 @@ pub struct SweepArgs {
     /// Top W of the extra starts' launch velocities [default: max(1, 2α·max|F'|)].
     #[arg(long, value_parser = rules::W_MAX.real(), value_name = "W")]
     pub w_max: Option<f64>,
+}
+
+/// `bouncemap sweep`.
+#[derive(Args, Debug, Clone)]
+#[command(allow_negative_numbers = true)]
+pub struct SweepArgs {
+    #[command(flatten)]
+    pub spec: SweepSpecArgs,
     /// Output format.
     #[arg(long, value_enum, default_value_t = SweepFormat::Csv)]
     pub format: SweepFormat,
@@ -434,6 +446,119 @@ pub struct MergeArgs {
     pub out: Option<String>,
 }
 
+/// `bouncemap figure NAME`: options shared by every figure.
+#[derive(Args, Debug, Clone)]
+#[command(
+    subcommand_value_name = "NAME",
+    subcommand_help_heading = "Figures",
+    subcommand_required = true,
+    arg_required_else_help = false
+)]
+pub struct FigureArgs {
+    #[command(subcommand)]
+    pub name: FigureName,
+    /// Output file, .svg (vector) or .png [default: NAME.png].
+    #[arg(long, global = true, value_name = "FILE")]
+    pub out: Option<String>,
+    /// Output format when the file name does not say (e.g. a device) [default: from --out].
+    #[arg(long, global = true, value_enum)]
+    pub format: Option<ImageFormat>,
+    /// Size WxH in inches, each side in [1, 12] [default: the figure's own, one column
+    /// (3.4 in) or the page width (7 in) of a two-column paper].
+    #[arg(long, global = true, value_parser = parse_size, value_name = "WxH")]
+    pub size: Option<(f64, f64)>,
+    /// Pixels per inch of a PNG; valid 50 to 600 [default: 300].
+    #[arg(long, global = true, value_parser = rules::DPI.whole::<u32>(), value_name = "N")]
+    pub dpi: Option<u32>,
+    /// A preview in seconds: fewer values and a shorter transient.
+    #[arg(long, global = true)]
+    pub quick: bool,
+    /// Also write the numbers behind the figure (every series) as JSON to FILE.
+    #[arg(long, global = true, value_name = "FILE")]
+    pub data: Option<String>,
+    /// Worker threads [default: all cores].
+    #[arg(long, global = true, value_parser = rules::THREADS.whole::<usize>(), value_name = "N")]
+    pub threads: Option<usize>,
+}
+
+/// The figures `bouncemap figure` draws.
+#[derive(Subcommand, Debug, Clone)]
+pub enum FigureName {
+    /// Fig. 2: F_D, F_D', F_D'' over one period for D = 0, 0.1, 0.5, 1.
+    #[command(name = "fig2")]
+    Fig2,
+    /// Fig. 3: the six bifurcation diagrams (a)-(f) (presets fig3a-fig3f).
+    #[command(name = "fig3")]
+    Fig3,
+    /// Fig. 3(a): F_0.
+    #[command(name = "fig3a")]
+    Fig3a,
+    /// Fig. 3(b): F_0.1.
+    #[command(name = "fig3b")]
+    Fig3b,
+    /// Fig. 3(c): F_0.3.
+    #[command(name = "fig3c")]
+    Fig3c,
+    /// Fig. 3(d): F_0.5.
+    #[command(name = "fig3d")]
+    Fig3d,
+    /// Fig. 3(e): F_1.
+    #[command(name = "fig3e")]
+    Fig3e,
+    /// Fig. 3(f): the sine.
+    #[command(name = "fig3f")]
+    Fig3f,
+    /// Fig. 4: enlarged diagrams near α_PD (D = 0.001, 0.01, 0.1) and the power laws of ΔT, Δt.
+    #[command(name = "fig4")]
+    Fig4,
+    /// Fig. 5: b_T and b_t against D, with the paper's analytic lines as printed and corrected.
+    #[command(name = "fig5")]
+    Fig5,
+    /// Any sweep as a bifurcation diagram: takes `sweep`'s flags (--preset, --table, --alpha LO..HI, ...).
+    #[command(allow_negative_numbers = true)]
+    Diagram(Box<SweepSpecArgs>),
+}
+
+impl FigureName {
+    /// The name on the command line.
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            FigureName::Fig2 => "fig2",
+            FigureName::Fig3 => "fig3",
+            FigureName::Fig3a => "fig3a",
+            FigureName::Fig3b => "fig3b",
+            FigureName::Fig3c => "fig3c",
+            FigureName::Fig3d => "fig3d",
+            FigureName::Fig3e => "fig3e",
+            FigureName::Fig3f => "fig3f",
+            FigureName::Fig4 => "fig4",
+            FigureName::Fig5 => "fig5",
+            FigureName::Diagram(_) => "diagram",
+        }
+    }
+}
+
+/// `--size WxH`: width and height in inches, each checked by [`rules::FIG_SIDE`].
+pub fn parse_size(s: &str) -> Result<(f64, f64), String> {
+    let bad = || {
+        format!(
+            "'{s}' is not a size: valid {}, e.g. 3.4x2.6",
+            rules::FIG_SIDE.limit.text
+        )
+    };
+    let (w, h) = s.trim().split_once(['x', 'X', '\u{d7}']).ok_or_else(bad)?;
+    let side = |t: &str, which: &str| {
+        rules::FIG_SIDE.parse(t).map_err(|e| {
+            if e.contains("out of range") {
+                format!("{which} {e}")
+            } else {
+                bad()
+            }
+        })
+    };
+    Ok((side(w, "width")?, side(h, "height")?))
+}
+
 /// Output of `bench`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, Default)]
 pub enum BenchFormat {
@@ -489,6 +614,21 @@ mod tests {
         assert!((r[1] - 0.01).abs() < 1e-15);
         assert!(parse_d_list("0").unwrap_err().contains("(0, 1]"));
         assert!(parse_d_list("0.1..0.01").unwrap_err().contains("empty"));
+    }
+
+    #[test]
+    fn sizes_are_inches_within_their_range() {
+        assert_eq!(parse_size("3.4x2.6"), Ok((3.4, 2.6)));
+        assert_eq!(parse_size("7X5"), Ok((7.0, 5.0)));
+        let e = parse_size("0.5x2").unwrap_err();
+        assert!(
+            e.contains("width 0.5 is out of range") && e.contains("[1, 12]"),
+            "{e}"
+        );
+        let e = parse_size("3x40").unwrap_err();
+        assert!(e.starts_with("height 40"), "{e}");
+        assert!(parse_size("3").unwrap_err().contains("e.g. 3.4x2.6"));
+        assert!(parse_size("ax3").unwrap_err().contains("not a size"));
     }
 
     #[test]

@@ -231,6 +231,37 @@ pub const D_POINTS: Rule = rule(
     13.0,
 );
 
+/// One side of a figure, in inches (`figure --size WxH`).
+pub const FIG_SIDE: Rule = rule(
+    "size",
+    "size",
+    Limit {
+        name: "size",
+        lo: 1.0,
+        hi: 12.0,
+        lo_open: false,
+        hi_open: false,
+        whole: false,
+        text: "WxH in inches, each side in [1, 12]",
+    },
+    3.4,
+);
+/// Pixels per inch of a PNG figure (`figure --dpi`).
+pub const DPI: Rule = rule(
+    "dpi",
+    "dpi",
+    Limit {
+        name: "dpi",
+        lo: 50.0,
+        hi: 600.0,
+        lo_open: false,
+        hi_open: false,
+        whole: true,
+        text: "a whole number in [50, 600]",
+    },
+    300.0,
+);
+
 const COUNT: Limit = Limit {
     name: "count",
     lo: 0.0,
@@ -294,6 +325,8 @@ mod tests {
             BASIN_TRANSIENT,
             W_MAX,
             STARTS,
+            FIG_SIDE,
+            DPI,
         ] {
             assert!(r.limit.contains(r.default), "{}", r.key);
         }

@@ -6,7 +6,7 @@ use super::presets::{preset, Param, Start};
 use super::rules::{self, Rule};
 use super::table_spec::TableSpec;
 use super::InputError;
-use crate::config::flags::SweepArgs;
+use crate::config::flags::{SweepArgs, SweepSpecArgs};
 use bouncemap_engine::sweep::{InitialSpec, Periodicity, Shard, SweepSpec, Warm};
 use bouncemap_engine::Table;
 
@@ -47,8 +47,14 @@ fn parse_setting(p: Param, s: &str) -> Result<Setting, InputError> {
     }
 }
 
-/// The sweep the flags (and their preset) describe.
+/// The sweep `sweep`'s flags (and their preset) describe.
 pub fn sweep_spec(args: &SweepArgs) -> Result<SweepSpec, InputError> {
+    sweep_spec_from(&args.spec, args.shard.unwrap_or(Shard::WHOLE))
+}
+
+/// The sweep the flags shared by `sweep` and `figure diagram` (and their preset)
+/// describe, computing part `shard`.
+pub fn sweep_spec_from(args: &SweepSpecArgs, shard: Shard) -> Result<SweepSpec, InputError> {
     let p = match &args.preset {
         Some(name) => Some(preset(name).map_err(|e| InputError(format!("--preset: {e}")))?),
         None => None,
@@ -191,7 +197,7 @@ pub fn sweep_spec(args: &SweepArgs) -> Result<SweepSpec, InputError> {
         max_period: args.max_period,
         tolerance: args.tolerance,
     });
-    spec.shard = args.shard.unwrap_or(Shard::WHOLE);
+    spec.shard = shard;
     spec.lyapunov = args.lyapunov;
     spec.starts = args.starts.unwrap_or(rules::STARTS.default as usize);
     spec.w_max = args.w_max;

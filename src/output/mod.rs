@@ -14,10 +14,12 @@
 //! * [`classes`]: what a value's orbit is (period 1, 2, 4, 8, other, sticking, chaotic),
 //!   as the diagram colours it.
 //! * [`text`]: number formatting for aligned text columns.
+//! * [`figure`]: publication figures (SVG, and PNG rendered with the fonts compiled in).
 
 pub mod basin_map;
 pub mod classes;
 pub mod diagram;
+pub mod figure;
 pub mod hitgrid;
 pub mod records;
 pub mod sink;

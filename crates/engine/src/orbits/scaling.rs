@@ -68,21 +68,50 @@ pub fn exact_at(table: &Table, r: f64, k: u32, delta_kappa: f64) -> Option<TwoCy
     two_cycle(&sys, k).ok()
 }
 
+/// ΔT and Δt of one exact (2, 2k) solution.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ExactPoint {
+    /// Δκ = κ_c − f''(t̂*) of the solution's system.
+    pub delta_kappa: f64,
+    pub delta_big_t: f64,
+    pub delta_t: f64,
+}
+
+/// The exact (2, 2k) solutions at the given Δκ values, with positive ΔT and Δt; values
+/// without a solution are left out.
+pub fn exact_points(table: &Table, r: f64, k: u32, delta_kappas: &[f64]) -> Vec<ExactPoint> {
+    delta_kappas
+        .iter()
+        .filter_map(|&dk| exact_at(table, r, k, dk))
+        .filter(|tc| tc.delta_big_t > 0.0 && tc.delta_t > 0.0)
+        .map(|tc| ExactPoint {
+            delta_kappa: tc.delta_kappa,
+            delta_big_t: tc.delta_big_t,
+            delta_t: tc.delta_t,
+        })
+        .collect()
+}
+
+/// Fits of log10 ΔT and log10 Δt against log10 Δκ through points (Δκ, ΔT, Δt).
+pub fn fit_log_log(points: impl IntoIterator<Item = (f64, f64, f64)>) -> Option<(Fit, Fit)> {
+    let mut x = Vec::new();
+    let (mut yt, mut ys) = (Vec::new(), Vec::new());
+    for (dk, big_t, t) in points {
+        x.push(dk.log10());
+        yt.push(big_t.log10());
+        ys.push(t.log10());
+    }
+    Some((least_squares(&x, &yt)?, least_squares(&x, &ys)?))
+}
+
 /// Fits of log10 ΔT and log10 Δt against log10 Δκ from exact (2, 2k) solutions at the
 /// given Δκ values. Points without a solution are left out.
 pub fn exact_fits(table: &Table, r: f64, k: u32, delta_kappas: &[f64]) -> Option<(Fit, Fit)> {
-    let mut x = Vec::new();
-    let (mut yt, mut ys) = (Vec::new(), Vec::new());
-    for &dk in delta_kappas {
-        if let Some(tc) = exact_at(table, r, k, dk) {
-            if tc.delta_big_t > 0.0 && tc.delta_t > 0.0 {
-                x.push(tc.delta_kappa.log10());
-                yt.push(tc.delta_big_t.log10());
-                ys.push(tc.delta_t.log10());
-            }
-        }
-    }
-    Some((least_squares(&x, &yt)?, least_squares(&x, &ys)?))
+    fit_log_log(
+        exact_points(table, r, k, delta_kappas)
+            .iter()
+            .map(|p| (p.delta_kappa, p.delta_big_t, p.delta_t)),
+    )
 }
 
 /// ΔT and Δt read from a simulated orbit, and how well it had settled.
@@ -183,3 +212,74 @@ pub const PAPER_FIG4_FITS: [(f64, f64, f64, f64, f64); 3] = [
     (0.01, 1.001, 1.988, 0.501, 1.462),
     (0.1, 1.001, 0.914, 0.502, 0.830),
 ];
+
+/// Δκ range (min, max) and count of the exact fits of [`scaling_row`].
+pub const EXACT_RANGE: (f64, f64, usize) = (1e-9, 1e-7, 9);
+/// Δκ range and count of the simulated fits of [`scaling_row`].
+pub const SIM_RANGE: (f64, f64, usize) = (1e-6, 1e-5, 5);
+/// Impact budget per simulated point of [`scaling_row`] (the paper ran 5·10⁶ periods).
+pub const SIM_BOUNCES: u64 = 5_000_000;
+
+/// Everything the paper's Fig. 4 and 5 show for one D of F_D.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ScalingRow {
+    pub d: f64,
+    /// Exact (2, 2k) solutions over [`EXACT_RANGE`], and their fits (ΔT, Δt).
+    pub exact_points: Vec<ExactPoint>,
+    pub exact: Option<(Fit, Fit)>,
+    /// Simulated orbits over [`SIM_RANGE`], and their fits.
+    pub sim_points: Vec<SimulatedPoint>,
+    pub sim: Option<(Fit, Fit)>,
+    /// The printed Eqs. (bT), (bt).
+    pub paper_analytic: (f64, f64),
+    /// The corrected intercepts (None without a period-doubling end of the window).
+    pub corrected_analytic: Option<(f64, f64)>,
+    /// The fit printed in the Fig. 4 caption (r = 0.8, k = 1 and its three D only):
+    /// (a_T, b_T, a_t, b_t).
+    pub paper_fit: Option<(f64, f64, f64, f64)>,
+}
+
+/// The Fig. 4 and 5 data for F_D: exact and simulated points and fits, the analytic
+/// intercepts, and the paper's fit where it prints one.
+pub fn scaling_row(d: f64, r: f64, k: u32) -> Result<ScalingRow, EngineError> {
+    let table = Table::fd(d)?;
+    let exact_points = exact_points(
+        &table,
+        r,
+        k,
+        &log_spaced(EXACT_RANGE.0, EXACT_RANGE.1, EXACT_RANGE.2),
+    );
+    let exact = fit_log_log(
+        exact_points
+            .iter()
+            .map(|p| (p.delta_kappa, p.delta_big_t, p.delta_t)),
+    );
+    let sim_points: Vec<SimulatedPoint> = log_spaced(SIM_RANGE.0, SIM_RANGE.1, SIM_RANGE.2)
+        .into_iter()
+        .filter_map(|dk| simulated_point(&table, r, k, dk, SIM_BOUNCES))
+        .filter(|p| p.delta_t > 0.0 && p.delta_big_t > 0.0)
+        .collect();
+    let sim = fit_log_log(
+        sim_points
+            .iter()
+            .map(|p| (p.delta_kappa, p.delta_big_t, p.delta_t)),
+    );
+    let paper_fit = (r == 0.8 && k == 1)
+        .then(|| {
+            PAPER_FIG4_FITS
+                .iter()
+                .find(|p| (p.0 - d).abs() <= 1e-12 * d)
+        })
+        .flatten()
+        .map(|p| (p.1, p.2, p.3, p.4));
+    Ok(ScalingRow {
+        d,
+        exact_points,
+        exact,
+        sim_points,
+        sim,
+        paper_analytic: analytic_intercepts_paper(d, r, k),
+        corrected_analytic: analytic_intercepts_corrected(&table, r, k)?,
+        paper_fit,
+    })
+}

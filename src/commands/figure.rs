@@ -1,0 +1,255 @@
+//! `bouncemap figure NAME`: the paper's figures, and any sweep, as SVG or PNG.
+//!
+//! Everything the user gave is checked before any computing (the name and the numbers
+//! by clap, the sweep of `diagram`, the output's format and path). Then the figure's
+//! data are computed on all cores (sweeps on the engine's executor, the scaling rows
+//! of Fig. 4 and 5 on threads of their own) with a progress bar on a terminal, the
+//! figure is drawn by [`crate::output::figure`], and the file is written atomically.
+
+use super::progress::Progress;
+use crate::config::flags::{FigureArgs, FigureName};
+use crate::config::presets::preset;
+use crate::config::{self, InputError};
+use crate::output::figure::diagram::{self, diagram_panel, DiagramAxis};
+use crate::output::figure::scaling::{self as scaling_fig, FIG5_D};
+use crate::output::figure::text::plain;
+use crate::output::figure::{self, shapes, Figure, ImageFormat, Layer, DEFAULT_DPI};
+use crate::output::sink::AtomicFile;
+use bouncemap_engine::jobs::{Control, Executor, Progress as JobProgress};
+use bouncemap_engine::orbits::scaling::{log_spaced, scaling_row, ScalingRow};
+use bouncemap_engine::sweep::{self, Shard, SweepSpec, ValueResult};
+use std::io::Write;
+use std::path::Path;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Mutex;
+use std::time::{Duration, Instant};
+
+/// `--quick`: values per diagram at most, and the transient, in table periods.
+pub const QUICK_STEPS: usize = 200;
+pub const QUICK_TRANSIENT: u64 = 20_000;
+/// r and k of the paper's Fig. 4 and 5.
+const PAPER_R: f64 = 0.8;
+const PAPER_K: u32 = 1;
+/// The D values of Fig. 4.
+const FIG4_D: [f64; 3] = [0.001, 0.01, 0.1];
+
+pub fn run(args: &FigureArgs) -> anyhow::Result<()> {
+    let name = args.name.as_str();
+    let out = args.out.clone().unwrap_or_else(|| format!("{name}.png"));
+    let path = Path::new(&out);
+    let format = args
+        .format
+        .or_else(|| ImageFormat::from_path(path))
+        .ok_or_else(|| {
+            InputError(format!(
+                "--out {out}: the file name does not say the format: valid a name ending in .svg or .png, or --format svg|png"
+            ))
+        })?;
+    let dpi = args.dpi.unwrap_or(DEFAULT_DPI);
+    let diagram_spec = match &args.name {
+        FigureName::Diagram(a) => Some(quick(
+            config::sweep::sweep_spec_from(a, Shard::WHOLE)?,
+            args.quick,
+        )),
+        _ => None,
+    };
+    if let Some(spec) = &diagram_spec {
+        // Every point is held until the figure is drawn: the results and their copy
+        // in the figure.
+        config::check_memory(
+            spec.steps as u64 * (spec.keep as u64 * 48 + 512),
+            "this diagram",
+        )?;
+    }
+    let threads = config::threads(args.threads)?;
+    // The files are created now: a path that cannot be written is refused before any
+    // computing, and nothing is put in place until the figure is complete.
+    let mut file = AtomicFile::create(path).map_err(|e| InputError(format!("--out: {e}")))?;
+    let data = match &args.data {
+        Some(d) => {
+            Some(AtomicFile::create(Path::new(d)).map_err(|e| InputError(format!("--data: {e}")))?)
+        }
+        None => None,
+    };
+    let executor = Executor::new(threads)?;
+    let fig = build(&args.name, diagram_spec, args.quick, &executor, threads)?;
+    let bytes = figure::render(&fig, format, args.size, dpi)?;
+    let shown = file.path().display().to_string();
+    file.write_all(&bytes)
+        .map_err(|e| anyhow::anyhow!("cannot write {shown}: {e}"))?;
+    file.commit()?;
+    if let Some(mut d) = data {
+        let shown = d.path().display().to_string();
+        serde_json::to_writer(&mut d, &fig.data())
+            .map_err(|e| anyhow::anyhow!("cannot write {shown}: {e}"))?;
+        writeln!(d).map_err(|e| anyhow::anyhow!("cannot write {shown}: {e}"))?;
+        d.commit()?;
+    }
+    Ok(())
+}
+
+/// A sweep at the lower fidelity of `--quick`.
+fn quick(mut spec: SweepSpec, quick: bool) -> SweepSpec {
+    if quick {
+        spec.steps = spec.steps.min(QUICK_STEPS);
+        spec.transient = spec.transient.min(QUICK_TRANSIENT);
+    }
+    spec
+}
+
+/// A preset's sweep (at `--quick`'s fidelity if asked).
+fn preset_spec(name: &str, q: bool) -> anyhow::Result<SweepSpec> {
+    Ok(quick(preset(name)?.sweep_spec()?, q))
+}
+
+/// Run a whole sweep on `executor`, with a progress bar labelled `what`.
+fn run_sweep(
+    spec: &SweepSpec,
+    executor: &Executor,
+    what: &str,
+) -> anyhow::Result<Vec<ValueResult>> {
+    let handle = sweep::start(spec.clone(), executor, &Control::new())?;
+    let mut progress = Progress::bar(what);
+    let mut values = Vec::with_capacity(spec.steps);
+    loop {
+        match handle.receiver().recv_timeout(Duration::from_millis(200)) {
+            Ok(b) if handle.is_current(&b) && b.complete => values.push(b.data),
+            Ok(_) | Err(std::sync::mpsc::RecvTimeoutError::Timeout) => {}
+            Err(std::sync::mpsc::RecvTimeoutError::Disconnected) => break,
+        }
+        progress.update(&handle.progress());
+    }
+    let summary = handle.wait();
+    progress.finish(&summary.progress);
+    if values.len() != spec.shard_values() {
+        anyhow::bail!(
+            "{what}: the sweep stopped after {} of {} values",
+            values.len(),
+            spec.shard_values()
+        );
+    }
+    values.sort_by_key(|v| v.index);
+    Ok(values)
+}
+
+/// The Fig. 4/5 rows for `ds` (r = 0.8, k = 1), computed on `threads` threads.
+fn scaling_rows(ds: &[f64], threads: usize, what: &str) -> anyhow::Result<Vec<ScalingRow>> {
+    let next = AtomicUsize::new(0);
+    let done = AtomicUsize::new(0);
+    let results: Mutex<Vec<Option<Result<ScalingRow, String>>>> = Mutex::new(vec![None; ds.len()]);
+    let start = Instant::now();
+    let mut progress = Progress::bar(what);
+    std::thread::scope(|s| {
+        for _ in 0..threads.min(ds.len()).max(1) {
+            s.spawn(|| loop {
+                let i = next.fetch_add(1, Ordering::Relaxed);
+                let Some(&d) = ds.get(i) else { break };
+                let row = scaling_row(d, PAPER_R, PAPER_K).map_err(|e| e.to_string());
+                results.lock().unwrap_or_else(|e| e.into_inner())[i] = Some(row);
+                done.fetch_add(1, Ordering::Relaxed);
+            });
+        }
+        while done.load(Ordering::Relaxed) < ds.len() {
+            progress.update(&JobProgress {
+                done: done.load(Ordering::Relaxed),
+                total: ds.len(),
+                events: 0,
+                elapsed: start.elapsed(),
+            });
+            std::thread::sleep(Duration::from_millis(100));
+        }
+    });
+    progress.finish(&JobProgress {
+        done: ds.len(),
+        total: ds.len(),
+        events: 0,
+        elapsed: start.elapsed(),
+    });
+    results
+        .into_inner()
+        .unwrap_or_else(|e| e.into_inner())
+        .into_iter()
+        .map(|r| match r {
+            Some(Ok(row)) => Ok(row),
+            Some(Err(e)) => Err(anyhow::anyhow!("{what}: {e}")),
+            None => Err(anyhow::anyhow!("{what}: a row was not computed")),
+        })
+        .collect()
+}
+
+/// The D values of Fig. 5 (the same as `scaling --d 0.001..1:13`).
+pub fn fig5_d() -> Vec<f64> {
+    log_spaced(FIG5_D.0, FIG5_D.1, FIG5_D.2)
+}
+
+fn build(
+    name: &FigureName,
+    diagram_spec: Option<SweepSpec>,
+    q: bool,
+    executor: &Executor,
+    threads: usize,
+) -> anyhow::Result<Figure> {
+    let panel_name = |n: &FigureName| n.as_str().to_string();
+    match name {
+        FigureName::Fig2 => shapes::fig2(),
+        FigureName::Fig3 => {
+            let mut panels = Vec::new();
+            for letter in ['a', 'b', 'c', 'd', 'e', 'f'] {
+                let spec = preset_spec(&format!("fig3{letter}"), q)?;
+                let values = run_sweep(&spec, executor, &format!("fig3 ({letter})"))?;
+                panels.push((spec, values));
+            }
+            Ok(diagram::fig3(&panels))
+        }
+        FigureName::Fig3a
+        | FigureName::Fig3b
+        | FigureName::Fig3c
+        | FigureName::Fig3d
+        | FigureName::Fig3e
+        | FigureName::Fig3f => {
+            let n = panel_name(name);
+            let spec = preset_spec(&n, q)?;
+            let values = run_sweep(&spec, executor, &n)?;
+            Ok(diagram::diagram_figure(&n, &spec, &values))
+        }
+        FigureName::Fig4 => {
+            let mut upper = Vec::new();
+            let mut caption = Vec::new();
+            for (letter, d) in ['a', 'b', 'c'].into_iter().zip(FIG4_D) {
+                let spec = preset_spec(&format!("fig4{letter}"), q)?;
+                let values = run_sweep(&spec, executor, &format!("fig4 ({letter})"))?;
+                let mut p = diagram_panel(&spec, &values, None, DiagramAxis::Phase);
+                p.title = Some(format!("$D$ = {d}"));
+                upper.push(p);
+                if caption.is_empty() {
+                    caption.push(plain(&format!(
+                        "(a)\u{2013}(c): bifurcation diagrams enlarged near the period-doubling point, r = {}: the last {} events before t = {} for each of {} values of \u{3b1}.",
+                        spec.r,
+                        spec.keep,
+                        figure::fmt_count(spec.transient),
+                        spec.steps
+                    )));
+                }
+            }
+            let shaded = upper
+                .iter()
+                .any(|p| p.layers.iter().any(|l| matches!(l, Layer::Bands { .. })));
+            caption.push(if shaded {
+                diagram::STICKING_NOTE.to_string()
+            } else {
+                "Dashed: $t\u{302}$ = 0 and 1, the domain of $t\u{302}$.".to_string()
+            });
+            let rows = scaling_rows(&FIG4_D, threads, "fig4 (d)-(f)")?;
+            Ok(scaling_fig::fig4(upper, &rows, caption))
+        }
+        FigureName::Fig5 => {
+            let rows = scaling_rows(&fig5_d(), threads, "fig5")?;
+            scaling_fig::fig5(&rows, PAPER_R, PAPER_K)
+        }
+        FigureName::Diagram(_) => {
+            let spec = diagram_spec.expect("the diagram's sweep was checked first");
+            let values = run_sweep(&spec, executor, "diagram")?;
+            Ok(diagram::diagram_figure("diagram", &spec, &values))
+        }
+    }
+}

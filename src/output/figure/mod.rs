@@ -1,0 +1,586 @@
+//! Publication figures: the paper's Fig. 2–5, any sweep as a bifurcation diagram, and
+//! the terminal application's views, as SVG (vector, text as text) and PNG.
+//!
+//! A figure is first described as data ([`Figure`]: panels with axes, layers of points
+//! and lines, legends, a caption), then laid out and written as SVG by [`svg`]; the PNG
+//! is that SVG rendered by resvg ([`raster`]) with the fonts compiled into the binary
+//! ([`text`]), so both formats show the same picture and no system font is needed.
+//! [`Figure::data`] gives the numbers behind every layer (`figure --data`).
+//!
+//! One file per family of figures builds its [`Figure`]s from engine results:
+//! [`shapes`] (Fig. 2), [`diagram`] (Fig. 3, Fig. 4's upper row, `diagram` and the
+//! terminal's diagram view), [`scaling`] (Fig. 4's lower row, Fig. 5), [`phase`] (the
+//! terminal's phase plot). A new kind of picture is one more function returning a
+//! [`Figure`] (and one more [`FigureName`](crate::config::flags::FigureName) for the
+//! command).
+//!
+//! For the terminal application: [`diagram::diagram_view`], [`phase::phase_view`],
+//! and [`write`] / [`export`] to put them in files.
+
+pub mod diagram;
+pub mod phase;
+pub mod raster;
+pub mod scaling;
+pub mod shapes;
+pub mod svg;
+pub mod text;
+
+pub use diagram::{diagram_view, DiagramAxis};
+pub use phase::phase_view;
+
+use crate::output::sink::AtomicFile;
+use serde::Serialize;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// A colour, sRGB.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Color(pub u8, pub u8, pub u8);
+
+impl Color {
+    pub const BLACK: Color = Color(0, 0, 0);
+    pub const GREY: Color = Color(110, 110, 110);
+    /// The paper's ΔT and b_T.
+    pub const BLUE: Color = Color(31, 89, 180);
+    /// The paper's Δt and b_t.
+    pub const RED: Color = Color(204, 37, 41);
+    pub const ORANGE: Color = Color(230, 120, 20);
+    pub const GREEN: Color = Color(44, 150, 44);
+    /// The band of values whose orbit sticks.
+    pub const STICKING: Color = Color(190, 215, 245);
+
+    /// The colour mixed with white, `f` of the way (0: itself, 1: white).
+    pub fn tint(self, f: f64) -> Color {
+        let m = |c: u8| (c as f64 + (255.0 - c as f64) * f).round() as u8;
+        Color(m(self.0), m(self.1), m(self.2))
+    }
+
+    /// `#rrggbb`.
+    pub fn hex(self) -> String {
+        format!("#{:02x}{:02x}{:02x}", self.0, self.1, self.2)
+    }
+}
+
+/// A point marker.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Marker {
+    /// A filled disc.
+    Disc,
+    /// An open circle.
+    Circle,
+}
+
+/// A line's pattern.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Dash {
+    Solid,
+    Dashed,
+    Dotted,
+}
+
+/// One series of a panel.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Layer {
+    /// Points as small alpha-blended dots: where many fall, the picture is dark.
+    Density {
+        name: String,
+        points: Vec<[f64; 2]>,
+        color: Color,
+    },
+    /// Points with a marker each.
+    Markers {
+        name: String,
+        points: Vec<[f64; 2]>,
+        marker: Marker,
+        color: Color,
+    },
+    /// Polylines (each one unbroken).
+    Lines {
+        name: String,
+        lines: Vec<Vec<[f64; 2]>>,
+        color: Color,
+        dash: Dash,
+        /// Stroke width in points.
+        width: f64,
+    },
+    /// Shaded stretches [x0, x1] of the x axis, over the whole height.
+    Bands {
+        name: String,
+        spans: Vec<[f64; 2]>,
+        color: Color,
+    },
+    /// A horizontal line across the panel.
+    HLine { y: f64, color: Color, dash: Dash },
+    /// A vertical line across the panel.
+    VLine { x: f64, color: Color, dash: Dash },
+}
+
+/// Linear or decimal-logarithmic axis.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Scale {
+    Linear,
+    Log,
+}
+
+/// One axis of a panel.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Axis {
+    /// The label, in [`text`]'s markup.
+    pub label: String,
+    pub lo: f64,
+    pub hi: f64,
+    pub scale: Scale,
+}
+
+impl Axis {
+    /// A linear axis over [lo, hi].
+    pub fn new(label: &str, lo: f64, hi: f64) -> Axis {
+        let (lo, hi) = if hi > lo {
+            (lo, hi)
+        } else {
+            // An empty range (one value) is widened so the points show.
+            let pad = if lo == 0.0 { 1.0 } else { 0.05 * lo.abs() };
+            (lo - pad, hi + pad)
+        };
+        Axis {
+            label: label.into(),
+            lo,
+            hi,
+            scale: Scale::Linear,
+        }
+    }
+
+    /// A linear axis around `values`, with `pad` of the range added on each side.
+    pub fn around(label: &str, values: impl IntoIterator<Item = f64>, pad: f64) -> Axis {
+        let (lo, hi) = values
+            .into_iter()
+            .filter(|v| v.is_finite())
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+                (a.min(v), b.max(v))
+            });
+        if !lo.is_finite() {
+            return Axis::new(label, 0.0, 1.0);
+        }
+        let p = pad * (hi - lo);
+        Axis::new(label, lo - p, hi + p)
+    }
+
+    /// A decimal-logarithmic axis over [lo, hi] (both > 0).
+    pub fn log(label: &str, lo: f64, hi: f64) -> Axis {
+        Axis {
+            label: label.into(),
+            lo,
+            hi,
+            scale: Scale::Log,
+        }
+    }
+
+    /// Where `v` lies along the axis, 0 at lo and 1 at hi.
+    pub fn fraction(&self, v: f64) -> f64 {
+        match self.scale {
+            Scale::Linear => (v - self.lo) / (self.hi - self.lo),
+            Scale::Log => (v.log10() - self.lo.log10()) / (self.hi.log10() - self.lo.log10()),
+        }
+    }
+}
+
+/// A corner of a panel's frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Corner {
+    TopLeft,
+    TopRight,
+    BottomLeft,
+    BottomRight,
+}
+
+/// What a legend entry shows before its text.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Swatch {
+    pub color: Color,
+    pub line: Option<Dash>,
+    pub marker: Option<Marker>,
+    /// A filled box (a band's colour).
+    pub band: bool,
+}
+
+impl Swatch {
+    pub fn line(color: Color, dash: Dash) -> Swatch {
+        Swatch {
+            color,
+            line: Some(dash),
+            marker: None,
+            band: false,
+        }
+    }
+
+    pub fn marker(color: Color, marker: Marker) -> Swatch {
+        Swatch {
+            color,
+            line: None,
+            marker: Some(marker),
+            band: false,
+        }
+    }
+
+    pub fn band(color: Color) -> Swatch {
+        Swatch {
+            color,
+            line: None,
+            marker: None,
+            band: true,
+        }
+    }
+}
+
+/// A legend: entries in a box inside a corner of the frame.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Legend {
+    pub corner: Corner,
+    /// Swatch and text (markup).
+    pub entries: Vec<(Swatch, String)>,
+}
+
+/// One panel: a frame with its axes, layers and legends.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Panel {
+    /// "(a)", above the frame's left.
+    pub letter: Option<String>,
+    /// Above the frame, centred (markup).
+    pub title: Option<String>,
+    pub x: Axis,
+    pub y: Axis,
+    pub layers: Vec<Layer>,
+    pub legends: Vec<Legend>,
+}
+
+impl Panel {
+    pub fn new(x: Axis, y: Axis) -> Panel {
+        Panel {
+            letter: None,
+            title: None,
+            x,
+            y,
+            layers: Vec::new(),
+            legends: Vec::new(),
+        }
+    }
+}
+
+/// A figure: panels on a grid, a caption below them.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Figure {
+    /// What it is (`fig2`, `diagram`, …): the SVG's description and the data's name.
+    pub name: String,
+    /// Panels, row by row.
+    pub panels: Vec<Panel>,
+    /// Panels per row.
+    pub columns: usize,
+    /// Lines of small text below the panels (markup), wrapped to the width.
+    pub caption: Vec<String>,
+    /// Width and height in inches when none is asked for.
+    pub size: (f64, f64),
+}
+
+/// One column of a two-column paper, in inches.
+pub const COLUMN: f64 = 3.4;
+/// The full width of a two-column paper, in inches.
+pub const FULL_WIDTH: f64 = 7.0;
+
+/// Output format of a figure file.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum ImageFormat {
+    /// Vector graphics, text as text.
+    Svg,
+    /// A bitmap at the given dpi.
+    Png,
+}
+
+impl ImageFormat {
+    /// The format a file name's extension names (.svg, .png; any case).
+    pub fn from_path(path: &Path) -> Option<ImageFormat> {
+        let ext = path.extension()?.to_str()?.to_ascii_lowercase();
+        match ext.as_str() {
+            "svg" => Some(ImageFormat::Svg),
+            "png" => Some(ImageFormat::Png),
+            _ => None,
+        }
+    }
+
+    pub fn extension(self) -> &'static str {
+        match self {
+            ImageFormat::Svg => "svg",
+            ImageFormat::Png => "png",
+        }
+    }
+}
+
+/// Pixels per inch when none is asked for.
+pub const DEFAULT_DPI: u32 = 300;
+
+/// The file's bytes: `figure` at `size` inches (its own size if None), as SVG or as
+/// PNG at `dpi`.
+pub fn render(
+    figure: &Figure,
+    format: ImageFormat,
+    size: Option<(f64, f64)>,
+    dpi: u32,
+) -> anyhow::Result<Vec<u8>> {
+    let size = size.unwrap_or(figure.size);
+    let svg = svg::to_svg(figure, size);
+    match format {
+        ImageFormat::Svg => Ok(svg.into_bytes()),
+        ImageFormat::Png => raster::png(&svg, size, dpi),
+    }
+}
+
+/// Write `figure` to `path` (atomically: a temporary beside it, renamed into place when
+/// complete). Errors name the file.
+pub fn write(
+    figure: &Figure,
+    path: &Path,
+    format: ImageFormat,
+    size: Option<(f64, f64)>,
+    dpi: u32,
+) -> anyhow::Result<()> {
+    let bytes = render(figure, format, size, dpi)?;
+    let mut f = AtomicFile::create(path).map_err(anyhow::Error::msg)?;
+    f.write_all(&bytes)
+        .map_err(|e| anyhow::anyhow!("cannot write {}: {e}", path.display()))?;
+    f.commit()
+}
+
+/// Write `figure` as `stem.svg` and `stem.png` (at its own size, [`DEFAULT_DPI`]):
+/// the terminal application's export. Returns the two paths.
+pub fn export(figure: &Figure, stem: &Path) -> anyhow::Result<(PathBuf, PathBuf)> {
+    let svg = stem.with_extension("svg");
+    let png = stem.with_extension("png");
+    write(figure, &svg, ImageFormat::Svg, None, DEFAULT_DPI)?;
+    write(figure, &png, ImageFormat::Png, None, DEFAULT_DPI)?;
+    Ok((svg, png))
+}
+
+/// The numbers behind a figure, for `figure --data`.
+#[derive(Serialize, Debug)]
+pub struct FigureData {
+    pub figure: String,
+    pub panels: Vec<PanelData>,
+    pub caption: Vec<String>,
+}
+
+#[derive(Serialize, Debug)]
+pub struct PanelData {
+    pub letter: Option<String>,
+    pub title: Option<String>,
+    pub x: AxisData,
+    pub y: AxisData,
+    pub series: Vec<SeriesData>,
+}
+
+#[derive(Serialize, Debug)]
+pub struct AxisData {
+    pub label: String,
+    pub lo: f64,
+    pub hi: f64,
+    pub log: bool,
+}
+
+/// One layer's numbers: points (x, y), or for lines one list per polyline, or for
+/// bands the spans [x0, x1].
+#[derive(Serialize, Debug)]
+pub struct SeriesData {
+    pub name: String,
+    pub kind: &'static str,
+    pub points: Vec<[f64; 2]>,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub lines: Vec<Vec<[f64; 2]>>,
+}
+
+impl Figure {
+    /// Every named layer's numbers.
+    pub fn data(&self) -> FigureData {
+        let axis = |a: &Axis| AxisData {
+            label: a.label.clone(),
+            lo: a.lo,
+            hi: a.hi,
+            log: a.scale == Scale::Log,
+        };
+        FigureData {
+            figure: self.name.clone(),
+            caption: self.caption.clone(),
+            panels: self
+                .panels
+                .iter()
+                .map(|p| PanelData {
+                    letter: p.letter.clone(),
+                    title: p.title.clone(),
+                    x: axis(&p.x),
+                    y: axis(&p.y),
+                    series: p
+                        .layers
+                        .iter()
+                        .filter_map(|l| {
+                            let s = |name: &str, kind, points: &[[f64; 2]]| SeriesData {
+                                name: name.into(),
+                                kind,
+                                points: points.to_vec(),
+                                lines: Vec::new(),
+                            };
+                            match l {
+                                Layer::Density { name, points, .. } => {
+                                    Some(s(name, "density", points))
+                                }
+                                Layer::Markers { name, points, .. } => {
+                                    Some(s(name, "markers", points))
+                                }
+                                Layer::Bands { name, spans, .. } => Some(s(name, "bands", spans)),
+                                Layer::Lines { name, lines, .. } => Some(SeriesData {
+                                    name: name.clone(),
+                                    kind: "lines",
+                                    points: Vec::new(),
+                                    lines: lines.clone(),
+                                }),
+                                Layer::HLine { .. } | Layer::VLine { .. } => None,
+                            }
+                        })
+                        .collect(),
+                })
+                .collect(),
+        }
+    }
+}
+
+/// A number with `digits` decimals, with a true minus sign.
+pub fn fmt_fixed(v: f64, digits: usize) -> String {
+    let s = format!("{v:.digits$}");
+    let zero = s
+        .trim_start_matches('-')
+        .chars()
+        .all(|c| c == '0' || c == '.');
+    if zero {
+        s.trim_start_matches('-').to_string()
+    } else {
+        s.replace('-', "\u{2212}")
+    }
+}
+
+/// A count such as 5000000 as `5·10⁶` (plain Unicode, no markup), or as it is when
+/// short.
+pub fn fmt_count(n: u64) -> String {
+    if n < 10_000 {
+        return n.to_string();
+    }
+    let exp = (n as f64).log10().floor() as u32;
+    let mant = n as f64 / 10f64.powi(exp as i32);
+    let sup: String = exp
+        .to_string()
+        .chars()
+        .map(|c| "⁰¹²³⁴⁵⁶⁷⁸⁹".chars().nth(c as usize - '0' as usize).unwrap())
+        .collect();
+    if (mant - 1.0).abs() < 1e-9 {
+        format!("10{sup}")
+    } else if (mant - mant.round()).abs() < 1e-9 {
+        format!("{}·10{sup}", mant.round())
+    } else {
+        format!("{}·10{sup}", (mant * 100.0).round() / 100.0)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn counts_read_as_the_paper_writes_them() {
+        assert_eq!(fmt_count(5_000_000), "5·10⁶");
+        assert_eq!(fmt_count(20_000), "2·10⁴");
+        assert_eq!(fmt_count(100_000), "10⁵");
+        assert_eq!(fmt_count(2000), "2000");
+        assert_eq!(fmt_count(25_000), "2.5·10⁴");
+    }
+
+    #[test]
+    fn fixed_numbers_use_a_true_minus_and_no_negative_zero() {
+        assert_eq!(fmt_fixed(-0.5, 1), "\u{2212}0.5");
+        assert_eq!(fmt_fixed(-0.0001, 2), "0.00");
+        assert_eq!(fmt_fixed(2.5, 0), "2");
+    }
+
+    #[test]
+    fn the_terminal_views_export_as_svg_and_png() {
+        use bouncemap_engine::map::EventKind;
+        use bouncemap_engine::sweep::{Outcome, SweepParam, SweepPoint, SweepSpec, ValueResult};
+        let spec = SweepSpec::new(
+            bouncemap_engine::Table::fd(0.1).unwrap(),
+            0.45,
+            0.8,
+            SweepParam::Alpha,
+            0.45,
+            0.6,
+            3,
+        );
+        let values: Vec<ValueResult> = (0..3)
+            .map(|i| ValueResult {
+                index: i,
+                value: spec.value(i),
+                complete: true,
+                points: vec![SweepPoint {
+                    phase: 0.2,
+                    v: 0.5,
+                    kind: EventKind::Impact,
+                }],
+                outcome: Outcome::Unsettled,
+                sticking: i == 2,
+                events: 1,
+                lyapunov: None,
+                attractors: Vec::new(),
+            })
+            .collect();
+        let dir = std::env::temp_dir().join(format!("bouncemap-export-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let fig = diagram_view(
+            &spec,
+            &values,
+            Some((0.5, 0.6)),
+            DiagramAxis::Velocity,
+            "fd:0.1  r = 0.8  zoom 0.5..0.6",
+        );
+        assert_eq!(fig.panels[0].x.lo, 0.5);
+        let (svg, png) = export(&fig, &dir.join("bouncemap-diagram-1")).unwrap();
+        assert_eq!(svg, dir.join("bouncemap-diagram-1.svg"));
+        assert!(std::fs::read_to_string(&svg)
+            .unwrap()
+            .contains("zoom 0.5..0.6"));
+        assert_eq!(&std::fs::read(&png).unwrap()[..4], b"\x89PNG");
+        let phase = phase_view(&[(0.1, 0.4), (0.7, -0.2)], "orbit");
+        write(
+            &phase,
+            &dir.join("p.svg"),
+            ImageFormat::Svg,
+            Some((4.0, 3.0)),
+            100,
+        )
+        .unwrap();
+        let text = std::fs::read_to_string(dir.join("p.svg")).unwrap();
+        assert!(
+            text.contains("width=\"288pt\" height=\"216pt\""),
+            "4 × 3 inches"
+        );
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn formats_follow_the_extension() {
+        assert_eq!(
+            ImageFormat::from_path(Path::new("a/b.SVG")),
+            Some(ImageFormat::Svg)
+        );
+        assert_eq!(
+            ImageFormat::from_path(Path::new("f.png")),
+            Some(ImageFormat::Png)
+        );
+        assert_eq!(ImageFormat::from_path(Path::new("f.pdf")), None);
+        assert_eq!(ImageFormat::from_path(Path::new("/dev/full")), None);
+    }
+}
