@@ -320,3 +320,58 @@ fn export_writes_csv_and_braille_text_under_a_typed_name() {
     assert_eq!(next, "bouncemap-diagram-1");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn export_view_writes_the_diagram_and_phase_plot_as_figures() {
+    let mut a = app(Marker::Braille);
+    size(&mut a, 120, 40);
+    fill(&mut a);
+    let dir = std::env::temp_dir().join(format!("bouncemap-view-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    press(&mut a, KeyCode::Char('E'), KeyModifiers::SHIFT);
+    assert!(a.editing() && a.export_view);
+    assert!(a
+        .export_name
+        .as_ref()
+        .unwrap()
+        .starts_with("bouncemap-view-"));
+    a.export_name = Some(dir.join("v1.5").to_str().unwrap().to_string());
+    press(&mut a, KeyCode::Enter, KeyModifiers::NONE);
+    assert_eq!(a.take_effects(), vec![Effect::Export]);
+    let stem = std::path::PathBuf::from(a.export_pending.clone().unwrap());
+    let written = bouncemap::tui::export::export_view(&a, &stem).unwrap();
+    let names: Vec<String> = written
+        .iter()
+        .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(
+        names,
+        [
+            "v1.5.csv",
+            "v1.5.txt",
+            "v1.5-diagram.svg",
+            "v1.5-diagram.png",
+            "v1.5-phase.svg",
+            "v1.5-phase.png"
+        ]
+    );
+    for p in &written {
+        let bytes = std::fs::read(p).unwrap();
+        if p.extension().unwrap() == "png" {
+            assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n");
+            assert!(bytes.len() > 5_000, "{p:?}: {} bytes", bytes.len());
+        }
+        if p.extension().unwrap() == "svg" {
+            let t = String::from_utf8(bytes).unwrap();
+            assert!(t.contains("<svg") && t.trim_end().ends_with("</svg>"));
+            assert!(
+                t.contains("fd:0.1") && t.contains("0.45"),
+                "the caption names the parameters"
+            );
+        }
+    }
+    // Nothing is replaced: a second export under the same name is refused.
+    let e = bouncemap::tui::export::export_view(&a, &stem).unwrap_err();
+    assert!(e.contains("exists"), "{e}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -162,13 +162,26 @@ impl App {
                 self.shared.help_scroll = 0;
             }
             Action::Presets => self.shared.overlay = Overlay::Presets { selected: 0 },
-            Action::Export => {
+            Action::Export | Action::ExportView => {
                 let dir = std::env::current_dir().unwrap_or_else(|_| ".".into());
-                self.shared.export_name = Some(crate::output::sink::free_stem(
-                    &dir,
-                    "bouncemap-diagram",
-                    &[".csv", ".txt"],
-                ));
+                let view = action == Action::ExportView;
+                let (prefix, exts): (&str, &[&str]) = if view {
+                    (
+                        "bouncemap-view",
+                        &[
+                            ".csv",
+                            ".txt",
+                            "-diagram.svg",
+                            "-diagram.png",
+                            "-phase.svg",
+                            "-phase.png",
+                        ],
+                    )
+                } else {
+                    ("bouncemap-diagram", &[".csv", ".txt"])
+                };
+                self.shared.export_view = view;
+                self.shared.export_name = Some(crate::output::sink::free_stem(&dir, prefix, exts));
             }
             Action::Suspend => self.shared.effect(Effect::Suspend),
             Action::NextPanel | Action::PrevPanel => {

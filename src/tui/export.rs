@@ -4,6 +4,11 @@
 //! period, status and exponent; its values are those the diagram holds so far), and
 //! `NAME.txt`, the diagram as `sweep --format braille` draws it (title with the
 //! window, axes, labels). Both written atomically; an existing file is never replaced.
+//!
+//! `E` writes the same two files and the current view as figures beside them:
+//! `NAME-diagram.svg/.png` (the diagram over its zoom window, the parameters in the
+//! caption) and `NAME-phase.svg/.png` (the phase plot), through
+//! [`crate::output::figure`].
 
 use super::app::App;
 use crate::output::diagram::BrailleDiagram;
@@ -18,14 +23,82 @@ pub fn free_name(dir: &Path) -> String {
     crate::output::sink::free_stem(dir, "bouncemap-diagram", &[".csv", ".txt"])
 }
 
+/// `stem` with `ext` appended (the stem may hold dots).
+fn with(stem: &Path, ext: &str) -> PathBuf {
+    let mut s = stem.as_os_str().to_owned();
+    s.push(ext);
+    PathBuf::from(s)
+}
+
 /// `stem.csv` and `stem.txt`.
 fn paths(stem: &Path) -> (PathBuf, PathBuf) {
-    let with = |ext: &str| {
-        let mut s = stem.as_os_str().to_owned();
-        s.push(ext);
-        PathBuf::from(s)
+    (with(stem, ".csv"), with(stem, ".txt"))
+}
+
+/// The files `E` writes for `stem`, besides the csv and the text.
+pub fn view_paths(stem: &Path) -> Vec<PathBuf> {
+    ["-diagram.svg", "-diagram.png", "-phase.svg", "-phase.png"]
+        .iter()
+        .map(|e| with(stem, e))
+        .collect()
+}
+
+/// `E`: the csv and the text of [`export`], and the diagram and the phase plot as
+/// SVG and PNG. Returns every path written.
+pub fn export_view(app: &App, stem: &Path) -> Result<Vec<PathBuf>, String> {
+    use crate::output::figure::{self, DiagramAxis, ImageFormat, DEFAULT_DPI};
+    let views = view_paths(stem);
+    if let Some(p) = views.iter().find(|p| p.exists()) {
+        return Err(format!(
+            "export: {} exists and is kept; type another name",
+            p.display()
+        ));
+    }
+    let (csv, txt) = export(app, stem)?;
+    let d = &app.diagram;
+    let spec = d.running.clone().unwrap_or_else(|| d.sweep_spec(app));
+    let p = &app.params;
+    let n = crate::output::text::shortest;
+    let system = format!(
+        "{}, α = {}, r = {}, k = {}",
+        p.table_label(),
+        n(p.alpha),
+        n(p.r),
+        p.k
+    );
+    let caption = format!("{system}, start {}", p.start.key());
+    let axis = match d.axis {
+        crate::tui::components::diagram::Axis::Phase => DiagramAxis::Phase,
+        crate::tui::components::diagram::Axis::Velocity => DiagramAxis::Velocity,
     };
-    (with(".csv"), with(".txt"))
+    let diagram = figure::diagram_view(
+        &spec,
+        d.slots.iter().flatten(),
+        Some((p.lo, p.hi)),
+        axis,
+        &caption,
+    );
+    let v0 = p.v0.map_or("f'(t̂0) + 0.5".to_string(), n);
+    let phase = figure::phase_view(
+        &app.phase.points,
+        &format!(
+            "{system}: every event of the orbit from t̂0 = {}, v0 = {v0} ({} events)",
+            n(p.t0),
+            app.phase.points.len()
+        ),
+    );
+    let mut written = vec![csv, txt];
+    for (fig, svg, png) in [
+        (&diagram, &views[0], &views[1]),
+        (&phase, &views[2], &views[3]),
+    ] {
+        figure::write(fig, svg, ImageFormat::Svg, None, DEFAULT_DPI)
+            .and_then(|_| figure::write(fig, png, ImageFormat::Png, None, DEFAULT_DPI))
+            .map_err(|e| format!("export: {e}"))?;
+        written.push(svg.clone());
+        written.push(png.clone());
+    }
+    Ok(written)
 }
 
 /// Write `stem.csv` and `stem.txt` (relative to the working directory). Returns the

@@ -37,12 +37,13 @@ pub enum Action {
     Legend,
     Presets,
     Export,
+    ExportView,
     Suspend,
 }
 
 impl Action {
     /// Every action, in help order.
-    pub const ALL: [Action; 29] = [
+    pub const ALL: [Action; 30] = [
         Action::Up,
         Action::Down,
         Action::Left,
@@ -67,6 +68,7 @@ impl Action {
         Action::ToggleBasins,
         Action::Presets,
         Action::Export,
+        Action::ExportView,
         Action::Pause,
         Action::Suspend,
         Action::Legend,
@@ -105,6 +107,7 @@ impl Action {
             Action::Legend => "legend",
             Action::Presets => "presets",
             Action::Export => "export",
+            Action::ExportView => "export_view",
             Action::Suspend => "suspend",
         }
     }
@@ -144,6 +147,7 @@ impl Action {
             Action::Legend => "what every mark, line and colour on the screen means",
             Action::Presets => "presets: the paper's figures",
             Action::Export => "export the diagram (csv and text; the name is typed)",
+            Action::ExportView => "export csv, text and the view as SVG and PNG figures",
             Action::Suspend => "stop bouncemap (the shell's fg continues it)",
         }
     }
@@ -380,6 +384,7 @@ impl Default for Keymap {
             (Key::ch('B'), Action::ToggleBasins),
             (Key::ch('p'), Action::Presets),
             (Key::ch('e'), Action::Export),
+            (Key::ch('E'), Action::ExportView),
         ];
         Keymap {
             map: pairs.into_iter().collect(),

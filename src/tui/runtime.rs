@@ -172,12 +172,26 @@ fn apply(e: Effect, app: &mut App, workers: &Workers, term: &mut Term) -> anyhow
         Effect::Pause(p) => workers.pause(p),
         Effect::Export => {
             let name = app.export_pending.take().unwrap_or_default();
-            let msg = match export(app, std::path::Path::new(name.trim())) {
-                Ok((c, t)) => (
-                    format!("exported {} and {}", c.display(), t.display()),
-                    false,
-                ),
-                Err(e) => (e, true),
+            let stem = std::path::Path::new(name.trim());
+            let msg = if app.export_view {
+                match crate::tui::export::export_view(app, stem) {
+                    Ok(_) => (
+                        format!(
+                            "wrote {n}.csv, {n}.txt, {n}-diagram.svg/.png, {n}-phase.svg/.png",
+                            n = stem.display()
+                        ),
+                        false,
+                    ),
+                    Err(e) => (e, true),
+                }
+            } else {
+                match export(app, stem) {
+                    Ok((c, t)) => (
+                        format!("exported {} and {}", c.display(), t.display()),
+                        false,
+                    ),
+                    Err(e) => (e, true),
+                }
             };
             app.message = Some(msg);
         }

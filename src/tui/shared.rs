@@ -59,6 +59,8 @@ pub struct Shared {
     pub export_name: Option<String>,
     /// The name an export was asked for, until the runtime writes it.
     pub export_pending: Option<String>,
+    /// Whether the export being named also writes the view as figures (`E`).
+    pub export_view: bool,
     /// The orbit analysis for the current parameters (None while it computes).
     pub orbits: Option<Result<OrbitInfo, String>>,
     pub(super) effects: Vec<Effect>,
@@ -85,6 +87,7 @@ impl Shared {
             help_scroll: 0,
             export_name: None,
             export_pending: None,
+            export_view: false,
             orbits: None,
             effects: Vec::new(),
             changed: Vec::new(),
