@@ -16,7 +16,7 @@
 //! the exact solver; the paper's grid solver runs as the paper describes it.
 
 use crate::error::EngineError;
-use crate::impact::{next_landing, normalize, FlightError, Launch, Solver};
+use crate::impact::{normalize, FlightError, FlightSolver, Launch, Solver};
 use crate::limits;
 use crate::system::System;
 
@@ -177,11 +177,19 @@ pub struct ImpactMap {
     sys: System,
     solver: Solver,
     state: State,
+    /// The solver prepared for `sys` once.
+    flights: FlightSolver,
 }
 
 impl ImpactMap {
     pub fn new(sys: System, solver: Solver, state: State) -> ImpactMap {
-        ImpactMap { sys, solver, state }
+        let flights = FlightSolver::new(&sys, solver);
+        ImpactMap {
+            sys,
+            solver,
+            state,
+            flights,
+        }
     }
 
     pub fn system(&self) -> &System {
@@ -223,7 +231,7 @@ impl ImpactMap {
             v: st.v,
             w: st.w,
         };
-        match next_landing(&self.sys, self.solver, &launch) {
+        match self.flights.landing(&self.sys, &launch) {
             Ok(l) => {
                 let df = l.df;
                 let w = -self.sys.r * l.vrel;

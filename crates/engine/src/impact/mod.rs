@@ -19,6 +19,7 @@ mod grid;
 mod piecewise;
 mod sine;
 
+use super::poly;
 use super::system::System;
 use super::table::Shape;
 
@@ -81,12 +82,54 @@ pub enum FlightError {
     NoLiftOff,
 }
 
-/// The next contact after `launch`, with the chosen solver.
+/// The next contact after `launch`, with the chosen solver. (The impact map prepares
+/// its solver once, [`FlightSolver`]; this prepares one for a single flight.)
 pub fn next_landing(sys: &System, solver: Solver, launch: &Launch) -> Result<Landing, FlightError> {
-    match (solver, sys.table.shape()) {
-        (Solver::Grid, _) => grid::grid_landing(sys, launch),
-        (Solver::Exact, Shape::Sine) => sine::sine_landing(sys, launch),
-        (Solver::Exact, Shape::Piecewise(_)) => piecewise::poly_landing(sys, launch),
+    FlightSolver::new(sys, solver).landing(sys, launch)
+}
+
+/// A next-impact solver prepared for one system: what depends only on the table and α
+/// is computed once here, so a flight does no allocation and no dispatch beyond one
+/// match on the kind.
+#[derive(Clone, Debug)]
+pub(crate) struct FlightSolver {
+    kind: Kind,
+}
+
+#[derive(Clone, Debug)]
+enum Kind {
+    Grid,
+    Sine,
+    /// Every piece of degree ≤ 3: fixed-size storage.
+    Cubic(piecewise::Prepared<piecewise::CubicPiece>),
+    General(piecewise::Prepared<piecewise::GeneralPiece>),
+}
+
+impl FlightSolver {
+    /// The solver `solver` prepared for `sys`.
+    pub(crate) fn new(sys: &System, solver: Solver) -> FlightSolver {
+        let kind = match (solver, sys.table.shape()) {
+            (Solver::Grid, _) => Kind::Grid,
+            (Solver::Exact, Shape::Sine) => Kind::Sine,
+            (Solver::Exact, Shape::Piecewise(_)) if sys.table.max_degree() <= 3 => {
+                Kind::Cubic(piecewise::Prepared::new::<piecewise::CubicGap>(sys))
+            }
+            (Solver::Exact, Shape::Piecewise(_)) => {
+                Kind::General(piecewise::Prepared::new::<poly::Poly>(sys))
+            }
+        };
+        FlightSolver { kind }
+    }
+
+    /// The next contact after `launch`; `sys` is the system this solver was prepared for.
+    #[inline]
+    pub(crate) fn landing(&self, sys: &System, launch: &Launch) -> Result<Landing, FlightError> {
+        match &self.kind {
+            Kind::Grid => grid::grid_landing(sys, launch),
+            Kind::Sine => sine::sine_landing(sys, launch),
+            Kind::Cubic(p) => piecewise::piecewise_landing::<piecewise::CubicGap>(p, launch),
+            Kind::General(p) => piecewise::piecewise_landing::<poly::Poly>(p, launch),
+        }
     }
 }
 
