@@ -15,11 +15,24 @@ pub fn two_sum(a: f64, b: f64) -> (f64, f64) {
     (s, e)
 }
 
-/// `a * b` as an exact unevaluated sum `(p, e)`.
+/// `a * b` as an exact unevaluated sum `(p, e)` (Dekker's product: exact unless a
+/// product overflows or underflows, far outside the engine's ranges). Without a fused
+/// multiply-add in the target's baseline instruction set, `f64::mul_add` is a library
+/// call; this is a dozen inline operations with the same result.
 #[inline]
 pub fn two_prod(a: f64, b: f64) -> (f64, f64) {
     let p = a * b;
-    (p, a.mul_add(b, -p))
+    let (ah, al) = split(a);
+    let (bh, bl) = split(b);
+    (p, ((ah * bh - p) + ah * bl + al * bh) + al * bl)
+}
+
+/// Veltkamp's split: a = hi + lo exactly, each with at most 26 significant bits.
+#[inline]
+fn split(a: f64) -> (f64, f64) {
+    let c = 134_217_729.0 * a;
+    let hi = c - (c - a);
+    (hi, a - hi)
 }
 
 /// The flight time τ = m + a − b as a double-double.
@@ -75,5 +88,19 @@ mod tests {
         assert_eq!(units(hi) + units(lo), exact);
         // The plain f64 sum loses the low bits.
         assert_ne!(units(3.0 + a - b), exact);
+    }
+
+    #[test]
+    fn two_prod_is_exact() {
+        // Against the fused multiply-add, which computes a·b − p with one rounding of an
+        // exact value: the error term must be that value.
+        let mut x = 0.123_456_789_f64;
+        for _ in 0..10_000 {
+            x = (x * 3.7 + 0.31).fract();
+            let (a, b) = (x * 1e3 - 500.0, (x * 7.3).fract() * 1e-3 + 1e-9);
+            let (p, e) = two_prod(a, b);
+            assert_eq!(p, a * b);
+            assert_eq!(e, a.mul_add(b, -p), "{a} {b}");
+        }
     }
 }

@@ -415,8 +415,11 @@ pub(super) fn piecewise_landing<G: PieceGap>(
     // Later pieces: gap from absolute heights, skipping where the ball is above the table.
     let z0 = alpha * q0 + launch.height;
     // The ball's crossings of the table's highest and lowest heights matter only from
-    // the next period on (whole periods skipped above the table; the ball surely lands
-    // before it falls below the table's minimum): computed when the walk gets there.
+    // the next period on, so they are computed when the walk gets there. Whole periods
+    // are skipped above the table (from `up` to `down`); that needs down − up ≥ 1, i.e.
+    // v² + 2(z0 − top) ≥ ¼ for a ball launched below the top. The ball surely lands
+    // before it falls below the table's minimum (`last`, a guard that matters only once
+    // the walk has gone a period past it).
     let (mut up, mut down, mut last) = (f64::INFINITY, f64::INFINITY, f64::INFINITY);
     let mut m: i64 = 0;
     j += 1;
@@ -424,12 +427,14 @@ pub(super) fn piecewise_landing<G: PieceGap>(
         if j == pieces.len() {
             j = 0;
             m += 1;
-            if m == 1 {
+            if m == 1 && (z0 > prep.top || v * v + 2.0 * (z0 - prep.top) >= 0.25) {
                 (up, down) = match crossing_times(z0, v, prep.top) {
                     Some((u, d)) if z0 <= prep.top => (u.max(0.0), d),
                     Some((_, d)) => (0.0, d),
                     None => (f64::INFINITY, f64::INFINITY),
                 };
+            }
+            if m == 2 {
                 last = crossing_times(z0, v, prep.bottom).map_or(0.0, |c| c.1);
             }
         }
