@@ -18,6 +18,7 @@
 mod grid;
 mod piecewise;
 mod sine;
+mod sine_pieces;
 
 use super::poly;
 use super::system::System;
@@ -126,7 +127,7 @@ impl FlightSolver {
     pub(crate) fn landing(&self, sys: &System, launch: &Launch) -> Result<Landing, FlightError> {
         match &self.kind {
             Kind::Grid => grid::grid_landing(sys, launch),
-            Kind::Sine => sine::sine_landing(sys, launch),
+            Kind::Sine => sine::sine_landing(sys.alpha, launch),
             Kind::Cubic(p) => piecewise::piecewise_landing::<piecewise::CubicGap>(p, launch),
             Kind::General(p) => piecewise::piecewise_landing::<poly::Poly>(p, launch),
         }
