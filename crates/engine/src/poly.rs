@@ -449,6 +449,21 @@ fn quadratic_keeps_sign(d: [f64; 3], lo: f64, hi: f64) -> bool {
 /// On a segment without critical points (the common case) the refinement starts from
 /// the inverse cubic Hermite interpolation of the ends' values and slopes.
 fn first_root_cubic(c: &[f64; 4], lo: f64, hi: f64) -> Option<f64> {
+    let at_lo = cubic_eval_with_bound(c, 4, lo);
+    if at_lo.0.abs() <= at_lo.1 {
+        return Some(lo);
+    }
+    first_root_cubic_from(c, lo, hi, at_lo.0)
+}
+
+/// [`first_root_low_degree`] for a cubic (`c[3]` ≠ 0) on `[lo, hi]` whose value at `lo`,
+/// `at_lo`, is known and nonzero beyond its rounding bound (e.g. a gap that is positive
+/// where the search starts).
+#[inline]
+pub fn first_root_cubic_from(c: &[f64; 4], lo: f64, hi: f64, at_lo: f64) -> Option<f64> {
+    if lo.is_nan() || hi.is_nan() || lo > hi {
+        return None;
+    }
     let (a, b, cc) = (3.0 * c[3], 2.0 * c[2], c[1]);
     let mut pts = [lo, 0.0, 0.0, hi];
     let mut n = 1;
@@ -466,10 +481,7 @@ fn first_root_cubic(c: &[f64; 4], lo: f64, hi: f64) -> Option<f64> {
     }
     pts[n] = hi;
     n += 1;
-    let mut prev = cubic_eval_with_bound(c, 4, pts[0]);
-    if prev.0.abs() <= prev.1 {
-        return Some(pts[0]);
-    }
+    let mut prev = (at_lo, 0.0);
     for i in 1..n {
         let cur = cubic_eval_with_bound(c, 4, pts[i]);
         let cur_zero = cur.0.abs() <= cur.1;

@@ -19,7 +19,7 @@
 
 use super::{crossing_times, floor, landing_on, FlightError, Landing, Launch, MAX_FLIGHT_PIECES};
 use crate::exact_sum::{ball_at, flight_time};
-use crate::poly::{first_root_low_degree, Poly, MAX_COEFFS};
+use crate::poly::{first_root_cubic_from, first_root_low_degree, Poly, MAX_COEFFS};
 use crate::system::System;
 use crate::table::Piece;
 use std::fmt::Debug;
@@ -117,7 +117,7 @@ pub(super) trait PieceGap: Sized {
     /// Value at s = 0 and the rounding bound of that value (one term, exactly c0).
     fn at_start(&self) -> (f64, f64);
 
-    /// The first root in [0, len].
+    /// The first root in [0, len]; the value at 0 is positive beyond its rounding bound.
     fn first_root(&self, len: f64) -> Option<f64>;
 
     /// The slope at s.
@@ -367,7 +367,12 @@ impl PieceGap for CubicGap {
 
     #[inline]
     fn first_root(&self, len: f64) -> Option<f64> {
-        first_root_low_degree(&self.c, self.len, 0.0, len)
+        // Called once the value at 0 is known to be positive beyond its rounding.
+        if self.len == 4 {
+            first_root_cubic_from(&self.c, 0.0, len, self.c[0])
+        } else {
+            first_root_low_degree(&self.c, self.len, 0.0, len)
+        }
     }
 
     #[inline]
@@ -414,28 +419,32 @@ pub(super) fn piecewise_landing<G: PieceGap>(
 
     // Later pieces: gap from absolute heights, skipping where the ball is above the table.
     let z0 = alpha * q0 + launch.height;
-    // The ball's crossings of the table's highest and lowest heights matter only from
-    // the next period on, so they are computed when the walk gets there. Whole periods
-    // are skipped above the table (from `up` to `down`); that needs down − up ≥ 1, i.e.
-    // v² + 2(z0 − top) ≥ ¼ for a ball launched below the top. The ball surely lands
-    // before it falls below the table's minimum (`last`, a guard that matters only once
-    // the walk has gone a period past it).
-    let (mut up, mut down, mut last) = (f64::INFINITY, f64::INFINITY, f64::INFINITY);
+    // Whole periods are skipped where the ball is above the table's top at both ends of
+    // the period (its path is concave, so in between too), up to the period in which it
+    // falls below the top again. The ball surely lands before it falls below the table's
+    // minimum (`last`: a guard, computed once the walk is two periods in).
+    let mut last = f64::INFINITY;
+    let margin0 = 1e-9 * (1.0 + z0.abs());
     let mut m: i64 = 0;
     j += 1;
     for _ in 0..MAX_FLIGHT_PIECES {
         if j == pieces.len() {
             j = 0;
             m += 1;
-            if m == 1 && (z0 > prep.top || v * v + 2.0 * (z0 - prep.top) >= 0.25) {
-                (up, down) = match crossing_times(z0, v, prep.top) {
-                    Some((u, d)) if z0 <= prep.top => (u.max(0.0), d),
-                    Some((_, d)) => (0.0, d),
-                    None => (f64::INFINITY, f64::INFINITY),
-                };
+            let t0 = m as f64 - phi;
+            let t1 = t0 + 1.0;
+            let margin = margin0 + 1e-9 * ((v * t1).abs() + t1 * t1);
+            if z0 + t0 * (v - 0.5 * t0) > prep.top + margin
+                && z0 + t1 * (v - 0.5 * t1) > prep.top + margin
+            {
+                let target = floor(phi + descent_below(z0, v, prep.top)) as i64;
+                if target > m {
+                    m = target;
+                    continue;
+                }
             }
-            if m == 2 {
-                last = crossing_times(z0, v, prep.bottom).map_or(0.0, |c| c.1);
+            if m >= 2 && last == f64::INFINITY {
+                last = descent_below(z0, v, prep.bottom);
             }
         }
         let p = &pieces[j];
@@ -446,18 +455,10 @@ pub(super) fn piecewise_landing<G: PieceGap>(
         if tau_lo > last + 1.0 {
             break;
         }
-        if tau_lo >= up && j == 0 {
-            // Whole periods with the ball above every table height.
-            let target = floor(phi + down) as i64;
-            if target > m {
-                m = target;
-                continue;
-            }
-        }
         let zb_rough = z0 + tau_lo * (v - 0.5 * tau_lo);
         let ze = z0 + tau_hi * (v - 0.5 * tau_hi);
         // Skip with a margin far above the rounding of the rough heights.
-        let margin = 1e-9 * (1.0 + z0.abs() + (v * tau_hi).abs() + tau_hi * tau_hi);
+        let margin = margin0 + 1e-9 * ((v * tau_hi).abs() + tau_hi * tau_hi);
         if zb_rough.min(ze) > span.top + margin {
             j += 1;
             continue;
@@ -485,6 +486,14 @@ pub(super) fn piecewise_landing<G: PieceGap>(
         j += 1;
     }
     Err(FlightError::NoLanding)
+}
+
+/// When the ball, at height z0 with velocity v at τ = 0, falls below `level` (0 if it
+/// is never above it). Out of line: needed only for flights that span periods.
+#[cold]
+#[inline(never)]
+fn descent_below(z0: f64, v: f64, level: f64) -> f64 {
+    crossing_times(z0, v, level).map_or(0.0, |c| c.1)
 }
 
 /// Divide the launch root out of the gap polynomial (whose constant term is zero).

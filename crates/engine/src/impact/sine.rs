@@ -4,7 +4,8 @@
 //! ([`super::sine_pieces`]: 64 pieces per period, degree 9, |sin 2πt − H_k| ≤ e0 ≈
 //! 1.2·10⁻¹⁶, below the rounding of f64 near 1, and better than `sin` of a rounded
 //! argument 2πt). The true gap G = ball − α S then satisfies, on piece k,
-//! |G − (ball − α C_k)| ≤ α·cubic_err[k] with C_k the cubic truncation of H_k, and
+//! |G − (ball − α C_k)| ≤ α·cubic_err[k] with C_k a cubic close to S (its Chebyshev
+//! truncation on the piece), and
 //! |G − (ball − α H_k)| ≤ α e0. A flight is searched as follows; no step can skip a
 //! contact:
 //!
@@ -35,7 +36,7 @@
 //!
 //! The work is bounded: at most [`MAX_SINE_STEPS`] pieces and safe steps per flight.
 
-use super::sine_pieces::{center, eval_d, locate, L, N, SINE};
+use super::sine_pieces::{center, eval, eval_d, locate, L, N, SINE};
 use super::{crossing_times, landing_on, normalize, FlightError, Landing, Launch, MAX_SINE_STEPS};
 use crate::exact_sum::{ball_at, flight_time};
 use crate::poly::first_root_low_degree;
@@ -54,6 +55,9 @@ struct Bounds {
     err1: f64,
     /// M₂ ≥ max(−G'') = 1 + 4π²α.
     m2: f64,
+    /// 4π²α, and M₃ = α(2π)³ ≥ |G'''|.
+    a4: f64,
+    m3: f64,
 }
 
 impl Bounds {
@@ -64,6 +68,8 @@ impl Bounds {
             err0: alpha * (t.e0 + (GAMMA + 4.0 * U) * t.mag0),
             err1: alpha * (t.e1 + (GAMMA + 4.0 * U) * t.mag1),
             m2: (1.0 + alpha * 4.0 * PI * PI) * (1.0 + 1e-12),
+            a4: alpha * 4.0 * PI * PI,
+            m3: alpha * 8.0 * PI * PI * PI * (1.0 + 1e-12),
         }
     }
 }
@@ -76,8 +82,9 @@ pub(super) fn sine_landing(alpha: f64, launch: &Launch) -> Result<Landing, Fligh
     let w = launch.w;
     let h0 = launch.height;
     let (k0, x0) = locate(phi);
-    // sin 2πφ and its derivative 2π cos 2πφ, within e0 + rounding and e1 + rounding.
-    let (s_phi, ds_phi) = eval_d(&SINE.h[k0], x0);
+    let h = &SINE.h[k0];
+    // sin 2πφ, within e0 + rounding.
+    let s_phi = eval(h, x0);
     let z0 = alpha * s_phi + h0;
     // The band |z| ≤ α, with a margin far above the rounding of the crossing times.
     let margin = 1e-9 * (1.0 + z0.abs() + v * v);
@@ -85,8 +92,6 @@ pub(super) fn sine_landing(alpha: f64, launch: &Launch) -> Result<Landing, Fligh
         Some((u, d)) if d > 0.0 => (u.max(0.0), d),
         _ => (f64::INFINITY, f64::INFINITY),
     };
-    // The ball surely lands before it falls below the band.
-    let last = crossing_times(z0, v, -alpha * (1.0 + SINE.e0) - margin).map_or(0.0, |c| c.1);
 
     // Step 1: no contact in (0, start).
     let start = if h0 > 0.0 {
@@ -100,39 +105,60 @@ pub(super) fn sine_landing(alpha: f64, launch: &Launch) -> Result<Landing, Fligh
         let es = 2.0 * (SINE.e0 + GAMMA * SINE.mag0) + 8.0 * U;
         let ed = 2.0 * (SINE.e1 + GAMMA * SINE.mag1) + 64.0 * U;
         let g2 = -0.5 + 0.5 * a4 * (s_phi - es);
-        let g3 = a4 * (ds_phi - ed) / 6.0;
         let k = alpha * 16.0 * PI.powi(4) / 24.0 * (1.0 + 1e-12);
-        if w > 0.0 {
-            launch_clearance(w, g2, g3, k, up, last)
+        // Most launches are cleared up to the ball's rise above the band with the bound
+        // |g3| ≤ α(2π)³/6, without the table's slope at the launch.
+        let g3_max = a4 * 2.0 * PI * (1.0 + 1e-12) / 6.0;
+        if w > 0.0 && up < f64::INFINITY && clears(w, g2, g3_max, k, up) {
+            up
         } else {
-            // A release (w = 0): G/τ² ≥ max(g₂, 0) + g₃ τ − K τ², the curvature snapped
-            // to zero as at the release instant itself; the ball must lift off before
-            // the bound's positive root, where the gap must be positive.
-            let c = g2.max(0.0);
-            let step = if k > 0.0 {
-                (g3 + (g3 * g3 + 4.0 * k * c).sqrt()) / (2.0 * k)
+            let g3 = a4 * (eval_d(h, x0).1 - ed) / 6.0;
+            if w > 0.0 {
+                let until = if up < f64::INFINITY {
+                    up
+                } else {
+                    bottom_crossing(alpha, z0, v, margin)
+                };
+                launch_clearance(w, g2, g3, k, until)
             } else {
-                0.0
-            };
-            if step.is_nan() || step <= 0.0 || gap_at(&b, z0, v, phi, step) <= 0.0 {
-                return Err(FlightError::NoLiftOff);
+                // A release (w = 0): G/τ² ≥ max(g₂, 0) + g₃ τ − K τ², the curvature
+                // snapped to zero as at the release instant itself; the ball must lift
+                // off before the bound's positive root, where the gap must be positive.
+                let c = g2.max(0.0);
+                let step = if k > 0.0 {
+                    (g3 + (g3 * g3 + 4.0 * k * c).sqrt()) / (2.0 * k)
+                } else {
+                    0.0
+                };
+                if step.is_nan() || step <= 0.0 || gap_at(&b, z0, v, phi, step) <= 0.0 {
+                    return Err(FlightError::NoLiftOff);
+                }
+                step
             }
-            step
         }
     };
-    search(&b, launch, z0, start, up, down, last)
+    search(&b, launch, z0, start, up, down, margin)
+}
+
+/// When the ball falls below the band (it surely has landed by then).
+fn bottom_crossing(alpha: f64, z0: f64, v: f64, margin: f64) -> f64 {
+    crossing_times(z0, v, -alpha * (1.0 + SINE.e0) - margin).map_or(0.0, |c| c.1)
+}
+
+/// Whether w − |g2| t − g3_max t² − k t³ > 0 (beyond the rounding of these few
+/// operations): that cubic is decreasing and, with g3_max ≥ |g3|, below the launch's
+/// lower bound ℓ on (0, t], which then has no root there.
+#[inline]
+fn clears(w: f64, g2: f64, g3_max: f64, k: f64, t: f64) -> bool {
+    w - t * (g2.abs() + t * (g3_max + t * k)) > 16.0 * U * w
 }
 
 /// The first τ up to which the launch's lower bound ℓ(τ) = w + g2 τ + g3 τ² − k τ³ of
-/// G(τ)/τ stays positive, at least up to where the search resumes: the ball's rise above
-/// the band (`up`), or else the end of the flight (`last`).
+/// G(τ)/τ stays positive, at least up to `t` (the ball's rise above the band, or the end
+/// of the flight), where the search resumes.
 #[inline]
-fn launch_clearance(w: f64, g2: f64, g3: f64, k: f64, up: f64, last: f64) -> f64 {
-    let t = if up.is_finite() { up } else { last };
-    // w − |g2| τ − |g3| τ² − k τ³ is decreasing and below ℓ: positive at t (beyond the
-    // rounding of its few operations) means ℓ has no root in (0, t].
-    let low = w - t * (g2.abs() + t * (g3.abs() + t * k));
-    if low > 16.0 * U * w {
+fn launch_clearance(w: f64, g2: f64, g3: f64, k: f64, t: f64) -> f64 {
+    if clears(w, g2, g3.abs(), k, t) {
         return t;
     }
     let c = [w, g2, g3, -k];
@@ -147,7 +173,7 @@ fn launch_clearance(w: f64, g2: f64, g3: f64, k: f64, up: f64, last: f64) -> f64
 fn gap_at(b: &Bounds, z0: f64, v: f64, phi: f64, tau: f64) -> f64 {
     let (_, phase) = normalize(0, phi + tau);
     let (k, x) = locate(phase);
-    let (hs, _) = eval_d(&SINE.h[k], x);
+    let hs = eval(&SINE.h[k], x);
     let ball = z0 + tau * (v - 0.5 * tau);
     ball - b.alpha * hs - b.err0 - 8.0 * U * (z0.abs() + (v * tau).abs() + tau * tau)
 }
@@ -160,12 +186,20 @@ fn search(
     start: f64,
     up: f64,
     down: f64,
-    last: f64,
+    margin: f64,
 ) -> Result<Landing, FlightError> {
     let alpha = b.alpha;
+    // A guard: the ball surely lands before it falls below the band. Computed once the
+    // walk is a period into the flight.
+    let mut last = f64::INFINITY;
     let phi = launch.phase;
     let v = launch.v;
-    let mut from = start;
+    // Step 2 right away when the search starts above the band.
+    let mut from = if start >= up && start < down {
+        down
+    } else {
+        start
+    };
     // The piece holding φ + from: period m after the launch's, index k.
     let place = |tau: f64| {
         let (m, phase) = normalize(0, phi + tau);
@@ -178,6 +212,9 @@ fn search(
         let ck = center(k);
         let tc = m as f64 + ck - phi;
         let (ta, tb) = (tc - L, tc + L);
+        if ta > 1.0 && last == f64::INFINITY {
+            last = bottom_crossing(alpha, z0, v, margin);
+        }
         if ta > last + 1.0 {
             break;
         }
@@ -216,8 +253,17 @@ fn search(
 }
 
 /// Steps 3 and 4 on piece k, the ball at height `zc` with velocity `vc` at its centre,
-/// from offset `sa` on: the landing (offset, relative velocity, table velocity), or the
-/// offset up to which no contact exists (past the piece's end).
+/// from offset `sa` on (no contact before it): the landing (offset, relative velocity,
+/// table velocity), or the offset up to which no contact exists (past the piece's end).
+///
+/// At x, with A and B lower bounds of G(x) and G'(x), G(x + h) ≥ A + B h − M₂ h²/2 for
+/// every h ≥ 0 (M₂ ≥ −G''): no contact lies before that parabola's first positive root,
+/// the next x. A and B come first from the piece's cubic C_k (a few operations; their
+/// bounds are cubic_err and cubic_derr, about 10⁻⁸ α and 10⁻⁴ α), while the gap is large
+/// next to them; then from the degree-9 H_k (bounds e0, e1 and the rounding). The steps
+/// converge quadratically to a simple contact; the ball lands at the first x where the
+/// lower bound A from H_k is ≤ 0. A grazing pass is walked past, a tangent contact is
+/// approached until its gap is within its error bound.
 fn piece_landing(
     b: &Bounds,
     k: usize,
@@ -227,50 +273,76 @@ fn piece_landing(
     steps: &mut usize,
 ) -> Result<(f64, f64, f64), f64> {
     let alpha = b.alpha;
-    let h = &SINE.h[k];
-    // The cubic gap lowered by its bound: the truncation's error, and the rounding of
-    // the coefficients formed here.
-    let delta = alpha * (SINE.cubic_err[k] + 8.0 * U) + 4.0 * U * (zc.abs() + vc.abs() * L + L * L);
+    let mut x = sa;
+    // Step 3: safe steps on the cubic gap.
+    let cb = &SINE.cubic[k];
     let c = [
-        zc - alpha * h[0] - delta,
-        vc - alpha * h[1],
-        -0.5 - alpha * h[2],
-        -alpha * h[3],
+        zc - alpha * cb[0],
+        vc - alpha * cb[1],
+        -0.5 - alpha * cb[2],
+        -alpha * cb[3],
     ];
-    // The lowered cubic may already be negative at `sa` (a lower bound, it is no more
-    // than the gap there): the search then starts at `sa` itself.
-    let at_sa = ((c[3] * sa + c[2]) * sa + c[1]) * sa + c[0];
-    let first = if at_sa <= 0.0 {
-        Some(sa)
-    } else {
-        first_root_low_degree(&c, 4, sa, L)
-    };
-    let Some(mut x) = first else {
-        return Err(L);
-    };
-    // Step 4: safe steps on the true gap.
+    // Bounds of |G − gap with C_k| and of its slope's error, with the rounding of the
+    // coefficients above and of Horner's scheme on them.
+    let mag = zc.abs() + vc.abs() * L + L * L;
+    let err_c = alpha * (SINE.cubic_err[k] + 16.0 * U) + 8.0 * U * mag;
+    let derr_c = alpha * (SINE.cubic_derr[k] + 16.0 * U) + 8.0 * U * (vc.abs() + L);
+    while *steps < MAX_SINE_STEPS {
+        *steps += 1;
+        let g = ((c[3] * x + c[2]) * x + c[1]) * x + c[0];
+        // Within a few times its error bound of zero the cubic can say no more.
+        let a = g - err_c;
+        if a <= 2.0 * err_c {
+            break;
+        }
+        let slope = (3.0 * c[3] * x + 2.0 * c[2]) * x + c[1] - derr_c;
+        let next = x + safe_step(a, slope, b.m2);
+        if next >= L {
+            return Err(next);
+        }
+        x = next;
+    }
+    // Step 4: safe steps on the true gap, from H_k.
+    let h = &SINE.h[k];
     while *steps < MAX_SINE_STEPS {
         *steps += 1;
         let (hs, hd) = eval_d(h, x);
         let g = zc + x * (vc - 0.5 * x) - alpha * hs;
         let dg = vc - x - alpha * hd;
-        // Lower bounds of G(x) and G'(x): the approximation's error and the rounding.
-        let a = g - b.err0 - 4.0 * U * (zc.abs() + (x * vc).abs() + x * x);
-        if a <= 0.0 {
-            return Ok((x, dg, alpha * hd));
+        // Bounds of the errors of G(x) and G'(x): the approximation's and the rounding.
+        let err = b.err0 + 4.0 * U * (zc.abs() + (x * vc).abs() + x * x);
+        let derr = b.err1 + 4.0 * U * (vc.abs() + x.abs());
+        // G'' = −1 + 4π²α S, with S = hs within `es`.
+        let curv = -1.0 + b.a4 * hs;
+        let a = g - err;
+        if a <= err {
+            // The gap is within three times its error bound of zero: the contact is
+            // here, refined to the computed gap's zero (at most 2·err/|G'| later).
+            let newton = if g > 0.0 && dg < 0.0 { g / -dg } else { 0.0 };
+            return Ok((x + newton, dg, alpha * hd));
         }
-        let slope = dg - b.err1 - 4.0 * U * (vc.abs() + x.abs());
-        // First positive root of a + slope·h − M₂ h²/2, in the form free of cancellation,
-        // shortened by more than its rounding.
-        let root = (slope * slope + 2.0 * b.m2 * a).sqrt();
-        let step = if slope < 0.0 {
-            2.0 * a / (root - slope)
-        } else {
-            (slope + root) / b.m2
-        } * (1.0 - 16.0 * U);
+        let step = safe_step(a, dg - derr, b.m2);
         let next = x + step;
         if next >= L {
             return Err(next);
+        }
+        // An upper bound of G at `next`: G(x) + G'(x) h + max(G'') h²/2, with
+        // max(G'') ≤ −1 + 4π²α. Within three error bounds of zero (the usual case after
+        // one step from a gap of about 10⁻⁹), the ball lands there, with the slopes
+        // carried over by their Taylor expansions G'(x) + G''(x) h and
+        // f'(x) + f''(x) h (f'' = −4π²α S), whose remainders M₃ h²/2 are kept below
+        // the rounding of G': no second evaluation.
+        let upper = g + err + (dg + derr) * step + 0.5 * (b.a4 - 1.0) * step * step;
+        if upper <= 3.0 * err && b.m3 * step * step <= 2.0 * U * dg.abs() {
+            let g1 = g + dg * step + 0.5 * curv * step * step;
+            let dg1 = dg + curv * step;
+            let newton = if g1 > 0.0 && dg1 < 0.0 {
+                g1 / -dg1
+            } else {
+                0.0
+            };
+            let df = alpha * hd - b.a4 * hs * step;
+            return Ok((next + newton, dg1, df));
         }
         if next == x {
             // The bound's root is within rounding of x: the contact is here.
@@ -280,6 +352,19 @@ fn piece_landing(
     }
     // The work bound is spent: report no contact on this piece; the caller stops.
     Err(L)
+}
+
+/// The first positive root of a + slope·h − m2 h²/2 (a > 0), in the form free of
+/// cancellation, shortened by more than the rounding of its computation.
+#[inline]
+fn safe_step(a: f64, slope: f64, m2: f64) -> f64 {
+    let root = (slope * slope + 2.0 * m2 * a).sqrt();
+    let step = if slope < 0.0 {
+        2.0 * a / (root - slope)
+    } else {
+        (slope + root) / m2
+    };
+    step * (1.0 - 16.0 * U)
 }
 
 #[cfg(test)]
