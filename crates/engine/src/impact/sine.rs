@@ -112,14 +112,30 @@ pub(super) fn sine_landing(alpha: f64, launch: &Launch) -> Result<Landing, Fligh
         if w > 0.0 && up < f64::INFINITY && clears(w, g2, g3_max, k, up) {
             up
         } else {
-            let g3 = a4 * (eval_d(h, x0).1 - ed) / 6.0;
+            let ds_phi = eval_d(h, x0).1;
+            let g3 = a4 * (ds_phi - ed) / 6.0;
             if w > 0.0 {
                 let until = if up < f64::INFINITY {
                     up
                 } else {
                     bottom_crossing(alpha, z0, v, margin)
                 };
-                launch_clearance(w, g2, g3, k, until)
+                let tau1 = launch_clearance(w, g2, g3, k, until);
+                if tau1 < until && tau1 <= MICRO_FLIGHT {
+                    if let Some((tau, vrel)) = micro_landing(alpha, w, s_phi, ds_phi, tau1) {
+                        let (period, phase) = normalize(launch.period, phi + tau);
+                        let (k, x) = locate(phase);
+                        let df = alpha * eval_d(&SINE.h[k], x).1;
+                        return Ok(Landing {
+                            period,
+                            phase,
+                            flight: tau,
+                            vrel: vrel.min(0.0),
+                            df,
+                        });
+                    }
+                }
+                tau1
             } else {
                 // A release (w = 0): G/τ² ≥ max(g₂, 0) + g₃ τ − K τ², the curvature
                 // snapped to zero as at the release instant itself; the ball must lift
@@ -138,6 +154,65 @@ pub(super) fn sine_landing(alpha: f64, launch: &Launch) -> Result<Landing, Fligh
         }
     };
     search(&b, launch, z0, start, up, down, margin)
+}
+
+/// Flights from the table up to this long are landed from the gap's Taylor series at
+/// the launch ([`micro_landing`]).
+const MICRO_FLIGHT: f64 = 1e-3;
+
+/// A short flight from the table (the launch's lower bound has its first root at
+/// `tau1` ≤ [`MICRO_FLIGHT`]), landed to full relative precision however small the gap
+/// is (chattering): the contact is the root of G(τ)/τ = Q(τ) = w − τ/2 −
+/// α Σ_{j≥2} S⁽ʲ⁾(φ) τ^(j−1)/j!, the sine's Taylor series at the launch (S⁽ʲ⁾ from
+/// S(φ) = `s` and S'(φ) = `ds`), kept to τ⁶; the rest is below α (2π)⁸ τ⁷/8! ≤ 10⁻¹⁹ α.
+/// Where Q' < 0 on [0, 2 τ1] (checked with the coefficients' magnitudes), Q has a
+/// single root there, at or after `tau1`, found by Newton's method from `tau1`. Returns
+/// the flight time and the relative velocity G'(τ) = Q + τ Q', or None (the general
+/// search takes over).
+fn micro_landing(alpha: f64, w: f64, s: f64, ds: f64, tau1: f64) -> Option<(f64, f64)> {
+    let c2 = 4.0 * PI * PI;
+    let c4 = c2 * c2;
+    let c6 = c4 * c2;
+    let q = [
+        w,
+        -0.5 + 0.5 * alpha * c2 * s,
+        alpha * c2 * ds / 6.0,
+        -alpha * c4 * s / 24.0,
+        -alpha * c4 * ds / 120.0,
+        alpha * c6 * s / 720.0,
+        alpha * c6 * ds / 5040.0,
+    ];
+    // Q'(τ) ≤ q1 + Σ_{i≥2} i |q_i| T^(i−1) < 0 on [0, T].
+    let t_max = 2.0 * tau1;
+    let mut bound = 0.0;
+    for i in (2..q.len()).rev() {
+        bound = bound * t_max + i as f64 * q[i].abs();
+    }
+    if q[1] + bound * t_max >= -1e-12 {
+        return None;
+    }
+    let eval = |t: f64| {
+        let (mut p, mut dp) = (q[6], 0.0);
+        for &c in q[..6].iter().rev() {
+            dp = dp * t + p;
+            p = p * t + c;
+        }
+        (p, dp)
+    };
+    let mut t = tau1;
+    for _ in 0..8 {
+        let (p, dp) = eval(t);
+        let step = p / dp;
+        t -= step;
+        if !(t >= tau1 * (1.0 - 1e-9) && t <= t_max) {
+            return None;
+        }
+        if step.abs() <= 2.0 * f64::EPSILON * t {
+            let (p, dp) = eval(t);
+            return Some((t, p + t * dp));
+        }
+    }
+    None
 }
 
 /// When the ball falls below the band (it surely has landed by then).
@@ -319,7 +394,8 @@ fn piece_landing(
             // The gap is within three times its error bound of zero: the contact is
             // here, refined to the computed gap's zero (at most 2·err/|G'| later).
             let newton = if g > 0.0 && dg < 0.0 { g / -dg } else { 0.0 };
-            return Ok((x + newton, dg, alpha * hd));
+            let (dg, df) = carry_slopes(b, dg, hd, hs, newton);
+            return Ok((x + newton, dg, df));
         }
         let step = safe_step(a, dg - derr, b.m2);
         let next = x + step;
@@ -341,8 +417,8 @@ fn piece_landing(
             } else {
                 0.0
             };
-            let df = alpha * hd - b.a4 * hs * step;
-            return Ok((next + newton, dg1, df));
+            let (dg, df) = carry_slopes(b, dg, hd, hs, step + newton);
+            return Ok((next + newton, dg, df));
         }
         if next == x {
             // The bound's root is within rounding of x: the contact is here.
@@ -352,6 +428,15 @@ fn piece_landing(
     }
     // The work bound is spent: report no contact on this piece; the caller stops.
     Err(L)
+}
+
+/// The gap's slope G' and the table's f' at x + h from their values `dg` and α `hd` at
+/// x, with S(x) = `hs`: G'' = −1 + 4π²α S and f'' = −4π²α S, remainders below
+/// M₃ h²/2 (callers keep h small enough for that to be below the rounding).
+#[inline]
+fn carry_slopes(b: &Bounds, dg: f64, hd: f64, hs: f64, h: f64) -> (f64, f64) {
+    let curv = b.a4 * hs;
+    (dg + (curv - 1.0) * h, b.alpha * hd - curv * h)
 }
 
 /// The first positive root of a + slope·h − m2 h²/2 (a > 0), in the form free of

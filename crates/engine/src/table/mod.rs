@@ -328,6 +328,13 @@ impl Table {
         self.accel_bound
     }
 
+    /// An upper bound of |F''''| over a period (0 for tables of degree ≤ 3).
+    pub fn fourth_bound(&self) -> f64 {
+        self.segments()
+            .map(|s| s.fourth_bound())
+            .fold(0.0, f64::max)
+    }
+
     /// Highest polynomial degree among the pieces (0 for the sine, which has none).
     pub fn max_degree(&self) -> usize {
         self.max_degree

@@ -156,6 +156,23 @@ impl<'a> Segment<'a> {
         }
     }
 
+    /// An upper bound of |F''''| on this segment: (2π)⁴ for the sine; for a piece,
+    /// Σ_k k!/(k − 4)! |f_k| len^(k−4) over its coefficients (padded).
+    pub fn fourth_bound(&self) -> f64 {
+        match self.formula {
+            Formula::Sine => (2.0 * PI).powi(4) * (1.0 + 1e-12),
+            Formula::Poly(p) => {
+                let len = p.len();
+                let mut sum = 0.0;
+                for (k, c) in p.f.coeffs().iter().enumerate().skip(4) {
+                    let falling = (k * (k - 1) * (k - 2) * (k - 3)) as f64;
+                    sum += falling * c.abs() * len.powi(k as i32 - 4);
+                }
+                sum * (1.0 + 1e-12)
+            }
+        }
+    }
+
     /// Whether F''' ≡ 0 on this segment (a polynomial of degree at most 2).
     pub fn is_quadratic(&self) -> bool {
         match self.formula {
