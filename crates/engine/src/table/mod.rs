@@ -328,10 +328,11 @@ impl Table {
         self.accel_bound
     }
 
-    /// An upper bound of |F''''| over a period (0 for tables of degree ≤ 3).
-    pub fn fourth_bound(&self) -> f64 {
+    /// An upper bound of |F⁽ⁿ⁾| over a period (0 for pieces of degree below n); meant
+    /// for n ≥ 3, where [`Self::accel_bound`] does not apply.
+    pub fn derivative_bound(&self, n: usize) -> f64 {
         self.segments()
-            .map(|s| s.fourth_bound())
+            .map(|s| s.derivative_bound(n))
             .fold(0.0, f64::max)
     }
 
