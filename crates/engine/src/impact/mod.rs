@@ -100,7 +100,7 @@ pub(crate) struct FlightSolver {
 #[derive(Clone, Debug)]
 enum Kind {
     Grid,
-    Sine,
+    Sine(sine::Bounds),
     /// Every piece of degree ≤ 3: fixed-size storage.
     Cubic(piecewise::Prepared<piecewise::CubicPiece>),
     General(piecewise::Prepared<piecewise::GeneralPiece>),
@@ -111,7 +111,7 @@ impl FlightSolver {
     pub(crate) fn new(sys: &System, solver: Solver) -> FlightSolver {
         let kind = match (solver, sys.table.shape()) {
             (Solver::Grid, _) => Kind::Grid,
-            (Solver::Exact, Shape::Sine) => Kind::Sine,
+            (Solver::Exact, Shape::Sine) => Kind::Sine(sine::Bounds::new(sys.alpha)),
             (Solver::Exact, Shape::Piecewise(_)) if sys.table.max_degree() <= 3 => {
                 Kind::Cubic(piecewise::Prepared::new::<piecewise::CubicGap>(sys))
             }
@@ -127,7 +127,7 @@ impl FlightSolver {
     pub(crate) fn landing(&self, sys: &System, launch: &Launch) -> Result<Landing, FlightError> {
         match &self.kind {
             Kind::Grid => grid::grid_landing(sys, launch),
-            Kind::Sine => sine::sine_landing(sys.alpha, launch),
+            Kind::Sine(b) => sine::sine_landing(b, launch),
             Kind::Cubic(p) => piecewise::piecewise_landing::<piecewise::CubicGap>(p, launch),
             Kind::General(p) => piecewise::piecewise_landing::<poly::Poly>(p, launch),
         }

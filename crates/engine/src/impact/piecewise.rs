@@ -434,8 +434,8 @@ pub(super) fn piecewise_landing<G: PieceGap>(
             let t0 = m as f64 - phi;
             let t1 = t0 + 1.0;
             let margin = margin0 + 1e-9 * ((v * t1).abs() + t1 * t1);
-            if z0 + t0 * (v - 0.5 * t0) > prep.top + margin
-                && z0 + t1 * (v - 0.5 * t1) > prep.top + margin
+            if z0 + t1 * (v - 0.5 * t1) > prep.top + margin
+                && z0 + t0 * (v - 0.5 * t0) > prep.top + margin
             {
                 let target = floor(phi + descent_below(z0, v, prep.top)) as i64;
                 if target > m {

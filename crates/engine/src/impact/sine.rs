@@ -47,36 +47,43 @@ const U: f64 = f64::EPSILON / 2.0;
 /// γ₂₀ = 20u/(1 − 20u), covering Horner's scheme of degree 9 (value or derivative).
 const GAMMA: f64 = 20.0 * U * (1.0 + 1e-10);
 
-/// The constants of one flight's search that depend on α.
-struct Bounds {
+/// The constants of the search that depend on α, computed once per system.
+#[derive(Clone, Debug)]
+pub(super) struct Bounds {
     alpha: f64,
     /// α times the rounding bounds of H_k and H_k' by Horner's scheme, plus e0, e1.
     err0: f64,
     err1: f64,
-    /// M₂ ≥ max(−G'') = 1 + 4π²α.
-    m2: f64,
-    /// 4π²α, and M₃ = α(2π)³ ≥ |G'''|.
+    /// 4π²α, and M₃ = α(2π)³ ≥ |G‴|.
     a4: f64,
     m3: f64,
+    /// The launch's bounds: K = α(2π)⁴/24 ≥ |G⁗|/24, and g3_max ≥ |G‴(0)|/6.
+    k: f64,
+    g3_max: f64,
+    /// The top of the band |z| ≤ α(1 + e0) that holds the table.
+    band: f64,
 }
 
 impl Bounds {
-    fn new(alpha: f64) -> Bounds {
+    pub(super) fn new(alpha: f64) -> Bounds {
         let t = &SINE;
+        let a4 = alpha * 4.0 * PI * PI;
         Bounds {
             alpha,
             err0: alpha * (t.e0 + (GAMMA + 4.0 * U) * t.mag0),
             err1: alpha * (t.e1 + (GAMMA + 4.0 * U) * t.mag1),
-            m2: (1.0 + alpha * 4.0 * PI * PI) * (1.0 + 1e-12),
-            a4: alpha * 4.0 * PI * PI,
+            a4,
             m3: alpha * 8.0 * PI * PI * PI * (1.0 + 1e-12),
+            k: alpha * 16.0 * PI.powi(4) / 24.0 * (1.0 + 1e-12),
+            g3_max: a4 * 2.0 * PI * (1.0 + 1e-12) / 6.0,
+            band: alpha * (1.0 + t.e0),
         }
     }
 }
 
 /// The next contact on the sine table (see the module header).
-pub(super) fn sine_landing(alpha: f64, launch: &Launch) -> Result<Landing, FlightError> {
-    let b = Bounds::new(alpha);
+pub(super) fn sine_landing(b: &Bounds, launch: &Launch) -> Result<Landing, FlightError> {
+    let alpha = b.alpha;
     let phi = launch.phase;
     let v = launch.v;
     let w = launch.w;
@@ -88,7 +95,7 @@ pub(super) fn sine_landing(alpha: f64, launch: &Launch) -> Result<Landing, Fligh
     let z0 = alpha * s_phi + h0;
     // The band |z| ≤ α, with a margin far above the rounding of the crossing times.
     let margin = 1e-9 * (1.0 + z0.abs() + v * v);
-    let (up, down) = match crossing_times(z0, v, alpha * (1.0 + SINE.e0) + margin) {
+    let (up, down) = match crossing_times(z0, v, b.band + margin) {
         Some((u, d)) if d > 0.0 => (u.max(0.0), d),
         _ => (f64::INFINITY, f64::INFINITY),
     };
@@ -101,15 +108,14 @@ pub(super) fn sine_landing(alpha: f64, launch: &Launch) -> Result<Landing, Fligh
         // −αS''/2 = α(2π)² S/2 and −αS'''/6 = α(2π)² S'/6, with S within `es` and S'
         // within `ed` of the values from H_k (bounds that also cover the rounding of
         // the coefficients computed here).
-        let a4 = alpha * 4.0 * PI * PI;
+        let a4 = b.a4;
         let es = 2.0 * (SINE.e0 + GAMMA * SINE.mag0) + 8.0 * U;
         let ed = 2.0 * (SINE.e1 + GAMMA * SINE.mag1) + 64.0 * U;
         let g2 = -0.5 + 0.5 * a4 * (s_phi - es);
-        let k = alpha * 16.0 * PI.powi(4) / 24.0 * (1.0 + 1e-12);
+        let k = b.k;
         // Most launches are cleared up to the ball's rise above the band with the bound
         // |g3| ≤ α(2π)³/6, without the table's slope at the launch.
-        let g3_max = a4 * 2.0 * PI * (1.0 + 1e-12) / 6.0;
-        if w > 0.0 && up < f64::INFINITY && clears(w, g2, g3_max, k, up) {
+        if w > 0.0 && up < f64::INFINITY && clears(w, g2, b.g3_max, k, up) {
             up
         } else {
             let ds_phi = eval_d(h, x0).1;
@@ -146,14 +152,14 @@ pub(super) fn sine_landing(alpha: f64, launch: &Launch) -> Result<Landing, Fligh
                 } else {
                     0.0
                 };
-                if step.is_nan() || step <= 0.0 || gap_at(&b, z0, v, phi, step) <= 0.0 {
+                if step.is_nan() || step <= 0.0 || gap_at(b, z0, v, phi, step) <= 0.0 {
                     return Err(FlightError::NoLiftOff);
                 }
                 step
             }
         }
     };
-    search(&b, launch, z0, start, up, down, margin)
+    search(b, launch, z0, start, up, down, margin)
 }
 
 /// Flights from the table up to this long are landed from the gap's Taylor series at
@@ -362,6 +368,10 @@ fn piece_landing(
     let mag = zc.abs() + vc.abs() * L + L * L;
     let err_c = alpha * (SINE.cubic_err[k] + 16.0 * U) + 8.0 * U * mag;
     let derr_c = alpha * (SINE.cubic_derr[k] + 16.0 * U) + 8.0 * U * (vc.abs() + L);
+    // On the piece −G'' = 1 − 4π²α S ≤ 1 − 4π²α·bottom[k], often far below the global
+    // M₂ (near the sine's top, where the (1, 1) orbits land): steps within the piece use
+    // it (a step beyond the piece's end is cut there).
+    let m2 = ((1.0 - b.a4 * SINE.bottom[k]) * (1.0 + 1e-12) + b.a4 * 1e-15).max(1e-9);
     while *steps < MAX_SINE_STEPS {
         *steps += 1;
         let g = ((c[3] * x + c[2]) * x + c[1]) * x + c[0];
@@ -371,9 +381,9 @@ fn piece_landing(
             break;
         }
         let slope = (3.0 * c[3] * x + 2.0 * c[2]) * x + c[1] - derr_c;
-        let next = x + safe_step(a, slope, b.m2);
+        let next = x + safe_step(a, slope, m2);
         if next >= L {
-            return Err(next);
+            return Err(L);
         }
         x = next;
     }
@@ -397,10 +407,10 @@ fn piece_landing(
             let (dg, df) = carry_slopes(b, dg, hd, hs, newton);
             return Ok((x + newton, dg, df));
         }
-        let step = safe_step(a, dg - derr, b.m2);
+        let step = safe_step(a, dg - derr, m2);
         let next = x + step;
         if next >= L {
-            return Err(next);
+            return Err(L);
         }
         // An upper bound of G at `next`: G(x) + G'(x) h + max(G'') h²/2, with
         // max(G'') ≤ −1 + 4π²α. Within three error bounds of zero (the usual case after
@@ -505,7 +515,7 @@ mod tests {
                 v,
                 w,
             };
-            let got = sine_landing(alpha, &launch)
+            let got = sine_landing(&Bounds::new(alpha), &launch)
                 .unwrap_or_else(|e| panic!("{alpha} {launch:?}: {e:?}"));
             let reference = brute_force(alpha, phi, w, got.flight + 0.01);
             // Sampling can miss a dip shallower than about α (2π)² 10⁻¹⁰: then

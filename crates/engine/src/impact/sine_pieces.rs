@@ -39,6 +39,8 @@ pub(super) struct SinePieces {
     pub h: [[f64; DEG + 1]; N],
     /// An upper bound of S on piece k.
     pub top: [f64; N],
+    /// A lower bound of S on piece k.
+    pub bottom: [f64; N],
     /// C_k: a cubic close to S on piece k (coefficients of s^0..s^3).
     pub cubic: [[f64; 4]; N],
     /// A bound of |S − C_k| on piece k.
@@ -231,6 +233,7 @@ const fn half_ulp(x: f64) -> f64 {
 const fn build() -> SinePieces {
     let mut h = [[0.0; DEG + 1]; N];
     let mut top = [0.0; N];
+    let mut bottom = [0.0; N];
     let mut cubic = [[0.0; 4]; N];
     let mut cubic_err = [0.0; N];
     let mut cubic_derr = [0.0; N];
@@ -315,12 +318,18 @@ const fn build() -> SinePieces {
             high + powi(two_pi * (1.0 + 1e-15), DEG + 1) * powi(L, DEG + 1) / factorial(DEG + 1);
         // The largest value of S on [k/N, (k+1)/N]: 1 where the piece holds ¼ (the only
         // maximum), else at an end (S is monotone between its extrema ¼ and ¾).
+        let (a, _) = sin_cos_2pi(k, N);
+        let (b, _) = sin_cos_2pi(k + 1, N);
         top[k] = if 4 * k <= N && N < 4 * (k + 1) {
             1.0
         } else {
-            let (a, _) = sin_cos_2pi(k, N);
-            let (b, _) = sin_cos_2pi(k + 1, N);
             max(a.0, b.0) + 1e-15
+        };
+        // The smallest: −1 where the piece holds ¾, else at an end.
+        bottom[k] = if 4 * k <= 3 * N && 3 * N < 4 * (k + 1) {
+            -1.0
+        } else {
+            -max(-a.0, -b.0) - 1e-15
         };
         k += 1;
     }
@@ -343,6 +352,7 @@ const fn build() -> SinePieces {
     SinePieces {
         h,
         top,
+        bottom,
         cubic,
         cubic_err,
         cubic_derr,
@@ -446,7 +456,7 @@ mod tests {
                 let cubic = eval_exact(&[cb[0], cb[1], cb[2], cb[3], 0., 0., 0., 0., 0., 0.], s).0;
                 let dc = dist(cubic, sin);
                 assert!(dc <= t.cubic_err[k], "piece {k} s {s}: {dc:e}");
-                assert!(sin.0 <= t.top[k], "piece {k} s {s}");
+                assert!(sin.0 <= t.top[k] && sin.0 >= t.bottom[k], "piece {k} s {s}");
                 worst0 = worst0.max(d0);
                 worst1 = worst1.max(d1);
                 worst_cubic = worst_cubic.max(dc / t.cubic_err[k]);
@@ -465,17 +475,24 @@ mod tests {
     }
 
     #[test]
-    fn tops_are_attained() {
-        // The top of each piece is the sine's maximum there (at an end, or 1).
+    fn tops_and_bottoms_are_attained() {
+        // The top and bottom of each piece are the sine's extremes there (at an end, or
+        // ±1 at ¼ and ¾).
         for k in 0..N {
             let a = (2.0 * std::f64::consts::PI * k as f64 / N as f64).sin();
             let b = (2.0 * std::f64::consts::PI * (k + 1) as f64 / N as f64).sin();
-            let want = if k == N / 4 - 1 || k == N / 4 {
+            let top = if k == N / 4 - 1 || k == N / 4 {
                 1.0
             } else {
                 a.max(b)
             };
-            assert!((SINE.top[k] - want).abs() < 1e-14, "{k}");
+            let bottom = if k == 3 * N / 4 - 1 || k == 3 * N / 4 {
+                -1.0
+            } else {
+                a.min(b)
+            };
+            assert!((SINE.top[k] - top).abs() < 1e-14, "{k}");
+            assert!((SINE.bottom[k] - bottom).abs() < 1e-14, "{k}");
         }
     }
 }
