@@ -5,9 +5,10 @@
 //!   v' = (1 + r) f'(t') − r (v − (t' − t)), computed as v' = f'(t') − r u_rel.
 //! * `stick`: complete chattering was detected. After an impact with relative velocity
 //!   w where the table's acceleration f'' > −1, the following impacts shrink
-//!   geometrically and accumulate at t_c ≈ t + 2w / ((1 + f'')(1 − r)). Once that
-//!   window is shorter than [`CHATTER_WINDOW`] (its error is then far below the f64
-//!   resolution of time) the map jumps to t_c and the ball rides on the table.
+//!   geometrically and accumulate at t + T, T ≈ T₀ = 2w / ((1 + f'')(1 − r)). The map
+//!   estimates T to third order in T₀ (see `Chatter`) and, once the bound of the terms
+//!   left out is below [`CHATTER_ERROR`] (10⁻¹⁷, far below the f64 resolution of time),
+//!   jumps to t + T; the ball rides on the table.
 //! * `release`: the ball leaves the table at the first instant after which f'' < −1
 //!   (a smooth crossing, or a jump at a breakpoint of a piecewise table).
 //!

@@ -4,9 +4,11 @@
 //! real root of a polynomial on an interval". Roots are isolated without any time grid:
 //! the roots of the derivative (found recursively; in closed form up to degree 3, on
 //! fixed-size arrays) split the interval into monotone pieces, each piece holds at most
-//! one root, and a sign change is refined by a safeguarded Halley–bisection iteration to
-//! full precision. A critical point where the value is zero within its rounding bound is
-//! a touching (double) root: grazing contacts are found, not skipped.
+//! one root, and a sign change is refined to full precision inside a shrinking bracket:
+//! by safeguarded Halley–bisection steps in general, and for a cubic (the common case)
+//! by fourth-order steps from the inverse Hermite interpolation of the segment's ends. A
+//! critical point where the value is zero within its rounding bound is a touching
+//! (double) root: grazing contacts are found, not skipped.
 
 /// Largest number of coefficients a [`Poly`] holds (degree up to `MAX_COEFFS - 1`).
 pub const MAX_COEFFS: usize = 8;

@@ -11,11 +11,12 @@
 //! polynomials on the hot path. A unit test holds the two to the same contacts.
 //!
 //! Everything that depends only on the table and α is computed once per system
-//! ([`Prepared`], built by [`super::FlightSolver`]): each piece's α-scaled gap
-//! coefficients, α times its maximum (the skip bound), α times the table's range. A
-//! flight then does no allocation and no dispatch: it evaluates the launch piece's
-//! quotient, walks the later pieces with a two-comparison skip test, and isolates one
-//! cubic root on the piece where the ball lands.
+//! ([`Prepared`], built by `FlightSolver`): each piece's α-scaled gap coefficients, α
+//! times its maximum (the skip bound), α times the table's range. A flight then does no
+//! allocation and no dispatch: it proves the launch piece's quotient free of roots in a
+//! few operations (or finds its root in closed form), skips the later pieces where the
+//! ball's height at both ends is above the piece's maximum (and whole periods where it is
+//! above the table's top), and isolates one cubic root on the piece where the ball lands.
 
 use super::{crossing_times, floor, landing_on, FlightError, Landing, Launch, MAX_FLIGHT_PIECES};
 use crate::exact_sum::{ball_at, flight_time};

@@ -1,38 +1,41 @@
 //! The exact solver on the sine table, at the cost of a polynomial one.
 //!
-//! The sine is replaced, piece by piece, by polynomials with rigorous error bounds
-//! ([`super::sine_pieces`]: 64 pieces per period, degree 9, |sin 2πt − H_k| ≤ e0 ≈
-//! 1.2·10⁻¹⁶, below the rounding of f64 near 1, and better than `sin` of a rounded
-//! argument 2πt). The true gap G = ball − α S then satisfies, on piece k,
-//! |G − (ball − α C_k)| ≤ α·cubic_err[k] with C_k a cubic close to S (its Chebyshev
-//! truncation on the piece), and
-//! |G − (ball − α H_k)| ≤ α e0. A flight is searched as follows; no step can skip a
-//! contact:
+//! The sine S(t) = sin 2πt is replaced, piece by piece, by polynomials with rigorous
+//! error bounds ([`super::sine_pieces`]: 64 pieces per period; on each, H_k of degree 9
+//! with |S − H_k| ≤ e0 ≈ 1.1·10⁻¹⁶, below the rounding of f64 near 1 and better than
+//! `sin` of a rounded argument 2πt, and a cubic C_k with |S − C_k| ≤ cubic_err[k] ≈
+//! 3·10⁻⁸). The true gap G = ball − α S is therefore known, on piece k, to within
+//! α·cubic_err[k] from the cubic and to within α e0 from H_k. A flight is searched as
+//! follows; no step can pass over a contact:
 //!
 //! 1. **Launch.** After an impact (on the table, relative velocity w > 0) Taylor's
 //!    theorem at the launch with |S⁗| ≤ (2π)⁴ gives, for every τ > 0, the lower bound
 //!    G(τ)/τ ≥ ℓ(τ) = w + g₂ τ + g₃ τ² − K τ³ (g₂, g₃ from H_k at the launch, lowered by
 //!    their error bounds; K = α(2π)⁴/24). No contact lies before the first root of ℓ.
 //!    Almost always a single evaluation of a monotone lower bound of ℓ shows it has no
-//!    root before the ball rises above the band |z| ≤ α. A release (w = 0) divides by τ²
-//!    instead; a launch above the table needs no bound (G(0) > 0).
+//!    root before the ball rises above the band |z| ≤ α. If ℓ has a root within 10⁻³
+//!    (chattering), the flight is landed as the root of G(τ)/τ from the sine's Taylor
+//!    series at the launch, where that function is proven monotone: full relative
+//!    precision however small the gap. A release (w = 0) divides by τ² instead; a
+//!    launch above the table needs no bound (G(0) > 0).
 //! 2. **Above the band.** Between the ball's crossings of the band's top (plus a margin
 //!    far above their rounding) it is above every table height: skipped in one jump,
 //!    whatever the flight's length.
 //! 3. **Pieces.** A piece is skipped when the ball's lowest point on it (at an end: the
 //!    ball's path is concave) is above the sine's maximum there. Otherwise the ball's
-//!    state at the piece's centre is computed in double-double arithmetic and the first
-//!    root of the cubic gap lowered by its bound, ball − α C_k − δ, is isolated exactly
-//!    ([`crate::poly::first_root_low_degree`]): a contact of the true gap can only lie
-//!    where that cubic is ≤ 0, so none lies before its first root s₁.
-//! 4. **Landing.** From s₁ the true gap is followed by safe steps: at x the lower bound
-//!    A + B h − M₂ h²/2 of G(x + h) (A, B: the value and slope of ball − α H_k at x
-//!    lowered by e0, e1 and their rounding bounds; M₂ = 1 + 4π²α ≥ −G'') is positive
-//!    up to its first root, the next x. Near a simple contact this converges
-//!    quadratically (two or three steps from s₁). The ball lands at the first x where
-//!    A ≤ 0: no contact before x, and the gap at x is within twice its error bound
-//!    (a few ulps) of zero. A grazing pass that does not touch is walked past the same
-//!    way, and a tangent contact is found.
+//!    state at the piece's centre is computed in double-double arithmetic, and the gap
+//!    is followed by safe steps: at x, with A and B lower bounds of G(x) and G'(x),
+//!    G(x + h) ≥ A + B h − M₂ h²/2 (M₂ ≥ −G'' on the piece: 1 − 4π²α min S), so no
+//!    contact lies before that parabola's first positive root, the next x. While the
+//!    gap is large next to the cubic's bound, A and B come from the cubic (a few
+//!    operations each).
+//! 4. **Landing.** Within a few cubic bounds of zero the steps continue with H_k. From
+//!    there one step usually reaches the contact to within three error bounds (a few
+//!    ulps), which an upper bound of G proves without another evaluation; the landing
+//!    is refined to the computed gap's zero, and the slopes are carried there by their
+//!    Taylor expansions. Near a simple contact the steps converge quadratically; a
+//!    grazing pass is walked past, a tangent contact approached until its gap is within
+//!    its error bound.
 //!
 //! The work is bounded: at most [`MAX_SINE_STEPS`] pieces and safe steps per flight.
 

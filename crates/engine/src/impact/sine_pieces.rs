@@ -11,17 +11,19 @@
 //!
 //! * |S(c_k + s) − H_k(s)| ≤ [`SinePieces::e0`]: the Lagrange remainder
 //!   (2π)¹⁰ L¹⁰/10! (|S⁽¹⁰⁾| ≤ (2π)¹⁰) plus Σ_j (½ ulp(h_{k,j}) + 10⁻²⁸) L^j for the
-//!   rounding of the coefficients; about 1.2·10⁻¹⁶, the rounding of f64 near 1.
+//!   rounding of the coefficients; about 1.1·10⁻¹⁶, the rounding of f64 near 1.
 //! * |S'(c_k + s) − H_k'(s)| ≤ [`SinePieces::e1`], the same argument one order down
 //!   (H_k' is the degree-8 Taylor polynomial of S').
 //! * |S(c_k + s) − C_k(s)| ≤ [`SinePieces::cubic_err`]`[k]`, where C_k (the cubic the
-//!   exact root isolation works on) is the Chebyshev truncation to degree 3 of the
+//!   solver's first steps evaluate) is the Chebyshev truncation to degree 3 of the
 //!   Taylor polynomial on [−L, L], computed in double-double and rounded: the bound is
 //!   Σ_{m ≥ 4} |a_m| (the Chebyshev coefficients left out, |T_m| ≤ 1) plus the Taylor
 //!   remainder and the rounding of C_k's coefficients; about 3·10⁻⁸, eight times less
-//!   than the cubic Taylor truncation's.
-//! * S ≤ [`SinePieces::top`]`[k]` on the piece (its largest value at an end, or 1 where
-//!   the piece holds t = ¼).
+//!   than the cubic Taylor truncation's. Its slope: |S' − C_k'| ≤
+//!   [`SinePieces::cubic_derr`]`[k]` = e1 + Σ_j j |h_{k,j} − c_{k,j}| L^(j−1) (about
+//!   10⁻⁴).
+//! * bottom[k] ≤ S ≤ top[k] on the piece (its extremes at the ends, or ±1 where the
+//!   piece holds t = ¼ or ¾).
 //!
 //! Every bound is rounded up generously (a relative 10⁻³); a unit test checks them
 //! against an independent double-double evaluation of the sine on a fine sampling.
