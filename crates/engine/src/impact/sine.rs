@@ -21,21 +21,22 @@
 //! 2. **Above the band.** Between the ball's crossings of the band's top (plus a margin
 //!    far above their rounding) it is above every table height: skipped in one jump,
 //!    whatever the flight's length.
-//! 3. **Pieces.** A piece is skipped when the ball's lowest point on it (at an end: the
-//!    ball's path is concave) is above the sine's maximum there. Otherwise the ball's
-//!    state at the piece's centre is computed in double-double arithmetic, and the gap
-//!    is followed by safe steps: at x, with A and B lower bounds of G(x) and G'(x),
-//!    G(x + h) ≥ A + B h − M₂ h²/2 (M₂ ≥ −G'' on the piece: 1 − 4π²α min S), so no
-//!    contact lies before that parabola's first positive root, the next x. While the
-//!    gap is large next to the cubic's bound, A and B come from the cubic (a few
-//!    operations each).
-//! 4. **Landing.** Within a few cubic bounds of zero the steps continue with H_k. From
-//!    there one step usually reaches the contact to within three error bounds (a few
-//!    ulps), which an upper bound of G proves without another evaluation; the landing
-//!    is refined to the computed gap's zero, and the slopes are carried there by their
-//!    Taylor expansions. Near a simple contact the steps converge quadratically; a
-//!    grazing pass is walked past, a tangent contact approached until its gap is within
-//!    its error bound.
+//! 3. **Pieces.** Between its crossings of the sine's maximum on a piece (plus the
+//!    band's margin) the ball is above the table there: a piece lying between them is
+//!    skipped, and on a piece it enters descending the search starts at the crossing.
+//!    There the ball's state at the piece's centre is computed in double-double
+//!    arithmetic, and the gap is followed by safe steps: at x, with A and B lower bounds
+//!    of G(x) and G'(x), G(x + h) ≥ A + B h − M₂ h²/2 (M₂ ≥ −G'' on the piece:
+//!    1 − 4π²α min S), so no contact lies before that parabola's first positive root,
+//!    the next x. While the gap is large A and B come from the cubic (a few operations
+//!    each).
+//! 4. **Landing.** Once the next step would be below 3·10⁻⁸ (or the gap is within a few
+//!    cubic bounds of zero) the steps continue with H_k. From there one step usually
+//!    reaches the contact to within three error bounds (a few ulps), which an upper
+//!    bound of G proves without another evaluation; the landing is refined to the
+//!    computed gap's zero, and the slopes are carried there by their Taylor expansions.
+//!    Near a simple contact the steps converge quadratically; a grazing pass is walked
+//!    past, a tangent contact approached until its gap is within its error bound.
 //!
 //! The work is bounded: at most [`MAX_SINE_STEPS`] pieces and safe steps per flight.
 
@@ -57,9 +58,8 @@ pub(super) struct Bounds {
     /// α times the rounding bounds of H_k and H_k' by Horner's scheme, plus e0, e1.
     err0: f64,
     err1: f64,
-    /// 4π²α, and M₃ = α(2π)³ ≥ |G‴|.
+    /// 4π²α.
     a4: f64,
-    m3: f64,
     /// The launch's bounds: K = α(2π)⁴/24 ≥ |G⁗|/24, and g3_max ≥ |G‴(0)|/6.
     k: f64,
     g3_max: f64,
@@ -76,7 +76,6 @@ impl Bounds {
             err0: alpha * (t.e0 + (GAMMA + 4.0 * U) * t.mag0),
             err1: alpha * (t.e1 + (GAMMA + 4.0 * U) * t.mag1),
             a4,
-            m3: alpha * 8.0 * PI * PI * PI * (1.0 + 1e-12),
             k: alpha * 16.0 * PI.powi(4) / 24.0 * (1.0 + 1e-12),
             g3_max: a4 * 2.0 * PI * (1.0 + 1e-12) / 6.0,
             band: alpha * (1.0 + t.e0),
@@ -310,21 +309,36 @@ fn search(
             continue;
         }
         if tb > from {
-            // Step 3: skip the piece where the ball is above the sine's maximum on it.
-            let z_lo = z0 + lo * (v - 0.5 * lo);
-            let z_hi = z0 + tb * (v - 0.5 * tb);
-            let margin = 1e-9 * (1.0 + z0.abs() + (v * tb).abs() + tb * tb);
-            if z_lo.min(z_hi) <= alpha * (SINE.top[k] + SINE.e0) + margin {
-                let (zc, vc) = ball_at(z0, v, flight_time(m, ck, phi));
-                // The search starts a little before `from` (the rough centre time is off
-                // by its rounding), never after it.
-                let sa = ((from - tc) - 4.0 * U * (1.0 + from.abs() + tc.abs())).max(-L);
-                match piece_landing(b, k, zc, vc, sa, &mut steps) {
-                    Ok((x, vrel, df)) => {
-                        return Ok(landing_on(launch, m, ck, x, tc + x, vrel, df));
+            // Step 3: the ball is above the sine's maximum on this piece between its
+            // crossings of that level (with the band's margin, far above their
+            // rounding): the piece is skipped if it lies between them, and the search
+            // starts at the descending crossing if the piece starts between them.
+            let level = alpha * (SINE.top[k] + SINE.e0) + margin;
+            let disc = v * v + 2.0 * (z0 - level);
+            let mut start = lo;
+            if disc >= 0.0 {
+                let s = disc.sqrt();
+                if lo >= v - s {
+                    if v + s >= tb {
+                        k += 1;
+                        if k == N {
+                            k = 0;
+                            m += 1;
+                        }
+                        continue;
                     }
-                    Err(cleared) => from = from.max(tc + cleared),
+                    start = start.max(v + s);
                 }
+            }
+            let (zc, vc) = ball_at(z0, v, flight_time(m, ck, phi));
+            // The search starts a little before `start` (the rough centre time is off
+            // by its rounding), never after it.
+            let sa = ((start - tc) - 4.0 * U * (1.0 + start.abs() + tc.abs())).max(-L);
+            match piece_landing(b, k, zc, vc, sa, &mut steps) {
+                Ok((x, vrel, df)) => {
+                    return Ok(landing_on(launch, m, ck, x, tc + x, vrel, df));
+                }
+                Err(cleared) => from = from.max(tc + cleared),
             }
         }
         k += 1;
@@ -378,12 +392,13 @@ fn piece_landing(
     while *steps < MAX_SINE_STEPS {
         *steps += 1;
         let g = ((c[3] * x + c[2]) * x + c[1]) * x + c[0];
-        // Within a few times its error bound of zero the cubic can say no more.
+        // Within a few times its error bound of zero the cubic can say no more; once the
+        // next step is below 3·10⁻⁸ one step on the degree-9 piece finishes (step 4).
         let a = g - err_c;
-        if a <= 2.0 * err_c {
+        let slope = (3.0 * c[3] * x + 2.0 * c[2]) * x + c[1] - derr_c;
+        if a <= 2.0 * err_c || a <= 3e-8 * slope.abs() {
             break;
         }
-        let slope = (3.0 * c[3] * x + 2.0 * c[2]) * x + c[1] - derr_c;
         let next = x + safe_step(a, slope, m2);
         if next >= L {
             return Err(L);
@@ -417,14 +432,14 @@ fn piece_landing(
         }
         // An upper bound of G at `next`: G(x) + G'(x) h + max(G'') h²/2, with
         // max(G'') ≤ −1 + 4π²α. Within three error bounds of zero (the usual case after
-        // one step from a gap of about 10⁻⁹), the ball lands there, with the slopes
-        // carried over by their Taylor expansions G'(x) + G''(x) h and
-        // f'(x) + f''(x) h (f'' = −4π²α S), whose remainders M₃ h²/2 are kept below
-        // the rounding of G': no second evaluation.
+        // one step from a gap near 10⁻⁸), the ball lands there, with the slopes carried
+        // over by their Taylor expansions to second order (`carry_slopes`), whose
+        // remainders α(2π)⁴ h³/6 are kept below the rounding of G': no second
+        // evaluation.
         let upper = g + err + (dg + derr) * step + 0.5 * (b.a4 - 1.0) * step * step;
-        if upper <= 3.0 * err && b.m3 * step * step <= 2.0 * U * dg.abs() {
-            let g1 = g + dg * step + 0.5 * curv * step * step;
-            let dg1 = dg + curv * step;
+        if upper <= 3.0 * err && 4.0 * b.k * step * step * step <= 2.0 * U * dg.abs() {
+            let g1 = g + step * (dg + step * (0.5 * curv + step * b.a4 * hd / 6.0));
+            let (dg1, _) = carry_slopes(b, dg, hd, hs, step);
             let newton = if g1 > 0.0 && dg1 < 0.0 {
                 g1 / -dg1
             } else {
@@ -444,12 +459,16 @@ fn piece_landing(
 }
 
 /// The gap's slope G' and the table's f' at x + h from their values `dg` and α `hd` at
-/// x, with S(x) = `hs`: G'' = −1 + 4π²α S and f'' = −4π²α S, remainders below
-/// M₃ h²/2 (callers keep h small enough for that to be below the rounding).
+/// x, with S(x) = `hs`, S'(x) = `hd`, by Taylor's formula to second order:
+/// G'' = −1 + 4π²α S, G''' = 4π²α S', f'' = −4π²α S, f''' = −4π²α S'; the remainders are
+/// below α(2π)⁴ h³/6 (callers keep h small enough for that to be below the rounding).
 #[inline]
 fn carry_slopes(b: &Bounds, dg: f64, hd: f64, hs: f64, h: f64) -> (f64, f64) {
-    let curv = b.a4 * hs;
-    (dg + (curv - 1.0) * h, b.alpha * hd - curv * h)
+    let (curv, jerk) = (b.a4 * hs, b.a4 * hd);
+    (
+        dg + h * (curv - 1.0 + 0.5 * jerk * h),
+        b.alpha * hd - h * (curv + 0.5 * jerk * h),
+    )
 }
 
 /// The first positive root of a + slope·h − m2 h²/2 (a > 0), in the form free of
