@@ -104,7 +104,7 @@ pub(crate) struct FlightSolver {
 #[derive(Clone, Debug)]
 enum Kind {
     Grid,
-    Sine(sine::Bounds),
+    Sine(Box<sine::Bounds>),
     /// Every piece of degree ≤ 3: fixed-size storage.
     Cubic(piecewise::Prepared<piecewise::CubicPiece>),
     General(piecewise::Prepared<piecewise::GeneralPiece>),
@@ -115,7 +115,7 @@ impl FlightSolver {
     pub(crate) fn new(sys: &System, solver: Solver) -> FlightSolver {
         let kind = match (solver, sys.table.shape()) {
             (Solver::Grid, _) => Kind::Grid,
-            (Solver::Exact, Shape::Sine) => Kind::Sine(sine::Bounds::new(sys.alpha)),
+            (Solver::Exact, Shape::Sine) => Kind::Sine(Box::new(sine::Bounds::new(sys.alpha))),
             (Solver::Exact, Shape::Piecewise(_)) if sys.table.max_degree() <= 3 => {
                 Kind::Cubic(piecewise::Prepared::new::<piecewise::CubicGap>(sys))
             }

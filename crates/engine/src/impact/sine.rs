@@ -65,6 +65,21 @@ pub(super) struct Bounds {
     g3_max: f64,
     /// The top of the band |z| ≤ α(1 + e0) that holds the table.
     band: f64,
+    /// Per piece, the bounds that depend on α.
+    pieces: [PieceBounds; N],
+}
+
+/// The bounds of one piece that depend on α.
+#[derive(Clone, Copy, Debug, Default)]
+struct PieceBounds {
+    /// α times the cubic's bounds (value and slope), plus the rounding of forming its
+    /// α-scaled coefficients.
+    err_c: f64,
+    derr_c: f64,
+    /// M₂ on the piece: −G'' = 1 − 4π²α S ≤ 1 − 4π²α·bottom[k], often far below the
+    /// global 1 + 4π²α (near the sine's top, where the (1, 1) orbits land). Steps within
+    /// the piece use it; a step reaching past the piece's end is cut there.
+    m2: f64,
 }
 
 impl Bounds {
@@ -79,6 +94,11 @@ impl Bounds {
             k: alpha * 16.0 * PI.powi(4) / 24.0 * (1.0 + 1e-12),
             g3_max: a4 * 2.0 * PI * (1.0 + 1e-12) / 6.0,
             band: alpha * (1.0 + t.e0),
+            pieces: std::array::from_fn(|k| PieceBounds {
+                err_c: alpha * (t.cubic_err[k] + 16.0 * U),
+                derr_c: alpha * (t.cubic_derr[k] + 16.0 * U),
+                m2: ((1.0 - a4 * t.bottom[k]) * (1.0 + 1e-12) + a4 * 1e-15).max(1e-9),
+            }),
         }
     }
 }
@@ -383,12 +403,9 @@ fn piece_landing(
     // Bounds of |G − gap with C_k| and of its slope's error, with the rounding of the
     // coefficients above and of Horner's scheme on them.
     let mag = zc.abs() + vc.abs() * L + L * L;
-    let err_c = alpha * (SINE.cubic_err[k] + 16.0 * U) + 8.0 * U * mag;
-    let derr_c = alpha * (SINE.cubic_derr[k] + 16.0 * U) + 8.0 * U * (vc.abs() + L);
-    // On the piece −G'' = 1 − 4π²α S ≤ 1 − 4π²α·bottom[k], often far below the global
-    // M₂ (near the sine's top, where the (1, 1) orbits land): steps within the piece use
-    // it (a step beyond the piece's end is cut there).
-    let m2 = ((1.0 - b.a4 * SINE.bottom[k]) * (1.0 + 1e-12) + b.a4 * 1e-15).max(1e-9);
+    let err_c = b.pieces[k].err_c + 8.0 * U * mag;
+    let derr_c = b.pieces[k].derr_c + 8.0 * U * (vc.abs() + L);
+    let m2 = b.pieces[k].m2;
     while *steps < MAX_SINE_STEPS {
         *steps += 1;
         let g = ((c[3] * x + c[2]) * x + c[1]) * x + c[0];
@@ -438,8 +455,10 @@ fn piece_landing(
         // evaluation.
         let upper = g + err + (dg + derr) * step + 0.5 * (b.a4 - 1.0) * step * step;
         if upper <= 3.0 * err && 4.0 * b.k * step * step * step <= 2.0 * U * dg.abs() {
-            let g1 = g + step * (dg + step * (0.5 * curv + step * b.a4 * hd / 6.0));
-            let (dg1, _) = carry_slopes(b, dg, hd, hs, step);
+            // The computed gap and slope at `next` (to second and first order: enough for
+            // the Newton correction, itself of the order of the error bound).
+            let g1 = g + step * (dg + 0.5 * curv * step);
+            let dg1 = dg + curv * step;
             let newton = if g1 > 0.0 && dg1 < 0.0 {
                 g1 / -dg1
             } else {
