@@ -1,8 +1,8 @@
 //! `bouncemap bench`: measurements on this machine, printed as a table (or json).
 //!
 //! * Solver throughput: events per second of the exact and the grid solver on the same
-//!   orbits (period-1, period-2, chaotic, sticking; the median of five alternating
-//!   rounds per solver), each with its accuracy against an
+//!   orbits (period-1, period-2, chaotic, sticking on F_D; period-1 on the sine; the
+//!   median of five alternating rounds per solver), each with its accuracy against an
 //!   independent reference: the closed-form (1, 1) fixed point; the (2, 2) cycle solved
 //!   by Newton's method on its four defining equations ([`orbits::two_cycle`]);
 //!   for chaotic and sticking orbits, one step of each solver from the same exact
@@ -21,6 +21,7 @@ use bouncemap_engine::jobs::{available_cores, Control, Executor};
 use bouncemap_engine::map::{Event, EventKind, ImpactMap, State};
 use bouncemap_engine::orbits;
 use bouncemap_engine::sweep::{self, Outcome, SweepJob, SweepSpec};
+use bouncemap_engine::table::Shape;
 use bouncemap_engine::{Solver, System};
 use std::io::Write;
 use std::time::{Duration, Instant};
@@ -41,7 +42,7 @@ enum Reference {
     OneStep,
 }
 
-const CASES: [Case; 4] = [
+const CASES: [Case; 5] = [
     Case {
         name: "period-1",
         table: "fd:0.1",
@@ -69,6 +70,13 @@ const CASES: [Case; 4] = [
         alpha: 0.70,
         r: 0.5,
         reference: Reference::OneStep,
+    },
+    Case {
+        name: "sine",
+        table: "sine",
+        alpha: 0.025,
+        r: 0.8,
+        reference: Reference::FixedPoint,
     },
 ];
 
@@ -455,12 +463,18 @@ fn solver_row(c: &Case, budget: Duration) -> Result<SolverRow, InputError> {
     })
 }
 
-/// The (1, 1) fixed point's phase on an F_D table: the smaller root of
-/// α(3D t² − (2 + D) t + ½) = ½ (1 − r)/(1 + r) on the first piece.
+/// The stable (1, 1) fixed point's phase in closed form, where
+/// f'(t*) = ½ (1 − r)/(1 + r) and f''(t*) < 0: on F_D the smaller root of
+/// α(3D t² − (2 + D) t + ½) = ½ (1 − r)/(1 + r) on the first piece; on the sine
+/// 2πα cos 2πt* = ½ (1 − r)/(1 + r) with sin 2πt* > 0.
 fn fixed_point_phase(sys: &System) -> f64 {
-    let d = sys.table.d().unwrap_or(0.0);
     let a = sys.alpha;
     let target = 0.5 * (1.0 - sys.r) / (1.0 + sys.r);
+    if matches!(sys.table.shape(), Shape::Sine) {
+        let tau = 2.0 * std::f64::consts::PI;
+        return (target / (tau * a)).acos() / tau;
+    }
+    let d = sys.table.d().unwrap_or(0.0);
     let (qa, qb, qc) = (3.0 * d * a, -(2.0 + d) * a, 0.5 * a - target);
     if qa == 0.0 {
         -qc / qb
@@ -531,6 +545,15 @@ mod tests {
         let t = fixed_point_phase(&sys);
         assert!((sys.df(t) - 0.5 * 0.2 / 1.8).abs() < 1e-14);
         assert!(sys.jet(t)[2] < 0.0 && t < 0.5);
+        let sys = System::new(Table::sine(), 0.025, 0.8).unwrap();
+        let t = fixed_point_phase(&sys);
+        assert!((sys.df(t) - 0.5 * 0.2 / 1.8).abs() < 1e-14);
+        assert!(sys.jet(t)[2] < 0.0);
+        // The exact map returns to it after one period.
+        let st = State::launch(&sys, 0, t, 0.5, 0.0).unwrap();
+        let e = ImpactMap::new(sys, Solver::Exact, st).step().unwrap();
+        assert_eq!(e.period, 1);
+        assert!((e.phase - t).abs() < 1e-13 && (e.v - 0.5).abs() < 1e-13);
     }
 
     #[test]

@@ -15,36 +15,58 @@ pub fn two_sum(a: f64, b: f64) -> (f64, f64) {
     (s, e)
 }
 
-/// `a * b` as an exact unevaluated sum `(p, e)`.
+/// `a * b` as an exact unevaluated sum `(p, e)` (Dekker's product: exact unless a
+/// product overflows or underflows, far outside the engine's ranges). Without a fused
+/// multiply-add in the target's baseline instruction set, `f64::mul_add` is a library
+/// call; this is a dozen inline operations with the same result.
 #[inline]
 pub fn two_prod(a: f64, b: f64) -> (f64, f64) {
     let p = a * b;
-    (p, a.mul_add(b, -p))
+    let (ah, al) = split(a);
+    let (bh, bl) = split(b);
+    (p, ((ah * bh - p) + ah * bl + al * bh) + al * bl)
 }
 
-/// The flight time τ = m + a − b as a double-double.
+/// Veltkamp's split: a = hi + lo exactly, each with at most 26 significant bits.
+#[inline]
+fn split(a: f64) -> (f64, f64) {
+    let c = 134_217_729.0 * a;
+    let hi = c - (c - a);
+    (hi, a - hi)
+}
+
+/// The flight time τ = m + a − b as a double-double (m ≥ 0; a, b phases in [0, 1]).
+///
+/// Usually m + a is exact (few periods, or a piece start with few bits, as F_D's 0 and
+/// ½): then one two-sum gives τ. Fast2Sum's error term a − ((m + a) − m), exact since
+/// m ≥ |a| or m = 0, says whether it is.
 #[inline]
 pub fn flight_time(m: i64, a: f64, b: f64) -> (f64, f64) {
+    let mf = m as f64;
+    let s = mf + a;
+    if s - mf == a {
+        return two_sum(s, -b);
+    }
     let (d, de) = two_sum(a, -b);
-    let (s, se) = two_sum(m as f64, d);
+    let (s, se) = two_sum(mf, d);
     let (hi, lo) = two_sum(s, se + de);
     (hi, lo)
 }
 
 /// Height z0 + v τ − τ²/2 and velocity v − τ of a ball at flight time τ (a double-double),
 /// each rounded once to f64.
+///
+/// The height is z0 + τ u with u = v − τ/2: u is a double-double (the sum v − t/2 is
+/// exact as two f64s, then − tl/2), the product t·u exact, and the terms left (t·ue,
+/// tl·u) are below the last bit of the sum's large parts; tl·ue and tl² are dropped.
 #[inline]
 pub fn ball_at(z0: f64, v: f64, tau: (f64, f64)) -> (f64, f64) {
     let (t, tl) = tau;
-    // v τ
-    let (p1, e1) = two_prod(v, t);
-    let e1 = e1 + v * tl;
-    // τ²/2
-    let (p2, e2) = two_prod(t, 0.5 * t);
-    let e2 = e2 + t * tl;
-    let (s1, f1) = two_sum(z0, p1);
-    let (s2, f2) = two_sum(s1, -p2);
-    let z = s2 + (f1 + f2 + e1 - e2);
+    let (u, ue) = two_sum(v, -0.5 * t);
+    let ue = ue - 0.5 * tl;
+    let (p, pe) = two_prod(t, u);
+    let (s, se) = two_sum(z0, p);
+    let z = s + (se + pe + t * ue + tl * u);
     let (vs, ve) = two_sum(v, -t);
     (z, vs + (ve - tl))
 }
@@ -73,7 +95,53 @@ mod tests {
         let exact = 3 * (1i128 << 56) + units(a) - units(b);
         let (hi, lo) = flight_time(3, a, b);
         assert_eq!(units(hi) + units(lo), exact);
+        // A start whose sum with the period count is not exact takes the general route.
+        let a = 1.0 - f64::EPSILON / 4.0;
+        let exact = 3 * (1i128 << 56) + units(a) - units(b);
+        let (hi, lo) = flight_time(3, a, b);
+        assert_eq!(units(hi) + units(lo), exact);
         // The plain f64 sum loses the low bits.
         assert_ne!(units(3.0 + a - b), exact);
+    }
+
+    /// The ball's height against exact rational arithmetic: every input a multiple of
+    /// 2⁻³⁰ (and below 2²⁰), so z0 + vτ − τ²/2 is a multiple of 2⁻⁶¹ computed exactly
+    /// in i128; the result must be that value correctly rounded to within one ulp.
+    #[test]
+    fn ball_height_is_rounded_once() {
+        let unit = 2f64.powi(30);
+        let mut x: u64 = 0x9e37_79b9_7f4a_7c15;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            ((x >> 11) % (1 << 40)) as i64 - (1 << 39)
+        };
+        for _ in 0..20_000 {
+            let (z0i, vi, ti) = (next() >> 8, next() >> 6, (next().abs() >> 10) + 1);
+            let (z0, v, t) = (z0i as f64 / unit, vi as f64 / unit, ti as f64 / unit);
+            // Exact: z0 + v t − t²/2 in units of 2⁻⁶¹.
+            let exact = ((z0i as i128) << 31) + 2 * (vi as i128) * (ti as i128)
+                - (ti as i128) * (ti as i128);
+            let exact = exact as f64 / 2f64.powi(61);
+            let (z, vb) = ball_at(z0, v, (t, 0.0));
+            let ulp = f64::EPSILON * exact.abs().max(f64::MIN_POSITIVE);
+            assert!((z - exact).abs() <= ulp, "{z0} {v} {t}: {z} vs {exact}");
+            assert_eq!(vb, v - t);
+        }
+    }
+
+    #[test]
+    fn two_prod_is_exact() {
+        // Against the fused multiply-add, which computes a·b − p with one rounding of an
+        // exact value: the error term must be that value.
+        let mut x = 0.123_456_789_f64;
+        for _ in 0..10_000 {
+            x = (x * 3.7 + 0.31).fract();
+            let (a, b) = (x * 1e3 - 500.0, (x * 7.3).fract() * 1e-3 + 1e-9);
+            let (p, e) = two_prod(a, b);
+            assert_eq!(p, a * b);
+            assert_eq!(e, a.mul_add(b, -p), "{a} {b}");
+        }
     }
 }

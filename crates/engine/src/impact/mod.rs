@@ -5,20 +5,26 @@
 //!   polynomial table the gap z(t) − f(t) is a polynomial on each piece; its first real
 //!   root is isolated exactly ([`crate::poly::Poly::first_root`]). The root at the launch time is
 //!   divided out of the polynomial instead of nudging time. A piece is skipped only where
-//!   the ball is provably above the table's maximum on it. On the sine table the solver
-//!   advances by steps whose length is the first zero of a rigorous lower bound of the
-//!   gap (its Taylor polynomial minus a bound on the next derivative), so no contact can
-//!   lie inside a step, then the bracketed root is polished to machine precision.
+//!   the ball is provably above the table's maximum on it. On the sine table the sine is
+//!   replaced piece by piece by polynomials with rigorous error bounds, and the solver
+//!   advances by safe steps to the first zero of a rigorous lower bound of the gap, so no
+//!   contact can lie inside a step; the landing is proven within a few ulps of zero.
 //! * [`Solver::Grid`] is the paper's Section IV method, kept for comparison: a time grid
 //!   of 10⁻² fixed in advance, a sign test of the gap at the grid nodes, and bisection to
 //!   10⁻⁹ on the first cell where the gap turns negative.
 //!
 //! Time is passed as (integer period, phase in [0, 1)); flight durations are short f64s.
+//!
+//! The impact map prepares its solver once per system (`FlightSolver`: the pieces
+//! scaled by α, the sine's α-dependent bounds); [`next_landing`] prepares one for a
+//! single flight.
 
 mod grid;
 mod piecewise;
 mod sine;
+mod sine_pieces;
 
+use super::poly;
 use super::system::System;
 use super::table::Shape;
 
@@ -81,12 +87,54 @@ pub enum FlightError {
     NoLiftOff,
 }
 
-/// The next contact after `launch`, with the chosen solver.
+/// The next contact after `launch`, with the chosen solver. (The impact map prepares
+/// its solver once, `FlightSolver`; this prepares one for a single flight.)
 pub fn next_landing(sys: &System, solver: Solver, launch: &Launch) -> Result<Landing, FlightError> {
-    match (solver, sys.table.shape()) {
-        (Solver::Grid, _) => grid::grid_landing(sys, launch),
-        (Solver::Exact, Shape::Sine) => sine::sine_landing(sys, launch),
-        (Solver::Exact, Shape::Piecewise(_)) => piecewise::poly_landing(sys, launch),
+    FlightSolver::new(sys, solver).landing(sys, launch)
+}
+
+/// A next-impact solver prepared for one system: what depends only on the table and α
+/// is computed once here, so a flight does no allocation and no dispatch beyond one
+/// match on the kind.
+#[derive(Clone, Debug)]
+pub(crate) struct FlightSolver {
+    kind: Kind,
+}
+
+#[derive(Clone, Debug)]
+enum Kind {
+    Grid,
+    Sine(Box<sine::Bounds>),
+    /// Every piece of degree ≤ 3: fixed-size storage.
+    Cubic(piecewise::Prepared<piecewise::CubicPiece>),
+    General(piecewise::Prepared<piecewise::GeneralPiece>),
+}
+
+impl FlightSolver {
+    /// The solver `solver` prepared for `sys`.
+    pub(crate) fn new(sys: &System, solver: Solver) -> FlightSolver {
+        let kind = match (solver, sys.table.shape()) {
+            (Solver::Grid, _) => Kind::Grid,
+            (Solver::Exact, Shape::Sine) => Kind::Sine(Box::new(sine::Bounds::new(sys.alpha))),
+            (Solver::Exact, Shape::Piecewise(_)) if sys.table.max_degree() <= 3 => {
+                Kind::Cubic(piecewise::Prepared::new::<piecewise::CubicGap>(sys))
+            }
+            (Solver::Exact, Shape::Piecewise(_)) => {
+                Kind::General(piecewise::Prepared::new::<poly::Poly>(sys))
+            }
+        };
+        FlightSolver { kind }
+    }
+
+    /// The next contact after `launch`; `sys` is the system this solver was prepared for.
+    #[inline]
+    pub(crate) fn landing(&self, sys: &System, launch: &Launch) -> Result<Landing, FlightError> {
+        match &self.kind {
+            Kind::Grid => grid::grid_landing(sys, launch),
+            Kind::Sine(b) => sine::sine_landing(b, launch),
+            Kind::Cubic(p) => piecewise::piecewise_landing::<piecewise::CubicGap>(p, launch),
+            Kind::General(p) => piecewise::piecewise_landing::<poly::Poly>(p, launch),
+        }
     }
 }
 

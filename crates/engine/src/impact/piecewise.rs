@@ -9,37 +9,102 @@
 //! launch piece's Taylor coefficients out instead of shifting the piece) and search them
 //! the same way; the cubic one only avoids the bookkeeping of variable-length
 //! polynomials on the hot path. A unit test holds the two to the same contacts.
+//!
+//! Everything that depends only on the table and α is computed once per system
+//! ([`Prepared`], built by `FlightSolver`): each piece's α-scaled gap coefficients, α
+//! times its maximum (the skip bound), α times the table's range. A flight then does no
+//! allocation and no dispatch: it proves the launch piece's quotient free of roots in a
+//! few operations (or finds its root in closed form), skips the later pieces where the
+//! ball's height at both ends is above the piece's maximum (and whole periods where it is
+//! above the table's top), and isolates one cubic root on the piece where the ball lands.
 
 use super::{crossing_times, floor, landing_on, FlightError, Landing, Launch, MAX_FLIGHT_PIECES};
 use crate::exact_sum::{ball_at, flight_time};
-use crate::poly::{first_root_low_degree, Poly, MAX_COEFFS};
+use crate::poly::{first_root_cubic_from, first_root_low_degree, Poly, MAX_COEFFS};
 use crate::system::System;
 use crate::table::Piece;
+use std::fmt::Debug;
 
-/// Exact solver on a piecewise polynomial table.
-pub(super) fn poly_landing(sys: &System, launch: &Launch) -> Result<Landing, FlightError> {
-    if sys.table.max_degree() <= 3 {
-        piecewise_landing::<CubicGap>(sys, launch)
-    } else {
-        piecewise_landing::<Poly>(sys, launch)
+/// A piecewise table prepared for one α: its pieces in the form one [`PieceGap`]
+/// searches, and α times the table's range.
+#[derive(Clone, Debug)]
+pub(super) struct Prepared<P> {
+    pieces: Vec<P>,
+    alpha: f64,
+    /// α times the table's rigorous bounds (min, max).
+    bottom: f64,
+    top: f64,
+}
+
+impl<P: AsRef<Span>> Prepared<P> {
+    /// Prepare `sys`'s pieces (its table must be piecewise) for the search `G`.
+    pub(super) fn new<G: PieceGap<Piece = P>>(sys: &System) -> Prepared<P> {
+        let alpha = sys.alpha;
+        let (lo, hi) = sys.table.range();
+        Prepared {
+            pieces: sys
+                .table
+                .pieces()
+                .iter()
+                .map(|p| G::prepare(p, alpha))
+                .collect(),
+            alpha,
+            bottom: alpha * lo,
+            top: alpha * hi,
+        }
+    }
+
+    /// Index of the piece containing `phase` in [0, 1) (closed on the left), as
+    /// [`crate::table::Table::segment_index`].
+    #[inline]
+    fn index(&self, phase: f64) -> usize {
+        let mut i = self.pieces.len() - 1;
+        while i > 0 && phase < self.pieces[i].as_ref().start {
+            i -= 1;
+        }
+        i
+    }
+}
+
+/// Where a piece lies in phase, and α times its rigorous maximum (the skip bound).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Span {
+    start: f64,
+    end: f64,
+    top: f64,
+}
+
+impl Span {
+    fn of(piece: &Piece, alpha: f64) -> Span {
+        Span {
+            start: piece.start,
+            end: piece.end,
+            top: alpha * piece.max,
+        }
     }
 }
 
 /// A contact found on a piece: the local variable s at contact and the gap's slope there
 /// (the relative velocity of the ball).
-struct Hit {
+pub(super) struct Hit {
     s: f64,
     slope: f64,
 }
 
 /// The gap polynomial on one table piece.
-trait PieceGap: Sized {
+pub(super) trait PieceGap: Sized {
+    /// A table piece with what this search precomputes for it.
+    type Piece: Clone + Debug + AsRef<Span>;
+
+    /// The piece prepared for amplitude `alpha`.
+    fn prepare(piece: &Piece, alpha: f64) -> Self::Piece;
+
     /// The search on the launch piece, whose local variable is the flight time τ:
     /// gap(τ) = h + w τ − τ²/2 − α (Q(τ) − Q(0) − Q'(0) τ) with Q = F shifted to the
     /// launch phase (`off` into the piece). Returns the first contact in (0, `len`] and
     /// Q(0), the table's height at launch over α.
     fn launch_piece(
-        piece: &Piece,
+        piece: &Self::Piece,
         alpha: f64,
         off: f64,
         len: f64,
@@ -48,48 +113,80 @@ trait PieceGap: Sized {
 
     /// The gap zb + vb s − s²/2 − α F(s) on a later piece, the ball at height `zb` with
     /// velocity `vb` at the piece's start.
-    fn later_piece(piece: &Piece, alpha: f64, zb: f64, vb: f64) -> Self;
+    fn later_piece(piece: &Self::Piece, zb: f64, vb: f64) -> Self;
 
     /// Value at s = 0 and the rounding bound of that value (one term, exactly c0).
     fn at_start(&self) -> (f64, f64);
 
-    /// The first root in [0, len].
+    /// The first root in [0, len]; the value at 0 is positive beyond its rounding bound.
     fn first_root(&self, len: f64) -> Option<f64>;
 
     /// The slope at s.
     fn slope(&self, s: f64) -> f64;
 
     /// The table's slope F'(s) on `piece` (in its local variable).
-    fn table_slope(piece: &Piece, s: f64) -> f64 {
-        piece.d1.eval(s)
+    fn table_slope(piece: &Self::Piece, s: f64) -> f64;
+}
+
+/// A piece for the general search: its polynomials, and the α-scaled gap template of a
+/// later piece (every coefficient but the two that depend on the ball).
+#[derive(Clone, Debug)]
+pub(super) struct GeneralPiece {
+    span: Span,
+    f: Poly,
+    d1: Poly,
+    /// α f₀ and α f₁.
+    af0: f64,
+    af1: f64,
+    /// −½ − α f₂, −α f₃, … (entries 0 and 1 unused), and the number of coefficients.
+    gap: [f64; MAX_COEFFS],
+    gap_len: usize,
+}
+
+impl AsRef<Span> for GeneralPiece {
+    fn as_ref(&self) -> &Span {
+        &self.span
     }
 }
 
 impl PieceGap for Poly {
+    type Piece = GeneralPiece;
+
+    fn prepare(piece: &Piece, alpha: f64) -> GeneralPiece {
+        let f = piece.f;
+        let fc = f.coeffs();
+        let mut gap = [0.0; MAX_COEFFS];
+        for k in 3..fc.len() {
+            gap[k] = -alpha * fc[k];
+        }
+        gap[2] = -0.5 - alpha * f.coeff(2);
+        let gap_len = fc.len().max(3);
+        GeneralPiece {
+            span: Span::of(piece, alpha),
+            f,
+            d1: piece.d1,
+            af0: alpha * f.coeff(0),
+            af1: alpha * f.coeff(1),
+            gap,
+            gap_len,
+        }
+    }
+
     fn launch_piece(
-        piece: &Piece,
+        piece: &GeneralPiece,
         alpha: f64,
         off: f64,
         len: f64,
         launch: &Launch,
     ) -> Result<(Option<Hit>, f64), FlightError> {
-        let q = piece.f.shift(off);
-        let gap = gap_with_low_terms(&q, alpha, launch.height, launch.w);
-        let search = if launch.height > 0.0 {
-            gap
-        } else {
-            lift_off_quotient(&gap, launch.w)?
-        };
-        let hit = first_positive_root(&search, len).map(|s| Hit {
-            s,
-            slope: gap.eval_d(s).1,
-        });
-        Ok((hit, q.coeff(0)))
+        general_launch_piece(&piece.f, alpha, off, len, launch)
     }
 
-    fn later_piece(piece: &Piece, alpha: f64, zb: f64, vb: f64) -> Self {
-        let f = &piece.f;
-        gap_with_low_terms(f, alpha, zb - alpha * f.coeff(0), vb - alpha * f.coeff(1))
+    fn later_piece(piece: &GeneralPiece, zb: f64, vb: f64) -> Self {
+        let mut c = piece.gap;
+        c[0] = zb - piece.af0;
+        c[1] = vb - piece.af1;
+        Poly::from_array(c, piece.gap_len)
     }
 
     fn at_start(&self) -> (f64, f64) {
@@ -107,6 +204,33 @@ impl PieceGap for Poly {
     fn slope(&self, s: f64) -> f64 {
         self.eval_d(s).1
     }
+
+    fn table_slope(piece: &GeneralPiece, s: f64) -> f64 {
+        piece.d1.eval(s)
+    }
+}
+
+/// The launch-piece search in general storage (see [`PieceGap::launch_piece`]) on the
+/// piece whose table polynomial is `f`.
+fn general_launch_piece(
+    f: &Poly,
+    alpha: f64,
+    off: f64,
+    len: f64,
+    launch: &Launch,
+) -> Result<(Option<Hit>, f64), FlightError> {
+    let q = f.shift(off);
+    let gap = gap_with_low_terms(&q, alpha, launch.height, launch.w);
+    let search = if launch.height > 0.0 {
+        gap
+    } else {
+        lift_off_quotient(&gap, launch.w)?
+    };
+    let hit = first_positive_root(&search, len).map(|s| Hit {
+        s,
+        slope: gap.eval_d(s).1,
+    });
+    Ok((hit, q.coeff(0)))
 }
 
 /// The gap c0 + c1 s − s²/2 − α (f₂ s² + f₃ s³ + …) on a piece whose table polynomial
@@ -127,12 +251,13 @@ fn gap_with_low_terms(f: &Poly, alpha: f64, c0: f64, c1: f64) -> Poly {
 /// The gap on a piece of degree ≤ 3, in fixed storage: ascending coefficients and their
 /// number without trailing zeros.
 #[derive(Clone, Copy, Debug)]
-struct CubicGap {
+pub(super) struct CubicGap {
     c: [f64; 4],
     len: usize,
 }
 
 impl CubicGap {
+    #[inline]
     fn new(c: [f64; 4]) -> CubicGap {
         let mut len = 4;
         while len > 0 && c[len - 1] == 0.0 {
@@ -142,9 +267,61 @@ impl CubicGap {
     }
 }
 
+/// A piece of degree ≤ 3 for the fixed-size search: F's coefficients (in general storage
+/// too, for the rare launches that take the general route) and the α-scaled ones of a
+/// later piece's gap [zb − α f₀, vb − α f₁, −½ − α f₂, −α f₃].
+#[derive(Clone, Debug)]
+pub(super) struct CubicPiece {
+    span: Span,
+    f: [f64; 4],
+    poly: Poly,
+    af0: f64,
+    af1: f64,
+    g2: f64,
+    g3: f64,
+}
+
+impl AsRef<Span> for CubicPiece {
+    fn as_ref(&self) -> &Span {
+        &self.span
+    }
+}
+
+/// Whether w + g2 τ + g3 τ² (w > 0) provably keeps its sign on [0, len], in a few
+/// operations: concave or linear (g3 ≤ 0), it lies above the chord between its values at
+/// the ends, so a value at τ = len positive beyond its rounding bound suffices; convex and
+/// increasing from τ = 0 (g3 > 0, g2 ≥ 0), it stays above w. False means only "maybe a
+/// root" (the closed form decides).
+#[inline]
+fn quotient_keeps_sign(w: f64, g2: f64, g3: f64, len: f64) -> bool {
+    if g3 <= 0.0 {
+        let q = w + len * (g2 + g3 * len);
+        let mag = w + len * (g2.abs() - g3 * len);
+        q > 12.0 * f64::EPSILON * mag
+    } else {
+        g2 >= 0.0
+    }
+}
+
 impl PieceGap for CubicGap {
+    type Piece = CubicPiece;
+
+    fn prepare(piece: &Piece, alpha: f64) -> CubicPiece {
+        let f = piece.f.low_coeffs();
+        CubicPiece {
+            span: Span::of(piece, alpha),
+            f,
+            poly: piece.f,
+            af0: alpha * f[0],
+            af1: alpha * f[1],
+            g2: -0.5 - alpha * f[2],
+            g3: -alpha * f[3],
+        }
+    }
+
+    #[inline]
     fn launch_piece(
-        piece: &Piece,
+        piece: &CubicPiece,
         alpha: f64,
         off: f64,
         len: f64,
@@ -155,34 +332,32 @@ impl PieceGap for CubicGap {
         // launches above the table take the general route.
         let from_table_moving_up = launch.height == 0.0 && launch.w > 0.0;
         if !from_table_moving_up {
-            return Poly::launch_piece(piece, alpha, off, len, launch);
+            return general_launch_piece(&piece.poly, alpha, off, len, launch);
         }
-        let [f0, f1, f2, f3] = piece.f.low_coeffs();
-        // Taylor coefficients of F at `off`: Q(0) and Q''(0)/2 (Q''' /6 = f3).
+        let [f0, f1, f2, f3] = piece.f;
+        // Taylor coefficients of F at `off`: Q(0) and Q''(0)/2 (Q'''/6 = f3).
         let q0 = ((f3 * off + f2) * off + f1) * off + f0;
         let q2 = f2 + 3.0 * f3 * off;
         let g2 = -0.5 - alpha * q2;
-        let g3 = -alpha * f3;
+        let g3 = piece.g3;
         // gap(τ)/τ = w + g2 τ + g3 τ², positive at τ = 0.
-        let quotient = CubicGap::new([launch.w, g2, g3, 0.0]);
+        let w = launch.w;
+        if quotient_keeps_sign(w, g2, g3, len) {
+            return Ok((None, q0));
+        }
+        let quotient = CubicGap::new([w, g2, g3, 0.0]);
         let hit = first_root_low_degree(&quotient.c, quotient.len, 0.0, len)
             .filter(|&s| s > 0.0)
             .map(|s| Hit {
                 s,
-                slope: launch.w + s * (2.0 * g2 + 3.0 * g3 * s),
+                slope: w + s * (2.0 * g2 + 3.0 * g3 * s),
             });
         Ok((hit, q0))
     }
 
     #[inline]
-    fn later_piece(piece: &Piece, alpha: f64, zb: f64, vb: f64) -> Self {
-        let [f0, f1, f2, f3] = piece.f.low_coeffs();
-        CubicGap::new([
-            zb - alpha * f0,
-            vb - alpha * f1,
-            -0.5 - alpha * f2,
-            -alpha * f3,
-        ])
+    fn later_piece(piece: &CubicPiece, zb: f64, vb: f64) -> Self {
+        CubicGap::new([zb - piece.af0, vb - piece.af1, piece.g2, piece.g3])
     }
 
     #[inline]
@@ -193,7 +368,12 @@ impl PieceGap for CubicGap {
 
     #[inline]
     fn first_root(&self, len: f64) -> Option<f64> {
-        first_root_low_degree(&self.c, self.len, 0.0, len)
+        // Called once the value at 0 is known to be positive beyond its rounding.
+        if self.len == 4 {
+            first_root_cubic_from(&self.c, 0.0, len, self.c[0])
+        } else {
+            first_root_low_degree(&self.c, self.len, 0.0, len)
+        }
     }
 
     #[inline]
@@ -203,8 +383,8 @@ impl PieceGap for CubicGap {
     }
 
     #[inline]
-    fn table_slope(piece: &Piece, s: f64) -> f64 {
-        let [_, f1, f2, f3] = piece.f.low_coeffs();
+    fn table_slope(piece: &CubicPiece, s: f64) -> f64 {
+        let [_, f1, f2, f3] = piece.f;
         f1 + s * (2.0 * f2 + 3.0 * f3 * s)
     }
 }
@@ -212,21 +392,25 @@ impl PieceGap for CubicGap {
 /// The walk over pieces: the launch piece first, then later pieces in time order,
 /// skipping a piece only where the ball is provably above the table's maximum on it and
 /// whole periods where it is above every table height.
-fn piecewise_landing<G: PieceGap>(sys: &System, launch: &Launch) -> Result<Landing, FlightError> {
-    let pieces = sys.table.pieces();
-    let alpha = sys.alpha;
+pub(super) fn piecewise_landing<G: PieceGap>(
+    prep: &Prepared<G::Piece>,
+    launch: &Launch,
+) -> Result<Landing, FlightError> {
+    let pieces = &prep.pieces[..];
+    let alpha = prep.alpha;
     let phi = launch.phase;
     let v = launch.v;
-    let mut j = sys.table.segment_index(phi);
+    let mut j = prep.index(phi);
     let first = &pieces[j];
-    let off = phi - first.start;
+    let span = first.as_ref();
+    let off = phi - span.start;
 
-    let (hit, q0) = G::launch_piece(first, alpha, off, first.end - phi, launch)?;
+    let (hit, q0) = G::launch_piece(first, alpha, off, span.end - phi, launch)?;
     if let Some(Hit { s, slope }) = hit {
         return Ok(landing_on(
             launch,
             0,
-            first.start,
+            span.start,
             off + s,
             s,
             slope,
@@ -236,57 +420,64 @@ fn piecewise_landing<G: PieceGap>(sys: &System, launch: &Launch) -> Result<Landi
 
     // Later pieces: gap from absolute heights, skipping where the ball is above the table.
     let z0 = alpha * q0 + launch.height;
-    let (top_lo, top_hi) = sys.table.range();
-    let (up, down) = match crossing_times(z0, v, alpha * top_hi) {
-        Some((u, d)) if z0 <= alpha * top_hi => (u.max(0.0), d),
-        Some((_, d)) => (0.0, d),
-        None => (f64::INFINITY, f64::INFINITY),
-    };
-    // The ball surely lands before it falls below the table's minimum.
-    let last = crossing_times(z0, v, alpha * top_lo).map_or(0.0, |c| c.1);
+    // Whole periods are skipped where the ball is above the table's top at both ends of
+    // the period (its path is concave, so in between too), up to the period in which it
+    // falls below the top again. The ball surely lands before it falls below the table's
+    // minimum (`last`: a guard, computed once the walk is two periods in).
+    let mut last = f64::INFINITY;
+    let margin0 = 1e-9 * (1.0 + z0.abs());
     let mut m: i64 = 0;
     j += 1;
     for _ in 0..MAX_FLIGHT_PIECES {
         if j == pieces.len() {
             j = 0;
             m += 1;
+            let t0 = m as f64 - phi;
+            let t1 = t0 + 1.0;
+            let margin = margin0 + 1e-9 * ((v * t1).abs() + t1 * t1);
+            if z0 + t1 * (v - 0.5 * t1) > prep.top + margin
+                && z0 + t0 * (v - 0.5 * t0) > prep.top + margin
+            {
+                let target = floor(phi + descent_below(z0, v, prep.top)) as i64;
+                if target > m {
+                    m = target;
+                    continue;
+                }
+            }
+            if m >= 2 && last == f64::INFINITY {
+                last = descent_below(z0, v, prep.bottom);
+            }
         }
         let p = &pieces[j];
-        let tau_lo = m as f64 + p.start - phi;
-        let tau_hi = tau_lo + p.len();
+        let span = p.as_ref();
+        let tau_lo = m as f64 + span.start - phi;
+        let len = span.end - span.start;
+        let tau_hi = tau_lo + len;
         if tau_lo > last + 1.0 {
             break;
-        }
-        if tau_lo >= up && j == 0 {
-            // Whole periods with the ball above every table height.
-            let target = floor(phi + down) as i64;
-            if target > m {
-                m = target;
-                continue;
-            }
         }
         let zb_rough = z0 + tau_lo * (v - 0.5 * tau_lo);
         let ze = z0 + tau_hi * (v - 0.5 * tau_hi);
         // Skip with a margin far above the rounding of the rough heights.
-        let margin = 1e-9 * (1.0 + z0.abs() + (v * tau_hi).abs() + tau_hi * tau_hi);
-        if zb_rough.min(ze) > alpha * p.max + margin {
+        let margin = margin0 + 1e-9 * ((v * tau_hi).abs() + tau_hi * tau_hi);
+        if zb_rough.min(ze) > span.top + margin {
             j += 1;
             continue;
         }
-        let (zb, vb) = ball_at(z0, v, flight_time(m, p.start, phi));
-        let g = G::later_piece(p, alpha, zb, vb);
+        let (zb, vb) = ball_at(z0, v, flight_time(m, span.start, phi));
+        let g = G::later_piece(p, zb, vb);
         // At s = 0 the value is c0 itself, its rounding bound that of one term.
         let (g0, err) = g.at_start();
         let root = if g0 <= err {
             Some(0.0)
         } else {
-            g.first_root(p.len())
+            g.first_root(len)
         };
         if let Some(s) = root {
             return Ok(landing_on(
                 launch,
                 m,
-                p.start,
+                span.start,
                 s,
                 tau_lo + s,
                 g.slope(s),
@@ -296,6 +487,14 @@ fn piecewise_landing<G: PieceGap>(sys: &System, launch: &Launch) -> Result<Landi
         j += 1;
     }
     Err(FlightError::NoLanding)
+}
+
+/// When the ball, at height z0 with velocity v at τ = 0, falls below `level` (0 if it
+/// is never above it). Out of line: needed only for flights that span periods.
+#[cold]
+#[inline(never)]
+fn descent_below(z0: f64, v: f64, level: f64) -> f64 {
+    crossing_times(z0, v, level).map_or(0.0, |c| c.1)
 }
 
 /// Divide the launch root out of the gap polynomial (whose constant term is zero).
@@ -372,6 +571,8 @@ mod tests {
             };
             assert!(table.max_degree() <= 3);
             let sys = System::new(table, 0.05 + 1.45 * rnd(), 0.5).unwrap();
+            let cubic = Prepared::new::<CubicGap>(&sys);
+            let any = Prepared::new::<Poly>(&sys);
             for _ in 0..10 {
                 let phase = rnd();
                 let (height, w) = match (8.0 * rnd()) as u32 {
@@ -386,8 +587,8 @@ mod tests {
                     v: sys.df(phase) + w,
                     w,
                 };
-                let fast = piecewise_landing::<CubicGap>(&sys, &launch);
-                let general = piecewise_landing::<Poly>(&sys, &launch);
+                let fast = piecewise_landing::<CubicGap>(&cubic, &launch);
+                let general = piecewise_landing::<Poly>(&any, &launch);
                 match (fast, general) {
                     (Ok(a), Ok(b)) => {
                         let ta = a.period as f64 - 7.0 + a.phase;

@@ -364,6 +364,14 @@ impl Table {
         self.velocity_bound
     }
 
+    /// An upper bound of |F⁽ⁿ⁾| over a period (0 for pieces of degree below n); meant
+    /// for n ≥ 3, where [`Self::accel_bound`] does not apply.
+    pub fn derivative_bound(&self, n: usize) -> f64 {
+        self.segments()
+            .map(|s| s.derivative_bound(n))
+            .fold(0.0, f64::max)
+    }
+
     /// Highest polynomial degree among the pieces (0 for the sine, which has none).
     pub fn max_degree(&self) -> usize {
         self.max_degree

@@ -156,6 +156,24 @@ impl<'a> Segment<'a> {
         }
     }
 
+    /// An upper bound of |F⁽ⁿ⁾| on this segment: (2π)ⁿ for the sine; for a piece,
+    /// Σ_k k!/(k − n)! |f_k| len^(k−n) over its coefficients (padded; 0 beyond its
+    /// degree).
+    pub fn derivative_bound(&self, n: usize) -> f64 {
+        match self.formula {
+            Formula::Sine => (2.0 * PI).powi(n as i32) * (1.0 + 1e-12),
+            Formula::Poly(p) => {
+                let len = p.len();
+                let mut sum = 0.0;
+                for (k, c) in p.f.coeffs().iter().enumerate().skip(n) {
+                    let falling: f64 = (k + 1 - n..=k).map(|i| i as f64).product();
+                    sum += falling * c.abs() * len.powi((k - n) as i32);
+                }
+                sum * (1.0 + 1e-12)
+            }
+        }
+    }
+
     /// Whether F''' ≡ 0 on this segment (a polynomial of degree at most 2).
     pub fn is_quadratic(&self) -> bool {
         match self.formula {
