@@ -260,7 +260,13 @@ fn the_basins_panel_shows_both_attractors_with_a_legend() {
     let s = tui_common::text(&t);
     assert!(s.contains("Basins t̂0×w0 · 2 found · done"), "{s}");
     assert!(s.contains("periodic (1, 1) λ -0.2231"), "{s}");
-    assert!(s.contains("sticking (82, 1) λ -inf"), "{s}");
+    // A stick–release cycle of one table period; its event count includes the
+    // micro-impacts before the stick is detected, so only the period is asserted.
+    assert!(
+        s.lines()
+            .any(|l| l.contains("sticking (") && l.contains(", 1) λ -inf")),
+        "{s}"
+    );
     assert!(
         !s.contains("Phase plot"),
         "the basins take the phase plot's place"
