@@ -1,11 +1,11 @@
 //! `sweep` as a task of a Slurm job array (the shard and the threads from Slurm's
-//! variables), against the real binary. Slurm is not needed: its variables are set as
-//! Slurm sets them.
+//! variables) and `--resume` (a part already there is left alone), against the real
+//! binary. Slurm is not needed: its variables are set as Slurm sets them.
 
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 /// Every variable these tests set, removed from what the binary inherits (the suite may
 /// itself run inside a Slurm job).
@@ -204,6 +204,11 @@ fn inconsistent_array_variables_are_refused_in_one_line() {
         &run_small(&[("SLURM_CPUS_PER_TASK", "0")], &[]),
         "SLURM_CPUS_PER_TASK=0",
     );
+    refused(&run_small(&[], &["--resume"]), "--resume without --out");
+    refused(
+        &run_small(&[], &["--resume", "--format", "braille", "--out", "x.txt"]),
+        "--resume with --format braille",
+    );
 }
 
 /// The most threads the running sweep had at once, from /proc.
@@ -247,4 +252,98 @@ fn worker_threads_default_to_the_cpus_slurm_gave_the_task() {
     // --threads wins over the variable.
     let flag = peak_threads(&[("SLURM_CPUS_PER_TASK", "3")], &["--threads", "2"]);
     assert_eq!(flag, one + 1, "1 cpu: {one} threads, --threads 2: {flag}");
+}
+
+fn modified(p: &Path) -> (std::time::SystemTime, u64) {
+    use std::os::unix::fs::MetadataExt;
+    let m = std::fs::metadata(p).unwrap();
+    (m.modified().unwrap(), m.ino())
+}
+
+#[test]
+fn a_resumed_part_that_is_complete_is_left_alone_and_any_other_is_computed() {
+    let d = dir("resume");
+    let f = d.join("part.csv");
+    // A part that takes a while: fig3b at full transient, 40 values, shard 2/2.
+    let args = |extra: &[&str]| -> Vec<String> {
+        [
+            "sweep", "--preset", "fig3b", "--steps", "40", "--shard", "2/2",
+        ]
+        .iter()
+        .chain(extra)
+        .map(|a| a.to_string())
+        .collect()
+    };
+    let go = |extra: &[&str]| -> (Output, Duration) {
+        let a = args(extra);
+        let t = Instant::now();
+        let o = run(&[], &a.iter().map(String::as_str).collect::<Vec<_>>());
+        ok(&o);
+        (o, t.elapsed())
+    };
+    let (first, computed) = go(&["--resume", "--out", s(&f)]);
+    let err = String::from_utf8_lossy(&first.stderr);
+    assert!(
+        err.contains("no ") && err.contains("part.csv yet; computing it"),
+        "{err}"
+    );
+    let original = read(&f);
+    let before = modified(&f);
+    std::thread::sleep(Duration::from_millis(20));
+    // Resumed: the file is untouched (same inode and time: not even rewritten) and
+    // nothing was computed (no sweep started), in a fraction of the time.
+    let (again, resumed) = go(&["--resume", "--out", s(&f)]);
+    let err = String::from_utf8_lossy(&again.stderr);
+    assert!(
+        err.contains("already holds shard 2/2 of this sweep"),
+        "{err}"
+    );
+    assert!(!err.contains("started"), "{err}");
+    assert_eq!(modified(&f), before);
+    assert_eq!(read(&f), original);
+    assert!(
+        resumed < computed / 4,
+        "resumed in {resumed:?}, computed in {computed:?}"
+    );
+    assert_eq!(
+        std::fs::read_dir(&d).unwrap().count(),
+        1,
+        "a temporary was left"
+    );
+    // Without --resume the part is computed again.
+    let (fresh, _) = go(&["--out", s(&f)]);
+    assert!(String::from_utf8_lossy(&fresh.stderr).contains("started"));
+    assert_ne!(modified(&f), before);
+    // A damaged part (its end line cut off) is computed again, and says why.
+    let cut = original.trim_end().rsplit_once('\n').unwrap().0.to_string() + "\n";
+    std::fs::write(&f, cut).unwrap();
+    let (repaired, _) = go(&["--resume", "--out", s(&f)]);
+    let err = String::from_utf8_lossy(&repaired.stderr);
+    assert!(
+        err.contains("truncated or damaged") && err.contains("computing it"),
+        "{err}"
+    );
+    assert_eq!(read(&f), original);
+    // So is the part of another sweep or another shard.
+    let g = d.join("other.csv");
+    for (other, why) in [
+        (
+            vec!["--shard", "2/2", "--keep", "5"],
+            "another sweep (its keep 5 differs",
+        ),
+        (
+            vec!["--shard", "1/2"],
+            "holds shard 1/2 of this sweep, not shard 2/2",
+        ),
+    ] {
+        let mut a: Vec<&str> = vec!["sweep", "--preset", "fig3b", "--steps", "40"];
+        a.extend(&other);
+        a.extend(["--out", s(&g)]);
+        ok(&run(&[], &a));
+        let (o, _) = go(&["--resume", "--out", s(&g)]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains(why), "{err}");
+        assert_eq!(read(&g), original);
+    }
+    std::fs::remove_dir_all(&d).unwrap();
 }

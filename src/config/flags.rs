@@ -302,6 +302,16 @@ pub struct SweepArgs {
     /// SLURM_ARRAY_TASK_ID is set) computes its `auto` part; elsewhere the whole sweep.
     #[arg(long, value_parser = parse_shard_arg, value_name = "I/N|auto")]
     pub shard: Option<ShardArg>,
+    /// Do nothing if --out FILE already holds this part of this sweep, complete and
+    /// verified.
+    ///
+    /// FILE is checked as `merge` checks a part (provenance, specification hash, values,
+    /// end line, checksum) and must be of this sweep, shard, format and version: then the
+    /// run exits 0 at once and leaves it untouched. Otherwise (missing, damaged, another
+    /// sweep or shard) it is computed, and stderr says why. Re-running every shard of a
+    /// run with --resume recomputes only the missing ones.
+    #[arg(long)]
+    pub resume: bool,
     /// Braille width in characters [default: the terminal's].
     #[arg(long, value_parser = rules::CELLS.whole::<u16>(), value_name = "COLS")]
     pub width: Option<u16>,
