@@ -114,11 +114,19 @@ logs=${run//%/%%}
 defaults=(--nodes=1 --ntasks=1 --cpus-per-task=1 "--job-name=bouncemap-${args[0]}")
 array_job=$(sbatch --parsable "${defaults[@]}" "${sbatch_opts[@]}" \
     --array="1-$parts" --output="$logs/shard-%a.log" \
-    "$here/shard.sh" "$run" "$parts")
+    "$here/shard.sh" "$run" "$parts") || {
+    echo "$me: sbatch refused the shards (its message is above); nothing was submitted" >&2
+    rm -rf -- "$run"
+    exit 1
+}
 array_job=${array_job%%;*}
 merge_job=$(sbatch --parsable "${defaults[@]}" "${sbatch_opts[@]}" --cpus-per-task=1 \
     --dependency="afterany:$array_job" --kill-on-invalid-dep=yes --output="$logs/merge.log" \
-    "$here/merge.sh" "$run" "$parts")
+    "$here/merge.sh" "$run" "$parts") || {
+    echo "$me: sbatch refused the merge job (its message is above); cancelling the shards, job $array_job" >&2
+    scancel "$array_job" || true
+    exit 1
+}
 merge_job=${merge_job%%;*}
 ln -sfn "$stamp" "$out_dir/logs/latest"
 

@@ -9,6 +9,8 @@
 # munged, slurmctld and slurmd as plain background processes on free loopback ports
 # with a private key, socket, state and logs, and waits for the node to be idle. Then:
 #
+#   0. submissions that submit.sh refuses (clashing or missing arguments, a missing
+#      binary, a partition sbatch rejects) leave no job behind;
 #   1. the README's cluster commands, run as written (the blocks marked for this
 #      script, with HOME in a scratch directory): a 200-value fig3b sweep in 4 shards
 #      through assets/slurm/submit.sh; the merged file must equal the unsharded run but
@@ -354,6 +356,28 @@ same_as_unsharded() {
     diff <(without_shard "$1") <(without_shard "$whole") >/dev/null ||
         fail "$1 differs from the unsharded run beyond its shard line"
 }
+
+# ------------------------------------------------------------------ 0. refusals
+say "0. submit.sh refuses what it cannot run, and submits nothing"
+refuses() { # refuses STATUS MESSAGE ARGUMENT...
+    local want=$1 msg=$2 got=0 err
+    shift 2
+    err=$(PARTS=2 assets/slurm/submit.sh "$work/runs/refused" "$@" 2>&1 >/dev/null) || got=$?
+    [[ $got -eq $want ]] || fail "submit.sh $*: status $got, expected $want ($err)"
+    grep -qF -- "$msg" <<<"$err" || fail "submit.sh $*: '$err' lacks '$msg'"
+}
+refuses 2 "no bouncemap arguments after --" --
+refuses 2 "'orbit' is not a sharded bouncemap command" -- orbit
+refuses 2 "bouncemap argument '--out'" -- sweep --preset fig3b --out x.csv
+refuses 2 "bouncemap argument '--shard=1/2'" -- sweep --preset fig3b --shard=1/2
+refuses 2 "sbatch option '--array=1-3'" --array=1-3 -- sweep --preset fig3b
+refuses 2 "sbatch option '-o'" -o log -- sweep --preset fig3b
+BOUNCEMAP=$work/nowhere refuses 2 "BOUNCEMAP=$work/nowhere is not an executable file" -- sweep
+refuses 1 "sbatch refused the shards" --partition=nosuch -- sweep --preset fig3b
+[[ -z $(squeue -h) ]] || fail "a refused submission left jobs: $(squeue -h)"
+[[ -z $(find "$work/runs/refused" -mindepth 2 -print -quit 2>/dev/null) ]] ||
+    fail "a refused submission left files in $work/runs/refused"
+say "0. passed"
 
 # ------------------------------------------------------------------ 1. the README
 submit=$(readme_block cluster-submit)
