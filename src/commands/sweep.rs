@@ -1,22 +1,28 @@
 //! `bouncemap sweep`: a bifurcation diagram computed headless, written as csv or json
 //! (the sweep file of [`crate::output::sweep_file`], with its provenance) or as braille
-//! text; presets for the paper's figures; `--shard I/N` parts.
+//! text; presets for the paper's figures; `--shard I/N` parts (or the part of a Slurm
+//! array task); `--resume`, which leaves a part that is already there, complete and
+//! verified, as it is.
 //!
 //! Values are computed in index order and written as they complete, through a window
 //! that keeps at most [`WINDOW_BYTES`] of results in flight: memory does not grow with
 //! the number of values.
 
 use super::progress::Progress;
+use crate::config::files::{read_text, LARGE_FILE};
 use crate::config::flags::{SweepArgs, SweepFormat};
 use crate::config::{self, check_memory, rules, InputError};
 use crate::output::diagram::BrailleDiagram;
 use crate::output::records::SweepHeader;
 use crate::output::sink::Sink;
-use crate::output::sweep_file::{shard_name, Layout, SweepWriter};
+use crate::output::sweep_file::{
+    differing_setting, read_part, shard_name, spec_text, Layout, SweepWriter, TOOL,
+};
 use bouncemap_engine::jobs::{Control, Executor};
 use bouncemap_engine::sweep::{chain_len, SweepJob, SweepSpec, ValueResult};
 use std::collections::BTreeMap;
 use std::io::Write;
+use std::path::Path;
 use std::time::Duration;
 
 /// Results held in flight at most, in bytes (the window of values ahead of the writer).
@@ -30,6 +36,16 @@ fn value_bytes(keep: usize) -> u64 {
 pub fn run(args: &SweepArgs) -> anyhow::Result<()> {
     let spec = config::sweep::sweep_spec(args)?;
     let threads = config::threads(args.threads)?;
+    if args.resume {
+        let (out, layout) = resume_target(args)?;
+        match already_done(Path::new(out), layout, &spec) {
+            Ok(done) => {
+                eprintln!("bouncemap: --resume: {done}: nothing to compute");
+                return Ok(());
+            }
+            Err(why) => eprintln!("bouncemap: --resume: {why}; computing it"),
+        }
+    }
     // Values in flight: as many as the budget holds, at least two per worker.
     let per_value = value_bytes(spec.keep);
     let window = (WINDOW_BYTES / per_value).clamp(2 * threads as u64, 1 << 16) as usize;
@@ -50,6 +66,75 @@ pub fn run(args: &SweepArgs) -> anyhow::Result<()> {
     };
     result.map_err(|e| sink.describe(e))?;
     sink.finish()
+}
+
+/// The file `--resume` checks, and the layout this run writes: `--resume` needs an
+/// output file of the sweep file's layouts.
+fn resume_target(args: &SweepArgs) -> Result<(&str, Layout), InputError> {
+    let layout = match args.format {
+        SweepFormat::Csv => Layout::Csv,
+        SweepFormat::Json => Layout::Json,
+        SweepFormat::Braille => {
+            return Err(InputError(
+                "--resume with --format braille: valid with --format csv or json, whose files can be verified".into(),
+            ))
+        }
+    };
+    match args.out.as_deref() {
+        Some(out) => Ok((out, layout)),
+        None => Err(InputError(
+            "--resume without --out: valid with --out FILE, the file to check and write".into(),
+        )),
+    }
+}
+
+/// Whether `path` already holds the part of `spec` this run would write, complete and
+/// verified: read and checked as `merge` checks a part (provenance, specification
+/// against its hash, every value inside the shard, end line, counts, checksum), then
+/// compared with this run (layout, tool, specification, shard). `Ok` says what is
+/// there; `Err` says why it must be computed.
+fn already_done(path: &Path, layout: Layout, spec: &SweepSpec) -> Result<String, String> {
+    let shown = path.display().to_string();
+    if std::fs::symlink_metadata(path).is_err_and(|e| e.kind() == std::io::ErrorKind::NotFound) {
+        return Err(format!("no {shown} yet"));
+    }
+    let text = read_text(path, "the existing file", LARGE_FILE).map_err(|e| e.0)?;
+    let part = read_part(&shown, &text)?;
+    let name = |l: Layout| match l {
+        Layout::Csv => "csv",
+        Layout::Json => "json",
+    };
+    if part.layout != layout {
+        return Err(format!(
+            "{shown} is a {} sweep file and this run writes {}",
+            name(part.layout),
+            name(layout)
+        ));
+    }
+    if part.provenance.tool != TOOL {
+        return Err(format!(
+            "{shown} was written by {}, not by this {TOOL}",
+            part.provenance.tool
+        ));
+    }
+    let header = SweepHeader::from(spec);
+    if spec_text(&part.header) != spec_text(&header) {
+        return Err(format!(
+            "{shown} holds another sweep ({} differs from this run's)",
+            differing_setting(&part.header, &header)
+        ));
+    }
+    let shard = shard_name(spec.shard);
+    if part.provenance.shard != shard {
+        return Err(format!(
+            "{shown} holds shard {} of this sweep, not shard {shard}",
+            part.provenance.shard
+        ));
+    }
+    Ok(format!(
+        "{shown} already holds shard {shard} of this sweep, complete and verified ({} values)",
+        part.values.len()
+    ))
 }
 
 /// Run the sweep, handing each value to `each` in index order as soon as it and every
@@ -149,8 +234,86 @@ fn braille_size(args: &SweepArgs) -> (u16, u16) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use bouncemap_engine::sweep::{SweepParam, Warm};
+    use bouncemap_engine::sweep::{Shard, SweepParam, Warm};
     use bouncemap_engine::Table;
+
+    fn small(keep: usize, shard: Shard) -> SweepSpec {
+        let mut spec = SweepSpec::new(
+            Table::fd(0.1).unwrap(),
+            0.45,
+            0.8,
+            SweepParam::Alpha,
+            0.45,
+            0.6,
+            12,
+        );
+        spec.transient = 2000;
+        spec.keep = keep;
+        spec.shard = shard;
+        spec
+    }
+
+    /// `spec`'s file, written as `sweep --out` writes it.
+    fn write(path: &Path, spec: &SweepSpec, layout: Layout) {
+        let ex = Executor::new(1).unwrap();
+        let mut sink = Sink::open(Some(path.to_str().unwrap())).unwrap();
+        stream(spec, &ex, 4, &mut sink, layout).unwrap();
+        sink.finish().unwrap();
+    }
+
+    #[test]
+    fn resume_accepts_only_this_very_part_complete_and_verified() {
+        let d = std::env::temp_dir().join(format!("bouncemap-resume-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&d);
+        std::fs::create_dir_all(&d).unwrap();
+        let two_of_three = Shard { index: 1, count: 3 };
+        let spec = small(4, two_of_three);
+        let f = d.join("part.csv");
+        assert_eq!(
+            already_done(&f, Layout::Csv, &spec).unwrap_err(),
+            format!("no {} yet", f.display())
+        );
+        write(&f, &spec, Layout::Csv);
+        // Shard 2/3 of 12 values holds 1, 4, 7, 10.
+        let done = already_done(&f, Layout::Csv, &spec).unwrap();
+        assert!(
+            done.contains("shard 2/3") && done.contains("(4 values)"),
+            "{done}"
+        );
+        let why = |spec: &SweepSpec, layout: Layout| already_done(&f, layout, spec).unwrap_err();
+        assert!(why(&spec, Layout::Json).contains("is a csv sweep file and this run writes json"));
+        assert!(why(&small(5, two_of_three), Layout::Csv).contains("another sweep (its keep"));
+        assert!(why(&small(4, Shard { index: 0, count: 3 }), Layout::Csv)
+            .contains("holds shard 2/3 of this sweep, not shard 1/3"));
+        assert!(why(&small(4, Shard::WHOLE), Layout::Csv).contains("not shard 1/1"));
+        // Damage: the last line cut off; one digit of a row changed.
+        let text = std::fs::read_to_string(&f).unwrap();
+        let cut = text.trim_end().rsplit_once('\n').unwrap().0;
+        std::fs::write(&f, format!("{cut}\n")).unwrap();
+        assert!(why(&spec, Layout::Csv).contains("truncated or damaged"));
+        let row = text.lines().nth(6).unwrap();
+        let changed = row.replacen(",0.", ",1.", 1);
+        assert_ne!(row, changed);
+        std::fs::write(&f, text.replacen(row, &changed, 1)).unwrap();
+        assert!(why(&spec, Layout::Csv).contains(&f.display().to_string()));
+        // Another tool version.
+        std::fs::write(&f, text.replacen(TOOL, "bouncemap 0.0.9", 2)).unwrap();
+        assert!(why(&spec, Layout::Csv).contains("written by bouncemap 0.0.9"));
+        // Not a regular file.
+        std::fs::remove_file(&f).unwrap();
+        std::fs::create_dir(&f).unwrap();
+        assert!(why(&spec, Layout::Csv).contains("not a regular file"));
+        // json files are checked the same way.
+        let j = d.join("part.json");
+        write(&j, &spec, Layout::Json);
+        assert!(already_done(&j, Layout::Json, &spec).is_ok());
+        let text = std::fs::read_to_string(&j).unwrap();
+        std::fs::write(&j, &text[..text.len() - 30]).unwrap();
+        assert!(already_done(&j, Layout::Json, &spec)
+            .unwrap_err()
+            .contains("not a complete sweep json file"));
+        std::fs::remove_dir_all(&d).unwrap();
+    }
 
     /// The file written value by value through a small window equals the one written
     /// from every result held in memory at once.

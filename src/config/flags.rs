@@ -321,16 +321,34 @@ pub struct SweepArgs {
     /// Write to FILE instead of stdout.
     #[arg(long, value_name = "FILE")]
     pub out: Option<String>,
-    /// Compute only the I-th of N interleaved parts (1 ≤ I ≤ N); join them with `merge`.
-    #[arg(long, value_parser = parse_shard, value_name = "I/N")]
-    pub shard: Option<Shard>,
+    /// Compute only the I-th of N interleaved parts (1 ≤ I ≤ N), or `auto`: the part of
+    /// this Slurm array task (the default in a job array); join the parts with `merge`.
+    ///
+    /// `auto` reads SLURM_ARRAY_TASK_ID, SLURM_ARRAY_TASK_MIN and SLURM_ARRAY_TASK_MAX:
+    /// N = MAX − MIN + 1 and I = ID − MIN + 1, so arrays numbered from 0 or from 1 both
+    /// work (task 3 of --array=0-7 computes 4/8). The array must be a whole range
+    /// (SLURM_ARRAY_TASK_COUNT = N). Without --shard, a task of a job array (where
+    /// SLURM_ARRAY_TASK_ID is set) computes its `auto` part; elsewhere the whole sweep.
+    #[arg(long, value_parser = parse_shard_arg, value_name = "I/N|auto")]
+    pub shard: Option<ShardArg>,
+    /// Do nothing if --out FILE already holds this part of this sweep, complete and
+    /// verified.
+    ///
+    /// FILE is checked as `merge` checks a part (provenance, specification hash, values,
+    /// end line, checksum) and must be of this sweep, shard, format and version: then the
+    /// run exits 0 at once and leaves it untouched. Otherwise (missing, damaged, another
+    /// sweep or shard) it is computed, and stderr says why. Re-running every shard of a
+    /// run with --resume recomputes only the missing ones.
+    #[arg(long)]
+    pub resume: bool,
     /// Braille width in characters [default: the terminal's].
     #[arg(long, value_parser = rules::CELLS.whole::<u16>(), value_name = "COLS")]
     pub width: Option<u16>,
     /// Braille height in lines [default: the terminal's].
     #[arg(long, value_parser = rules::CELLS.whole::<u16>(), value_name = "LINES")]
     pub height: Option<u16>,
-    /// Worker threads [default: all cores].
+    /// Worker threads, at most 4 × the cores [default: SLURM_CPUS_PER_TASK when set
+    /// (the CPUs Slurm gave the task), else one per core].
     #[arg(long, value_parser = rules::THREADS.whole::<usize>(), value_name = "N")]
     pub threads: Option<usize>,
 }
@@ -418,6 +436,23 @@ pub fn parse_grid(s: &str) -> Result<(usize, usize), String> {
         return Err(bad());
     }
     Ok((nx, ny))
+}
+
+/// `sweep --shard`: a part given as I/N, or `auto` (from the Slurm job array).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ShardArg {
+    Auto,
+    Part(Shard),
+}
+
+/// `auto` or `I/N` with 1 ≤ I ≤ N.
+pub fn parse_shard_arg(s: &str) -> Result<ShardArg, String> {
+    if s.trim() == "auto" {
+        return Ok(ShardArg::Auto);
+    }
+    parse_shard(s)
+        .map(ShardArg::Part)
+        .map_err(|_| format!("'{s}' is not a shard: valid I/N with 1 ≤ I ≤ N, e.g. 2/8, or auto"))
 }
 
 /// `I/N` with 1 ≤ I ≤ N.
@@ -592,6 +627,12 @@ mod tests {
         assert!(parse_shard("0/4").is_err());
         assert!(parse_shard("5/4").is_err());
         assert!(parse_shard("x").is_err());
+        assert_eq!(parse_shard_arg("auto"), Ok(ShardArg::Auto));
+        assert_eq!(
+            parse_shard_arg("2/8"),
+            Ok(ShardArg::Part(Shard { index: 1, count: 8 }))
+        );
+        assert!(parse_shard_arg("Auto").unwrap_err().contains("or auto"));
     }
 
     #[test]

@@ -60,17 +60,41 @@ pub fn start(sys: &System, args: &InitialArgs) -> Result<State, InputError> {
     Ok(State::start(sys, args.t0, args.v0, args.z0)?)
 }
 
-/// Worker threads: `requested` (at most 4 × the cores, more only thrash), or one per
-/// core.
+/// Worker threads: `requested` (`--threads`), else `SLURM_CPUS_PER_TASK` (the CPUs
+/// Slurm gave this task) when set, else one per core; at most 4 × the cores (more only
+/// thrash).
 pub fn threads(requested: Option<usize>) -> Result<usize, InputError> {
-    let cores = bouncemap_engine::jobs::available_cores();
+    threads_from(
+        requested,
+        std::env::var("SLURM_CPUS_PER_TASK").ok().as_deref(),
+        bouncemap_engine::jobs::available_cores(),
+    )
+}
+
+/// [`threads`] for `cores` cores and the value of `SLURM_CPUS_PER_TASK`.
+pub fn threads_from(
+    requested: Option<usize>,
+    slurm_cpus: Option<&str>,
+    cores: usize,
+) -> Result<usize, InputError> {
     let cap = 4 * cores;
-    match requested {
-        Some(n) if n > cap => Err(InputError(format!(
-            "--threads {n} is out of range: valid 1..={cap} (4 × the {cores} cores of this machine)"
+    let valid = format!("valid 1..={cap} (4 × the {cores} cores of this machine)");
+    match (
+        requested,
+        slurm_cpus.map(str::trim).filter(|s| !s.is_empty()),
+    ) {
+        (Some(n), _) if n > cap => Err(InputError(format!(
+            "--threads {n} is out of range: {valid}"
         ))),
-        Some(n) => Ok(n),
-        None => Ok(cores),
+        (Some(n), _) => Ok(n),
+        (None, Some(s)) => match s.parse::<usize>() {
+            Ok(n) if (1..=cap).contains(&n) => Ok(n),
+            _ => Err(InputError(format!(
+                "SLURM_CPUS_PER_TASK={} is not a thread count: {valid}; or give --threads N",
+                s.escape_debug()
+            ))),
+        },
+        (None, None) => Ok(cores),
     }
 }
 
@@ -104,5 +128,35 @@ pub fn bytes(n: u64) -> String {
         format!("{:.1} MB", n / 1e6)
     } else {
         format!("{:.0} kB", n / 1e3)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn threads_default_to_slurms_cpus_and_a_flag_wins() {
+        assert_eq!(threads_from(None, None, 8), Ok(8));
+        assert_eq!(threads_from(None, Some("1"), 8), Ok(1));
+        assert_eq!(threads_from(None, Some("3"), 8), Ok(3));
+        assert_eq!(threads_from(Some(5), Some("1"), 8), Ok(5));
+        assert_eq!(threads_from(None, Some(""), 8), Ok(8));
+        // The cap holds for both.
+        assert_eq!(threads_from(None, Some("32"), 8), Ok(32));
+        let e = threads_from(None, Some("33"), 8).unwrap_err().0;
+        assert!(
+            e.starts_with("SLURM_CPUS_PER_TASK=33 ") && e.contains("1..=32"),
+            "{e}"
+        );
+        let e = threads_from(Some(33), None, 8).unwrap_err().0;
+        assert!(
+            e.starts_with("--threads 33 ") && e.contains("1..=32"),
+            "{e}"
+        );
+        for bad in ["0", "two", "-1"] {
+            let e = threads_from(None, Some(bad), 8).unwrap_err().0;
+            assert!(e.contains(&format!("SLURM_CPUS_PER_TASK={bad} ")), "{e}");
+        }
     }
 }

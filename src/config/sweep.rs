@@ -6,7 +6,7 @@ use super::presets::{preset, Param, Start};
 use super::rules::{self, Rule};
 use super::table_spec::TableSpec;
 use super::InputError;
-use crate::config::flags::{SweepArgs, SweepSpecArgs};
+use crate::config::flags::{ShardArg, SweepArgs, SweepSpecArgs};
 use bouncemap_engine::sweep::{InitialSpec, Periodicity, Shard, SweepSpec, Warm};
 use bouncemap_engine::Table;
 
@@ -49,12 +49,12 @@ fn parse_setting(p: Param, s: &str) -> Result<Setting, InputError> {
 
 /// The sweep `sweep`'s flags (and their preset) describe.
 pub fn sweep_spec(args: &SweepArgs) -> Result<SweepSpec, InputError> {
-    sweep_spec_from(&args.spec, args.shard.unwrap_or(Shard::WHOLE))
+    sweep_spec_from(&args.spec, shard(args.shard, |name| std::env::var(name).ok())?)
 }
 
 /// The sweep the flags shared by `sweep` and `figure diagram` (and their preset)
-/// describe, computing part `shard`.
-pub fn sweep_spec_from(args: &SweepSpecArgs, shard: Shard) -> Result<SweepSpec, InputError> {
+/// describe, computing part `part`.
+pub fn sweep_spec_from(args: &SweepSpecArgs, part: Shard) -> Result<SweepSpec, InputError> {
     let p = match &args.preset {
         Some(name) => Some(preset(name).map_err(|e| InputError(format!("--preset: {e}")))?),
         None => None,
@@ -197,11 +197,188 @@ pub fn sweep_spec_from(args: &SweepSpecArgs, shard: Shard) -> Result<SweepSpec, 
         max_period: args.max_period,
         tolerance: args.tolerance,
     });
-    spec.shard = shard;
+    spec.shard = part;
     spec.lyapunov = args.lyapunov;
     spec.starts = args.starts.unwrap_or(rules::STARTS.default as usize);
     spec.w_max = args.w_max;
     spec.validate()
         .map_err(|e| InputError(format!("sweep: {e}")))?;
     Ok(spec)
+}
+
+/// The part to compute: `--shard I/N` as given; `--shard auto`, or no `--shard` in a
+/// task of a Slurm job array (`SLURM_ARRAY_TASK_ID` set), the task's part; else the
+/// whole sweep. `env` reads an environment variable (unset and empty are alike).
+///
+/// The array's part: N = MAX − MIN + 1 and I = ID − MIN + 1 from
+/// `SLURM_ARRAY_TASK_ID`, `SLURM_ARRAY_TASK_MIN` and `SLURM_ARRAY_TASK_MAX`, so
+/// `--array=0-7` and `--array=1-8` both make the shards 1/8 … 8/8. An array that is
+/// not a whole range (`SLURM_ARRAY_TASK_COUNT` ≠ N: a step, or a list with gaps) and
+/// inconsistent variables are refused.
+pub fn shard(
+    arg: Option<ShardArg>,
+    env: impl Fn(&str) -> Option<String>,
+) -> Result<Shard, InputError> {
+    let var = |name: &str| env(name).filter(|v| !v.trim().is_empty());
+    let context = match arg {
+        Some(ShardArg::Part(s)) => return Ok(s),
+        Some(ShardArg::Auto) => "--shard auto",
+        None if var("SLURM_ARRAY_TASK_ID").is_some() => {
+            "--shard auto (the default in a Slurm job array task)"
+        }
+        None => return Ok(Shard::WHOLE),
+    };
+    let refuse = |msg: String| InputError(format!("{context}: {msg}"));
+    let id_of = |name: &str| -> Result<u64, InputError> {
+        let v = var(name).ok_or_else(|| {
+            refuse(format!(
+                "{name} is not set: valid in a task of a Slurm job array (sbatch --array), \
+                 which sets SLURM_ARRAY_TASK_ID, _MIN and _MAX; elsewhere give --shard I/N"
+            ))
+        })?;
+        v.trim().parse::<u64>().map_err(|_| {
+            refuse(format!(
+                "{name}='{}' is not an array index: valid a whole number ≥ 0",
+                v.escape_debug()
+            ))
+        })
+    };
+    let id = id_of("SLURM_ARRAY_TASK_ID")?;
+    let min = id_of("SLURM_ARRAY_TASK_MIN")?;
+    let max = id_of("SLURM_ARRAY_TASK_MAX")?;
+    if min > max || id < min || id > max {
+        return Err(refuse(format!(
+            "SLURM_ARRAY_TASK_ID={id} is not in SLURM_ARRAY_TASK_MIN..SLURM_ARRAY_TASK_MAX \
+             = {min}..{max}: valid MIN ≤ ID ≤ MAX"
+        )));
+    }
+    let count = max - min + 1;
+    if let Some(c) = var("SLURM_ARRAY_TASK_COUNT") {
+        if c.trim().parse::<u64>().ok() != Some(count) {
+            return Err(refuse(format!(
+                "the array has SLURM_ARRAY_TASK_COUNT={} tasks but spans the {count} indices \
+                 {min}..{max}: valid a whole range without step or gaps, e.g. --array=1-{count}",
+                c.escape_debug()
+            )));
+        }
+    }
+    let too_many = || refuse(format!("an array of {count} tasks is too large to shard"));
+    Ok(Shard {
+        index: usize::try_from(id - min).map_err(|_| too_many())?,
+        count: usize::try_from(count).map_err(|_| too_many())?,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::collections::HashMap;
+
+    fn env(vars: &[(&str, &str)]) -> impl Fn(&str) -> Option<String> {
+        let map: HashMap<String, String> = vars
+            .iter()
+            .map(|(k, v)| (k.to_string(), v.to_string()))
+            .collect();
+        move |k| map.get(k).cloned()
+    }
+
+    fn array(id: &str, min: &str, max: &str) -> Vec<(&'static str, String)> {
+        vec![
+            ("SLURM_ARRAY_TASK_ID", id.to_string()),
+            ("SLURM_ARRAY_TASK_MIN", min.to_string()),
+            ("SLURM_ARRAY_TASK_MAX", max.to_string()),
+        ]
+    }
+
+    fn auto(vars: &[(&str, String)], arg: Option<ShardArg>) -> Result<Shard, InputError> {
+        let v: Vec<(&str, &str)> = vars.iter().map(|(k, v)| (*k, v.as_str())).collect();
+        shard(arg, env(&v))
+    }
+
+    fn part(i: usize, n: usize) -> Shard {
+        Shard {
+            index: i - 1,
+            count: n,
+        }
+    }
+
+    #[test]
+    fn array_tasks_map_to_parts_from_either_base() {
+        // Task 3 of 0-7 is the fourth of eight; task 3 of 1-8 the third.
+        assert_eq!(auto(&array("3", "0", "7"), None), Ok(part(4, 8)));
+        assert_eq!(auto(&array("3", "1", "8"), None), Ok(part(3, 8)));
+        assert_eq!(
+            auto(&array("0", "0", "7"), Some(ShardArg::Auto)),
+            Ok(part(1, 8))
+        );
+        assert_eq!(auto(&array("7", "0", "7"), None), Ok(part(8, 8)));
+        assert_eq!(auto(&array("12", "10", "13"), None), Ok(part(3, 4)));
+        // A one-task array is the whole sweep.
+        assert_eq!(auto(&array("5", "5", "5"), None), Ok(part(1, 1)));
+        // Every task of an array gets a different part, and together they cover 1..N.
+        let mut seen: Vec<usize> = (0..8)
+            .map(|id| auto(&array(&id.to_string(), "0", "7"), None).unwrap())
+            .inspect(|s| assert_eq!(s.count, 8))
+            .map(|s| s.index)
+            .collect();
+        seen.sort();
+        assert_eq!(seen, (0..8).collect::<Vec<_>>());
+    }
+
+    #[test]
+    fn an_explicit_part_wins_and_no_array_is_the_whole_sweep() {
+        let given = Some(ShardArg::Part(part(2, 5)));
+        assert_eq!(auto(&array("3", "0", "7"), given), Ok(part(2, 5)));
+        assert_eq!(auto(&[], None), Ok(Shard::WHOLE));
+        // Outside an array job, variables of other kinds change nothing.
+        assert_eq!(
+            auto(&[("SLURM_JOB_ID", "17".into())], None),
+            Ok(Shard::WHOLE)
+        );
+        assert_eq!(
+            auto(&[("SLURM_ARRAY_TASK_ID", "".into())], None),
+            Ok(Shard::WHOLE)
+        );
+        let mut with_count = array("2", "1", "4");
+        with_count.push(("SLURM_ARRAY_TASK_COUNT", "4".into()));
+        assert_eq!(auto(&with_count, None), Ok(part(2, 4)));
+    }
+
+    #[test]
+    fn inconsistent_arrays_are_refused_in_one_line_naming_the_variable() {
+        let refused = |vars: &[(&str, String)], arg: Option<ShardArg>, want: &str| {
+            let e = auto(vars, arg).unwrap_err().0;
+            assert!(e.contains(want), "{e:?} lacks {want:?}");
+            assert!(!e.contains('\n'), "{e:?}");
+        };
+        refused(&[], Some(ShardArg::Auto), "SLURM_ARRAY_TASK_ID is not set");
+        refused(
+            &[("SLURM_ARRAY_TASK_ID", "3".into())],
+            None,
+            "SLURM_ARRAY_TASK_MIN is not set",
+        );
+        refused(
+            &[
+                ("SLURM_ARRAY_TASK_ID", "3".into()),
+                ("SLURM_ARRAY_TASK_MIN", "0".into()),
+            ],
+            Some(ShardArg::Auto),
+            "SLURM_ARRAY_TASK_MAX is not set",
+        );
+        refused(
+            &array("9", "0", "7"),
+            None,
+            "SLURM_ARRAY_TASK_ID=9 is not in",
+        );
+        refused(&array("0", "1", "8"), None, "= 1..8");
+        refused(&array("4", "5", "3"), None, "= 5..3");
+        refused(&array("x", "0", "7"), None, "SLURM_ARRAY_TASK_ID='x'");
+        refused(&array("-1", "0", "7"), None, "SLURM_ARRAY_TASK_ID='-1'");
+        // --array=1-7:2 has 4 tasks over 7 indices.
+        let mut stepped = array("3", "1", "7");
+        stepped.push(("SLURM_ARRAY_TASK_COUNT", "4".into()));
+        refused(&stepped, None, "SLURM_ARRAY_TASK_COUNT=4");
+        // The default says where the shard came from.
+        refused(&array("9", "0", "7"), None, "default in a Slurm job array");
+    }
 }

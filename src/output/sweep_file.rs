@@ -643,7 +643,7 @@ pub fn join(parts: Vec<Part>) -> Result<(Layout, SweepHeader, Vec<PartValue>), S
 }
 
 /// The first setting in which two specifications differ, named.
-fn differing_setting(a: &SweepHeader, b: &SweepHeader) -> String {
+pub fn differing_setting(a: &SweepHeader, b: &SweepHeader) -> String {
     let (va, vb) = (
         serde_json::to_value(a).unwrap_or_default(),
         serde_json::to_value(b).unwrap_or_default(),
