@@ -84,6 +84,19 @@ pub enum Halt {
     Resting { period: i64, phase: f64 },
     /// The ball did not land within the solver's work bound.
     NoLanding { period: i64, phase: f64 },
+    /// The next event would lie beyond [`MAX_PERIOD`] periods, where (period, phase)
+    /// stops being exact; never reached from accepted inputs (transients ≤ 10¹², flights
+    /// bounded), but checked so time can never wrap.
+    TimeOutOfRange { period: i64, phase: f64 },
+}
+
+/// The largest |period| an event may have: 2⁵², so that `period as f64 + phase` and
+/// every sum of periods the engine forms stay exact and far from i64 overflow.
+pub const MAX_PERIOD: i64 = 1 << 52;
+
+/// Whether an event time is inside the exact range.
+fn in_range(period: i64) -> bool {
+    (-MAX_PERIOD..=MAX_PERIOD).contains(&period)
 }
 
 impl std::fmt::Display for Halt {
@@ -96,6 +109,10 @@ impl std::fmt::Display for Halt {
             Halt::NoLanding { period, phase } => write!(
                 f,
                 "the ball launched at t = {period} + {phase:.12} did not land within the solver's work bound"
+            ),
+            Halt::TimeOutOfRange { period, phase } => write!(
+                f,
+                "the event after t = {period} + {phase:.12} lies beyond 2^52 periods, where time is no longer exact"
             ),
         }
     }
@@ -241,6 +258,10 @@ impl ImpactMap {
             w: st.w,
         };
         match self.flights.landing(&self.sys, &launch) {
+            Ok(l) if !in_range(l.period) => Err(Halt::TimeOutOfRange {
+                period: st.period,
+                phase: st.phase,
+            }),
             Ok(l) => {
                 let df = l.df;
                 let w = -self.sys.r * l.vrel;
@@ -296,6 +317,10 @@ impl ImpactMap {
             .table
             .release_after(self.sys.alpha, st.period, st.phase, st.release_after)
         {
+            Some((period, _)) if !in_range(period) => Err(Halt::TimeOutOfRange {
+                period: st.period,
+                phase: st.phase,
+            }),
             Some((period, phase)) => {
                 let df = self.sys.df(phase);
                 self.state = State {

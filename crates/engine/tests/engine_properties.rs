@@ -144,7 +144,9 @@ fn check_orbit(sys: System, t0: f64, hop: f64, z0: f64, events: usize) -> Result
         let e = match map.step() {
             Ok(e) => e,
             Err(Halt::Resting { .. }) => return Ok(()),
-            Err(h @ Halt::NoLanding { .. }) => return Err(format!("{h}")),
+            Err(h @ (Halt::NoLanding { .. } | Halt::TimeOutOfRange { .. })) => {
+                return Err(format!("{h}"))
+            }
         };
         if !(e.phase.is_finite() && e.v.is_finite() && (0.0..1.0).contains(&e.phase)) {
             return Err(format!("bad event {e:?}"));

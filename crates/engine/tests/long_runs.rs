@@ -77,3 +77,49 @@ fn sine_small_alpha_regimes() {
         assert!(counts[0] > 0);
     }
 }
+
+/// Time near the end of i64: the map stops with `TimeOutOfRange` before an event time
+/// could wrap (it used to overflow in `period + k`), on every table and in flight or
+/// stuck, and never reports an event beyond 2⁵² periods.
+#[test]
+fn time_at_the_end_of_its_range_stops_instead_of_wrapping() {
+    use bouncemap_engine::map::MAX_PERIOD;
+    for (spec, alpha) in [
+        ("fd:0.1", 0.45),
+        ("fd:0.1", 0.6),
+        ("sine", 0.03),
+        ("cubic", 0.5),
+    ] {
+        let sys = System::new(table(spec), alpha, 0.8).unwrap();
+        for period in [MAX_PERIOD - 3, i64::MAX - 1, i64::MAX] {
+            let mut st = State::launch(&sys, 0, 0.25, sys.df(0.25) + 2.0, 0.0).unwrap();
+            st.period = period;
+            let mut map = ImpactMap::new(sys.clone(), Solver::Exact, st);
+            let mut halted = None;
+            for _ in 0..10_000 {
+                match map.step() {
+                    Ok(e) => assert!(e.period <= MAX_PERIOD, "{spec} {period}: {e:?}"),
+                    Err(h) => {
+                        halted = Some(h);
+                        break;
+                    }
+                }
+            }
+            assert!(
+                matches!(halted, Some(Halt::TimeOutOfRange { .. })),
+                "{spec} from period {period}: {halted:?}"
+            );
+        }
+    }
+}
+
+/// (period, phase) normalisation saturates instead of wrapping.
+#[test]
+fn normalisation_saturates_at_the_ends_of_i64() {
+    use bouncemap_engine::impact::normalize;
+    assert_eq!(normalize(i64::MAX, 2.5), (i64::MAX, 0.5));
+    assert_eq!(normalize(i64::MIN, -2.5), (i64::MIN, 0.5));
+    assert_eq!(normalize(5, 1e300).0, i64::MAX);
+    assert_eq!(normalize(5, 2.25), (7, 0.25));
+    assert_eq!(normalize(5, -0.75), (4, 0.25));
+}

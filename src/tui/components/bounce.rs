@@ -216,6 +216,7 @@ fn render(b: &Bounce, app: &Shared, area: Rect, buf: &mut Buffer) {
                     match h {
                         Halt::Resting { .. } => " resting",
                         Halt::NoLanding { .. } => " no landing",
+                        Halt::TimeOutOfRange { .. } => " time out of range",
                     },
                     app.theme.error(),
                 ));

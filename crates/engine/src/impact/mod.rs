@@ -155,7 +155,9 @@ pub(crate) fn floor(x: f64) -> f64 {
     }
 }
 
-/// Normalise (period, phase) so the phase is in [0, 1).
+/// Normalise (period, phase) so the phase is in [0, 1). The period arithmetic is
+/// checked: a sum beyond i64 saturates at i64::MIN or i64::MAX (never wraps), which the
+/// map then reports as [`Halt::TimeOutOfRange`](crate::map::Halt::TimeOutOfRange).
 #[inline]
 pub fn normalize(period: i64, phase: f64) -> (i64, f64) {
     if (0.0..1.0).contains(&phase) {
@@ -163,10 +165,12 @@ pub fn normalize(period: i64, phase: f64) -> (i64, f64) {
     }
     let k = floor(phase);
     let mut p = phase - k;
-    let mut n = period + k as i64;
+    // `as` saturates for phases beyond i64 (and maps NaN to 0; the solvers never
+    // produce one).
+    let mut n = period.saturating_add(k as i64);
     if p >= 1.0 {
         p -= 1.0;
-        n += 1;
+        n = n.saturating_add(1);
     }
     (n, p)
 }
@@ -191,7 +195,7 @@ fn landing_on(
     vrel: f64,
     df: f64,
 ) -> Landing {
-    let (period, phase) = normalize(launch.period + m, start + s_in_piece);
+    let (period, phase) = normalize(launch.period.saturating_add(m), start + s_in_piece);
     Landing {
         period,
         phase,

@@ -187,12 +187,17 @@ impl ValueRun {
                 let events = (n - n0) as usize;
                 let periods = e.period - p0;
                 // Leave enough whole cycles before T to record `keep` events for real.
-                let margin = periods * ((self.keep / events.max(1)) as i64 + 2);
-                let cycles = (end - e.period - margin).div_euclid(periods);
+                // Checked: a jump that cannot be computed in i64 is not taken.
+                let target = periods
+                    .checked_mul((self.keep / events.max(1)) as i64 + 2)
+                    .and_then(|margin| end.checked_sub(e.period)?.checked_sub(margin));
+                let cycles = target.map_or(0, |t| t.div_euclid(periods));
+                let shift = cycles.checked_mul(periods);
+                let landed = shift.and_then(|s| self.map.state().period.checked_add(s));
                 self.jumped = Some((events, periods, e.period));
-                if cycles > 0 {
+                if let (true, Some(period)) = (cycles > 0, landed) {
                     let mut st = *self.map.state();
-                    st.period += cycles * periods;
+                    st.period = period;
                     self.map.set_state(st);
                     // Older history now lies a whole number of cycles back: the
                     // detector's period arithmetic would be off, so restart it.
@@ -251,7 +256,11 @@ fn point(r: &Rec) -> SweepPoint {
 fn halt_outcome(h: Halt) -> Outcome {
     match h {
         Halt::Resting { period, phase } => Outcome::Resting { period, phase },
-        Halt::NoLanding { period, phase } => Outcome::NoLanding { period, phase },
+        // No further event could be computed: the solver's work bound, or (never from
+        // accepted inputs) a time beyond the exact range.
+        Halt::NoLanding { period, phase } | Halt::TimeOutOfRange { period, phase } => {
+            Outcome::NoLanding { period, phase }
+        }
     }
 }
 
