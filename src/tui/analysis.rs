@@ -21,11 +21,12 @@ pub struct FixedPoint {
     pub stable: bool,
 }
 
-/// A slice of the stability region in the (α, r) plane: stable α intervals at one r.
+/// A slice of the stability region in the (α, r) plane: stable α intervals at one r,
+/// each (α_birth, α_end, whether it ends by period doubling).
 #[derive(Clone, Debug, PartialEq)]
 pub struct RegionRow {
     pub r: f64,
-    pub intervals: Vec<(f64, f64)>,
+    pub intervals: Vec<(f64, f64, bool)>,
 }
 
 /// What the orbit analysis knows for the current system and k.
@@ -65,7 +66,11 @@ pub fn orbit_info(sys: &System, k: u32) -> Result<OrbitInfo, String> {
         .map(|i| {
             let r = (i as f64 + 0.5) / REGION_ROWS as f64;
             let intervals = orbits::stability_windows(&sys.table, r, k)
-                .map(|ws| ws.iter().map(|w| (w.alpha_birth, w.alpha_end)).collect())
+                .map(|ws| {
+                    ws.iter()
+                        .map(|w| (w.alpha_birth, w.alpha_end, w.alpha_pd().is_some()))
+                        .collect()
+                })
                 .unwrap_or_default();
             RegionRow { r, intervals }
         })

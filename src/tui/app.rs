@@ -12,7 +12,7 @@ use super::components::parameters::Parameters;
 use super::components::phase_plot::PhasePlot;
 use super::components::presets::PresetPicker;
 use super::components::stability::Stability;
-use super::components::{help, legend, status, too_small, Component, Target};
+use super::components::{help, legend, status, table_view, too_small, Component, Target};
 use super::keymap::{Action, Keymap};
 use super::layout::{layout, Panes};
 use super::params::{ParamId, Params};
@@ -138,6 +138,18 @@ impl App {
                 }
                 return;
             }
+            Overlay::Table => {
+                if matches!(
+                    action,
+                    Action::TableView | Action::Cancel | Action::Enter | Action::Help
+                ) {
+                    self.shared.overlay = Overlay::None;
+                }
+                if action == Action::Help {
+                    self.shared.overlay = Overlay::Help;
+                }
+                return;
+            }
             Overlay::Presets { selected } => {
                 if let Some(i) = self.presets.handle(selected, action, &mut self.shared) {
                     self.load_preset(i);
@@ -161,6 +173,7 @@ impl App {
                 self.shared.overlay = Overlay::Legend;
                 self.shared.help_scroll = 0;
             }
+            Action::TableView => self.shared.overlay = Overlay::Table,
             Action::Presets => self.shared.overlay = Overlay::Presets { selected: 0 },
             Action::Export | Action::ExportView => {
                 let dir = std::env::current_dir().unwrap_or_else(|_| ".".into());
@@ -332,6 +345,7 @@ impl App {
         match s.overlay {
             Overlay::Help => help::draw(s, area, buf),
             Overlay::Legend => legend::draw(s, s.help_scroll, area, buf),
+            Overlay::Table => table_view::draw(s, area, buf),
             Overlay::Presets { selected } => self.presets.draw(s, selected, area, buf),
             Overlay::None => {}
         }

@@ -24,7 +24,11 @@ pub enum Overlay {
     None,
     Help,
     Legend,
-    Presets { selected: usize },
+    /// The table view: F, F′, F″ over one period.
+    Table,
+    Presets {
+        selected: usize,
+    },
 }
 
 /// Work the runtime must start or do after an action.
@@ -63,6 +67,8 @@ pub struct Shared {
     pub export_view: bool,
     /// The orbit analysis for the current parameters (None while it computes).
     pub orbits: Option<Result<OrbitInfo, String>>,
+    /// (t̂, v) of the state the bounce panel has stepped to (None before a step).
+    pub stepped: Option<(f64, f64)>,
     pub(super) effects: Vec<Effect>,
     /// Rows changed by the action being handled, to announce to every panel.
     pub(super) changed: Vec<ParamId>,
@@ -89,6 +95,7 @@ impl Shared {
             export_pending: None,
             export_view: false,
             orbits: None,
+            stepped: None,
             effects: Vec::new(),
             changed: Vec::new(),
         }

@@ -1,18 +1,22 @@
 //! Bounce stepping: one impact at a time (n, N, b, 0), exactly the events of
-//! `bouncemap orbit` from the same start; the ball's flight z(t) and the table f(t)
-//! over the last few events as curves, and the current event's numbers beside them.
+//! `bouncemap orbit` from the same start; the ball's flight z(t) (• dots) and the table
+//! f(t) (braille line) over the last few events (at least 0.3 periods, so chattering
+//! shows as a sequence) on axes of t in periods and z, with the impacts (*), sticks
+//! and releases (▪) and the ball now (●); at the start the first flight, dim. The
+//! current event's numbers are printed beside them in shortest round-trip form.
 //! Stepping runs on the UI thread: one step of the map is bounded, microseconds of
 //! work.
 
 use super::{panel, Component};
+use crate::output::hitgrid::Marker;
 use crate::tui::keymap::Action;
 use crate::tui::params::{ParamId, Params, Touch};
 use crate::tui::plot::canvas_marker;
 use crate::tui::shared::Shared;
-use bouncemap_engine::{Event, Halt, ImpactMap, Mode, Solver, State, System};
+use bouncemap_engine::{Event, EventKind, Halt, ImpactMap, Mode, Solver, State, System};
 use ratatui::buffer::Buffer;
 use ratatui::layout::{Constraint, Layout, Rect};
-use ratatui::text::Line;
+use ratatui::text::{Line, Span};
 use ratatui::widgets::canvas::{Canvas, Points};
 use ratatui::widgets::{Paragraph, Widget, Wrap};
 
@@ -99,6 +103,11 @@ impl Bounce {
         true
     }
 
+    /// (t̂, v) of the last event, for the phase plot's ▣ (None before the first step).
+    pub fn stepped(&self) -> Option<(f64, f64)> {
+        self.events.last().map(|e| (e.phase, e.v))
+    }
+
     /// Events stepped from the initial state.
     pub fn index(&self) -> usize {
         self.events.len()
@@ -118,12 +127,14 @@ impl Component for Bounce {
             Action::RestartOrbit => self.reset(&shared.params),
             _ => return false,
         }
+        shared.stepped = self.stepped();
         true
     }
 
     fn changed(&mut self, id: ParamId, shared: &mut Shared) {
         if matches!(id.touches(), Touch::System | Touch::Start) {
             self.reset(&shared.params);
+            shared.stepped = None;
         }
     }
 
@@ -132,31 +143,67 @@ impl Component for Bounce {
     }
 }
 
-/// Sampled curves: (table points, ball points, time span).
-pub type Curves = (Vec<(f64, f64)>, Vec<(f64, f64)>, (f64, f64));
+/// Events shown at most (a long chattering sequence is cut here).
+pub const SHOWN_MAX: usize = 400;
+/// The shortest stretch of time shown, in table periods, so a chattering sequence
+/// shows as a sequence and not as one dot on the table.
+pub const MIN_SPAN: f64 = 0.3;
 
-/// Sample the curves: (table points, ball points) over the last `SHOWN` flights, with
-/// time measured from the start of the window.
-pub fn curves(sys: &System, history: &[State], samples: usize) -> Curves {
+/// What the plot shows: the table and the ball's path over a stretch of time measured
+/// from `base` (an integer period), the events in it, and the current state.
+pub struct Curves {
+    pub base: i64,
+    /// (start, end) of the stretch, in periods after `base`.
+    pub span: (f64, f64),
+    pub table: Vec<(f64, f64)>,
+    pub ball: Vec<(f64, f64)>,
+    /// (t, z, kind) of each event in the stretch.
+    pub events: Vec<(f64, f64, EventKind)>,
+    /// Where the ball is now (the last state).
+    pub now: (f64, f64),
+}
+
+/// The first state shown: at least `SHOWN` flights back and at least `MIN_SPAN`
+/// periods, at most `SHOWN_MAX` events.
+fn first_shown(history: &[State]) -> usize {
+    let n = history.len();
+    let last = &history[n - 1];
+    let mut from = n - 1;
+    while from > 0 && n - 1 - from < SHOWN_MAX {
+        let s = &history[from];
+        let span = (last.period - s.period) as f64 + (last.phase - s.phase);
+        if n - 1 - from >= SHOWN && span >= MIN_SPAN {
+            break;
+        }
+        from -= 1;
+    }
+    from
+}
+
+/// Sample the curves over the last flights of `history` (at least two states), with
+/// `samples` points across the stretch.
+pub fn curves(sys: &System, history: &[State], samples: usize) -> Option<Curves> {
     let n = history.len();
     if n < 2 {
-        return (Vec::new(), Vec::new(), (0.0, 1.0));
+        return None;
     }
-    let from = n.saturating_sub(SHOWN + 1);
+    let from = first_shown(history);
     let base = history[from].period;
     let t_of = |s: &State| (s.period - base) as f64 + s.phase;
     let (t_start, t_end) = (t_of(&history[from]), t_of(&history[n - 1]));
     let span = (t_end - t_start).max(1e-9);
-    let mut table = Vec::with_capacity(samples);
+    let mut table = Vec::with_capacity(samples + 1);
     for i in 0..=samples {
         let t = t_start + span * i as f64 / samples as f64;
-        table.push((t - t_start, sys.f(t.rem_euclid(1.0))));
+        table.push((t, sys.f(t.rem_euclid(1.0))));
     }
     let mut ball = Vec::new();
     for w in history[from..].windows(2) {
         let (a, b) = (&w[0], &w[1]);
         let (ta, tb) = (t_of(a), t_of(b));
-        let m = ((tb - ta) / span * samples as f64).ceil().max(2.0) as usize;
+        let m = ((tb - ta) / span * samples as f64)
+            .ceil()
+            .clamp(2.0, 4096.0) as usize;
         for i in 0..=m {
             let t = ta + (tb - ta) * i as f64 / m as f64;
             let z = match a.mode {
@@ -166,15 +213,40 @@ pub fn curves(sys: &System, history: &[State], samples: usize) -> Curves {
                 }
                 Mode::Stuck => sys.f(t.rem_euclid(1.0)),
             };
-            ball.push((t - t_start, z));
+            ball.push((t, z));
         }
     }
-    (table, ball, (0.0, span))
+    let last = &history[n - 1];
+    Some(Curves {
+        base,
+        span: (t_start, t_start + span),
+        table,
+        ball,
+        events: Vec::new(),
+        now: (t_end, sys.f(last.phase) + last.height),
+    })
+}
+
+/// A number for the panel: shortest round-trip form where there is room, else six
+/// decimals.
+fn num(x: f64, wide: bool) -> String {
+    if wide {
+        bouncemap_engine::error::fmt_value(x)
+    } else {
+        format!("{x:.6}")
+    }
 }
 
 fn render(b: &Bounce, app: &Shared, area: Rect, buf: &mut Buffer) {
     let title = format!(" Bounce #{} ", b.index());
-    let block = panel(app, title, false);
+    let (table_glyph, ball_glyph, ball_marker) = glyphs(app.marker);
+    let legend = Line::from(vec![
+        Span::styled(format!(" {table_glyph} table"), app.theme.table_curve()),
+        Span::styled(format!(" {ball_glyph} ball"), app.theme.ball()),
+        Span::styled(" * impact", app.theme.mark()),
+        Span::styled(" ● now ", app.theme.mark()),
+    ]);
+    let block = panel(app, title, false).title_bottom(legend);
     let inner = block.inner(area);
     block.render(area, buf);
     if let Some(e) = &b.error {
@@ -197,7 +269,7 @@ fn render(b: &Bounce, app: &Shared, area: Rect, buf: &mut Buffer) {
             .areas(inner);
         (p, n)
     };
-    let (dec, gap) = if below { (15, "    ") } else { (6, " ") };
+    let gap = if below { "    " } else { " " };
     let mut lines = Vec::new();
     let hint = format!(
         "{} +1 {} +10 {} back",
@@ -208,11 +280,11 @@ fn render(b: &Bounce, app: &Shared, area: Rect, buf: &mut Buffer) {
     match b.events.last() {
         Some(e) => {
             let mut head = vec![
-                ratatui::text::Span::styled(e.kind.as_str().to_string(), app.theme.focus()),
-                ratatui::text::Span::raw(format!(" period {}", e.period)),
+                Span::styled(e.kind.as_str().to_string(), app.theme.focus()),
+                Span::raw(format!(" period {}", e.period)),
             ];
             if let Some(h) = &b.halt {
-                head.push(ratatui::text::Span::styled(
+                head.push(Span::styled(
                     match h {
                         Halt::Resting { .. } => " resting",
                         Halt::NoLanding { .. } => " no landing",
@@ -222,15 +294,18 @@ fn render(b: &Bounce, app: &Shared, area: Rect, buf: &mut Buffer) {
                 ));
             }
             lines.push(Line::from(head));
-            lines.push(Line::from(format!("t̂{gap}{:.dec$}", e.phase)));
-            lines.push(Line::from(format!("v{gap}{:.dec$}", e.v)));
-            lines.push(Line::from(format!("vrel {:.dec$}", e.vrel)));
+            lines.push(Line::from(format!("t̂{gap}{}", num(e.phase, below))));
+            lines.push(Line::from(format!("v{gap}{}", num(e.v, below))));
+            lines.push(Line::from(format!("vrel {}", num(e.vrel, below))));
         }
         None => {
             let s = b.history[0];
-            lines.push(Line::styled("start", app.theme.focus()));
-            lines.push(Line::from(format!("t̂{gap}{:.dec$}", s.phase)));
-            lines.push(Line::from(format!("v{gap}{:.dec$}", s.v)));
+            lines.push(Line::from(vec![
+                Span::styled("start", app.theme.focus()),
+                Span::styled(" (dim: the next flight)", app.theme.dim()),
+            ]));
+            lines.push(Line::from(format!("t̂{gap}{}", num(s.phase, below))));
+            lines.push(Line::from(format!("v{gap}{}", num(s.v, below))));
         }
     }
     lines.push(Line::styled(hint, app.theme.dim()));
@@ -238,35 +313,131 @@ fn render(b: &Bounce, app: &Shared, area: Rect, buf: &mut Buffer) {
         .wrap(Wrap { trim: true })
         .render(numbers, buf);
     let sys = app.system();
-    let (table, ball, (t0, t1)) = curves(&sys, &b.history, (plot.width as usize * 2).max(16));
-    if ball.is_empty() {
+    // At the start, the flight the first step will make (one bounded step of a copy).
+    let mut shown: Vec<State> = b.history.clone();
+    let preview = b.events.is_empty();
+    if preview {
+        if let Some(mut m) = b.map.clone() {
+            if m.step().is_ok() {
+                shown.push(*m.state());
+            }
+        }
+    }
+    const MARGIN: u16 = 6;
+    if plot.width <= MARGIN + 4 || plot.height < 3 {
+        return;
+    }
+    let canvas = Rect {
+        x: plot.x + MARGIN,
+        y: plot.y,
+        width: plot.width - MARGIN,
+        height: plot.height - 1,
+    };
+    let Some(mut c) = curves(&sys, &shown, (canvas.width as usize * 2).max(16)) else {
         Paragraph::new(format!("{}: one impact", app.keymap.hint(Action::StepOne)))
             .style(app.theme.dim())
             .wrap(Wrap { trim: true })
             .render(plot, buf);
         return;
+    };
+    let t0 = c.span.0;
+    for e in b.events.iter().rev() {
+        let t = (e.period - c.base) as f64 + e.phase;
+        if t < t0 - 1e-12 {
+            break;
+        }
+        c.events.push((t, sys.f(e.phase), e.kind));
+    }
+    if preview {
+        c.now = c.ball.first().copied().unwrap_or(c.now);
     }
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-    for &(_, z) in table.iter().chain(&ball) {
+    for &(_, z) in c.table.iter().chain(&c.ball) {
         lo = lo.min(z);
         hi = hi.max(z);
     }
     let pad = ((hi - lo) * 0.05).max(1e-6);
+    let (lo, hi) = (lo - pad, hi + pad);
     let theme = &app.theme;
+    // Axes: z in the margin, t (in periods) along the bottom.
+    for dy in 0..canvas.height {
+        let label = match dy {
+            0 => format!("{:>5.5}┤", short(hi)),
+            d if d == canvas.height - 1 => format!("{:>5.5}┤", short(lo)),
+            d if d == canvas.height / 2 => "    z│".to_string(),
+            _ => "     │".to_string(),
+        };
+        buf.set_string(plot.x, plot.y + dy, label, theme.axis());
+    }
+    let w = canvas.width as usize;
+    let ticks = super::stability::tick_text(
+        w,
+        &[
+            (0, short(c.base as f64 + c.span.0)),
+            (w - 1, short(c.base as f64 + c.span.1)),
+            (w / 2, "t".to_string()),
+        ],
+    );
+    let bottom = plot.y + plot.height - 1;
+    buf.set_string(plot.x + MARGIN - 1, bottom, "└", theme.axis());
+    buf.set_string(canvas.x, bottom, ticks, theme.axis());
     Canvas::default()
         .marker(canvas_marker(app.marker))
-        .x_bounds([t0, t1])
-        .y_bounds([lo - pad, hi + pad])
+        .x_bounds([c.span.0, c.span.1])
+        .y_bounds([lo, hi])
         .paint(|ctx| {
             ctx.draw(&Points {
-                coords: &table,
+                coords: &c.table,
                 color: theme.table_curve().fg.unwrap_or_default(),
             });
-            ctx.layer();
-            ctx.draw(&Points {
-                coords: &ball,
-                color: theme.ball().fg.unwrap_or_default(),
-            });
         })
-        .render(plot, buf);
+        .render(canvas, buf);
+    // The ball over the table, in its own glyph (distinct without colour).
+    let ball_style = if preview { theme.dim() } else { theme.ball() };
+    Canvas::default()
+        .marker(ball_marker)
+        .x_bounds([c.span.0, c.span.1])
+        .y_bounds([lo, hi])
+        .paint(|ctx| {
+            ctx.draw(&Points {
+                coords: &c.ball,
+                color: ball_style.fg.unwrap_or_default(),
+            });
+            ctx.layer();
+            for &(t, z, kind) in &c.events {
+                let g = if kind == EventKind::Impact {
+                    "*"
+                } else {
+                    "▪"
+                };
+                ctx.print(t, z, Line::styled(g, theme.mark()));
+            }
+            ctx.print(c.now.0, c.now.1, Line::styled("●", theme.mark()));
+        })
+        .render(canvas, buf);
+}
+
+/// The glyphs of the table's curve and the ball's path in the legend, and the marker
+/// that draws the ball: always different from the table's, so the two differ without
+/// colour.
+fn glyphs(m: Marker) -> (&'static str, &'static str, ratatui::symbols::Marker) {
+    match m {
+        Marker::Braille => ("⠤", "•", ratatui::symbols::Marker::Dot),
+        Marker::HalfBlock => ("▀", "•", ratatui::symbols::Marker::Dot),
+        Marker::Dot => ("•", "▄", ratatui::symbols::Marker::Bar),
+    }
+}
+
+/// A tick label of at most five characters.
+fn short(x: f64) -> String {
+    let a = x.abs();
+    if a >= 1e5 || (a != 0.0 && a < 1e-3) {
+        format!("{x:.0e}")
+    } else if a >= 100.0 {
+        format!("{x:.0}")
+    } else if a >= 10.0 {
+        format!("{x:.1}")
+    } else {
+        format!("{x:.2}")
+    }
 }

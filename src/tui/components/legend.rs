@@ -48,6 +48,42 @@ pub const SECTIONS: &[(&str, &[(&str, &str)])] = &[
         ],
     ),
     (
+        "Stability panel",
+        &[
+            (
+                "[═══]",
+                "the stable band κ_c < f'' < 0 on the f'' line (ticks: ends, κ_c, 0)",
+            ),
+            (
+                "◆ ◇",
+                "the (1,k) solution, stable and unstable: its f'' and its eigenvalues",
+            ),
+            ("◂ ▸", "an f'' beyond the ends of the line"),
+            (
+                "circle",
+                "|λ| = 1; outside it the radius is logarithmic, dotted ring |λ| = 10",
+            ),
+            (
+                "B  P",
+                "(α, r) plane: birth and α_PD curves of the (1,k) solution (E: ends otherwise)",
+            ),
+            ("◎", "the current (α, r)"),
+        ],
+    ),
+    (
+        "Bounce panel",
+        &[
+            ("⠤ line", "the table f(t), t in periods"),
+            (
+                "•",
+                "the ball's path z(t); dim before the first step: the flight it will make",
+            ),
+            ("*", "an impact"),
+            ("▪", "a stick or a release"),
+            ("●", "the ball now"),
+        ],
+    ),
+    (
         "Basins (B)",
         &[
             (

@@ -20,6 +20,7 @@ pub mod phase_plot;
 pub mod presets;
 pub mod stability;
 pub mod status;
+pub mod table_view;
 pub mod too_small;
 
 use super::keymap::Action;

@@ -185,26 +185,27 @@ impl Component for PhasePlot {
             &recent,
             app.theme.recent(),
         );
-        // Analytic solutions: ◆ for (1, k) (filled if stable), ✕ for the (2, 2k) points.
+        // Analytic solutions: ◆ for (1, k) (filled if stable), ✕ for the (2, 2k) points;
+        // ▣ the state the bounce panel stepped to.
+        let mut marks: Vec<((f64, f64), &str, ratatui::style::Style)> = Vec::new();
         if let Some(Ok(info)) = &app.orbits {
-            let marks = info
-                .fixed
-                .iter()
-                .map(|f| {
-                    (
-                        (f.phase, f.v),
-                        if f.stable { "◆" } else { "◇" },
-                        app.theme.mark(),
-                    )
-                })
-                .chain(info.two.iter().map(|&q| (q, "✕", app.theme.mark2())));
-            for ((t, v), g, style) in marks {
-                if let Some((i, j)) = self.grid.sub_cell(t, v) {
-                    let (sx, sy) = self.grid.marker().resolution();
-                    let (c, r) = ((i / sx) as u16, (j / sy) as u16);
-                    if c < plot.width && r < plot.height {
-                        buf.set_string(plot.x + c, plot.y + r, g, style);
-                    }
+            for f in &info.fixed {
+                let g = if f.stable { "◆" } else { "◇" };
+                marks.push(((f.phase, f.v), g, app.theme.mark()));
+            }
+            for &q in &info.two {
+                marks.push((q, "✕", app.theme.mark2()));
+            }
+        }
+        if let Some(q) = app.stepped {
+            marks.push((q, "▣", app.theme.focus()));
+        }
+        for ((t, v), g, style) in marks {
+            if let Some((i, j)) = self.grid.sub_cell(t, v) {
+                let (sx, sy) = self.grid.marker().resolution();
+                let (c, r) = ((i / sx) as u16, (j / sy) as u16);
+                if c < plot.width && r < plot.height {
+                    buf.set_string(plot.x + c, plot.y + r, g, style);
                 }
             }
         }

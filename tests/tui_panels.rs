@@ -1,0 +1,227 @@
+//! The panels a physicist reads beside the diagram: the stability panel's labelled
+//! f'' line, eigenvalue moduli and (α, r) axes; the bounce panel's axes, markers,
+//! legend and ball glyph (distinct without colour), the first flight before any step, a
+//! chattering sequence shown as a sequence, shortest round-trip numbers; the stepped
+//! state in the phase plot; the table view.
+
+mod tui_common;
+
+use bouncemap::output::hitgrid::Marker;
+use bouncemap::tui::app::{App, Overlay};
+use bouncemap::tui::components::bounce::{curves, MIN_SPAN};
+use bouncemap::tui::keymap::Action;
+use bouncemap::tui::params::ParamId;
+use bouncemap_engine::{kappa_c, EventKind, ImpactMap, Solver, State, System, Table};
+use tui_common::{app, fill, render, text};
+
+fn screen(a: &mut App, w: u16, h: u16) -> String {
+    text(&render(a, w, h))
+}
+
+/// The rows of the screen between columns `x0..x1` (one panel's column).
+fn column(s: &str, x0: usize, x1: usize) -> Vec<String> {
+    s.lines()
+        .map(|l| l.chars().skip(x0).take(x1 - x0).collect())
+        .collect()
+}
+
+#[test]
+fn the_stability_panel_labels_kappa_c_and_zero_and_prints_moduli() {
+    let mut a = app(Marker::Braille);
+    fill(&mut a);
+    let s = screen(&mut a, 120, 40);
+    let lines: Vec<&str> = s.lines().collect();
+    let band = lines
+        .iter()
+        .position(|l| l.contains("f'' ─"))
+        .unwrap_or_else(|| panic!("no f'' line:\n{s}"));
+    // Under the band line: κ_c under its bracket, 0 under the other.
+    let (top, ticks) = (lines[band], lines[band + 1]);
+    let col = |l: &str, pat: &str| {
+        let b = l.find(pat).unwrap();
+        l[..b].chars().count()
+    };
+    let (open, close) = (col(top, "["), col(top, "]"));
+    let k = col(ticks, "κ_c");
+    assert!(
+        k.abs_diff(open) <= 2,
+        "κ_c at {k}, bracket at {open}\n{top}\n{ticks}"
+    );
+    let zero = col(&ticks[ticks.find("κ_c").unwrap()..], " 0 ")
+        + 1
+        + ticks[..ticks.find("κ_c").unwrap()].chars().count();
+    assert!(zero.abs_diff(close) <= 1, "0 at {zero}, bracket at {close}");
+    // The stable (1, 1) point's eigenvalues are complex with |λ|² = det J = r²: both
+    // moduli are r = 0.8 (an identity, not the program's output).
+    assert!(s.contains("|λ| 0.8000, 0.8000"), "{s}");
+    // The unstable one's moduli multiply to r² as well.
+    let unstable = lines
+        .iter()
+        .skip_while(|l| !l.contains("◇ unstable"))
+        .nth(1)
+        .unwrap();
+    let nums: Vec<f64> = unstable
+        .split("|λ|")
+        .nth(1)
+        .unwrap()
+        .split(['│', ','])
+        .take(2)
+        .map(|x| x.trim().parse().unwrap())
+        .collect();
+    assert!(
+        (nums[0] * nums[1] - 0.64).abs() < 1e-3,
+        "{nums:?}: product should be r² = 0.64"
+    );
+    // The (α, r) plane has labelled axes, both curves and the current point.
+    for label in ["1.0┤", "0.0┤", "r│", "◎", "B", "P"] {
+        assert!(s.contains(label), "missing {label}:\n{s}");
+    }
+    assert!(
+        lines.iter().any(|l| l.contains('└') && l.contains(" α ")),
+        "{s}"
+    );
+    let kc = kappa_c(0.8);
+    assert!(s.contains(&format!("κ_c = {kc:.4}")));
+}
+
+#[test]
+fn eigenvalues_outside_the_circle_are_placed_on_a_logarithmic_radius() {
+    use bouncemap::tui::components::stability::radial;
+    assert_eq!(radial(0.5), 0.5);
+    assert_eq!(radial(1.0), 1.0);
+    assert!((radial(10.0) - 1.5).abs() < 1e-15);
+    assert!((radial(100.0) - 2.0).abs() < 1e-15);
+    // Monotone, so the order of moduli is kept.
+    let xs: Vec<f64> = (1..200).map(|i| radial(i as f64 * 0.37)).collect();
+    assert!(xs.windows(2).all(|w| w[0] < w[1]));
+}
+
+#[test]
+fn the_bounce_panel_has_axes_a_legend_and_a_ball_distinct_without_colour() {
+    let mut a = app(Marker::Braille);
+    fill(&mut a);
+    let s = screen(&mut a, 120, 40);
+    let right = column(&s, 80, 120).join("\n");
+    for label in ["z│", "┤", "└", "table", "ball", "impact", "now", "●", "*"] {
+        assert!(right.contains(label), "missing {label}:\n{right}");
+    }
+    // The ball's path is drawn in • dots, the table in braille: different glyphs, so the
+    // two differ with NO_COLOR (the fixture has no colour).
+    assert!(right.contains('•'), "{right}");
+    assert!(
+        right
+            .chars()
+            .any(|c| ('\u{2801}'..='\u{28ff}').contains(&c)),
+        "{right}"
+    );
+    // Half blocks: the table in ▀▄█, the ball still in dots.
+    let mut h = app(Marker::HalfBlock);
+    fill(&mut h);
+    let s = screen(&mut h, 120, 40);
+    let right = column(&s, 80, 120).join("\n");
+    assert!(right.contains('•') && right.contains("▀ table"), "{right}");
+}
+
+#[test]
+fn before_the_first_step_the_bounce_panel_shows_the_flight_to_come() {
+    let mut a = app(Marker::Braille);
+    let s = screen(&mut a, 120, 40);
+    let right = column(&s, 80, 120).join("\n");
+    assert!(right.contains("Bounce #0"), "{right}");
+    assert!(right.contains('•') && right.contains('●'), "{right}");
+    assert!(right.contains("the next flight"), "{right}");
+}
+
+#[test]
+fn numbers_in_the_bounce_panel_round_trip() {
+    let mut a = app(Marker::Braille);
+    a.handle(Action::StepOne);
+    let e = *a.bounce.events.last().unwrap();
+    let s = screen(&mut a, 120, 40);
+    let value = |name: &str| -> f64 {
+        let l = s
+            .lines()
+            .find(|l| l.contains(&format!("│{name} ")))
+            .unwrap_or_else(|| panic!("no {name} line:\n{s}"));
+        let tail = &l[l.find(&format!("│{name} ")).unwrap() + name.len() + 4..];
+        tail.split('│').next().unwrap().trim().parse().unwrap()
+    };
+    // Shortest round-trip form: the printed text parses back to the same f64.
+    assert_eq!(value("v   ").to_bits(), e.v.to_bits(), "{s}");
+    assert_eq!(value("vrel").to_bits(), e.vrel.to_bits(), "{s}");
+}
+
+#[test]
+fn the_stepped_state_is_marked_in_the_phase_plot() {
+    let mut a = app(Marker::Braille);
+    fill(&mut a);
+    let s = screen(&mut a, 120, 40);
+    assert!(!s.contains('▣'), "nothing stepped through the keys yet");
+    a.handle(Action::StepOne);
+    assert_eq!(
+        a.shared.stepped,
+        a.bounce.events.last().map(|e| (e.phase, e.v))
+    );
+    let s = screen(&mut a, 120, 40);
+    assert!(column(&s, 0, 40).join("\n").contains('▣'), "{s}");
+    // A new start forgets it.
+    a.handle(Action::RestartOrbit);
+    assert_eq!(a.shared.stepped, None);
+}
+
+/// During chattering the impacts come ever closer; the panel shows at least
+/// `MIN_SPAN` periods, so the sequence is visible rather than one point.
+#[test]
+fn a_chattering_sequence_is_shown_over_at_least_a_third_of_a_period() {
+    let sys = System::new(Table::fd(0.1).unwrap(), 0.6, 0.8).unwrap();
+    let st = State::launch(&sys, 0, 0.0, sys.df(0.0) + 0.5, 0.0).unwrap();
+    let mut map = ImpactMap::new(sys.clone(), Solver::Exact, st);
+    let mut history = vec![st];
+    // Step to the first stick: the impacts before it chatter.
+    loop {
+        let e = map.step().unwrap();
+        history.push(*map.state());
+        if e.kind == EventKind::Stick {
+            break;
+        }
+        assert!(history.len() < 100_000);
+    }
+    let c = curves(&sys, &history, 200).unwrap();
+    assert!(c.span.1 - c.span.0 >= MIN_SPAN - 1e-12, "{:?}", c.span);
+    // The four last flights alone are far shorter than that.
+    let n = history.len();
+    let four = (history[n - 1].period - history[n - 5].period) as f64
+        + (history[n - 1].phase - history[n - 5].phase);
+    assert!(four < MIN_SPAN, "{four}");
+}
+
+#[test]
+fn the_table_view_shows_f_and_its_derivatives_with_breakpoints() {
+    let mut a = app(Marker::Braille);
+    fill(&mut a);
+    a.handle(Action::TableView);
+    assert_eq!(a.shared.overlay, Overlay::Table);
+    let s = screen(&mut a, 120, 40);
+    for label in ["Table fd:0.1", "F│", "F′│", "F″│", "−1/α", "◆", "½"] {
+        assert!(s.contains(label), "missing {label}:\n{s}");
+    }
+    // F_D's breakpoint at t̂ = ½ drawn through the plots (not only in the legend).
+    let plots: String = s.lines().filter(|l| !l.contains("breakpoint")).collect();
+    assert!(plots.contains('┆'), "{s}");
+    a.handle(Action::TableView);
+    assert_eq!(a.shared.overlay, Overlay::None);
+    // The sine has no breakpoints; at α above 1/(4π²) it has a release phase.
+    a.handle(Action::TableView);
+    a.handle(Action::Cancel);
+    assert_eq!(a.shared.overlay, Overlay::None);
+    a.shared.params.set_text(ParamId::Table, "sine").unwrap();
+    a.shared.params.set_text(ParamId::Alpha, "0.05").unwrap();
+    a.handle(Action::TableView);
+    let s = screen(&mut a, 120, 40);
+    let plots: String = s.lines().filter(|l| !l.contains("breakpoint")).collect();
+    assert!(s.contains("Table sine") && !plots.contains('┆'), "{s}");
+    assert!(s.contains('R'), "{s}");
+    // At 80×24 it still fits.
+    let s = screen(&mut a, 80, 24);
+    assert!(s.contains("F″│"), "{s}");
+}
