@@ -431,3 +431,99 @@ fn a_failed_write_names_the_file_and_leaves_the_old_one() {
     );
     std::fs::remove_dir_all(&d).unwrap();
 }
+
+/// `figure basins` on the cubic table at α = 0.47, r = 0.8, where the stable (1, 1)
+/// solution coexists with a sticking cycle: every start is a cell of some attractor,
+/// and the periodic attractor's marked point is the closed-form (1, 1) point.
+#[test]
+fn basins_cover_the_grid_and_mark_the_closed_form_fixed_point() {
+    let d = dir("basins");
+    let (out, data) = (d.join("b.svg"), d.join("b.json"));
+    ok(&bouncemap(&[
+        "figure",
+        "basins",
+        "--table",
+        "cubic",
+        "--alpha",
+        "0.47",
+        "--r",
+        "0.8",
+        "--grid",
+        "40x20",
+        "--out",
+        s(&out),
+        "--data",
+        s(&data),
+    ]));
+    let fig = json(&data);
+    let cells: usize = fig["panels"][0]["series"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|s| s["kind"] == "cells")
+        .map(|s| s["points"].as_array().unwrap().len())
+        .sum();
+    assert_eq!(cells, 40 * 20);
+    // (1, 1) on the first piece of F_1 (α(3t̂² − 3t̂ + ½) = ½(1 − r)/(1 + r) = 1/18, the
+    // smaller root); after the impact v = ½, so w = ½ − α F'(t̂*) = ½ − 1/18.
+    let a: f64 = 0.47;
+    let (qa, qb, qc) = (3.0 * a, -3.0 * a, 0.5 * a - 1.0 / 18.0);
+    let star = (-qb - (qb * qb - 4.0 * qa * qc).sqrt()) / (2.0 * qa);
+    let pts = series(&fig, "attractor points");
+    assert!(
+        pts.iter().any(|p| {
+            (p[0].as_f64().unwrap() - star).abs() < 1e-8
+                && (p[1].as_f64().unwrap() - (0.5 - 1.0 / 18.0)).abs() < 1e-8
+        }),
+        "{pts:?} vs t̂* = {star}"
+    );
+    let svg = std::fs::read_to_string(&out).unwrap();
+    assert!(
+        svg.contains("periodic (1, 1)"),
+        "legend names the attractor"
+    );
+    std::fs::remove_dir_all(&d).unwrap();
+}
+
+/// `figure lyapunov` over the stable (1, 1) branch of fd:0.1: the stable point's
+/// eigenvalues are complex with |λ|² = det J = r², so every exponent is ln r.
+#[test]
+fn the_lyapunov_figure_shows_ln_r_on_the_stable_branch() {
+    let d = dir("lyapunov");
+    let (out, data) = (d.join("l.png"), d.join("l.json"));
+    ok(&bouncemap(&[
+        "figure",
+        "lyapunov",
+        "--table",
+        "fd:0.1",
+        "--alpha",
+        "0.45..0.47",
+        "--steps",
+        "6",
+        "--transient",
+        "20000",
+        "--near-fixed-point",
+        "--out",
+        s(&out),
+        "--data",
+        s(&data),
+    ]));
+    let fig = json(&data);
+    let lines = fig["panels"][1]["series"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|s| s["name"] == "lyapunov")
+        .unwrap()["lines"]
+        .as_array()
+        .unwrap()
+        .clone();
+    let pts: Vec<&serde_json::Value> = lines.iter().flat_map(|l| l.as_array().unwrap()).collect();
+    assert_eq!(pts.len(), 6);
+    for p in pts {
+        let l = p[1].as_f64().unwrap();
+        assert!((l - 0.8f64.ln()).abs() < 1e-9, "{p}");
+    }
+    assert!(std::fs::metadata(&out).unwrap().len() > 1000);
+    std::fs::remove_dir_all(&d).unwrap();
+}

@@ -14,25 +14,12 @@ use crate::output::records::{csv_writer, AttractorRecord, BasinRow, BasinsDoc, E
 use crate::output::sink::Sink;
 use crate::output::text::shortest;
 use bouncemap_engine::attractors::basins::{BasinSpec, Basins, BasinsJob};
-use bouncemap_engine::attractors::{default_w_max, Settle};
 use bouncemap_engine::jobs::{Control, Executor};
 use std::io::Write;
 use std::time::Duration;
 
 pub fn run(args: &BasinsArgs) -> anyhow::Result<()> {
-    let sys = config::system(&args.system)?;
-    let (nx, ny) = args.grid;
-    let spec = BasinSpec {
-        w_max: args.w_max.unwrap_or_else(|| default_w_max(&sys)),
-        nx,
-        ny,
-        settle: Settle {
-            transient: args.transient,
-            ..Settle::BASINS
-        },
-        sys,
-    };
-    spec.validate().map_err(InputError::from)?;
+    let spec = config::basin_spec(&args.spec)?;
     let threads = config::threads(args.threads)?;
     let mut sink = Sink::open(args.out.as_deref()).map_err(InputError)?;
     let basins = compute(&spec, &Executor::new(threads)?)?;
@@ -41,7 +28,7 @@ pub fn run(args: &BasinsArgs) -> anyhow::Result<()> {
 }
 
 /// Run the picture to the end with progress on stderr.
-fn compute(spec: &BasinSpec, executor: &Executor) -> anyhow::Result<Basins> {
+pub fn compute(spec: &BasinSpec, executor: &Executor) -> anyhow::Result<Basins> {
     let job = BasinsJob::new(spec.clone())?;
     let handle = executor.start(job, &Control::new());
     let mut basins = Basins::new(spec);

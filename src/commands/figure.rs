@@ -15,6 +15,7 @@ use crate::output::figure::scaling::{self as scaling_fig, FIG5_D};
 use crate::output::figure::text::plain;
 use crate::output::figure::{self, shapes, Figure, ImageFormat, Layer, DEFAULT_DPI};
 use crate::output::sink::AtomicFile;
+use bouncemap_engine::attractors::basins::BasinSpec;
 use bouncemap_engine::jobs::{Control, Executor, Progress as JobProgress};
 use bouncemap_engine::orbits::scaling::{log_spaced, scaling_row, ScalingRow};
 use bouncemap_engine::sweep::{self, Shard, SweepSpec, ValueResult};
@@ -27,6 +28,9 @@ use std::time::{Duration, Instant};
 /// `--quick`: values per diagram at most, and the transient, in table periods.
 pub const QUICK_STEPS: usize = 200;
 pub const QUICK_TRANSIENT: u64 = 20_000;
+/// `--quick` for `basins`: the grid at most, and each start's transient.
+pub const QUICK_GRID: (usize, usize) = (80, 40);
+pub const QUICK_BASIN_TRANSIENT: u64 = 1000;
 /// r and k of the paper's Fig. 4 and 5.
 const PAPER_R: f64 = 0.8;
 const PAPER_K: u32 = 1;
@@ -51,6 +55,23 @@ pub fn run(args: &FigureArgs) -> anyhow::Result<()> {
             config::sweep::sweep_spec_from(a, Shard::WHOLE)?,
             args.quick,
         )),
+        FigureName::Lyapunov(a) => {
+            let mut spec = quick(config::sweep::sweep_spec_from(a, Shard::WHOLE)?, args.quick);
+            spec.lyapunov = true;
+            Some(spec)
+        }
+        _ => None,
+    };
+    let basin_spec = match &args.name {
+        FigureName::Basins(a) => {
+            let mut spec = config::basin_spec(a)?;
+            if args.quick {
+                spec.nx = spec.nx.min(QUICK_GRID.0);
+                spec.ny = spec.ny.min(QUICK_GRID.1);
+                spec.settle.transient = spec.settle.transient.min(QUICK_BASIN_TRANSIENT);
+            }
+            Some(spec)
+        }
         _ => None,
     };
     if let Some(spec) = &diagram_spec {
@@ -72,7 +93,13 @@ pub fn run(args: &FigureArgs) -> anyhow::Result<()> {
         None => None,
     };
     let executor = Executor::new(threads)?;
-    let fig = build(&args.name, diagram_spec, args.quick, &executor, threads)?;
+    let fig = build(
+        &args.name,
+        (diagram_spec, basin_spec),
+        args.quick,
+        &executor,
+        threads,
+    )?;
     let bytes = figure::render(&fig, format, args.size, dpi)?;
     let shown = file.path().display().to_string();
     file.write_all(&bytes)
@@ -182,13 +209,16 @@ pub fn fig5_d() -> Vec<f64> {
     log_spaced(FIG5_D.0, FIG5_D.1, FIG5_D.2)
 }
 
+/// The figure `name`; `specs` are the checked sweep of `diagram` and `lyapunov` and
+/// the checked grid of `basins`.
 fn build(
     name: &FigureName,
-    diagram_spec: Option<SweepSpec>,
+    specs: (Option<SweepSpec>, Option<BasinSpec>),
     q: bool,
     executor: &Executor,
     threads: usize,
 ) -> anyhow::Result<Figure> {
+    let (diagram_spec, basin_spec) = specs;
     let panel_name = |n: &FigureName| n.as_str().to_string();
     match name {
         FigureName::Fig2 => shapes::fig2(),
@@ -245,6 +275,16 @@ fn build(
         FigureName::Fig5 => {
             let rows = scaling_rows(&fig5_d(), threads, "fig5")?;
             scaling_fig::fig5(&rows, PAPER_R, PAPER_K)
+        }
+        FigureName::Lyapunov(_) => {
+            let spec = diagram_spec.expect("the diagram's sweep was checked first");
+            let values = run_sweep(&spec, executor, "lyapunov")?;
+            Ok(figure::lyapunov::lyapunov_figure(&spec, &values))
+        }
+        FigureName::Basins(_) => {
+            let spec = basin_spec.expect("the basins' grid was checked first");
+            let basins = super::basins::compute(&spec, executor)?;
+            Ok(figure::basins::basins_figure(&spec, &basins))
         }
         FigureName::Diagram(_) => {
             let spec = diagram_spec.expect("the diagram's sweep was checked first");

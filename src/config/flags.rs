@@ -391,9 +391,9 @@ pub enum BasinsFormat {
     Braille,
 }
 
-/// `bouncemap basins`.
+/// What a basin picture is of: `basins`' and `figure basins`' shared flags.
 #[derive(Args, Debug, Clone)]
-pub struct BasinsArgs {
+pub struct BasinsSpecArgs {
     #[command(flatten)]
     pub system: SystemArgs,
     /// Starts along t̂0 × along w0, e.g. 200x100; at most 4000 per side and 10⁶ in all.
@@ -406,6 +406,13 @@ pub struct BasinsArgs {
     /// End of each start's transient in table periods (early stop on cycles).
     #[arg(long, default_value_t = rules::BASIN_TRANSIENT.default as u64, value_parser = rules::BASIN_TRANSIENT.whole::<u64>(), value_name = "PERIODS")]
     pub transient: u64,
+}
+
+/// `bouncemap basins`.
+#[derive(Args, Debug, Clone)]
+pub struct BasinsArgs {
+    #[command(flatten)]
+    pub spec: BasinsSpecArgs,
     /// Output format.
     #[arg(long, value_enum, default_value_t = BasinsFormat::Csv)]
     pub format: BasinsFormat,
@@ -552,6 +559,12 @@ pub enum FigureName {
     /// Any sweep as a bifurcation diagram: takes `sweep`'s flags (--preset, --table, --alpha LO..HI, ...).
     #[command(allow_negative_numbers = true)]
     Diagram(Box<SweepSpecArgs>),
+    /// A sweep's diagram with its largest Lyapunov exponent underneath: `sweep`'s flags.
+    #[command(allow_negative_numbers = true)]
+    Lyapunov(Box<SweepSpecArgs>),
+    /// The basins of attraction of one system: `basins`' flags (--table, --alpha, --r, --grid, ...).
+    #[command(allow_negative_numbers = true)]
+    Basins(Box<BasinsSpecArgs>),
 }
 
 impl FigureName {
@@ -569,6 +582,8 @@ impl FigureName {
             FigureName::Fig4 => "fig4",
             FigureName::Fig5 => "fig5",
             FigureName::Diagram(_) => "diagram",
+            FigureName::Lyapunov(_) => "lyapunov",
+            FigureName::Basins(_) => "basins",
         }
     }
 }

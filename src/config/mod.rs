@@ -60,6 +60,27 @@ pub fn start(sys: &System, args: &InitialArgs) -> Result<State, InputError> {
     Ok(State::start(sys, args.t0, args.v0, args.z0)?)
 }
 
+/// The basin picture `basins`' flags describe, validated.
+pub fn basin_spec(
+    args: &flags::BasinsSpecArgs,
+) -> Result<bouncemap_engine::attractors::basins::BasinSpec, InputError> {
+    use bouncemap_engine::attractors::{default_w_max, Settle};
+    let sys = system(&args.system)?;
+    let (nx, ny) = args.grid;
+    let spec = bouncemap_engine::attractors::basins::BasinSpec {
+        w_max: args.w_max.unwrap_or_else(|| default_w_max(&sys)),
+        nx,
+        ny,
+        settle: Settle {
+            transient: args.transient,
+            ..Settle::BASINS
+        },
+        sys,
+    };
+    spec.validate().map_err(InputError::from)?;
+    Ok(spec)
+}
+
 /// Worker threads: `requested` (`--threads`), else `SLURM_CPUS_PER_TASK` (the CPUs
 /// Slurm gave this task) when set, else one per core; at most 4 × the cores (more only
 /// thrash).

@@ -10,14 +10,17 @@
 //! One file per family of figures builds its [`Figure`]s from engine results:
 //! [`shapes`] (Fig. 2), [`diagram`] (Fig. 3, Fig. 4's upper row, `diagram` and the
 //! terminal's diagram view), [`scaling`] (Fig. 4's lower row, Fig. 5), [`phase`] (the
-//! terminal's phase plot). A new kind of picture is one more function returning a
+//! terminal's phase plot), [`lyapunov`] (a diagram over its largest exponent),
+//! [`basins`] (basins of attraction). A new kind of picture is one more function returning a
 //! [`Figure`] (and one more [`FigureName`](crate::config::flags::FigureName) for the
 //! command).
 //!
 //! For the terminal application: [`diagram::diagram_view`], [`phase::phase_view`],
 //! and [`write`] / [`export`] to put them in files.
 
+pub mod basins;
 pub mod diagram;
+pub mod lyapunov;
 pub mod phase;
 pub mod raster;
 pub mod scaling;
@@ -108,6 +111,15 @@ pub enum Layer {
     Bands {
         name: String,
         spans: Vec<[f64; 2]>,
+        color: Color,
+    },
+    /// Filled rectangles of one size centred on `centres` (a picture over a grid,
+    /// e.g. one attractor's basin); neighbouring cells of a row are drawn as one.
+    Cells {
+        name: String,
+        centres: Vec<[f64; 2]>,
+        /// Width and height of a cell in axis units.
+        size: [f64; 2],
         color: Color,
     },
     /// A horizontal line across the panel.
@@ -434,6 +446,9 @@ impl Figure {
                                     Some(s(name, "markers", points))
                                 }
                                 Layer::Bands { name, spans, .. } => Some(s(name, "bands", spans)),
+                                Layer::Cells { name, centres, .. } => {
+                                    Some(s(name, "cells", centres))
+                                }
                                 Layer::Lines { name, lines, .. } => Some(SeriesData {
                                     name: name.clone(),
                                     kind: "lines",

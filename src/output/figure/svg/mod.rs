@@ -10,9 +10,11 @@
 //! overlaid dots, 1 − (1 − a)ⁿ.
 
 use super::text::{self, Level};
-use super::{Axis, Color, Corner, Dash, Figure, Layer, Legend, Marker, Panel, Scale, Swatch};
-use std::collections::BTreeMap;
+use super::{Axis, Color, Corner, Dash, Figure, Legend, Marker, Panel, Scale, Swatch};
 use std::fmt::Write;
+
+mod layers;
+use layers::layer;
 
 /// Font sizes, in points.
 pub const TICK_FONT: f64 = 7.0;
@@ -293,130 +295,6 @@ fn marker_el(out: &mut String, m: Marker, c: Color, x: f64, y: f64) {
                 n(x),
                 n(y),
                 c.hex()
-            );
-        }
-    }
-}
-
-fn polyline(points: impl Iterator<Item = (f64, f64)>) -> String {
-    let mut d = String::new();
-    for (i, (x, y)) in points.enumerate() {
-        let _ = write!(d, "{}{} {}", if i == 0 { "M" } else { "L" }, n(x), n(y));
-    }
-    d
-}
-
-fn layer(out: &mut String, f: &Frame, p: &Panel, l: &Layer) {
-    match l {
-        Layer::Bands { spans, color, .. } => {
-            let mut d = String::new();
-            for s in spans {
-                let (a, b) = (f.px(&p.x, s[0]), f.px(&p.x, s[1]));
-                let _ = write!(
-                    d,
-                    "M{} {}H{}V{}H{}Z",
-                    n(a.max(f.x0 - 1.0)),
-                    n(f.y0),
-                    n(b.min(f.x1 + 1.0)),
-                    n(f.y1),
-                    n(a.max(f.x0 - 1.0))
-                );
-            }
-            if !d.is_empty() {
-                let _ = writeln!(out, "<path d=\"{d}\" fill=\"{}\"/>", color.hex());
-            }
-        }
-        Layer::Density { points, color, .. } => {
-            let mut cells: BTreeMap<(i64, i64), u32> = BTreeMap::new();
-            for q in points {
-                let (x, y) = (f.px(&p.x, q[0]), f.py(&p.y, q[1]));
-                if !(x >= f.x0 - 1.0 && x <= f.x1 + 1.0 && y >= f.y0 - 1.0 && y <= f.y1 + 1.0) {
-                    continue;
-                }
-                *cells
-                    .entry(((x / DOT_CELL) as i64, (y / DOT_CELL) as i64))
-                    .or_default() += 1;
-            }
-            // One path per opacity step; each dot a zero-length stroke with round caps
-            // (a disc), moved to by whole hundredths of a point so the relative moves
-            // add up exactly.
-            let mut levels: BTreeMap<u32, (String, (i64, i64))> = BTreeMap::new();
-            for ((i, j), count) in cells {
-                let alpha = 1.0 - (1.0 - DOT_ALPHA).powi(count.min(1000) as i32);
-                let level = ((alpha * DOT_LEVELS as f64).ceil() as u32).clamp(1, DOT_LEVELS);
-                let at = (
-                    ((i as f64 + 0.5) * DOT_CELL * 100.0).round() as i64,
-                    ((j as f64 + 0.5) * DOT_CELL * 100.0).round() as i64,
-                );
-                let (d, last) = levels.entry(level).or_default();
-                let (dx, dy) = (hundredths(at.0 - last.0), hundredths(at.1 - last.1));
-                let sep = if dy.starts_with('-') { "" } else { " " };
-                let _ = write!(d, "m{dx}{sep}{dy}h0");
-                *last = at;
-            }
-            for (level, (d, _)) in levels {
-                let _ = writeln!(
-                    out,
-                    "<path fill=\"none\" stroke=\"{}\" stroke-opacity=\"{}\" stroke-width=\"{}\" stroke-linecap=\"round\" d=\"{d}\"/>",
-                    color.hex(),
-                    n(level as f64 / DOT_LEVELS as f64),
-                    n(2.0 * DOT_RADIUS)
-                );
-            }
-        }
-        Layer::Lines {
-            lines,
-            color,
-            dash,
-            width,
-            ..
-        } => {
-            for line in lines {
-                let d = polyline(line.iter().map(|q| (f.px(&p.x, q[0]), f.py(&p.y, q[1]))));
-                if d.is_empty() {
-                    continue;
-                }
-                let _ = writeln!(
-                    out,
-                    "<path d=\"{d}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{}\" stroke-linejoin=\"round\"{}/>",
-                    color.hex(),
-                    n(*width),
-                    dasharray(*dash)
-                );
-            }
-        }
-        Layer::Markers {
-            points,
-            marker,
-            color,
-            ..
-        } => {
-            for q in points {
-                marker_el(out, *marker, *color, f.px(&p.x, q[0]), f.py(&p.y, q[1]));
-            }
-        }
-        Layer::HLine { y, color, dash } => {
-            let yy = f.py(&p.y, *y);
-            let _ = writeln!(
-                out,
-                "<path d=\"M{} {}H{}\" stroke=\"{}\" stroke-width=\"0.6\"{}/>",
-                n(f.x0),
-                n(yy),
-                n(f.x1),
-                color.hex(),
-                dasharray(*dash)
-            );
-        }
-        Layer::VLine { x, color, dash } => {
-            let xx = f.px(&p.x, *x);
-            let _ = writeln!(
-                out,
-                "<path d=\"M{} {}V{}\" stroke=\"{}\" stroke-width=\"0.6\"{}/>",
-                n(xx),
-                n(f.y0),
-                n(f.y1),
-                color.hex(),
-                dasharray(*dash)
             );
         }
     }

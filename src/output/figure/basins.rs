@@ -1,0 +1,114 @@
+//! `figure basins`: the basins of attraction of one system, each start (t̂0, w0) a
+//! cell coloured by the attractor it ends on (1 = the largest basin), with a legend
+//! naming each attractor's kind, period, largest exponent and share of the starts, and
+//! each periodic attractor's point (t̂, w) marked on the picture.
+
+use super::{Axis, Color, Corner, Figure, Layer, Legend, Marker, Panel, Swatch, COLUMN};
+use crate::output::basin_map::{describe, exponent, is_attractor, numbers};
+use crate::output::text::shortest;
+use bouncemap_engine::attractors::basins::{BasinSpec, Basins};
+
+/// Colours of attractors 1, 2, … (repeated beyond the list), chosen to stay apart in
+/// print and for the common colour-vision deficiencies.
+pub const PALETTE: [Color; 8] = [
+    Color(31, 89, 180),
+    Color(230, 120, 20),
+    Color(44, 150, 44),
+    Color(204, 37, 41),
+    Color(140, 86, 180),
+    Color(140, 90, 60),
+    Color(220, 110, 180),
+    Color(120, 160, 200),
+];
+
+/// Starts that come to rest or escape: not an attractor of their own.
+pub const REST: Color = Color(200, 200, 200);
+
+/// The colour of attractor number `n` (1-based).
+pub fn colour(n: usize) -> Color {
+    PALETTE[(n.max(1) - 1) % PALETTE.len()]
+}
+
+/// The figure of a complete basin picture.
+pub fn basins_figure(spec: &BasinSpec, basins: &Basins) -> Figure {
+    let reg = basins.registry();
+    let number = numbers(reg);
+    let size = [1.0 / spec.nx as f64, spec.w_max / spec.ny as f64];
+    let mut cells: Vec<Vec<[f64; 2]>> = vec![Vec::new(); reg.attractors().len()];
+    for (k, l) in basins.labels().iter().enumerate() {
+        if let Some(id) = l {
+            let (t0, w0) = spec.start(k);
+            cells[*id as usize].push([t0, w0]);
+        }
+    }
+    let mut panel = Panel::new(
+        Axis::new("$t\u{302}_0$", 0.0, 1.0),
+        Axis::new("$w_0$", 0.0, spec.w_max),
+    );
+    let mut entries = Vec::new();
+    let mut marks = Vec::new();
+    for id in reg.ranked() {
+        let a = &reg.attractors()[id];
+        let n = number[id];
+        let color = if is_attractor(a.kind) {
+            colour(n)
+        } else {
+            REST
+        };
+        panel.layers.push(Layer::Cells {
+            name: format!("attractor {n}: {}", describe(a)),
+            centres: std::mem::take(&mut cells[id]),
+            size,
+            color,
+        });
+        // A periodic attractor's point after an impact, (t̂, w = v − f'(t̂)), is a start
+        // on the attractor itself: it lies in its own basin.
+        if let Some((t, v)) = a.point {
+            let w = v - spec.sys.df(t);
+            if (0.0..=spec.w_max).contains(&w) {
+                marks.push([t, w]);
+            }
+        }
+        entries.push((
+            Swatch::band(color),
+            format!(
+                "{n}: {}, $\u{3bb}$ {}, {:.1}%",
+                describe(a),
+                exponent(a.lyapunov),
+                100.0 * reg.fraction(id)
+            ),
+        ));
+    }
+    if !marks.is_empty() {
+        panel.layers.push(Layer::Markers {
+            name: "attractor points".into(),
+            points: marks,
+            marker: Marker::Circle,
+            color: Color::BLACK,
+        });
+        entries.push((
+            Swatch::marker(Color::BLACK, Marker::Circle),
+            "a point of a periodic attractor".into(),
+        ));
+    }
+    panel.title = Some(format!(
+        "{}, $\u{3b1}$ = {}, $r$ = {}",
+        super::diagram::table_title(&spec.sys.table),
+        shortest(spec.sys.alpha),
+        shortest(spec.sys.r)
+    ));
+    panel.legends.push(Legend {
+        corner: Corner::TopRight,
+        entries,
+    });
+    Figure {
+        name: "basins".into(),
+        panels: vec![panel],
+        columns: 1,
+        caption: vec![format!(
+            "Basins of attraction: each of {}\u{d7}{} starts leaves the table at phase $t\u{302}_0$ with relative velocity $w_0$ and is followed for up to {} table periods (early stop on cycles); its cell is coloured by the attractor it ends on, numbered from the largest basin down. Grey: starts that come to rest on the table or do not land. Circles: a point (after an impact) of each periodic attractor, itself a start in its basin.",
+            spec.nx, spec.ny, spec.settle.transient
+        )],
+        size: (COLUMN, 3.2),
+    }
+}
