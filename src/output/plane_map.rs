@@ -161,7 +161,7 @@ pub fn lines(
 ) -> Vec<String> {
     let margin = 10;
     let cols = width.saturating_sub(margin + 1).max(4);
-    let rows = height.saturating_sub(5).max(4);
+    let rows = height.saturating_sub(6).max(4);
     let grid = cells(spec, plane, curves, cols, rows);
     let yt = ticks(spec.y.hi, spec.y.lo, rows);
     let mut out = vec![title.to_string()];
