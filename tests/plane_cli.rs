@@ -361,3 +361,29 @@ fn bad_input_is_one_line_with_status_2() {
         assert!(err.contains(needle), "{a:?}: {err}");
     }
 }
+
+#[test]
+fn resume_leaves_a_complete_part_and_computes_a_foreign_one() {
+    let part = tmp("resume-1-of-2.csv");
+    let _ = std::fs::remove_file(&part);
+    let args = plane_args("csv", &["--shard", "1/2", "--resume", "--out", &part]);
+    let (code, _, err) = run(&args);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("no ") && err.contains("computing it"), "{err}");
+    let before = std::fs::read_to_string(&part).unwrap();
+    let (code, _, err) = run(&args);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        err.contains("already holds shard 1/2 of this plane"),
+        "{err}"
+    );
+    assert_eq!(std::fs::read_to_string(&part).unwrap(), before);
+    // Another shard's file at that path is computed again.
+    let args = plane_args("csv", &["--shard", "2/2", "--resume", "--out", &part]);
+    let (code, _, err) = run(&args);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        err.contains("holds shard 1/2 of this plane, not shard 2/2"),
+        "{err}"
+    );
+}

@@ -7,21 +7,34 @@
 //! the curves; braille: the picture with axes, curves and legend.
 
 use super::progress::Progress;
+use crate::config::files::{read_text, LARGE_FILE};
 use crate::config::flags::{PlaneArgs, PlaneFormat};
 use crate::config::{self, rules, InputError};
 use crate::output::plane_file::{self, CurvesRecord, PlaneHeader};
 use crate::output::plane_map;
 use crate::output::sink::Sink;
+use crate::output::sweep_file::TOOL;
 use crate::output::sweep_file::{shard_name, Layout};
 use crate::output::text::shortest;
 use bouncemap_engine::jobs::{Control, Executor};
 use bouncemap_engine::plane::{curves, Plane, PlaneJob, PlaneSpec};
 use std::io::Write;
+use std::path::Path;
 use std::time::Duration;
 
 pub fn run(args: &PlaneArgs) -> anyhow::Result<()> {
     let spec = config::plane::plane_spec(args)?;
     let threads = config::threads(args.threads)?;
+    if args.resume {
+        let (out, layout) = resume_target(args)?;
+        match already_done(Path::new(out), layout, &spec) {
+            Ok(done) => {
+                eprintln!("bouncemap: --resume: {done}: nothing to compute");
+                return Ok(());
+            }
+            Err(why) => eprintln!("bouncemap: --resume: {why}; computing it"),
+        }
+    }
     let mut sink = Sink::open(args.out.as_deref()).map_err(InputError)?;
     let plane = compute(&spec, &Executor::new(threads)?)?;
     let curves = curves(&spec);
@@ -74,6 +87,64 @@ pub fn run(args: &PlaneArgs) -> anyhow::Result<()> {
     };
     write(&mut sink).map_err(|e| sink.describe(e))?;
     sink.finish()
+}
+
+/// The file `--resume` checks and the layout this run writes.
+fn resume_target(args: &PlaneArgs) -> Result<(&str, Layout), InputError> {
+    let layout = match args.format {
+        PlaneFormat::Csv => Layout::Csv,
+        PlaneFormat::Json => Layout::Json,
+        PlaneFormat::Braille => {
+            return Err(InputError(
+                "--resume with --format braille: valid with --format csv or json, whose files can be verified".into(),
+            ))
+        }
+    };
+    match args.out.as_deref() {
+        Some(out) => Ok((out, layout)),
+        None => Err(InputError(
+            "--resume without --out: valid with --out FILE, the file to check and write".into(),
+        )),
+    }
+}
+
+/// Whether `path` already holds the part of `spec` this run would write, complete and
+/// verified (as `merge` checks a part) and of this layout, tool, specification and
+/// shard. `Ok` says what is there; `Err` why it must be computed.
+fn already_done(path: &Path, layout: Layout, spec: &PlaneSpec) -> Result<String, String> {
+    let shown = path.display().to_string();
+    if std::fs::symlink_metadata(path).is_err_and(|e| e.kind() == std::io::ErrorKind::NotFound) {
+        return Err(format!("no {shown} yet"));
+    }
+    let text = read_text(path, "the existing file", LARGE_FILE).map_err(|e| e.0)?;
+    let part = plane_file::read_part(&shown, &text)?;
+    if part.layout != layout {
+        return Err(format!("{shown} is a plane file of the other format"));
+    }
+    if part.provenance.tool != TOOL {
+        return Err(format!(
+            "{shown} was written by {}, not by this {TOOL}",
+            part.provenance.tool
+        ));
+    }
+    let header = PlaneHeader::from(spec);
+    if part.header != header {
+        return Err(format!(
+            "{shown} holds another plane ({} differs from this run's)",
+            plane_file::differing_setting(&part.header, &header)
+        ));
+    }
+    let shard = shard_name(spec.shard);
+    if part.provenance.shard != shard {
+        return Err(format!(
+            "{shown} holds shard {} of this plane, not shard {shard}",
+            part.provenance.shard
+        ));
+    }
+    Ok(format!(
+        "{shown} already holds shard {shard} of this plane, complete and verified ({} pixels)",
+        part.rows.len()
+    ))
 }
 
 /// Run the plane to the end with progress on stderr.

@@ -489,6 +489,10 @@ pub struct PlaneArgs {
     /// N), or `auto` (the Slurm array task's part); join the parts with `merge`.
     #[arg(long, value_parser = parse_shard_arg, value_name = "I/N|auto")]
     pub shard: Option<ShardArg>,
+    /// Do nothing if --out FILE already holds this part of this plane, complete and
+    /// verified (checked as `merge` checks a part); otherwise compute it.
+    #[arg(long)]
+    pub resume: bool,
     /// Picture width in characters [default: the terminal's].
     #[arg(long, value_parser = rules::CELLS.whole::<u16>(), value_name = "COLS")]
     pub width: Option<u16>,

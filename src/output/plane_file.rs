@@ -619,7 +619,7 @@ pub fn join(parts: Vec<PlanePart>) -> Result<(Layout, PlaneHeader, String, Vec<P
     Ok((layout, header, curves, rows))
 }
 
-fn differing_setting(a: &PlaneHeader, b: &PlaneHeader) -> String {
+pub fn differing_setting(a: &PlaneHeader, b: &PlaneHeader) -> String {
     let (va, vb) = (
         serde_json::to_value(a).unwrap_or_default(),
         serde_json::to_value(b).unwrap_or_default(),
