@@ -34,6 +34,7 @@ pub enum Action {
     ColorBy,
     AllAttractors,
     ToggleBasins,
+    TogglePlane,
     Legend,
     Presets,
     Export,
@@ -43,7 +44,7 @@ pub enum Action {
 
 impl Action {
     /// Every action, in help order.
-    pub const ALL: [Action; 30] = [
+    pub const ALL: [Action; 31] = [
         Action::Up,
         Action::Down,
         Action::Left,
@@ -66,6 +67,7 @@ impl Action {
         Action::ColorBy,
         Action::AllAttractors,
         Action::ToggleBasins,
+        Action::TogglePlane,
         Action::Presets,
         Action::Export,
         Action::ExportView,
@@ -104,6 +106,7 @@ impl Action {
             Action::ColorBy => "color_by",
             Action::AllAttractors => "all_attractors",
             Action::ToggleBasins => "basins",
+            Action::TogglePlane => "plane",
             Action::Legend => "legend",
             Action::Presets => "presets",
             Action::Export => "export",
@@ -144,6 +147,7 @@ impl Action {
             Action::ColorBy => "diagram: colour by orbit class / attractor / density",
             Action::AllAttractors => "diagram: all attractors (8 starts per value) or one start",
             Action::ToggleBasins => "basins of attraction in place of the phase plot (and back)",
+            Action::TogglePlane => "the (α, D) or (α, r) plane in place of the diagram (and back)",
             Action::Legend => "what every mark, line and colour on the screen means",
             Action::Presets => "presets: the paper's figures",
             Action::Export => "export the diagram (csv and text; the name is typed)",
@@ -382,6 +386,7 @@ impl Default for Keymap {
             (Key::ch('c'), Action::ColorBy),
             (Key::ch('a'), Action::AllAttractors),
             (Key::ch('B'), Action::ToggleBasins),
+            (Key::ch('M'), Action::TogglePlane),
             (Key::ch('p'), Action::Presets),
             (Key::ch('e'), Action::Export),
             (Key::ch('E'), Action::ExportView),
