@@ -206,3 +206,15 @@ fn the_first_coarse_picture_arrives_within_a_second_with_real_workers() {
     eprintln!("complete in {:?}", t0.elapsed());
     workers.cancel_all();
 }
+
+#[test]
+fn the_text_pictures_colours_are_the_applications_period_colours() {
+    let theme = Theme::new(ColorMode::Ansi256);
+    for c in Class::ALL {
+        assert_eq!(
+            theme.class(c).fg,
+            Some(ratatui::style::Color::Indexed(c.ansi256())),
+            "{c:?}"
+        );
+    }
+}

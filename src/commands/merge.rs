@@ -67,7 +67,16 @@ fn merge_planes(args: &MergeArgs, texts: &[String], mut sink: Sink) -> anyhow::R
     } else {
         "1/1".to_string()
     };
-    let written = plane_file::write(&mut sink, layout, &header, &shard, &curves, &rows).map(drop);
+    let written = plane_file::write(
+        &mut sink,
+        layout,
+        &header,
+        &shard,
+        &curves,
+        rows.len(),
+        rows.into_iter(),
+    )
+    .map(drop);
     written.map_err(|e| sink.describe(e.into()))?;
     sink.finish()
 }

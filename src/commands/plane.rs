@@ -50,14 +50,14 @@ pub fn run(args: &PlaneArgs) -> anyhow::Result<()> {
                     Some(c) => serde_json::to_string(&CurvesRecord::from(c))?,
                     None => "null".to_string(),
                 };
-                let rows = plane_file::rows(&spec, plane.pixels());
                 plane_file::write(
                     &mut *sink,
                     layout,
                     &PlaneHeader::from(&spec),
                     &shard_name(spec.shard),
                     &curves_text,
-                    &rows,
+                    spec.shard_len(),
+                    plane_file::rows(&spec, plane.pixels()),
                 )?;
             }
             PlaneFormat::Braille => {
@@ -70,6 +70,11 @@ pub fn run(args: &PlaneArgs) -> anyhow::Result<()> {
                     .height
                     .or(term.map(|t| t.1.saturating_sub(2)))
                     .unwrap_or(30);
+                // Colour on a terminal unless NO_COLOR is set; glyphs in files and pipes.
+                use std::io::IsTerminal;
+                let colour = args.out.is_none()
+                    && std::io::stdout().is_terminal()
+                    && std::env::var_os("NO_COLOR").is_none_or(|v| v.is_empty());
                 let lines = plane_map::lines(
                     &spec,
                     &plane,
@@ -77,6 +82,7 @@ pub fn run(args: &PlaneArgs) -> anyhow::Result<()> {
                     &title(&spec),
                     w as usize,
                     h as usize,
+                    colour,
                 );
                 for line in lines {
                     writeln!(sink, "{line}")?;

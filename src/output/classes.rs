@@ -87,6 +87,21 @@ impl Class {
         }
     }
 
+    /// Its colour among the 256 of a terminal: the terminal application's period colour
+    /// in 256-colour mode (a test keeps the two equal), for coloured text pictures.
+    pub fn ansi256(self) -> u8 {
+        match self {
+            Class::Period1 => 51,
+            Class::Period2 => 84,
+            Class::Period4 => 226,
+            Class::Period8 => 209,
+            Class::Periodic => 111,
+            Class::Sticking => 246,
+            Class::Chaotic => 207,
+            Class::Unresolved => 255,
+        }
+    }
+
     /// The class named `name` (as [`Self::name`] writes it).
     pub fn from_name(name: &str) -> Option<Class> {
         Class::ALL.into_iter().find(|c| c.name() == name)

@@ -221,15 +221,17 @@ impl<'a> From<&'a Curves> for CurvesRecord<'a> {
     }
 }
 
-/// Write one plane file: `rows` are the file's pixels in index order; `curves` the
-/// json text of the curves (`null` without them; ignored for csv).
+/// Write one plane file: `rows` are the file's `count` pixels in index order, made as
+/// they are written (a plane's rows are never all held at once); `curves` the json
+/// text of the curves (`null` without them; ignored for csv).
 pub fn write<W: Write>(
     mut out: W,
     layout: Layout,
     header: &PlaneHeader,
     shard: &str,
     curves: &str,
-    rows: &[PixelRow],
+    count: usize,
+    rows: impl Iterator<Item = PixelRow>,
 ) -> io::Result<W> {
     let spec = spec_text(header);
     let prov = PlaneProvenance {
@@ -237,7 +239,7 @@ pub fn write<W: Write>(
         tool: TOOL.into(),
         spec_hash: spec_hash(&spec),
         shard: shard.into(),
-        pixels: rows.len(),
+        pixels: count,
     };
     match layout {
         Layout::Csv => {
@@ -254,11 +256,13 @@ pub fn write<W: Write>(
             let mut w = csv::WriterBuilder::new()
                 .has_headers(false)
                 .from_writer(hashing);
+            let mut written = 0;
             for r in rows {
                 w.serialize(r)?;
+                written += 1;
             }
             let Hashing { mut inner, hash } = w.into_inner().map_err(|e| e.into_error())?;
-            writeln!(inner, "# end {} pixels, checksum {hash:016x}", rows.len())?;
+            writeln!(inner, "# end {written} pixels, checksum {hash:016x}")?;
             Ok(inner)
         }
         Layout::Json => {
@@ -275,11 +279,11 @@ pub fn write<W: Write>(
             h.write_all(curves.as_bytes())?;
             h.inner.write_all(b",\"pixels\":")?;
             h.write_all(b"[")?;
-            for (k, r) in rows.iter().enumerate() {
+            for (k, r) in rows.enumerate() {
                 if k > 0 {
                     h.write_all(b",")?;
                 }
-                serde_json::to_writer(&mut h, r)?;
+                serde_json::to_writer(&mut h, &r)?;
             }
             h.write_all(b"]")?;
             let Hashing { mut inner, hash } = h;
@@ -634,29 +638,29 @@ pub fn differing_setting(a: &PlaneHeader, b: &PlaneHeader) -> String {
     "its specification".into()
 }
 
-/// The rows of a computed plane's shard, in index order.
-pub fn rows(spec: &PlaneSpec, pixels: &[Option<Pixel>]) -> Vec<PixelRow> {
-    (0..spec.len())
-        .filter(|&p| spec.holds(p))
-        .map(|p| {
-            let (x, y) = spec.values(p);
-            match &pixels[p] {
-                Some(px) => PixelRow::new(x, y, px),
-                None => PixelRow {
-                    x,
-                    y,
-                    class: NO_LANDING.into(),
-                    period: None,
-                    table_periods: None,
-                    lyapunov: Exponent(None),
-                    status: Outcome::NoLanding {
-                        period: 0,
-                        phase: 0.0,
-                    }
-                    .as_str()
-                    .into(),
-                },
-            }
-        })
-        .collect()
+/// The rows of a computed plane's shard, in index order, made one by one.
+pub fn rows<'a>(
+    spec: &'a PlaneSpec,
+    pixels: &'a [Option<Pixel>],
+) -> impl Iterator<Item = PixelRow> + 'a {
+    (0..spec.len()).filter(|&p| spec.holds(p)).map(move |p| {
+        let (x, y) = spec.values(p);
+        match &pixels[p] {
+            Some(px) => PixelRow::new(x, y, px),
+            None => PixelRow {
+                x,
+                y,
+                class: NO_LANDING.into(),
+                period: None,
+                table_periods: None,
+                lyapunov: Exponent(None),
+                status: Outcome::NoLanding {
+                    period: 0,
+                    phase: 0.0,
+                }
+                .as_str()
+                .into(),
+            },
+        }
+    })
 }

@@ -148,9 +148,44 @@ pub fn legend() -> Vec<String> {
     ]
 }
 
+/// The class of the upper and the lower pixel of every cell of a `cols` × `rows`
+/// picture (two pixel rows per line of cells, row 0 at the top).
+pub fn half_cells(
+    plane: &Plane,
+    cols: usize,
+    rows: usize,
+) -> Vec<Vec<(Option<Class>, Option<Class>)>> {
+    let (nx, ny) = plane.size();
+    let col_pixel = |c: usize| ((2 * c + 1) * nx / (2 * cols.max(1))).min(nx - 1);
+    let half = |h: usize| ny - 1 - ((2 * h + 1) * ny / (4 * rows.max(1))).min(ny - 1);
+    let class = |i: usize, j: usize| plane.preview(i, j).and_then(of_pixel);
+    (0..rows)
+        .map(|r| {
+            (0..cols)
+                .map(|c| {
+                    let i = col_pixel(c);
+                    (class(i, half(2 * r)), class(i, half(2 * r + 1)))
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// ANSI 256-colour escape for a foreground (38) or background (48) class colour.
+fn ansi(layer: u8, c: Option<Class>) -> String {
+    match c {
+        Some(c) => format!("\x1b[{layer};5;{}m", c.ansi256()),
+        None => String::new(),
+    }
+}
+
+const RESET: &str = "\x1b[0m";
+
 /// The whole picture as text: a title, the cells with the y axis's tick labels on the
 /// left, the x axis's tick labels and name below, and the legend. `width` and `height`
-/// are the text's size in characters.
+/// are the text's size in characters. With `colour`, every cell is two pixels (upper
+/// and lower half block) in the classes' 256 colours (ANSI escapes), the curves' marks
+/// over them; without, one glyph per cell.
 pub fn lines(
     spec: &PlaneSpec,
     plane: &Plane,
@@ -158,11 +193,13 @@ pub fn lines(
     title: &str,
     width: usize,
     height: usize,
+    colour: bool,
 ) -> Vec<String> {
     let margin = 10;
     let cols = width.saturating_sub(margin + 1).max(4);
     let rows = height.saturating_sub(6).max(4);
     let grid = cells(spec, plane, curves, cols, rows);
+    let halves = colour.then(|| half_cells(plane, cols, rows));
     let yt = ticks(spec.y.hi, spec.y.lo, rows);
     let mut out = vec![title.to_string()];
     for (r, line) in grid.iter().enumerate() {
@@ -175,7 +212,22 @@ pub fn lines(
         } else {
             label
         };
-        let body: String = line.iter().map(|c| c.glyph()).collect();
+        let body: String = match &halves {
+            None => line.iter().map(|c| c.glyph()).collect(),
+            Some(h) => line
+                .iter()
+                .zip(&h[r])
+                .map(|(cell, (top, bottom))| match cell {
+                    Cell::Curve(n, _) => format!(
+                        "{}\x1b[1;30m{}{RESET}",
+                        ansi(48, *bottom),
+                        CURVE_MARKS[*n].0
+                    ),
+                    _ if top.is_none() && bottom.is_none() => " ".into(),
+                    _ => format!("{}{}▀{RESET}", ansi(38, *top), ansi(48, *bottom)),
+                })
+                .collect(),
+        };
         out.push(format!("{name:>margin$}│{body}"));
     }
     out.push(format!("{:>margin$}└{}", "", "─".repeat(cols)));
@@ -195,6 +247,15 @@ pub fn lines(
     let axis: String = axis.into_iter().collect();
     out.push(format!("{:>margin$} {}", "", axis.trim_end()));
     out.push(format!("{:>margin$} {:^cols$}", "", spec.x.param.as_str()));
-    out.extend(legend());
+    if colour {
+        let swatches: Vec<String> = Class::ALL
+            .iter()
+            .map(|c| format!("{}█{RESET} {}", ansi(38, Some(*c)), c.label()))
+            .collect();
+        out.push(swatches.join("  "));
+        out.push(legend().pop().unwrap_or_default());
+    } else {
+        out.extend(legend());
+    }
     out
 }
