@@ -387,3 +387,24 @@ fn resume_leaves_a_complete_part_and_computes_a_foreign_one() {
         "{err}"
     );
 }
+
+#[test]
+fn a_slurm_array_task_computes_its_part() {
+    let out = Command::new(env!("CARGO_BIN_EXE_bouncemap"))
+        .args(plane_args("csv", &[]))
+        .env("SLURM_ARRAY_TASK_ID", "5")
+        .env("SLURM_ARRAY_TASK_MIN", "4")
+        .env("SLURM_ARRAY_TASK_MAX", "6")
+        .env_remove("SLURM_ARRAY_TASK_COUNT")
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.contains("\n# shard 2/3\n"), "{text}");
+    // 23 × 9 = 207 pixels, 69 of them in the part.
+    assert!(text.contains("\n# pixels 69\n"), "{text}");
+}
