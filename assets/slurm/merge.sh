@@ -1,7 +1,7 @@
 #!/bin/bash
 # The merge job of a run submitted by submit.sh (see there): once every shard has ended
 # (successfully or not), join OUT_DIR/part-1-of-PARTS.csv ... into OUT_DIR/COMMAND.csv
-# (sweep.csv for a sweep).
+# (sweep.csv for a sweep, plane.csv for a plane).
 # A shard without its part makes `bouncemap merge` fail naming it; the job then fails.
 # Arguments: the submission's log directory, PARTS.
 set -euo pipefail

@@ -6,13 +6,13 @@
 #
 #   PARTS=4 assets/slurm/submit.sh ~/runs/fig3b --time=00:30:00 -- sweep --preset fig3b
 #
-# COMMAND is a sharded bouncemap command (today: sweep) and ARGUMENTs are its
+# COMMAND is a sharded bouncemap command (sweep or plane) and ARGUMENTs are its
 # arguments, passed to it exactly as given (stored at submission, never word-split).
 # The script adds --shard auto --resume --format csv --out OUT_DIR/part-I-of-N.csv
 # itself, so ARGUMENTs must not contain --shard, --resume, --format or --out.
 #
 # Shard I (array task I of 1-N) writes OUT_DIR/part-I-of-N.csv; the merge job writes
-# OUT_DIR/sweep.csv, identical to the unsharded run but for its provenance's shard
+# OUT_DIR/COMMAND.csv (sweep.csv, plane.csv), identical to the unsharded run but for its provenance's shard
 # line (merged N/N). A failed shard makes the merge job fail with a message naming the
 # missing shard; submitting the same command again recomputes only the shards that are
 # missing (--resume leaves complete, verified parts alone).
@@ -71,8 +71,8 @@ for o in "${sbatch_opts[@]}"; do
     esac
 done
 case ${args[0]} in
-sweep) ;;
-*) die "'${args[0]}' is not a sharded bouncemap command: valid sweep" ;;
+sweep | plane) ;;
+*) die "'${args[0]}' is not a sharded bouncemap command: valid sweep or plane" ;;
 esac
 for a in "${args[@]:1}"; do
     case $a in

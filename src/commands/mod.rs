@@ -10,6 +10,7 @@ pub mod fixed;
 pub mod lyapunov;
 pub mod merge;
 pub mod orbit;
+pub mod plane;
 pub mod progress;
 pub mod scaling;
 pub mod sweep;
@@ -29,6 +30,7 @@ pub fn run(cmd: Command) -> anyhow::Result<()> {
         Command::Sweep(a) => sweep::run(&a),
         Command::Lyapunov(a) => lyapunov::run(&a),
         Command::Basins(a) => basins::run(&a),
+        Command::Plane(a) => plane::run(&a),
         Command::Merge(a) => merge::run(&a),
         Command::Bench(a) => bench::run(&a),
         Command::Figure(a) => figure::run(&a),

@@ -13,6 +13,7 @@
 //!   a preset into a sweep specification (shared by `sweep`, `bench` and the terminal
 //!   application).
 //! * [`sweep`]: `sweep`'s flags (and its preset) into a [`SweepSpec`](bouncemap_engine::sweep::SweepSpec).
+//! * [`plane`]: `plane`'s flags into a [`PlaneSpec`](bouncemap_engine::plane::PlaneSpec).
 //! * [`display`]: colour modes.
 //! * [`files`]: the only place that reads input files: regular files only, size-capped.
 //!
@@ -22,6 +23,7 @@
 pub mod display;
 pub mod files;
 pub mod flags;
+pub mod plane;
 pub mod presets;
 pub mod rules;
 pub mod sweep;

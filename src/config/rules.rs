@@ -120,6 +120,13 @@ pub const IMPACTS: Rule = rule(
 );
 /// End of each basin start's transient, in table periods.
 pub const BASIN_TRANSIENT: Rule = rule("transient", "transient", limits::TRANSIENT, 5e3);
+/// End of each pixel's transient of a plane, in table periods.
+pub const PLANE_TRANSIENT: Rule = rule(
+    "transient",
+    "transient",
+    limits::TRANSIENT,
+    bouncemap_engine::plane::DEFAULT_TRANSIENT as f64,
+);
 /// Top W of the launch velocities of basins and of sweep starts (0: the default
 /// max(1, 2α·max|F'|)).
 pub const W_MAX: Rule = rule(

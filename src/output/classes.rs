@@ -10,6 +10,7 @@
 //! or its exponent is not known.
 
 use bouncemap_engine::attractors::{Kind, CHAOS_FLOOR};
+use bouncemap_engine::plane::Pixel;
 use bouncemap_engine::sweep::{Outcome, ValueAttractor, ValueResult};
 
 /// The class of a value's orbit.
@@ -72,6 +73,40 @@ impl Class {
         }
     }
 
+    /// Name in files (`plane`'s class column).
+    pub fn name(self) -> &'static str {
+        match self {
+            Class::Period1 => "period-1",
+            Class::Period2 => "period-2",
+            Class::Period4 => "period-4",
+            Class::Period8 => "period-8",
+            Class::Periodic => "periodic",
+            Class::Sticking => "sticking",
+            Class::Chaotic => "chaotic",
+            Class::Unresolved => "unresolved",
+        }
+    }
+
+    /// Its colour among the 256 of a terminal: the terminal application's period colour
+    /// in 256-colour mode (a test keeps the two equal), for coloured text pictures.
+    pub fn ansi256(self) -> u8 {
+        match self {
+            Class::Period1 => 51,
+            Class::Period2 => 84,
+            Class::Period4 => 226,
+            Class::Period8 => 209,
+            Class::Periodic => 111,
+            Class::Sticking => 246,
+            Class::Chaotic => 207,
+            Class::Unresolved => 255,
+        }
+    }
+
+    /// The class named `name` (as [`Self::name`] writes it).
+    pub fn from_name(name: &str) -> Option<Class> {
+        Class::ALL.into_iter().find(|c| c.name() == name)
+    }
+
     fn of_cycle(events: usize) -> Class {
         match events {
             1 => Class::Period1,
@@ -86,13 +121,24 @@ impl Class {
 /// The class of a value (of its first start's orbit); None while it is provisional or
 /// when the ball did not land.
 pub fn of_value(r: &ValueResult) -> Option<Class> {
-    let sticks = r.sticking || r.lyapunov == Some(f64::NEG_INFINITY);
-    match r.outcome {
+    of_outcome(&r.outcome, r.sticking, r.lyapunov)
+}
+
+/// The class of one pixel of a plane; None when the ball did not land.
+pub fn of_pixel(p: &Pixel) -> Option<Class> {
+    of_outcome(&p.outcome, p.sticking, p.lyapunov)
+}
+
+/// The class of an orbit that ended its transient with `outcome`, whose last events
+/// include a stick or release (`sticking`), with largest exponent `lyapunov`.
+pub fn of_outcome(outcome: &Outcome, sticking: bool, lyapunov: Option<f64>) -> Option<Class> {
+    let sticks = sticking || lyapunov == Some(f64::NEG_INFINITY);
+    match *outcome {
         Outcome::Running { .. } | Outcome::NoLanding { .. } => None,
         Outcome::Resting { .. } => Some(Class::Sticking),
         _ if sticks => Some(Class::Sticking),
         Outcome::Periodic { events, .. } => Some(Class::of_cycle(events)),
-        Outcome::Unsettled => Some(match r.lyapunov {
+        Outcome::Unsettled => Some(match lyapunov {
             Some(l) if l > CHAOS_FLOOR => Class::Chaotic,
             _ => Class::Unresolved,
         }),

@@ -11,6 +11,9 @@
 //!   text form with axes and labels (`sweep --format braille`).
 //! * [`basin_map`]: a basin picture on character cells, and each attractor's number,
 //!   texture and legend line (`basins --format braille`, the basins panel).
+//! * [`plane_file`]: the plane file (csv or json) with its provenance, writer and the
+//!   reader that checks parts for `merge`; [`plane_map`]: a two-parameter map on
+//!   character cells (glyphs per class, curve marks, axes, legend).
 //! * [`classes`]: what a value's orbit is (period 1, 2, 4, 8, other, sticking, chaotic),
 //!   as the diagram colours it.
 //! * [`text`]: number formatting for aligned text columns.
@@ -21,6 +24,8 @@ pub mod classes;
 pub mod diagram;
 pub mod figure;
 pub mod hitgrid;
+pub mod plane_file;
+pub mod plane_map;
 pub mod records;
 pub mod sink;
 pub mod sweep_file;

@@ -57,10 +57,10 @@ pub fn spec_hash(text: &str) -> String {
     format!("{:016x}", fnv1a(FNV_START, text.as_bytes()))
 }
 
-const FNV_START: u64 = 0xcbf29ce484222325;
+pub(super) const FNV_START: u64 = 0xcbf29ce484222325;
 
 /// 64-bit FNV-1a, continued from `h`.
-fn fnv1a(mut h: u64, bytes: &[u8]) -> u64 {
+pub(super) fn fnv1a(mut h: u64, bytes: &[u8]) -> u64 {
     for &b in bytes {
         h ^= b as u64;
         h = h.wrapping_mul(0x100000001b3);
@@ -69,9 +69,9 @@ fn fnv1a(mut h: u64, bytes: &[u8]) -> u64 {
 }
 
 /// A writer that hashes what passes through it.
-struct Hashing<W: Write> {
-    inner: W,
-    hash: u64,
+pub(super) struct Hashing<W: Write> {
+    pub(super) inner: W,
+    pub(super) hash: u64,
 }
 
 impl<W: Write> Write for Hashing<W> {
@@ -331,7 +331,7 @@ pub fn read_part(name: &str, text: &str) -> Result<Part, String> {
     Ok(part)
 }
 
-fn parse_shard(s: &str) -> Result<Option<Shard>, String> {
+pub(super) fn parse_shard(s: &str) -> Result<Option<Shard>, String> {
     if s.starts_with("merged ") {
         return Ok(None);
     }
@@ -453,12 +453,12 @@ fn read_csv(name: &str, text: &str) -> Result<Part, String> {
     })
 }
 
-fn one_line(s: &str) -> String {
+pub(super) fn one_line(s: &str) -> String {
     s.replace('\n', " ")
 }
 
 /// At most 60 characters of `s`, control characters escaped.
-fn clip(s: &str) -> String {
+pub(super) fn clip(s: &str) -> String {
     let esc = super::text::escape(s);
     if esc.chars().count() > 60 {
         esc.chars().take(59).collect::<String>() + "…"

@@ -10,6 +10,7 @@ use super::components::bounce::Bounce;
 use super::components::diagram::Diagram;
 use super::components::parameters::Parameters;
 use super::components::phase_plot::PhasePlot;
+use super::components::plane::PlanePanel;
 use super::components::presets::PresetPicker;
 use super::components::stability::Stability;
 use super::components::{help, legend, status, table_view, too_small, Component, Target};
@@ -33,6 +34,7 @@ pub struct App {
     pub stability: Stability,
     pub bounce: Bounce,
     pub basins: BasinsPanel,
+    pub plane: PlanePanel,
     pub presets: PresetPicker,
 }
 
@@ -59,6 +61,7 @@ impl App {
             stability: Stability::default(),
             bounce: Bounce::new(&shared.params),
             basins: BasinsPanel::default(),
+            plane: PlanePanel::default(),
             presets: PresetPicker::new(),
             shared,
         };
@@ -69,7 +72,7 @@ impl App {
     }
 
     /// The shared state and every stateful panel, in routing order.
-    fn parts(&mut self) -> (&mut Shared, [&mut dyn Component; 6]) {
+    fn parts(&mut self) -> (&mut Shared, [&mut dyn Component; 7]) {
         let App {
             shared,
             parameters,
@@ -78,11 +81,13 @@ impl App {
             stability,
             bounce,
             basins,
+            plane,
             ..
         } = self;
+        // The plane before the diagram: while shown, it takes the diagram's keys.
         (
             shared,
-            [parameters, diagram, bounce, phase, stability, basins],
+            [parameters, plane, diagram, bounce, phase, stability, basins],
         )
     }
 
@@ -94,6 +99,7 @@ impl App {
             phase,
             stability,
             basins,
+            plane,
             ..
         } = self;
         let c: &mut dyn Component = match t {
@@ -101,6 +107,7 @@ impl App {
             Target::Phase => phase,
             Target::Orbits => stability,
             Target::Basins => basins,
+            Target::Plane => plane,
         };
         (shared, c)
     }
@@ -320,6 +327,7 @@ impl App {
             self.diagram.set_pane(p.diagram, &mut self.shared);
             self.phase.set_pane(p.phase, &self.shared);
             self.basins.set_pane(p.phase, &mut self.shared);
+            self.plane.set_pane(p.diagram, &mut self.shared);
         }
     }
 
@@ -333,7 +341,11 @@ impl App {
         };
         let s = &self.shared;
         self.parameters.draw(s, p.params, buf);
-        self.diagram.draw(s, p.diagram, buf);
+        if self.plane.shown {
+            self.plane.draw(s, p.diagram, buf);
+        } else {
+            self.diagram.draw(s, p.diagram, buf);
+        }
         if self.basins.shown {
             self.basins.draw(s, p.phase, buf);
         } else {

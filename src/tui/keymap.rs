@@ -35,6 +35,7 @@ pub enum Action {
     AllAttractors,
     ToggleBasins,
     TableView,
+    TogglePlane,
     Legend,
     Presets,
     Export,
@@ -44,7 +45,7 @@ pub enum Action {
 
 impl Action {
     /// Every action, in help order.
-    pub const ALL: [Action; 31] = [
+    pub const ALL: [Action; 32] = [
         Action::Up,
         Action::Down,
         Action::Left,
@@ -68,6 +69,7 @@ impl Action {
         Action::AllAttractors,
         Action::ToggleBasins,
         Action::TableView,
+        Action::TogglePlane,
         Action::Presets,
         Action::Export,
         Action::ExportView,
@@ -107,6 +109,7 @@ impl Action {
             Action::AllAttractors => "all_attractors",
             Action::ToggleBasins => "basins",
             Action::TableView => "table_view",
+            Action::TogglePlane => "plane",
             Action::Legend => "legend",
             Action::Presets => "presets",
             Action::Export => "export",
@@ -148,6 +151,7 @@ impl Action {
             Action::AllAttractors => "diagram: all attractors (8 starts per value) or one start",
             Action::ToggleBasins => "basins of attraction in place of the phase plot (and back)",
             Action::TableView => "the table: F, F′, F″ with breakpoints, t̂* and release phases",
+            Action::TogglePlane => "the (α, D) or (α, r) plane in place of the diagram (and back)",
             Action::Legend => "what every mark, line and colour on the screen means",
             Action::Presets => "presets: the paper's figures",
             Action::Export => "export the diagram (csv and text; the name is typed)",
@@ -387,6 +391,7 @@ impl Default for Keymap {
             (Key::ch('a'), Action::AllAttractors),
             (Key::ch('B'), Action::ToggleBasins),
             (Key::ch('T'), Action::TableView),
+            (Key::ch('M'), Action::TogglePlane),
             (Key::ch('p'), Action::Presets),
             (Key::ch('e'), Action::Export),
             (Key::ch('E'), Action::ExportView),

@@ -7,7 +7,7 @@
 //! only the target panel reads, so a new panel needs no new message type here.
 //!
 //! Two kinds of work:
-//! * jobs over many items (the diagram's sweep, the basin picture) run on the engine's [`Executor`], which
+//! * jobs over many items (the diagram's sweep, the basin picture, the plane) run on the engine's [`Executor`], which
 //!   owns its pool; their batches are forwarded as messages, then [`JobDone`];
 //! * interactive work (the phase plot, the orbit analysis) runs on a thread of its own,
 //!   so it never waits behind a job, paused or not.
@@ -28,14 +28,16 @@ pub enum Target {
     Phase,
     Orbits,
     Basins,
+    Plane,
 }
 
 impl Target {
-    pub const ALL: [Target; 4] = [
+    pub const ALL: [Target; 5] = [
         Target::Diagram,
         Target::Phase,
         Target::Orbits,
         Target::Basins,
+        Target::Plane,
     ];
 }
 

@@ -9,7 +9,8 @@
 //! * [`tangent`]: the Jacobian of one event; [`attractors`]: what orbits settle on,
 //!   Lyapunov exponents, basins of attraction.
 //! * [`jobs`]: the executor for computations over many work items; [`sweep`]: the
-//!   bifurcation diagram, its first client; [`attractors::basins`]: the basin picture.
+//!   bifurcation diagram, its first client; [`attractors::basins`]: the basin picture;
+//!   [`plane`]: two-parameter maps with their analytic curves.
 //!
 //! No terminal, no files, no printing, no global state: errors are [`EngineError`]
 //! values; the binary turns them into messages and exit codes. Everything but the
@@ -23,6 +24,7 @@ pub mod jobs;
 pub mod limits;
 pub mod map;
 pub mod orbits;
+pub mod plane;
 pub mod poly;
 pub mod sweep;
 pub mod system;

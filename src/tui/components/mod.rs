@@ -17,6 +17,7 @@ pub mod help;
 pub mod legend;
 pub mod parameters;
 pub mod phase_plot;
+pub mod plane;
 pub mod presets;
 pub mod stability;
 pub mod status;

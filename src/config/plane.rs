@@ -1,0 +1,95 @@
+//! `plane`'s flags into one validated [`PlaneSpec`]: the axes `PARAM:LO..HI`, the table
+//! (`fd` names the F_D family for a d axis), the fixed parameters and the start.
+
+use super::flags::{PlaneArgs, PlaneStartArg};
+use super::rules::{self, Rule};
+use super::sweep::shard;
+use super::table_spec::TableSpec;
+use super::InputError;
+use bouncemap_engine::plane::{Axis, PlaneSpec, PlaneStart};
+use bouncemap_engine::sweep::SweepParam;
+
+/// The rule of an axis parameter.
+fn rule_of(p: SweepParam) -> Rule {
+    match p {
+        SweepParam::Alpha => rules::ALPHA,
+        SweepParam::R => rules::R,
+        SweepParam::D => rules::D,
+    }
+}
+
+/// `PARAM:LO..HI` with PARAM alpha, r or d and n pixels.
+pub fn parse_axis(flag: &str, s: &str, n: usize) -> Result<Axis, InputError> {
+    let refuse = |msg: String| InputError(format!("--{flag} {s}: {msg}"));
+    let (name, window) = s.trim().split_once(':').ok_or_else(|| {
+        refuse(
+            "not an axis: valid PARAM:LO..HI with PARAM alpha, r or d, e.g. alpha:0.45..0.6".into(),
+        )
+    })?;
+    let param = SweepParam::ALL
+        .into_iter()
+        .find(|p| p.as_str() == name.trim())
+        .ok_or_else(|| {
+            refuse(format!(
+                "unknown parameter '{}': valid alpha, r or d",
+                name.trim()
+            ))
+        })?;
+    let (a, b) = window
+        .split_once("..")
+        .ok_or_else(|| refuse("not a window: valid PARAM:LO..HI".into()))?;
+    let rule = rule_of(param);
+    let lo = rule.parse(a).map_err(&refuse)?;
+    let hi = rule.parse(b).map_err(&refuse)?;
+    if lo > hi {
+        return Err(refuse(
+            "the window is empty: valid LO..HI with LO ≤ HI".into(),
+        ));
+    }
+    Ok(Axis { param, lo, hi, n })
+}
+
+/// The plane `plane`'s flags describe.
+pub fn plane_spec(args: &PlaneArgs) -> Result<PlaneSpec, InputError> {
+    let (nx, ny) = args.size;
+    let x = parse_axis("x", &args.x, nx)?;
+    let y = parse_axis("y", &args.y, ny)?;
+    let has_d = x.param == SweepParam::D || y.param == SweepParam::D;
+    let table = match args.table.trim() {
+        "fd" => TableSpec::Fd(rules::D.default),
+        t => TableSpec::parse(t).map_err(|e| InputError(format!("--table: {e}")))?,
+    };
+    if has_d && !matches!(table, TableSpec::Fd(_)) {
+        return Err(InputError(format!(
+            "--table {}: a d axis needs the F_D family: valid --table fd",
+            crate::output::text::escape(args.table.trim())
+        )));
+    }
+    let table = table.load()?;
+    let mut spec = PlaneSpec::new(
+        table,
+        x,
+        y,
+        args.alpha.unwrap_or(rules::ALPHA.default),
+        args.r.unwrap_or(rules::R.default),
+    );
+    for (p, given, flag) in [
+        (SweepParam::Alpha, args.alpha.is_some(), "alpha"),
+        (SweepParam::R, args.r.is_some(), "r"),
+    ] {
+        if given && (x.param == p || y.param == p) {
+            return Err(InputError(format!(
+                "--{flag}: {flag} is an axis of the plane: valid either --{flag} or an axis {flag}:LO..HI"
+            )));
+        }
+    }
+    spec.transient = args.transient;
+    spec.start = match args.start {
+        PlaneStartArg::NearFixedPoint => PlaneStart::NearFixedPoint,
+        PlaneStartArg::Cold => PlaneStart::Cold,
+    };
+    spec.lyapunov = !args.no_lyapunov;
+    spec.shard = shard(args.shard, |name| std::env::var(name).ok())?;
+    spec.validate()?;
+    Ok(spec)
+}

@@ -1,0 +1,425 @@
+//! The plane view: a two-parameter map in the diagram's place (the plane key switches),
+//! α across and D (an fd:D table) or r (any other table) up, every pixel coloured by
+//! the class of its orbit as the engine's plane job streams it coarse to fine (a pixel
+//! not yet computed shows the coarser one whose block it lies in), with the analytic
+//! curves over it (α_birth `b`, α_PD `P`, border collision `B`), axes with tick labels,
+//! the legend in the bottom border and a cursor. Moving the cursor moves the
+//! application's α and D (or r), so the phase plot, stability and bounce panels follow;
+//! Enter keeps that point and brings the diagram back, sweeping α there.
+//!
+//! Pixels: one per column and two per row; with colour each cell is an upper and a
+//! lower half, without colour each cell shows its class's glyph (sparse to dense, as
+//! `plane --format braille`). The plane runs at the diagram's α window (α's default
+//! window when another parameter is swept), D ∈ [0, 1] or r ∈ [0.5, 0.95], with the
+//! diagram's transient, started next to the (1, 1) solution.
+
+use super::{is_focused, panel, Component, Target};
+use crate::output::classes::{of_pixel, Class};
+use crate::output::hitgrid::Range;
+use crate::output::plane_map::{self, glyph, Cell, CURVE_MARKS};
+use crate::tui::keymap::Action;
+use crate::tui::params::{default_window, ParamId, Params};
+use crate::tui::plot::draw_axes;
+use crate::tui::shared::{Effect, Focus, Shared};
+use crate::tui::workers::{Body, JobDone, Workers};
+use bouncemap_engine::jobs::Batch;
+use bouncemap_engine::plane::{curves, Axis, Curves, Plane, PlaneChunk, PlaneJob, PlaneSpec};
+use bouncemap_engine::sweep::SweepParam;
+use bouncemap_engine::Table;
+use ratatui::buffer::Buffer;
+use ratatui::layout::Rect;
+use ratatui::style::{Modifier, Style};
+use ratatui::text::{Line, Span};
+use ratatui::widgets::{Paragraph, Widget};
+use std::time::Instant;
+
+const LABEL_W: u16 = 6;
+
+/// The plane view.
+#[derive(Default)]
+pub struct PlanePanel {
+    /// Whether the view is shown (in place of the diagram).
+    pub shown: bool,
+    pub gen: u64,
+    pub spec: Option<PlaneSpec>,
+    pub plane: Option<Plane>,
+    pub curves: Option<Curves>,
+    pub done: bool,
+    pub error: Option<String>,
+    pub started: Option<Instant>,
+    pub elapsed: f64,
+    /// Seconds from the start to the first complete coarse picture.
+    pub first_picture: Option<f64>,
+    /// Pixels along α and along the other axis for the pane at the last layout.
+    grid: (usize, usize),
+    /// The cursor's pixel (i, j), j = 0 at the bottom.
+    pub cursor: (usize, usize),
+}
+
+/// The plot rectangle inside `pane`.
+fn plot_rect(pane: Rect) -> Rect {
+    crate::tui::layout::plot_area_within(pane, LABEL_W)
+}
+
+/// The plane the current parameters ask for on a `grid`: α over the diagram's α window,
+/// D or r up. The current α, D or r are not part of it (they are the cursor).
+pub fn plane_spec(params: &Params, grid: (usize, usize)) -> PlaneSpec {
+    let (alo, ahi) = if params.param == SweepParam::Alpha {
+        (params.lo, params.hi)
+    } else {
+        default_window(SweepParam::Alpha, &params.table)
+    };
+    let x = Axis {
+        param: SweepParam::Alpha,
+        lo: alo,
+        hi: ahi,
+        n: grid.0.max(1),
+    };
+    let fd = params.table.d().is_some();
+    let param = if fd { SweepParam::D } else { SweepParam::R };
+    let (lo, hi) = default_window(param, &params.table);
+    let y = Axis {
+        param,
+        lo,
+        hi,
+        n: grid.1.max(1),
+    };
+    let table = if fd {
+        Table::fd(0.0).expect("D = 0 is valid")
+    } else {
+        params.table()
+    };
+    let mut spec = PlaneSpec::new(table, x, y, alo, params.r);
+    spec.transient = params.transient;
+    spec
+}
+
+impl PlanePanel {
+    /// Size the grid to the pane: one pixel per column, two per row. A new size restarts
+    /// the plane (if shown).
+    pub fn set_pane(&mut self, pane: Rect, shared: &mut Shared) {
+        let plot = plot_rect(pane);
+        let grid = (plot.width.max(1) as usize, 2 * plot.height.max(1) as usize);
+        if grid != self.grid {
+            self.grid = grid;
+            if self.shown {
+                shared.effect(Effect::Start(Target::Plane));
+            }
+        }
+    }
+
+    /// The plane the current parameters ask for at the pane's size.
+    pub fn spec_for(&self, shared: &Shared) -> PlaneSpec {
+        plane_spec(&shared.params, self.grid)
+    }
+
+    /// The cursor at the application's current α and D (or r).
+    pub fn place_cursor(&mut self, shared: &Shared) {
+        if let Some(s) = &self.spec {
+            let y = shared.params.value(s.y.param).unwrap_or(s.y.lo);
+            self.cursor = (s.x.pixel_of(shared.params.alpha), s.y.pixel_of(y));
+        }
+    }
+
+    /// Move the cursor by (di, dj) pixels and the application's α and D (or r) with it.
+    fn move_cursor(&mut self, di: i64, dj: i64, shared: &mut Shared) {
+        let Some(s) = &self.spec else { return };
+        let i = (self.cursor.0 as i64 + di).clamp(0, s.x.n as i64 - 1) as usize;
+        let j = (self.cursor.1 as i64 + dj).clamp(0, s.y.n as i64 - 1) as usize;
+        self.cursor = (i, j);
+        // Rounded to 6 decimals (the parameters panel's precision): the same pixel.
+        let round = |x: f64| (x * 1e6).round() / 1e6;
+        let (alpha, y) = (round(s.x.value(i)), round(s.y.value(j)));
+        let yid = Params::row_of(s.y.param);
+        let before = shared.params.clone();
+        let r = shared
+            .params
+            .set_text(ParamId::Alpha, &format!("{alpha}"))
+            .and_then(|_| shared.params.set_text(yid, &format!("{y}")));
+        match r {
+            Ok(()) => {
+                if shared.params != before {
+                    shared.changed.push(ParamId::Alpha);
+                    shared.changed.push(yid);
+                }
+            }
+            Err(e) => {
+                shared.params = before;
+                shared.say(e, true);
+            }
+        }
+    }
+
+    fn title(&self, shared: &Shared) -> String {
+        let Some(s) = &self.spec else {
+            return " Plane ".into();
+        };
+        let head = format!(" Plane α×{}", Params::symbol(s.y.param));
+        let Some(p) = &self.plane else {
+            return format!("{head} ");
+        };
+        let frac = p.covered() as f64 / s.len().max(1) as f64;
+        let state = if self.done {
+            format!("done {:.1}s", self.elapsed)
+        } else if shared.paused {
+            "paused".into()
+        } else {
+            format!("{:>3.0}%", 100.0 * frac)
+        };
+        let (i, j) = self.cursor;
+        let here = match p.preview(i, j) {
+            Some(px) => of_pixel(px).map_or("no landing", Class::describe),
+            None => "…",
+        };
+        format!(
+            "{head} · {state} · α {:.5} {} {:.4}: {here} ",
+            s.x.value(i),
+            Params::symbol(s.y.param),
+            s.y.value(j)
+        )
+    }
+
+    /// The legend for the bottom border.
+    fn legend(&self, shared: &Shared) -> Line<'static> {
+        let mut spans = vec![Span::raw(" ")];
+        for c in Class::ALL {
+            spans.push(Span::styled(glyph(c).to_string(), shared.theme.class(c)));
+            spans.push(Span::raw(format!("{} ", c.label())));
+        }
+        for (m, name) in CURVE_MARKS {
+            let short = name.split(' ').next().unwrap_or(name);
+            spans.push(Span::styled(m.to_string(), curve_style()));
+            spans.push(Span::raw(format!("{short} ")));
+        }
+        Line::from(spans)
+    }
+}
+
+fn curve_style() -> Style {
+    Style::new().add_modifier(Modifier::BOLD)
+}
+
+impl Component for PlanePanel {
+    fn handle(&mut self, action: Action, shared: &mut Shared) -> bool {
+        if action == Action::TogglePlane {
+            self.shown = !self.shown;
+            shared.effect(Effect::Start(Target::Plane));
+            if self.shown {
+                shared.focus = Focus::Diagram;
+                shared.say(
+                    "plane: arrows move α and D (or r) for every panel; Enter sweeps α there; the key again shows the diagram",
+                    false,
+                );
+            }
+            return true;
+        }
+        if !self.shown || shared.focus != Focus::Diagram {
+            return false;
+        }
+        match action {
+            Action::Left => self.move_cursor(-4, 0, shared),
+            Action::Right => self.move_cursor(4, 0, shared),
+            Action::FineLeft => self.move_cursor(-1, 0, shared),
+            Action::FineRight => self.move_cursor(1, 0, shared),
+            Action::Up => self.move_cursor(0, 1, shared),
+            Action::Down => self.move_cursor(0, -1, shared),
+            Action::Enter => {
+                // The point is already the application's; the diagram sweeps α there.
+                let before = shared.params.clone();
+                let r = if shared.params.param == SweepParam::Alpha {
+                    Ok(())
+                } else {
+                    shared.params.set_param(SweepParam::Alpha)
+                };
+                shared.after_change(ParamId::Sweep, r, &before);
+                self.shown = false;
+                shared.effect(Effect::Start(Target::Plane));
+                shared.effect(Effect::Start(Target::Diagram));
+                shared.say("plane: the diagram sweeps α at the point chosen", false);
+            }
+            // The diagram's other keys do nothing while the plane is shown.
+            Action::ZoomIn
+            | Action::ZoomOut
+            | Action::ZoomBack
+            | Action::MarkWindow
+            | Action::ToggleAxis
+            | Action::ColorBy
+            | Action::AllAttractors => {}
+            _ => return false,
+        }
+        true
+    }
+
+    fn changed(&mut self, _id: ParamId, shared: &mut Shared) {
+        if !self.shown {
+            return;
+        }
+        let next = self.spec_for(shared);
+        if self.spec.as_ref() != Some(&next) {
+            shared.effect(Effect::Start(Target::Plane));
+        } else {
+            self.place_cursor(shared);
+        }
+    }
+
+    fn start(&mut self, shared: &mut Shared, workers: &Workers) {
+        if !self.shown {
+            workers.cancel(Target::Plane);
+            self.done = true;
+            return;
+        }
+        let spec = self.spec_for(shared);
+        let complete = self.plane.as_ref().is_some_and(Plane::complete);
+        if self.spec.as_ref() == Some(&spec) && (complete || !self.done) {
+            // The same plane, complete or still filling in: keep it.
+            self.place_cursor(shared);
+            return;
+        }
+        match PlaneJob::new(spec.clone()) {
+            Ok(job) => {
+                self.gen = workers.start_job(Target::Plane, job);
+                self.plane = Some(Plane::new(&spec));
+                self.curves = curves(&spec);
+                self.spec = Some(spec);
+                self.place_cursor(shared);
+                self.error = None;
+                self.done = false;
+                self.started = Some(Instant::now());
+                self.elapsed = 0.0;
+                self.first_picture = None;
+            }
+            Err(e) => {
+                workers.cancel(Target::Plane);
+                self.error = Some(e.to_string());
+                self.done = true;
+            }
+        }
+    }
+
+    fn receive(&mut self, gen: u64, body: Body, shared: &mut Shared) {
+        if gen != self.gen {
+            return;
+        }
+        if body.is::<JobDone>() {
+            self.done = true;
+        } else if let Ok(b) = body.downcast::<Batch<PlaneChunk>>() {
+            let first_pass = b.pass == 0;
+            if let Some(p) = self.plane.as_mut() {
+                p.absorb(b.data);
+            }
+            if !first_pass && self.first_picture.is_none() {
+                self.first_picture = self.started.map(|s| s.elapsed().as_secs_f64());
+            }
+        }
+        if let Some(s) = self.started {
+            self.elapsed = s.elapsed().as_secs_f64();
+        }
+        shared.dirty = true;
+    }
+
+    fn busy(&self) -> bool {
+        self.shown && !self.done
+    }
+
+    fn draw(&self, app: &Shared, area: Rect, buf: &mut Buffer) {
+        let focused = is_focused(app, Focus::Diagram);
+        let block = panel(app, self.title(app), focused).title_bottom(self.legend(app));
+        let inner = block.inner(area);
+        block.render(area, buf);
+        if let Some(e) = &self.error {
+            Paragraph::new(format!("Plane: {e}"))
+                .style(app.theme.error())
+                .render(inner, buf);
+            return;
+        }
+        let (Some(p), Some(spec)) = (&self.plane, &self.spec) else {
+            return;
+        };
+        let plot = draw_axes(
+            inner,
+            buf,
+            Range::new(spec.x.lo, spec.x.hi),
+            Range::new(spec.y.lo, spec.y.hi),
+            LABEL_W,
+            &app.theme,
+        );
+        let (nx, ny) = p.size();
+        let colour = app.theme.class(Class::Period1).fg.is_some();
+        if colour && nx == plot.width as usize && ny == 2 * plot.height as usize {
+            let fg = |c: Option<Class>| c.and_then(|c| app.theme.class(c).fg);
+            for r in 0..plot.height {
+                let j_top = ny - 1 - 2 * r as usize;
+                for c in 0..plot.width {
+                    let i = c as usize;
+                    let top = p.preview(i, j_top).map(of_pixel).and_then(fg);
+                    let bottom = p.preview(i, j_top - 1).map(of_pixel).and_then(fg);
+                    let mut style = Style::new();
+                    if let Some(t) = top {
+                        style = style.fg(t);
+                    }
+                    if let Some(b) = bottom {
+                        style = style.bg(b);
+                    }
+                    if top.is_some() || bottom.is_some() {
+                        let g = if top.is_some() { "▀" } else { " " };
+                        buf.set_string(plot.x + c, plot.y + r, g, style);
+                    }
+                }
+            }
+        } else {
+            let cells = plane_map::cells(spec, p, None, plot.width as usize, plot.height as usize);
+            for (r, line) in cells.iter().enumerate() {
+                for (c, cell) in line.iter().enumerate() {
+                    if let Cell::Class(Some(k)) = cell {
+                        buf.set_string(
+                            plot.x + c as u16,
+                            plot.y + r as u16,
+                            glyph(*k).to_string(),
+                            app.theme.class(*k),
+                        );
+                    } else if *cell != Cell::Empty {
+                        buf.set_string(
+                            plot.x + c as u16,
+                            plot.y + r as u16,
+                            cell.glyph().to_string(),
+                            app.theme.dim(),
+                        );
+                    }
+                }
+            }
+        }
+        // The curves over the picture, one mark per row of cells.
+        if let Some(cv) = &self.curves {
+            let marks =
+                plane_map::cells(spec, p, Some(cv), plot.width as usize, plot.height as usize);
+            for (r, line) in marks.iter().enumerate() {
+                for (c, cell) in line.iter().enumerate() {
+                    if let Cell::Curve(n, _) = cell {
+                        let x = plot.x + c as u16;
+                        let y = plot.y + r as u16;
+                        let style = match buf.cell((x, y)) {
+                            Some(under) => {
+                                Style::new().bg(under.fg).fg(ratatui::style::Color::Black)
+                            }
+                            None => Style::new(),
+                        };
+                        let style = if colour { style } else { curve_style() };
+                        buf.set_string(
+                            x,
+                            y,
+                            CURVE_MARKS[*n].0.to_string(),
+                            style.add_modifier(Modifier::BOLD),
+                        );
+                    }
+                }
+            }
+        }
+        // The cursor: the cell holding its pixel.
+        let (i, j) = self.cursor;
+        if i < nx && j < ny && plot.width > 0 && plot.height > 0 {
+            let c = (i * plot.width as usize / nx.max(1)) as u16;
+            let r = plot.height - 1 - (j * plot.height as usize / ny.max(1)) as u16;
+            buf.set_string(plot.x + c, plot.y + r, "╋", app.theme.cursor());
+        }
+    }
+}

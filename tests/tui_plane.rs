@@ -1,0 +1,220 @@
+//! The plane view of the terminal application (`M`): the picture filling in coarse to
+//! fine from the engine's plane job (run here), colours by class with NO_COLOR glyphs,
+//! the curves over it, the axes, the legend in the border; the cursor moving the
+//! application's α and D; Enter bringing the diagram back at that point; the key in the
+//! help; and the first coarse picture with real workers.
+
+mod tui_common;
+
+use bouncemap::config::display::ColorMode;
+use bouncemap::output::classes::Class;
+use bouncemap::output::hitgrid::Marker;
+use bouncemap::tui::app::{App, Effect};
+use bouncemap::tui::components::{Component, Target};
+use bouncemap::tui::keymap::{Action, Keymap};
+use bouncemap::tui::params::Params;
+use bouncemap::tui::theme::Theme;
+use bouncemap::tui::workers::{JobDone, Msg, Workers};
+use bouncemap_engine::jobs::{Control, Executor};
+use bouncemap_engine::plane::{curves, Plane, PlaneJob};
+use bouncemap_engine::sweep::SweepParam;
+use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
+use ratatui::buffer::Buffer;
+use ratatui::layout::Rect;
+use std::time::{Duration, Instant};
+use tui_common::size;
+
+fn app(mode: ColorMode) -> App {
+    let mut params = Params::default();
+    // A short transient keeps the debug build's plane quick; the picture is the same
+    // in outline.
+    params.transient = 3000;
+    let mut a = App::new(
+        params,
+        Keymap::default(),
+        Theme::new(mode),
+        Marker::Braille,
+        15,
+    );
+    a.take_effects();
+    a
+}
+
+/// Show the plane and feed it the whole job's batches, as the workers would.
+fn filled(a: &mut App, w: u16, h: u16) {
+    size(a, w, h);
+    a.handle(Action::TogglePlane);
+    assert!(a.plane.shown);
+    let fx = a.take_effects();
+    assert!(fx.contains(&Effect::Start(Target::Plane)), "{fx:?}");
+    let spec = a.plane.spec_for(&a.shared);
+    a.plane.plane = Some(Plane::new(&spec));
+    a.plane.curves = curves(&spec);
+    a.plane.spec = Some(spec.clone());
+    a.plane.gen = 7;
+    a.plane.place_cursor(&a.shared);
+    let mut batches = Vec::new();
+    Executor::new(2)
+        .unwrap()
+        .run(PlaneJob::new(spec).unwrap(), &Control::new(), |b| {
+            batches.push(b)
+        });
+    for b in batches {
+        a.receive(Msg::new(Target::Plane, 7, b));
+    }
+    a.receive(Msg::new(Target::Plane, 7, JobDone));
+    // A fixed clock for the title.
+    a.plane.started = None;
+    a.plane.elapsed = 1.5;
+}
+
+#[test]
+fn the_plane_view_shows_classes_curves_axes_and_legend() {
+    let mut a = app(ColorMode::None);
+    filled(&mut a, 120, 40);
+    let p = a.plane.plane.as_ref().unwrap();
+    assert!(p.complete());
+    // The plane's pane alone (the other panels have their own snapshots).
+    let pane = bouncemap::tui::layout::layout(Rect::new(0, 0, 120, 40))
+        .unwrap()
+        .diagram;
+    let mut buf = Buffer::empty(Rect::new(0, 0, pane.right(), pane.bottom()));
+    a.plane.draw(&a.shared, pane, &mut buf);
+    let s = tui_common::buffer_text(&buf);
+    assert!(s.contains("Plane α×D · done 1.5s"), "{s}");
+    assert!(s.contains("·1 :2 +4 *8 #n ▒stick █chaos"), "{s}");
+    assert!(
+        s.contains("0.450") && s.contains("1.0┤") && s.contains("0.0┤"),
+        "{s}"
+    );
+    // The α_PD curve lies on the boundary between period 1 (·) and what follows it.
+    let mut on_boundary = 0;
+    for line in s.lines() {
+        let chars: Vec<char> = line.chars().collect();
+        if let Some(k) = chars.iter().position(|c| *c == 'P') {
+            if k > 0 && chars[k - 1] == '·' && chars[k + 1] != '·' {
+                on_boundary += 1;
+            }
+        }
+    }
+    assert!(on_boundary >= 10, "{on_boundary}: {s}");
+    insta::assert_snapshot!(s);
+}
+
+#[test]
+fn with_colour_each_cell_is_two_pixels_coloured_by_class() {
+    let mut a = app(ColorMode::Ansi256);
+    filled(&mut a, 120, 40);
+    let t = tui_common::render(&mut a, 120, 40);
+    let theme = Theme::new(ColorMode::Ansi256);
+    let colour = |c: Class| theme.class(c).fg.unwrap();
+    let buf = t.backend().buffer();
+    let halves: Vec<_> = buf.content().iter().filter(|c| c.symbol() == "▀").collect();
+    assert!(halves.len() > 1000, "{}", halves.len());
+    for c in [Class::Period1, Class::Period2, Class::Sticking] {
+        assert!(
+            halves
+                .iter()
+                .any(|x| x.fg == colour(c) || x.bg == colour(c)),
+            "{c:?}"
+        );
+    }
+}
+
+#[test]
+fn the_cursor_moves_alpha_and_d_and_enter_sweeps_alpha_there() {
+    let mut a = app(ColorMode::None);
+    filled(&mut a, 120, 40);
+    let spec = a.plane.spec.clone().unwrap();
+    let (i0, j0) = a.plane.cursor;
+    assert_eq!(i0, spec.x.pixel_of(a.params.alpha));
+    a.handle(Action::FineRight);
+    a.handle(Action::Up);
+    a.handle(Action::Up);
+    assert_eq!(a.plane.cursor, (i0 + 1, j0 + 2));
+    let want_alpha = spec.x.value(i0 + 1);
+    let want_d = spec.y.value(j0 + 2);
+    assert!(
+        (a.params.alpha - want_alpha).abs() < 1e-6,
+        "{}",
+        a.params.alpha
+    );
+    assert!((a.params.table.d().unwrap() - want_d).abs() < 1e-6);
+    // Every panel follows: the system changed, the plane itself does not restart.
+    let fx = a.take_effects();
+    for t in [Target::Diagram, Target::Orbits, Target::Phase] {
+        assert!(fx.contains(&Effect::Start(t)), "{t:?}: {fx:?}");
+    }
+    assert!(!fx.contains(&Effect::Start(Target::Plane)), "{fx:?}");
+    // The diagram's zoom keys do nothing while the plane is shown.
+    a.handle(Action::ZoomIn);
+    assert!(a.plane.shown);
+    // Enter: the diagram comes back and sweeps α at that D.
+    a.handle(Action::Enter);
+    assert!(!a.plane.shown);
+    assert_eq!(a.params.param, SweepParam::Alpha);
+    assert!(a.take_effects().contains(&Effect::Start(Target::Diagram)));
+    let t = tui_common::render(&mut a, 120, 40);
+    assert!(tui_common::text(&t).contains("Bifurcation diagram"));
+}
+
+#[test]
+fn the_plane_key_is_listed_and_configurable() {
+    let ev = KeyEvent::new(KeyCode::Char('M'), KeyModifiers::NONE);
+    assert_eq!(Keymap::default().action(&ev), Some(Action::TogglePlane));
+    assert_eq!(Action::from_name("plane"), Some(Action::TogglePlane));
+    let help = Keymap::default().help();
+    assert!(help
+        .iter()
+        .any(|(_, d)| *d == Action::TogglePlane.describe()));
+}
+
+#[test]
+fn the_first_coarse_picture_arrives_within_a_second_with_real_workers() {
+    let workers = Workers::new(Executor::new(bouncemap_engine::jobs::available_cores()).unwrap());
+    let mut a = app(ColorMode::None);
+    a.params.transient = 20_000;
+    size(&mut a, 120, 40);
+    a.handle(Action::TogglePlane);
+    a.take_effects();
+    let t0 = Instant::now();
+    a.start(Target::Plane, &workers);
+    let wait = |a: &mut App, until: &dyn Fn(&App) -> bool| {
+        let t = Instant::now();
+        while t.elapsed() < Duration::from_secs(120) {
+            if let Ok(m) = workers.rx.recv_timeout(Duration::from_millis(5)) {
+                a.receive(m);
+                if until(a) {
+                    return;
+                }
+            }
+        }
+        panic!("the plane never got there");
+    };
+    // Every pixel of the view shows something once the first pass is in.
+    wait(&mut a, &|a| a.plane.first_picture.is_some());
+    let first = t0.elapsed();
+    let (nx, ny) = a.plane.plane.as_ref().unwrap().size();
+    let p = a.plane.plane.as_ref().unwrap();
+    assert!((0..nx).all(|i| (0..ny).all(|j| p.preview(i, j).is_some())));
+    eprintln!("first coarse picture of {nx}x{ny} in {first:?}");
+    if !cfg!(debug_assertions) {
+        assert!(first < Duration::from_secs(1), "{first:?}");
+    }
+    wait(&mut a, &|a| a.plane.done);
+    assert!(a.plane.plane.as_ref().unwrap().complete());
+    eprintln!("complete in {:?}", t0.elapsed());
+    workers.cancel_all();
+}
+
+#[test]
+fn the_text_pictures_colours_are_the_applications_period_colours() {
+    let theme = Theme::new(ColorMode::Ansi256);
+    for c in Class::ALL {
+        assert_eq!(
+            theme.class(c).fg,
+            Some(ratatui::style::Color::Indexed(c.ansi256())),
+            "{c:?}"
+        );
+    }
+}
