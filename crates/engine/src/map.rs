@@ -213,6 +213,12 @@ impl ImpactMap {
         &self.state
     }
 
+    /// Change α (validated as by [`System::set_alpha`]); set a state afterwards, since
+    /// the current one's relative velocity belongs to the old α.
+    pub fn set_alpha(&mut self, alpha: f64) -> Result<(), EngineError> {
+        self.sys.set_alpha(alpha)
+    }
+
     /// Replace the state (e.g. to step back through a history).
     pub fn set_state(&mut self, state: State) {
         self.state = state;
