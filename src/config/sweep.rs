@@ -49,7 +49,10 @@ fn parse_setting(p: Param, s: &str) -> Result<Setting, InputError> {
 
 /// The sweep `sweep`'s flags (and their preset) describe.
 pub fn sweep_spec(args: &SweepArgs) -> Result<SweepSpec, InputError> {
-    sweep_spec_from(&args.spec, shard(args.shard, |name| std::env::var(name).ok())?)
+    sweep_spec_from(
+        &args.spec,
+        shard(args.shard, |name| std::env::var(name).ok())?,
+    )
 }
 
 /// The sweep the flags shared by `sweep` and `figure diagram` (and their preset)

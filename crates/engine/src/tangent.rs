@@ -249,10 +249,7 @@ mod tests {
                 if ep.period != e.period || em.period != e.period {
                     continue;
                 }
-                let fd = [
-                    (ep.phase - em.phase) / (2.0 * h),
-                    (ep.v - em.v) / (2.0 * h),
-                ];
+                let fd = [(ep.phase - em.phase) / (2.0 * h), (ep.v - em.v) / (2.0 * h)];
                 let col = fl.alpha_column_with(fl.ddf);
                 for r in 0..2 {
                     assert!(
