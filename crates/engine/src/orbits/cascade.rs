@@ -39,6 +39,8 @@ pub struct Cascade {
     /// δₙ = (αₙ − αₙ₋₁)/(αₙ₊₁ − αₙ) for n = 2, 3, … (index 0 is δ₂).
     pub deltas: Vec<f64>,
     pub levels: Vec<Level>,
+    /// Set when no doubled branch is born at the last αₙ.
+    pub unborn: Option<String>,
 }
 
 impl Cascade {
@@ -84,6 +86,7 @@ pub fn cascade(table: &Table, r: f64, k: u32, depth: usize) -> Result<Cascade, N
         end: run.end,
     }];
     let mut alphas = Vec::new();
+    let mut unborn = None;
     while alphas.len() < depth {
         let last = levels.last().expect("one level at least");
         if last.end.kind != Kind::PeriodDoubling {
@@ -112,7 +115,14 @@ pub fn cascade(table: &Table, r: f64, k: u32, depth: usize) -> Result<Cascade, N
                 alpha_start: pd.alpha,
                 end: b.end,
             }),
-            None => break,
+            None => {
+                unborn = Some(format!(
+                    "no ({period}, {}) branch is born at alpha = {}: a degenerate period doubling (f''' = 0 there, so doubled cycles exist at that alpha alone)",
+                    period as u32 * k,
+                    pd.alpha
+                ));
+                break;
+            }
         }
     }
     let deltas = alphas
@@ -125,5 +135,6 @@ pub fn cascade(table: &Table, r: f64, k: u32, depth: usize) -> Result<Cascade, N
         alphas,
         deltas,
         levels,
+        unborn,
     })
 }

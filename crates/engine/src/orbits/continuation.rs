@@ -301,7 +301,7 @@ impl Family {
         }
     }
 
-    /// The doubled branch born at the period doubling `pd`.
+    /// The doubled branch born at the period doubling `pd` (None if none is born).
     pub(crate) fn doubled(&mut self, pd: &Special) -> Option<Branch> {
         let p = &pd.point;
         let (n, k) = (2 * p.n, 2 * p.k);
@@ -318,6 +318,17 @@ impl Family {
                 .unwrap_or(false);
             if collapsed {
                 continue;
+            }
+            // A degenerate period doubling (f''' = 0 on the piece, e.g. F_0): doubled
+            // cycles exist at α_PD alone, a segment at fixed α with a multiplier +1;
+            // no branch is born.
+            let flat = |q: &CyclePoint| (q.alpha - p.alpha).abs() <= 1e-11 * (1.0 + p.alpha);
+            if flat(&pt) {
+                if let Ok((probe, _)) = correct(&mut self.map, n, k, x0, tau, 1e-3) {
+                    if flat(&probe) {
+                        return None;
+                    }
+                }
             }
             let run = self.follow(pt.clone(), t);
             let mut points = vec![pt];
