@@ -67,6 +67,11 @@ pub enum Command {
     TwoCycle(TwoCycleArgs),
     /// Power laws of the (2, 2k) branch near period doubling (the paper's Fig. 4, 5).
     Scaling(ScalingArgs),
+    /// Periodic orbits continued in α: every branch, its multipliers and how it ends.
+    #[command(allow_negative_numbers = true)]
+    Continue(ContinueArgs),
+    /// The period-doubling cascade: αₙ, the Feigenbaum ratios, how each 2ⁿ branch ends.
+    Cascade(CascadeArgs),
     /// Sweep one parameter over a window: a bifurcation diagram (csv, json, braille).
     Sweep(SweepArgs),
     /// Both Lyapunov exponents of one orbit, per impact and per table period.
@@ -175,6 +180,130 @@ pub struct TwoCycleArgs {
     /// Output format.
     #[arg(long, value_enum, default_value_t = Format::Text)]
     pub format: Format,
+}
+
+/// Where `continue` starts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum FromArg {
+    /// The (1, k) solution with f'' < 0.
+    Fixed,
+    /// The (2, 2k) solution born at the (1, k) one's period doubling.
+    TwoCycle,
+}
+
+/// `bouncemap continue`.
+#[derive(Args, Debug, Clone)]
+pub struct ContinueArgs {
+    /// Table shape: sine, quad (= fd:0), cubic (= fd:1), fd:D with D in [0, 1], or PATH.toml.
+    #[arg(long, default_value = rules::DEFAULT_TABLE, value_parser = TableSpec::parse, value_name = "TABLE")]
+    pub table: TableSpec,
+    /// Coefficient of restitution r; valid (0, 1).
+    #[arg(long, default_value_t = rules::R.default, value_parser = rules::R.real(), value_name = "R")]
+    pub r: f64,
+    /// The α window LO..HI, each in (0, 1000], LO < HI.
+    #[arg(long, value_parser = parse_alpha_window, value_name = "LO..HI")]
+    pub alpha: (f64, f64),
+    /// Start on the (1, k) solution or on the (2, 2k) one [default: fixed].
+    #[arg(long, value_enum, conflicts_with_all = ["n", "t0", "v0"])]
+    pub from: Option<FromArg>,
+    /// k: of the (1, k) solution with --from, of the (n, k) cycle with --n; valid 1 to 100.
+    #[arg(long, default_value_t = rules::K.default as u32, value_parser = rules::K.whole::<u32>(), value_name = "K")]
+    pub k: u32,
+    /// Impacts of the (n, k) cycle to start on (with --t0 and --v0, a guess at α = LO);
+    /// valid 1 to 1024.
+    #[arg(long, value_parser = rules::CYCLE_N.whole::<usize>(), value_name = "N", requires_all = ["t0", "v0"])]
+    pub n: Option<usize>,
+    /// The guess's launch phase t̂0 in [0, 1).
+    #[arg(long, value_parser = rules::T0.real(), value_name = "PHASE", requires = "n")]
+    pub t0: Option<f64>,
+    /// The guess's launch velocity v0 (right after an impact).
+    #[arg(long, value_name = "V", allow_hyphen_values = true, requires = "n")]
+    pub v0: Option<f64>,
+    /// No doubled branch is started beyond this period; valid 1 to 4096.
+    #[arg(long, default_value_t = rules::CONTINUE_MAX_PERIOD.default as usize, value_parser = rules::CONTINUE_MAX_PERIOD.whole::<usize>(), value_name = "P")]
+    pub max_period: usize,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    pub format: Format,
+}
+
+/// `bouncemap cascade`.
+#[derive(Args, Debug, Clone)]
+pub struct CascadeArgs {
+    /// Table shape: sine, quad (= fd:0), cubic (= fd:1), fd:D with D in [0, 1], or PATH.toml.
+    #[arg(long, default_value = rules::DEFAULT_TABLE, value_parser = TableSpec::parse, value_name = "TABLE", conflicts_with = "d")]
+    pub table: TableSpec,
+    /// Coefficient of restitution r; valid (0, 1).
+    #[arg(long, default_value_t = rules::R.default, value_parser = rules::R.real(), value_name = "R")]
+    pub r: f64,
+    /// k of the (1, k) solution the cascade starts from; valid 1 to 100.
+    #[arg(long, default_value_t = rules::K.default as u32, value_parser = rules::K.whole::<u32>(), value_name = "K")]
+    pub k: u32,
+    /// Period doublings looked for; valid 1 to 12.
+    #[arg(long, default_value_t = rules::DEPTH.default as usize, value_parser = rules::DEPTH.whole::<usize>(), value_name = "N")]
+    pub depth: usize,
+    /// A family of fd:D tables instead of --table: LO..HI:N, N equally spaced D in
+    /// [0, 1] (one row per D).
+    #[arg(long, value_parser = parse_d_family, value_name = "LO..HI:N")]
+    pub d: Option<DFamily>,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    pub format: Format,
+}
+
+/// `--alpha LO..HI` of `continue`: both in α's range, LO < HI.
+pub fn parse_alpha_window(s: &str) -> Result<(f64, f64), String> {
+    let (lo, hi) = s.split_once("..").ok_or_else(|| {
+        format!(
+            "'{s}' is not a window: valid LO..HI, each in {}",
+            rules::ALPHA.limit.text
+        )
+    })?;
+    let lo = rules::ALPHA.parse(lo).map_err(|e| format!("LO: {e}"))?;
+    let hi = rules::ALPHA.parse(hi).map_err(|e| format!("HI: {e}"))?;
+    if lo >= hi {
+        return Err(format!(
+            "window {lo}..{hi} is empty: valid LO..HI with LO < HI"
+        ));
+    }
+    Ok((lo, hi))
+}
+
+/// The D values of `cascade --d`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DFamily(pub Vec<f64>);
+
+/// `--d LO..HI:N` of `cascade`: N equally spaced D from LO to HI, each in [0, 1].
+pub fn parse_d_family(s: &str) -> Result<DFamily, String> {
+    let bad = || {
+        format!(
+            "'{s}' is not a family: valid LO..HI:N, D in {}, N a whole number in [1, 1000]",
+            rules::D.limit.text
+        )
+    };
+    let (lo, rest) = s.split_once("..").ok_or_else(bad)?;
+    let (hi, n) = rest.split_once(':').ok_or_else(bad)?;
+    let lo = rules::D.parse(lo).map_err(|e| format!("LO: {e}"))?;
+    let hi = rules::D.parse(hi).map_err(|e| format!("HI: {e}"))?;
+    let n = rules::D_COUNT.parse(n).map_err(|e| format!("N: {e}"))? as usize;
+    if lo > hi || (lo == hi && n > 1) {
+        return Err(format!(
+            "range {lo}..{hi} is empty: valid LO..HI with LO < HI (or LO = HI with N = 1)"
+        ));
+    }
+    Ok(DFamily(
+        (0..n)
+            .map(|i| {
+                if n == 1 {
+                    lo
+                } else {
+                    // 12 significant digits: 0.1..1:10 gives 0.3, not 0.30000000000000004.
+                    let d = lo + (hi - lo) * i as f64 / (n - 1) as f64;
+                    (d * 1e12).round() / 1e12
+                }
+            })
+            .collect(),
+    ))
 }
 
 /// `bouncemap scaling`.
