@@ -6,7 +6,7 @@ use bouncemap_engine::impact::Solver;
 use bouncemap_engine::map::{EventKind, ImpactMap, State};
 use bouncemap_engine::orbits::cascade::cascade;
 use bouncemap_engine::orbits::continuation::{branches, point_at, Branch, Kind, Options, Start};
-use bouncemap_engine::orbits::periodic::CyclePoint;
+use bouncemap_engine::orbits::periodic::{cycle, CyclePoint};
 use bouncemap_engine::orbits::{border_collision, eigenvalues_2x2, stability_window, two_cycle};
 use bouncemap_engine::sweep::run::{Advance, ValueRun};
 use bouncemap_engine::sweep::{Outcome, Periodicity};
@@ -247,13 +247,21 @@ fn simulate(table: &Table, alpha: f64, p: &CyclePoint) -> Outcome {
     }
 }
 
-/// The paper's question: for D = 0.1, 0.3, 0.5 the 2-cycle, and for D = 0.68, 0.7 the
-/// 4-cycle, end by border collision; just before it the simulated orbit settles on
-/// that cycle, just past it it does not (and D = 1 has no border collision in the
-/// first levels).
+/// The paper's question: for D = 0.1, 0.3, 0.5 the 2-cycle, for D = 0.68, 0.7 the
+/// 4-cycle, for 0.78 the 8-cycle and for 0.785 the 16-cycle end by border collision;
+/// just before it the simulated orbit settles on that cycle, just past it it does not
+/// (and D = 1 has no border collision in the first levels).
 #[test]
 fn just_past_each_border_collision_the_simulated_orbit_is_no_longer_that_cycle() {
-    for (d, period) in [(0.1, 2), (0.3, 2), (0.5, 2), (0.68, 4), (0.7, 4)] {
+    for (d, period) in [
+        (0.1, 2),
+        (0.3, 2),
+        (0.5, 2),
+        (0.68, 4),
+        (0.7, 4),
+        (0.78, 8),
+        (0.785, 16),
+    ] {
         let table = Table::fd(d).unwrap();
         let c = cascade(&table, R, 1, 6).unwrap();
         let l = c.interrupted().expect("an interrupted cascade");
@@ -261,9 +269,16 @@ fn just_past_each_border_collision_the_simulated_orbit_is_no_longer_that_cycle()
         assert_eq!(l.period, period, "D = {d}");
         let p = &l.end.point;
         let is_cycle = |o: Outcome| matches!(o, Outcome::Periodic { events, periods, .. } if events == p.n && periods == p.k as i64);
-        let before = simulate(&table, l.end.alpha - 1e-5, p);
+        // Within the branch's own α range (a 2ⁿ branch lives on a range ∝ δ⁻ⁿ).
+        let off = 1e-5f64.min(0.1 * (l.end.alpha - l.alpha_start).abs());
+        // Before: started on the cycle there (its basin may be small near the border);
+        // after: started where the cycle was at the collision.
+        let sys = System::new(table.clone(), l.end.alpha - off, R).unwrap();
+        let on = cycle(&sys, p.n, p.k, p.t0, p.velocities[0]).unwrap();
+        assert!(on.stable, "D = {d}");
+        let before = simulate(&table, l.end.alpha - off, &on);
         assert!(is_cycle(before), "D = {d}: before {before:?}");
-        let after = simulate(&table, l.end.alpha + 1e-5, p);
+        let after = simulate(&table, l.end.alpha + off, p);
         assert!(!is_cycle(after), "D = {d}: after {after:?}");
     }
     let c = cascade(&Table::fd(1.0).unwrap(), R, 1, 4).unwrap();

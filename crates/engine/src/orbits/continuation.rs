@@ -682,7 +682,13 @@ impl Family {
             let Some(hs) = bracketed_root_nan(&mut f, 0.0, h, ga, gb) else {
                 continue;
             };
-            if best.is_none_or(|(s, ..)| hs < s) {
+            // A border collision first among events at the same point: a multiplier
+            // that jumps through ±1 at a breakpoint is the collision's doing.
+            let tie = 1e-9 * h;
+            let bc = *kind == Kind::BorderCollision;
+            if best.is_none_or(|(s, k, ..)| {
+                hs < s - tie || (bc && k != Kind::BorderCollision && hs <= s + tie)
+            }) {
                 let phase = if *kind == Kind::BorderCollision {
                     *bp
                 } else {
