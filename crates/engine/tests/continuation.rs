@@ -331,3 +331,56 @@ fn bad_windows_and_starts_are_refused() {
     )
     .is_err());
 }
+
+/// The (1, 2) branch of the sine: its fold is the solution's birth (`fixed`'s closed
+/// form), and its saddle half ends by grazing, past which `fixed` finds the solution
+/// no longer admissible (its flight meets the table earlier).
+#[test]
+fn the_fold_is_the_birth_and_the_grazing_is_where_admissibility_ends() {
+    let table = Table::sine();
+    let bs = branches(
+        &table,
+        R,
+        (0.01, 3.0),
+        Start::Fixed { k: 2 },
+        Options {
+            max_period: 1,
+            ..Options::default()
+        },
+    )
+    .unwrap();
+    let b = &bs[0];
+    let birth = stability_window(&table, R, 2).unwrap().unwrap().alpha_birth;
+    let fold = b
+        .specials
+        .iter()
+        .find(|s| s.kind == Kind::Fold)
+        .expect("a fold");
+    assert!(
+        (fold.alpha - birth).abs() <= 1e-10,
+        "{} vs {birth}",
+        fold.alpha
+    );
+    let graze = [&b.begin, &b.end]
+        .into_iter()
+        .find(|s| s.kind == Kind::Grazing)
+        .expect("a grazing end");
+    let p = &graze.point;
+    let sys = |a: f64| System::new(table.clone(), a, R).unwrap();
+    let (gap, _) = bouncemap_engine::orbits::periodic::min_interior_gap(&sys(p.alpha), p);
+    assert!(gap.abs() < 1e-6, "{gap}");
+    let near = |a: f64| {
+        bouncemap_engine::orbits::fixed_points(&sys(a), 2)
+            .unwrap()
+            .into_iter()
+            .min_by(|x, y| {
+                (x.phase - p.phases[0])
+                    .abs()
+                    .total_cmp(&(y.phase - p.phases[0]).abs())
+            })
+            .unwrap()
+    };
+    // The branch's α increases towards the grazing on the saddle half.
+    assert!(near(graze.alpha - 1e-6).admissible);
+    assert!(!near(graze.alpha + 1e-6).admissible);
+}
