@@ -330,7 +330,9 @@ impl Family {
                     }
                 }
             }
-            let run = self.follow(pt.clone(), t);
+            // Steps grow from the size that found the branch: a deep branch of the
+            // cascade lives on a tiny α range.
+            let run = self.follow_from(pt.clone(), t, (10.0 * h).min(self.opts.h_init));
             let mut points = vec![pt];
             points.extend(run.points);
             let begin = Special {
@@ -360,9 +362,14 @@ pub(crate) struct Run {
 
 impl Family {
     pub(crate) fn follow(&mut self, start: CyclePoint, tau0: [f64; 3]) -> Run {
+        self.follow_from(start, tau0, self.opts.h_init)
+    }
+
+    /// [`Self::follow`] with a first step `h0`.
+    fn follow_from(&mut self, start: CyclePoint, tau0: [f64; 3], h0: f64) -> Run {
         let mut pt = start;
         let mut tau = tau0;
-        let mut h = self.opts.h_init;
+        let mut h = h0;
         let mut run = Run {
             points: Vec::new(),
             specials: Vec::new(),
@@ -446,6 +453,15 @@ impl Family {
                         continue;
                     }
                 }
+                // A multiplier through ±1 located at a breakpoint jumped there: the
+                // border collision's doing (its test may not have changed sign when
+                // the step started on the breakpoint).
+                let (kind, impact, phase) = match (kind, self.at_breakpoint(&at)) {
+                    (Kind::Fold | Kind::PeriodDoubling, Some((i, bp))) => {
+                        (Kind::BorderCollision, i, bp)
+                    }
+                    _ => (kind, impact, phase),
+                };
                 let mut sp = special(kind, &at, phase, impact);
                 let ends = match kind {
                     Kind::PeriodDoubling => self.opts.stop_at_pd,
