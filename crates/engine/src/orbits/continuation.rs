@@ -288,6 +288,8 @@ impl Family {
         let mut points: Vec<CyclePoint> = back.points.into_iter().rev().collect();
         points.push(seed.clone());
         points.extend(fwd.points);
+        // A start on the window's edge is also the backward run's exit point.
+        points.dedup_by(|b, a| a.alpha == b.alpha && a.t0 == b.t0);
         let mut specials: Vec<Special> = back.specials.into_iter().rev().collect();
         specials.extend(fwd.specials);
         Branch {
