@@ -26,9 +26,32 @@
 //! touches the table), by the onset of sticking (a stick or a vanishing impact velocity
 //! inside the cycle), or as not converged, whichever the last point shows. At a period
 //! doubling the branch continues (unstable) and, up to [`Options::max_period`], the
-//! doubled branch is started from the located point along the multiplier's eigenvector.
-//! A doubled branch followed back to its birth meets the +1 multiplier where it
-//! collapses onto its parent: that end is reported as its period doubling.
+//! doubled branch is started from the located point along the multiplier's eigenvector
+//! (none at a degenerate period doubling, where f''' = 0). A doubled branch followed back
+//! to its birth collapses onto its parent (its half-period return changes sign there):
+//! that end is reported as its period doubling, at the parent's α_PD.
+//!
+//! At a border collision the map stays continuous but f'' jumps, so the branch's tangent
+//! and multipliers jump: the cycle just beyond is solved at fixed α a little either side
+//! ([`Special::persists`]: stable or unstable beyond), or the branch ends there when no
+//! such cycle exists. A fold or period doubling located at a breakpoint is that
+//! collision's doing and reported as it. In a cascade ([`Options::stop_at_pd`]) a branch
+//! ends at its period doubling or where it loses stability at a border collision.
+//!
+//! # Example
+//! ```
+//! use bouncemap_engine::orbits::continuation::{branches, Kind, Options, Start};
+//! use bouncemap_engine::orbits::stability_window;
+//! use bouncemap_engine::table::Table;
+//! let table = Table::fd(1.0).unwrap();
+//! let bs = branches(&table, 0.8, (0.45, 0.6), Start::Fixed { k: 1 }, Options::default())
+//!     .unwrap();
+//! assert_eq!(bs[0].n, 1);
+//! let pd = bs[0].specials.iter().find(|s| s.kind == Kind::PeriodDoubling).unwrap();
+//! let closed_form = stability_window(&table, 0.8, 1).unwrap().unwrap().alpha_pd().unwrap();
+//! assert!((pd.alpha - closed_form).abs() < 1e-10);
+//! assert_eq!((bs[1].n, bs[1].parent), (2, Some(0)));
+//! ```
 
 use super::events::{bracketed_root_nan, signed_distance, special};
 pub use super::events::{jump_phases, Kind, Special};
