@@ -5,6 +5,8 @@
 
 pub mod basins;
 pub mod bench;
+pub mod cascade;
+pub mod continuation;
 pub mod figure;
 pub mod fixed;
 pub mod lyapunov;
@@ -27,6 +29,8 @@ pub fn run(cmd: Command) -> anyhow::Result<()> {
         Command::Fixed(a) => fixed::run(&a),
         Command::TwoCycle(a) => two_cycle::run(&a),
         Command::Scaling(a) => scaling::run(&a),
+        Command::Continue(a) => continuation::run(&a),
+        Command::Cascade(a) => cascade::run(&a),
         Command::Sweep(a) => sweep::run(&a),
         Command::Lyapunov(a) => lyapunov::run(&a),
         Command::Basins(a) => basins::run(&a),

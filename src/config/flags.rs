@@ -7,6 +7,7 @@ use super::display::ColorChoice;
 use super::presets::Param;
 use super::rules;
 use super::table_spec::TableSpec;
+use super::windows::{parse_alpha_window, parse_d_family, DFamily};
 use crate::output::figure::ImageFormat;
 use crate::output::hitgrid::Marker;
 use crate::output::Format;
@@ -67,6 +68,11 @@ pub enum Command {
     TwoCycle(TwoCycleArgs),
     /// Power laws of the (2, 2k) branch near period doubling (the paper's Fig. 4, 5).
     Scaling(ScalingArgs),
+    /// Periodic orbits continued in α: every branch, its multipliers and how it ends.
+    #[command(allow_negative_numbers = true)]
+    Continue(ContinueArgs),
+    /// The period-doubling cascade: αₙ, the Feigenbaum ratios, how each 2ⁿ branch ends.
+    Cascade(CascadeArgs),
     /// Sweep one parameter over a window: a bifurcation diagram (csv, json, braille).
     Sweep(SweepArgs),
     /// Both Lyapunov exponents of one orbit, per impact and per table period.
@@ -175,6 +181,75 @@ pub struct TwoCycleArgs {
     /// k of the (1, k) solution the (2, 2k) one surrounds; valid 1 to 100.
     #[arg(long, default_value_t = rules::K.default as u32, value_parser = rules::K.whole::<u32>(), value_name = "K")]
     pub k: u32,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    pub format: Format,
+}
+
+/// Where `continue` starts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum FromArg {
+    /// The (1, k) solution with f'' < 0.
+    Fixed,
+    /// The (2, 2k) solution born at the (1, k) one's period doubling.
+    TwoCycle,
+}
+
+/// `bouncemap continue`.
+#[derive(Args, Debug, Clone)]
+pub struct ContinueArgs {
+    /// Table shape: sine, quad (= fd:0), cubic (= fd:1), fd:D with D in [0, 1], or PATH.toml.
+    #[arg(long, default_value = rules::DEFAULT_TABLE, value_parser = TableSpec::parse, value_name = "TABLE")]
+    pub table: TableSpec,
+    /// Coefficient of restitution r; valid (0, 1).
+    #[arg(long, default_value_t = rules::R.default, value_parser = rules::R.real(), value_name = "R")]
+    pub r: f64,
+    /// The α window LO..HI, each in (0, 1000], LO < HI.
+    #[arg(long, value_parser = parse_alpha_window, value_name = "LO..HI")]
+    pub alpha: (f64, f64),
+    /// Start on the (1, k) solution or on the (2, 2k) one [default: fixed].
+    #[arg(long, value_enum, conflicts_with_all = ["n", "t0", "v0"])]
+    pub from: Option<FromArg>,
+    /// k: of the (1, k) solution with --from, of the (n, k) cycle with --n; valid 1 to 100.
+    #[arg(long, default_value_t = rules::K.default as u32, value_parser = rules::K.whole::<u32>(), value_name = "K")]
+    pub k: u32,
+    /// Impacts of the (n, k) cycle to start on (with --t0 and --v0, a guess at α = LO);
+    /// valid 1 to 1024.
+    #[arg(long, value_parser = rules::CYCLE_N.whole::<usize>(), value_name = "N", requires_all = ["t0", "v0"])]
+    pub n: Option<usize>,
+    /// The guess's launch phase t̂0 in [0, 1).
+    #[arg(long, value_parser = rules::T0.real(), value_name = "PHASE", requires = "n")]
+    pub t0: Option<f64>,
+    /// The guess's launch velocity v0 (right after an impact).
+    #[arg(long, value_name = "V", allow_hyphen_values = true, requires = "n")]
+    pub v0: Option<f64>,
+    /// No doubled branch is started beyond this period; valid 1 to 4096.
+    #[arg(long, default_value_t = rules::CONTINUE_MAX_PERIOD.default as usize, value_parser = rules::CONTINUE_MAX_PERIOD.whole::<usize>(), value_name = "P")]
+    pub max_period: usize,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    pub format: Format,
+}
+
+/// `bouncemap cascade`.
+#[derive(Args, Debug, Clone)]
+pub struct CascadeArgs {
+    /// Table shape: sine, quad (= fd:0), cubic (= fd:1), fd:D with D in [0, 1], or PATH.toml.
+    #[arg(long, default_value = rules::DEFAULT_TABLE, value_parser = TableSpec::parse, value_name = "TABLE", conflicts_with = "d")]
+    pub table: TableSpec,
+    /// Coefficient of restitution r; valid (0, 1).
+    #[arg(long, default_value_t = rules::R.default, value_parser = rules::R.real(), value_name = "R")]
+    pub r: f64,
+    /// k of the (1, k) solution the cascade starts from; valid 1 to 100.
+    #[arg(long, default_value_t = rules::K.default as u32, value_parser = rules::K.whole::<u32>(), value_name = "K")]
+    pub k: u32,
+    /// Period doublings looked for; valid 1 to 12.
+    #[arg(long, default_value_t = rules::DEPTH.default as usize, value_parser = rules::DEPTH.whole::<usize>(), value_name = "N")]
+    pub depth: usize,
+    /// A family of fd:D tables instead of --table: LO..HI:N, N equally spaced D in
+    /// [0, 1] (one row per D).
+    #[arg(long, value_parser = parse_d_family, value_name = "LO..HI:N")]
+    pub d: Option<DFamily>,
     /// Output format.
     #[arg(long, value_enum, default_value_t = Format::Text)]
     pub format: Format,

@@ -28,6 +28,7 @@ pub mod presets;
 pub mod rules;
 pub mod sweep;
 pub mod table_spec;
+pub mod windows;
 
 use bouncemap_engine::{EngineError, State, System};
 use flags::{InitialArgs, SystemArgs};

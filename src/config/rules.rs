@@ -207,6 +207,14 @@ pub const CELLS: Rule = rule(
     },
     100.0,
 );
+/// Impacts of a cycle `continue` starts on.
+pub const CYCLE_N: Rule = rule("n", "n", limits::CYCLE_N, 1.0);
+/// The longest period `continue` starts doubled branches up to.
+pub const CONTINUE_MAX_PERIOD: Rule = rule("max-period", "max period", limits::MAX_PERIOD, 16.0);
+/// Period doublings a cascade looks for.
+pub const DEPTH: Rule = rule("depth", "depth", limits::CASCADE_DEPTH, 6.0);
+/// D values of `cascade --d LO..HI:N`.
+pub const D_COUNT: Rule = rule("d count", "D values", limits::D_COUNT, 1.0);
 /// D of `scaling` (the (2, 2k) branch needs f''' ≠ 0, so D > 0).
 pub const SCALING_D: Rule = rule(
     "d",

@@ -152,6 +152,12 @@ pub const KEEP: Limit = whole("keep", 1.0, 1e6, "a whole number in [1, 1000000]"
 /// Longest cycle, in events, the early stop detects.
 pub const MAX_PERIOD: Limit = whole("max-period", 1.0, 4096.0, "a whole number in [1, 4096]");
 /// Agreement promised by the early stop.
+/// Period doublings a cascade looks for (each doubles the cycle: 2¹² impacts at most).
+pub const CASCADE_DEPTH: Limit = whole("depth", 1.0, 12.0, "a whole number in [1, 12]");
+/// Impacts per cycle of a continued orbit.
+pub const CYCLE_N: Limit = whole("n", 1.0, 1024.0, "a whole number in [1, 1024]");
+/// Number of D values of a cascade over the F_D family.
+pub const D_COUNT: Limit = whole("d count", 1.0, 1000.0, "a whole number in [1, 1000]");
 pub const TOLERANCE: Limit = open_closed("tolerance", 0.0, 1e-3, "(0, 1e-3]");
 
 #[cfg(test)]

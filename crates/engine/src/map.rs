@@ -230,6 +230,16 @@ impl ImpactMap {
         &self.state
     }
 
+    /// Change α (validated as by [`System::set_alpha`]) and prepare the solver and the
+    /// chattering test for it again (both hold α-scaled data); set a state afterwards,
+    /// since the current one's relative velocity belongs to the old α.
+    pub fn set_alpha(&mut self, alpha: f64) -> Result<(), EngineError> {
+        self.sys.set_alpha(alpha)?;
+        self.flights = FlightSolver::new(&self.sys, self.solver);
+        self.chatter = Chatter::new(&self.sys);
+        Ok(())
+    }
+
     /// Replace the state (e.g. to step back through a history).
     pub fn set_state(&mut self, state: State) {
         self.state = state;

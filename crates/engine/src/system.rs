@@ -20,24 +20,16 @@ impl System {
     pub fn new(table: Table, alpha: f64, r: f64) -> Result<System, EngineError> {
         limits::ALPHA.check(alpha)?;
         limits::R.check(r)?;
-        let (lo, hi) = table.range();
-        for (what, size, bound) in [
-            ("max|F|", lo.abs().max(hi.abs()), limits::MAX_DISPLACEMENT),
-            ("max|F'|", table.velocity_bound(), limits::MAX_VELOCITY),
-            ("max|F''|", table.accel_bound(), limits::MAX_ACCELERATION),
-        ] {
-            let product = alpha * size;
-            if product.is_nan() || product > bound {
-                return Err(EngineError::InvalidTable(format!(
-                    "table {} at alpha = {}: alpha·{what} = {} is out of range: valid at most {} (the sine's at alpha = 1000, up to where the solver's guarantees are established)",
-                    table.name(),
-                    crate::error::fmt_value(alpha),
-                    crate::error::fmt_value(product),
-                    crate::error::fmt_value(bound)
-                )));
-            }
-        }
+        check_alpha(&table, alpha)?;
         Ok(System { table, alpha, r })
+    }
+
+    /// Change α in place, validated as by [`Self::new`] (no copy of the table: for
+    /// computations that vary α, such as continuation of periodic orbits).
+    pub fn set_alpha(&mut self, alpha: f64) -> Result<(), EngineError> {
+        check_alpha(&self.table, alpha)?;
+        self.alpha = alpha;
+        Ok(())
     }
 
     /// f, f', f'', f''' at `phase` (α included; right derivatives at breakpoints).
@@ -68,6 +60,30 @@ impl System {
     pub fn kappa_c(&self) -> f64 {
         kappa_c(self.r)
     }
+}
+
+/// α within [`limits::ALPHA`] and the table's motion f = αF within the bounds after
+/// [`limits::MAX_DISPLACEMENT`].
+fn check_alpha(table: &Table, alpha: f64) -> Result<(), EngineError> {
+    limits::ALPHA.check(alpha)?;
+    let (lo, hi) = table.range();
+    for (what, size, bound) in [
+        ("max|F|", lo.abs().max(hi.abs()), limits::MAX_DISPLACEMENT),
+        ("max|F'|", table.velocity_bound(), limits::MAX_VELOCITY),
+        ("max|F''|", table.accel_bound(), limits::MAX_ACCELERATION),
+    ] {
+        let product = alpha * size;
+        if product.is_nan() || product > bound {
+            return Err(EngineError::InvalidTable(format!(
+                    "table {} at alpha = {}: alpha·{what} = {} is out of range: valid at most {} (the sine's at alpha = 1000, up to where the solver's guarantees are established)",
+                    table.name(),
+                    crate::error::fmt_value(alpha),
+                    crate::error::fmt_value(product),
+                    crate::error::fmt_value(bound)
+                )));
+        }
+    }
+    Ok(())
 }
 
 /// κ_c(r) = −2(1 + r²)/(1 + r)².

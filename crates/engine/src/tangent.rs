@@ -52,21 +52,88 @@ pub fn tangent(sys: &System, before: &State, e: &Event) -> Tangent {
         // launch point is the release point, a function of nothing before it.
         return Tangent::Collapse;
     }
+    match flight(sys, before, e) {
+        Some(fl) => Tangent::Flight {
+            jacobian: fl.jacobian(),
+            u_landing: fl.u_landing,
+        },
+        None => Tangent::Grazing,
+    }
+}
+
+/// The partial derivatives of one flight ending in an impact, from which its Jacobian is
+/// assembled for any value of f'' at the landing (the one-sided values at a breakpoint
+/// of the table), together with its derivative in α (f = αF):
+///
+///   ∂tᵢ₊₁/∂α = −(F(tᵢ) − F(tᵢ₊₁))/uᵢ₊₁ = c,
+///   ∂vᵢ₊₁/∂α = (1 + r) F'(tᵢ₊₁) + s c,
+///
+/// from ∂G/∂α = F(tᵢ) − F(tᵢ₊₁) and the restitution law. The continuation of periodic
+/// orbits builds Newton's Jacobian from these; [`tangent`] is the same matrix.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Flight {
+    /// ∂tᵢ₊₁/∂tᵢ.
+    pub a: f64,
+    /// ∂tᵢ₊₁/∂vᵢ.
+    pub b: f64,
+    /// ∂tᵢ₊₁/∂α.
+    pub c: f64,
+    /// F'(tᵢ₊₁), the derivative of f'(tᵢ₊₁) in α at fixed time.
+    pub df_alpha: f64,
+    /// f''(tᵢ₊₁) (the right derivative at a breakpoint).
+    pub ddf: f64,
+    /// |uᵢ₊₁|, the relative velocity at the landing.
+    pub u_landing: f64,
+    /// The restitution coefficient.
+    pub r: f64,
+}
+
+/// The partials of the impact `e` after the flight from `before`; None unless `e` is an
+/// impact after a flight launched with w > 0 and landing with u ≠ 0.
+pub fn flight(sys: &System, before: &State, e: &Event) -> Option<Flight> {
     let u = e.vrel;
-    if u == 0.0 {
-        return Tangent::Grazing;
+    if e.kind != EventKind::Impact || before.w <= 0.0 || u == 0.0 {
+        return None;
     }
     // The flight time, from exact (period, phase) differences.
     let tau = (e.period - before.period) as f64 + (e.phase - before.phase);
     // A start above the table (height z0) adds a constant to G: same derivatives.
     let w = before.w;
-    let a = (w - tau) / u;
-    let b = -tau / u;
-    let r = sys.r;
-    let s = (1.0 + r) * sys.ddf(e.phase) + r;
-    Tangent::Flight {
-        jacobian: [[a, b], [s * a - r, s * b - r]],
+    let table = &sys.table;
+    let big_f = table.value(before.phase) - table.value(e.phase);
+    Some(Flight {
+        a: (w - tau) / u,
+        b: -tau / u,
+        c: -big_f / u,
+        df_alpha: table.derivative(e.phase, 1),
+        ddf: sys.ddf(e.phase),
         u_landing: u.abs(),
+        r: sys.r,
+    })
+}
+
+impl Flight {
+    /// The Jacobian of the impact in (t, v).
+    pub fn jacobian(&self) -> [[f64; 2]; 2] {
+        self.jacobian_with(self.ddf)
+    }
+
+    /// The Jacobian with f'' = `ddf` at the landing (a one-sided value at a breakpoint).
+    pub fn jacobian_with(&self, ddf: f64) -> [[f64; 2]; 2] {
+        let (a, b, r) = (self.a, self.b, self.r);
+        let s = (1.0 + self.r) * ddf + r;
+        [[a, b], [s * a - r, s * b - r]]
+    }
+
+    /// ∂(tᵢ₊₁, vᵢ₊₁)/∂α with f'' = `ddf` at the landing.
+    pub fn alpha_column_with(&self, ddf: f64) -> [f64; 2] {
+        let s = (1.0 + self.r) * ddf + self.r;
+        [self.c, (1.0 + self.r) * self.df_alpha + s * self.c]
+    }
+
+    /// det J = r (b − a) = r wᵢ/|uᵢ₊₁|, free of cancellation (independent of f'').
+    pub fn det(&self) -> f64 {
+        self.r * (self.b - self.a)
     }
 }
 
@@ -150,6 +217,46 @@ mod tests {
                             fd[r][c]
                         );
                     }
+                }
+                checked += 1;
+            }
+            assert!(checked > 20, "{checked} checked");
+        }
+    }
+
+    /// The α column against central differences of the map in α at a fixed launch.
+    #[test]
+    fn the_alpha_derivative_matches_finite_differences_of_the_map() {
+        for (table, alpha) in [
+            (Table::fd(0.1).unwrap(), 0.6),
+            (Table::fd(1.0).unwrap(), 0.5),
+            (Table::sine(), 0.03),
+        ] {
+            let sys = System::new(table.clone(), alpha, 0.8).unwrap();
+            let h = 1e-7;
+            let at = |a: f64| System::new(table.clone(), a, 0.8).unwrap();
+            let (sp, sm) = (at(alpha + h), at(alpha - h));
+            let mut checked = 0;
+            for i in 0..40 {
+                let phase = 0.013 + 0.0247 * i as f64;
+                let v = sys.df(phase) + 0.3 + 0.02 * i as f64;
+                let (st, e) = step_from(&sys, phase, v);
+                let Some(fl) = flight(&sys, &st, &e) else {
+                    continue;
+                };
+                let (_, ep) = step_from(&sp, phase, v);
+                let (_, em) = step_from(&sm, phase, v);
+                if ep.period != e.period || em.period != e.period {
+                    continue;
+                }
+                let fd = [(ep.phase - em.phase) / (2.0 * h), (ep.v - em.v) / (2.0 * h)];
+                let col = fl.alpha_column_with(fl.ddf);
+                for r in 0..2 {
+                    assert!(
+                        (fd[r] - col[r]).abs() <= 1e-6 * (1.0 + col[r].abs()),
+                        "{} α={alpha} ({phase}, {v}): {col:?} vs {fd:?}",
+                        sys.table.name()
+                    );
                 }
                 checked += 1;
             }

@@ -6,6 +6,15 @@
 //! * [`two_cycle`]: the (2, 2k) solutions near a (1, k) one, solved exactly by Newton's
 //!   method, the asymptotic approximation near the period-doubling point (the paper's
 //!   printed one and the corrected one), and the border collision of the branch.
+//! * [`periodic`]: (n, k) cycles of the exact map by Newton's method on n steps of it,
+//!   with their multipliers; every accepted point returns within 1e-11.
+//! * [`continuation`]: pseudo-arclength continuation of cycles in α with period
+//!   doubling, fold, border collision, grazing, onset of sticking and window exits
+//!   located, and branch switching onto doubled branches ([`continuation::branches`]).
+//! * [`events`]: the special points of a branch (PD, fold, border collision, grazing,
+//!   onset of sticking, window exit) and the helpers that locate them.
+//! * [`cascade`]: the period-doubling cascade from a (1, k) solution: α₁ < α₂ < …, how
+//!   each 2ⁿ branch ends, and the Feigenbaum ratios.
 //! * [`scaling`]: the power laws ΔT ∝ Δκ and Δt ∝ Δκ^½ near the period-doubling point
 //!   (the paper's Fig. 4 and Fig. 5), from exact solutions and from simulated orbits.
 //!
@@ -13,7 +22,11 @@
 //! the terminal application calls per frame (e.g. [`fixed::stability_window`]) do
 //! bounded work and never panic.
 
+pub mod cascade;
+pub mod continuation;
+pub mod events;
 pub mod fixed;
+pub mod periodic;
 pub mod scaling;
 pub mod two_cycle;
 
@@ -44,6 +57,13 @@ impl Complex {
 pub fn eigenvalues_2x2(m: [[f64; 2]; 2]) -> [Complex; 2] {
     let tr = m[0][0] + m[1][1];
     let det = m[0][0] * m[1][1] - m[0][1] * m[1][0];
+    eigenvalues_tr_det(tr, det)
+}
+
+/// Eigenvalues of a real 2×2 matrix with trace `tr` and determinant `det`, the one of
+/// larger real part first (for a product of many matrices, pass the product of their
+/// determinants: the small eigenvalue then keeps its relative precision).
+pub fn eigenvalues_tr_det(tr: f64, det: f64) -> [Complex; 2] {
     let half = 0.5 * tr;
     let disc = half * half - det;
     if disc >= 0.0 {

@@ -10,6 +10,9 @@ use bouncemap_engine::{Event, EventKind, Solver};
 use serde::{Deserialize, Serialize};
 use std::io::Write;
 
+mod branches;
+pub use branches::*;
+
 /// A csv writer over `out` that writes its header itself (so an empty table still has
 /// one): `header` then rows serialized in field order.
 pub fn csv_writer<W: Write>(out: W, header: &[&str]) -> csv::Result<csv::Writer<W>> {

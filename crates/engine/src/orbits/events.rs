@@ -1,0 +1,162 @@
+//! Special points of continued branches, and the helpers that locate them: what can
+//! happen on a branch ([`Kind`], [`Special`]), the phases where f'' jumps (border
+//! collisions), the signed phase distance to one, and a bracketed root that tolerates
+//! failed evaluations.
+
+use super::periodic::CyclePoint;
+use crate::table::Table;
+
+/// What happens at a special point.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kind {
+    /// A multiplier through −1 (or, at a doubled branch's birth, where it meets its parent).
+    PeriodDoubling,
+    /// A multiplier through +1.
+    Fold,
+    /// An impact phase reaches a breakpoint of the table where f'' jumps.
+    BorderCollision,
+    /// A flight touches the table: the impact sequence would change.
+    Grazing,
+    /// An impact velocity vanishes or a stick appears inside the cycle.
+    StickingOnset,
+    /// α reaches an end of the window.
+    WindowExit,
+    /// The corrector failed with no sign of the above.
+    NoConvergence,
+    /// The step bound of [`Options::max_steps`] was reached.
+    StepLimit,
+}
+
+impl Kind {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Kind::PeriodDoubling => "period_doubling",
+            Kind::Fold => "fold",
+            Kind::BorderCollision => "border_collision",
+            Kind::Grazing => "grazing",
+            Kind::StickingOnset => "sticking_onset",
+            Kind::WindowExit => "window_exit",
+            Kind::NoConvergence => "no_convergence",
+            Kind::StepLimit => "step_limit",
+        }
+    }
+
+    /// The short label a diagram puts at the point.
+    pub fn label(self) -> &'static str {
+        match self {
+            Kind::PeriodDoubling => "PD",
+            Kind::Fold => "F",
+            Kind::BorderCollision => "BC",
+            Kind::Grazing => "G",
+            Kind::StickingOnset => "S",
+            Kind::WindowExit => "W",
+            Kind::NoConvergence => "NC",
+            Kind::StepLimit => "L",
+        }
+    }
+}
+
+/// A special point of a branch.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Special {
+    pub kind: Kind,
+    pub alpha: f64,
+    /// The phase concerned: the breakpoint at a border collision, the touching phase at
+    /// a grazing, the slowest impact's at the onset of sticking, t̂₀ otherwise.
+    pub phase: f64,
+    /// Which impact of the cycle (0 = the launch's) for a border collision or sticking.
+    pub impact: usize,
+    /// The cycle at the point (the last good one where the branch could not go on).
+    pub point: CyclePoint,
+    /// At a border collision: Some(stable) if the cycle goes on beyond the breakpoint
+    /// (with that stability), None if it ceases to exist there. None elsewhere.
+    pub persists: Option<bool>,
+}
+
+/// Phases in [0, 1) at which f'' jumps (the table's piece starts whose one-sided
+/// second derivatives differ), the border-collision phases.
+pub fn jump_phases(table: &Table) -> Vec<f64> {
+    let pieces = table.pieces();
+    let mut out = Vec::new();
+    for (i, p) in pieces.iter().enumerate() {
+        let prev = &pieces[(i + pieces.len() - 1) % pieces.len()];
+        let left = prev.d2.eval(prev.end - prev.start);
+        let right = p.d2.eval(0.0);
+        if (left - right).abs() > 1e-12 * (1.0 + left.abs().max(right.abs())) {
+            out.push(p.start);
+        }
+    }
+    out
+}
+
+/// Phase difference wrapped to [−½, ½).
+pub(crate) fn signed_distance(phase: f64, bp: f64) -> f64 {
+    let d = (phase - bp).rem_euclid(1.0);
+    if d >= 0.5 {
+        d - 1.0
+    } else {
+        d
+    }
+}
+
+pub(crate) fn special(kind: Kind, p: &CyclePoint, phase: f64, impact: usize) -> Special {
+    Special {
+        kind,
+        alpha: p.alpha,
+        phase: if phase.is_nan() { p.phases[0] } else { phase },
+        impact,
+        point: p.clone(),
+        persists: None,
+    }
+}
+
+/// A root of `g` on [lo, hi] from known end values of opposite signs, by Illinois false
+/// position with bisection every few steps; a failed evaluation (NaN) halves toward
+/// `lo`. To a few ulps of the arclength.
+pub(crate) fn bracketed_root_nan(
+    g: &mut dyn FnMut(f64) -> f64,
+    mut lo: f64,
+    mut hi: f64,
+    mut glo: f64,
+    mut ghi: f64,
+) -> Option<f64> {
+    let mut side = 0;
+    for i in 0..200 {
+        let mut x = (lo * ghi - hi * glo) / (ghi - glo);
+        if !(x > lo && x < hi) || i % 3 == 2 {
+            x = 0.5 * (lo + hi);
+        }
+        if x <= lo || x >= hi {
+            break;
+        }
+        let gx = g(x);
+        if gx == 0.0 {
+            return Some(x);
+        }
+        if gx.is_nan() {
+            hi = x;
+            continue;
+        }
+        if (gx < 0.0) == (glo < 0.0) {
+            lo = x;
+            glo = gx;
+            if side == 1 {
+                ghi *= 0.5;
+            }
+            side = 1;
+        } else {
+            hi = x;
+            ghi = gx;
+            if side == -1 {
+                glo *= 0.5;
+            }
+            side = -1;
+        }
+        if hi - lo <= 4.0 * f64::EPSILON * hi.abs().max(1e-300) {
+            break;
+        }
+    }
+    // The end past the crossing: continuing from it does not meet the same one again.
+    let _ = glo;
+    Some(hi)
+}

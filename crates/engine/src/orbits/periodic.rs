@@ -1,0 +1,432 @@
+//! (n, k) solutions of the exact impact map: n impacts in k table periods.
+//!
+//! A cycle is given by its launch (t₀, v₀) right after an impact. One *pass* steps the
+//! exact map n times from it and returns the residual
+//!
+//!   F(α, t₀, v₀) = (tₙ − t₀ − k, vₙ − v₀)
+//!
+//! (times as exact (period, phase) differences) with its Jacobian: ∂F/∂(t₀, v₀) = M − I,
+//! M the product of the tangent maps of the n impacts ([`crate::tangent::Flight`]), and
+//! ∂F/∂α accumulated from each impact's α column. Newton's method runs on F; a point is
+//! accepted only when the map itself, stepped n times from it, returns within
+//! [`RETURN_TOLERANCE`] and every event is an impact (a stick inside the cycle makes
+//! it a different kind of orbit, [`PassError::Stick`]).
+//!
+//! The multipliers are the eigenvalues of M, from its trace and the product of the
+//! flights' determinants, which is r²ⁿ on a cycle (so no Neimark–Sacker point exists;
+//! [`CyclePoint::det_error`] is the check).
+
+use super::{eigenvalues_tr_det, Complex};
+use crate::impact::Solver;
+use crate::map::{EventKind, ImpactMap, State};
+use crate::system::System;
+use crate::tangent::flight;
+
+/// The largest return error |(tₙ − t₀ − k, vₙ − v₀)| of an accepted cycle.
+pub const RETURN_TOLERANCE: f64 = 1e-11;
+/// Newton's iteration bound (fixed α and each corrector step of a continuation).
+pub const MAX_NEWTON: usize = 30;
+
+/// Why a pass or a solve failed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum PassError {
+    /// The launch is not a launch: v₀ < f'(t₀), or outside the engine's ranges.
+    BadLaunch,
+    /// The map halted (the ball rests for good or did not land).
+    Halt,
+    /// An event of the n was a stick or a release, at this phase: not an impact cycle.
+    Stick { phase: f64 },
+    /// A landing with zero relative velocity: the tangent map is unbounded.
+    Grazing { phase: f64 },
+    /// Newton's method did not converge within [`MAX_NEWTON`] iterations.
+    NoConvergence,
+    /// Converged, but the map stepped n times returns only within this distance.
+    NotReturning { error: f64 },
+}
+
+impl PassError {
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            PassError::BadLaunch => "bad_launch",
+            PassError::Halt => "halt",
+            PassError::Stick { .. } => "stick",
+            PassError::Grazing { .. } => "grazing",
+            PassError::NoConvergence => "no_convergence",
+            PassError::NotReturning { .. } => "not_returning",
+        }
+    }
+}
+
+/// n steps of the exact map from a launch, with derivatives.
+#[derive(Clone, Debug)]
+pub struct Pass {
+    /// F = (tₙ − t₀ − k, vₙ − v₀).
+    pub residual: [f64; 2],
+    /// M: ∂(tₙ, vₙ)/∂(t₀, v₀).
+    pub monodromy: [[f64; 2]; 2],
+    /// ∂(tₙ, vₙ)/∂α.
+    pub alpha_column: [f64; 2],
+    /// The product of the n flights' determinants.
+    pub det: f64,
+    /// Impact phases t̂₁ … t̂ₙ (t̂ₙ is t̂₀ again on a cycle) and launch velocities after them.
+    pub phases: Vec<f64>,
+    pub velocities: Vec<f64>,
+    /// Times of the impacts from the launch (continuous in the parameters).
+    pub times: Vec<f64>,
+    /// |u| of every landing (relative impact velocities).
+    pub impact_speeds: Vec<f64>,
+}
+
+/// Step the map `n` times from the launch at time `t0` (any real; its phase is used)
+/// with velocity `v0`; `map` must hold the system (α set) to use.
+pub fn pass(map: &mut ImpactMap, t0: f64, v0: f64, n: usize, k: u32) -> Result<Pass, PassError> {
+    let period = t0.floor();
+    let phase = super::wrap_phase(t0 - period);
+    let sys = map.system().clone();
+    let start =
+        State::launch(&sys, period as i64, phase, v0, 0.0).map_err(|_| PassError::BadLaunch)?;
+    if start.w <= 0.0 {
+        return Err(PassError::BadLaunch);
+    }
+    map.set_state(start);
+    let mut m = [[1.0, 0.0], [0.0, 1.0]];
+    let mut col = [0.0, 0.0];
+    let mut det = 1.0;
+    let mut out = Pass {
+        residual: [0.0; 2],
+        monodromy: m,
+        alpha_column: col,
+        det,
+        phases: Vec::with_capacity(n),
+        velocities: Vec::with_capacity(n),
+        times: Vec::with_capacity(n),
+        impact_speeds: Vec::with_capacity(n),
+    };
+    for _ in 0..n {
+        let before = *map.state();
+        let e = map.step().map_err(|_| PassError::Halt)?;
+        if e.kind != EventKind::Impact {
+            return Err(PassError::Stick { phase: e.phase });
+        }
+        let fl = flight(&sys, &before, &e).ok_or(PassError::Grazing { phase: e.phase })?;
+        let j = fl.jacobian();
+        let c = fl.alpha_column_with(fl.ddf);
+        m = super::mat_mul(j, m);
+        col = [
+            j[0][0] * col[0] + j[0][1] * col[1] + c[0],
+            j[1][0] * col[0] + j[1][1] * col[1] + c[1],
+        ];
+        det *= fl.det();
+        out.phases.push(e.phase);
+        out.velocities.push(e.v);
+        out.times
+            .push((e.period - start.period) as f64 + (e.phase - start.phase));
+        out.impact_speeds.push(fl.u_landing);
+    }
+    let last = map.state();
+    out.residual = [
+        ((last.period - start.period) as f64 - k as f64) + (last.phase - start.phase),
+        last.v - v0,
+    ];
+    out.monodromy = m;
+    out.alpha_column = col;
+    out.det = det;
+    Ok(out)
+}
+
+/// One accepted point of an (n, k) cycle.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CyclePoint {
+    pub n: usize,
+    pub k: u32,
+    pub alpha: f64,
+    /// The launch time t₀ as the continuation carries it (its phase is `phases[0]`).
+    pub t0: f64,
+    /// The n impact phases, from the launch's, and the launch velocities after them.
+    pub phases: Vec<f64>,
+    pub velocities: Vec<f64>,
+    /// The flight times, launch i to impact i + 1 (they sum to k).
+    pub flights: Vec<f64>,
+    /// The smallest relative impact velocity |u| of the cycle.
+    pub min_impact_speed: f64,
+    /// For even n and k: the return after n/2 impacts, (t_{n/2} − t₀ − k/2, v_{n/2} − v₀),
+    /// zero where a doubled cycle collapses onto the one it doubled from.
+    pub half_return: Option<[f64; 2]>,
+    pub multipliers: [Complex; 2],
+    /// Both multipliers inside the unit circle.
+    pub stable: bool,
+    /// The map's return error after n steps (≤ [`RETURN_TOLERANCE`]).
+    pub return_error: f64,
+    /// Product of the flights' determinants / r²ⁿ − 1 (0 up to rounding on a cycle).
+    pub det_error: f64,
+    /// M: the Jacobian of the n-step map at the point.
+    pub monodromy: [[f64; 2]; 2],
+}
+
+impl CyclePoint {
+    /// (1 + λ₁)(1 + λ₂) = 1 + tr M + det M: zero at a period doubling.
+    pub fn pd_test(&self) -> f64 {
+        let tr = self.monodromy[0][0] + self.monodromy[1][1];
+        1.0 + tr + self.r_det()
+    }
+
+    /// (1 − λ₁)(1 − λ₂) = 1 − tr M + det M: zero at a fold.
+    pub fn fold_test(&self) -> f64 {
+        let tr = self.monodromy[0][0] + self.monodromy[1][1];
+        1.0 - tr + self.r_det()
+    }
+
+    fn r_det(&self) -> f64 {
+        let [a, b] = self.multipliers;
+        // λ₁λ₂ (real: = det; complex pair: |λ|²).
+        a.re * b.re - a.im * b.im
+    }
+
+    /// The eigenvector of M for the multiplier nearest −1 (for switching onto the
+    /// doubled branch), normalised.
+    pub fn pd_direction(&self) -> [f64; 2] {
+        let m = self.monodromy;
+        // (M + I) e = 0: e ⟂ the larger row of M + I.
+        let rows = [[m[0][0] + 1.0, m[0][1]], [m[1][0], m[1][1] + 1.0]];
+        let row = if rows[0][0].hypot(rows[0][1]) >= rows[1][0].hypot(rows[1][1]) {
+            rows[0]
+        } else {
+            rows[1]
+        };
+        let e = [-row[1], row[0]];
+        let s = e[0].hypot(e[1]);
+        if s > 0.0 {
+            [e[0] / s, e[1] / s]
+        } else {
+            [1.0, 0.0]
+        }
+    }
+}
+
+/// Build the accepted point from a converged pass at (α, t₀, v₀).
+pub(crate) fn accept(
+    sys: &System,
+    x: [f64; 3],
+    n: usize,
+    k: u32,
+    p: &Pass,
+) -> Result<CyclePoint, PassError> {
+    let error = p.residual[0].abs().max(p.residual[1].abs());
+    if error.is_nan() || error > RETURN_TOLERANCE {
+        return Err(PassError::NotReturning { error });
+    }
+    let r2n = sys.r.powi(2 * n as i32);
+    let tr = p.monodromy[0][0] + p.monodromy[1][1];
+    let multipliers = eigenvalues_tr_det(tr, r2n);
+    let stable = multipliers.iter().all(|l| l.abs() < 1.0);
+    let mut phases = Vec::with_capacity(n);
+    phases.push(super::wrap_phase(x[1]));
+    phases.extend_from_slice(&p.phases[..n - 1]);
+    let mut velocities = Vec::with_capacity(n);
+    velocities.push(x[2]);
+    velocities.extend_from_slice(&p.velocities[..n - 1]);
+    Ok(CyclePoint {
+        n,
+        k,
+        alpha: x[0],
+        t0: x[1],
+        phases,
+        velocities,
+        flights: (0..n)
+            .map(|i| p.times[i] - if i == 0 { 0.0 } else { p.times[i - 1] })
+            .collect(),
+        min_impact_speed: p
+            .impact_speeds
+            .iter()
+            .cloned()
+            .fold(f64::INFINITY, f64::min),
+        half_return: (n.is_multiple_of(2) && k.is_multiple_of(2)).then(|| {
+            [
+                p.times[n / 2 - 1] - (k / 2) as f64,
+                p.velocities[n / 2 - 1] - x[2],
+            ]
+        }),
+        multipliers,
+        stable,
+        return_error: error,
+        det_error: p.det / r2n - 1.0,
+        monodromy: p.monodromy,
+    })
+}
+
+/// Solve 3×3 `a x = b` by Gaussian elimination with partial pivoting.
+pub(crate) fn solve3(mut a: [[f64; 3]; 3], mut b: [f64; 3]) -> Option<[f64; 3]> {
+    for c in 0..3 {
+        let p = (c..3).max_by(|&i, &j| a[i][c].abs().total_cmp(&a[j][c].abs()))?;
+        if a[p][c] == 0.0 || !a[p][c].is_finite() {
+            return None;
+        }
+        a.swap(c, p);
+        b.swap(c, p);
+        for i in c + 1..3 {
+            let f = a[i][c] / a[c][c];
+            let pivot = a[c];
+            for (x, p) in a[i][c..].iter_mut().zip(&pivot[c..]) {
+                *x -= f * p;
+            }
+            b[i] -= f * b[c];
+        }
+    }
+    let mut x = [0.0; 3];
+    for i in (0..3).rev() {
+        let s: f64 = (i + 1..3).map(|j| a[i][j] * x[j]).sum();
+        x[i] = (b[i] - s) / a[i][i];
+    }
+    x.iter().all(|v| v.is_finite()).then_some(x)
+}
+
+/// A map prepared for `sys` (the exact solver, any state: each pass sets its own).
+pub fn map_for(sys: &System) -> ImpactMap {
+    let st = State::start(sys, 0.0, None, 0.0).expect("the default start is valid");
+    ImpactMap::new(sys.clone(), Solver::Exact, st)
+}
+
+/// Newton's method at fixed α (the one of `map`'s system) for the (n, k) cycle through
+/// (t₀, v₀) near the guess.
+pub fn solve_at(
+    map: &mut ImpactMap,
+    n: usize,
+    k: u32,
+    t0: f64,
+    v0: f64,
+) -> Result<CyclePoint, PassError> {
+    let mut x = [map.system().alpha, t0, v0];
+    for _ in 0..MAX_NEWTON {
+        let p = pass(map, x[1], x[2], n, k)?;
+        let m = p.monodromy;
+        let a = [[m[0][0] - 1.0, m[0][1]], [m[1][0], m[1][1] - 1.0]];
+        let det = a[0][0] * a[1][1] - a[0][1] * a[1][0];
+        if det == 0.0 || !det.is_finite() {
+            return Err(PassError::NoConvergence);
+        }
+        let f = p.residual;
+        let dt = (f[0] * a[1][1] - f[1] * a[0][1]) / det;
+        let dv = (a[0][0] * f[1] - a[1][0] * f[0]) / det;
+        x[1] -= dt;
+        x[2] -= dv;
+        if dt.abs().max(dv.abs()) < 1e-14 * (1.0 + x[2].abs()) || f[0].abs().max(f[1].abs()) < 1e-15
+        {
+            let p = pass(map, x[1], x[2], n, k)?;
+            let sys = map.system().clone();
+            return accept(&sys, x, n, k, &p);
+        }
+    }
+    Err(PassError::NoConvergence)
+}
+
+/// The (n, k) cycle of `sys` near the launch (t₀, v₀), by Newton's method at fixed α.
+pub fn cycle(sys: &System, n: usize, k: u32, t0: f64, v0: f64) -> Result<CyclePoint, PassError> {
+    solve_at(&mut map_for(sys), n, k, t0, v0)
+}
+
+/// The corrector of pseudo-arclength continuation: the (n, k) cycle with
+/// τ·(x − x₀) = h, started from x₀ + hτ.
+pub(crate) fn correct(
+    map: &mut ImpactMap,
+    n: usize,
+    k: u32,
+    x0: [f64; 3],
+    tau: [f64; 3],
+    h: f64,
+) -> Result<(CyclePoint, [f64; 3]), PassError> {
+    let mut x = [x0[0] + h * tau[0], x0[1] + h * tau[1], x0[2] + h * tau[2]];
+    for it in 0..MAX_NEWTON {
+        map.set_alpha(x[0]).map_err(|_| PassError::BadLaunch)?;
+        let p = pass(map, x[1], x[2], n, k)?;
+        let m = p.monodromy;
+        let a = [
+            [p.alpha_column[0], m[0][0] - 1.0, m[0][1]],
+            [p.alpha_column[1], m[1][0], m[1][1] - 1.0],
+            tau,
+        ];
+        let g = (0..3).map(|i| tau[i] * (x[i] - x0[i])).sum::<f64>() - h;
+        let b = [p.residual[0], p.residual[1], g];
+        let d = solve3(a, b).ok_or(PassError::NoConvergence)?;
+        for i in 0..3 {
+            x[i] -= d[i];
+        }
+        let step = d.iter().fold(0.0f64, |s, v| s.max(v.abs()));
+        if step < 1e-13 || (it > 0 && p.residual[0].abs().max(p.residual[1].abs()) < 1e-15) {
+            map.set_alpha(x[0]).map_err(|_| PassError::BadLaunch)?;
+            let p = pass(map, x[1], x[2], n, k)?;
+            let sys = map.system().clone();
+            let pt = accept(&sys, x, n, k, &p)?;
+            // The tangent: the null vector of [F_α | M − I].
+            let m = p.monodromy;
+            let r0 = [p.alpha_column[0], m[0][0] - 1.0, m[0][1]];
+            let r1 = [p.alpha_column[1], m[1][0], m[1][1] - 1.0];
+            let mut t = cross(r0, r1);
+            let s = (t[0] * t[0] + t[1] * t[1] + t[2] * t[2]).sqrt();
+            if !(s > 0.0 && s.is_finite()) {
+                return Err(PassError::NoConvergence);
+            }
+            let sign = if t.iter().zip(tau).map(|(a, b)| a * b).sum::<f64>() < 0.0 {
+                -1.0
+            } else {
+                1.0
+            };
+            for v in t.iter_mut() {
+                *v *= sign / s;
+            }
+            return Ok((pt, t));
+        }
+        if !step.is_finite() || step > 1.0 {
+            return Err(PassError::NoConvergence);
+        }
+    }
+    Err(PassError::NoConvergence)
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+/// The smallest height of the ball above the table at an interior local minimum of the
+/// gap over the cycle's flights (infinity if no flight has one), with its phase: zero
+/// where a flight grazes the table, so the impact sequence would change.
+pub fn min_interior_gap(sys: &System, pt: &CyclePoint) -> (f64, f64) {
+    const SAMPLES: usize = 64;
+    let mut best = (f64::INFINITY, f64::NAN);
+    for i in 0..pt.n {
+        let (ph, v, tau) = (pt.phases[i], pt.velocities[i], pt.flights[i]);
+        let f0 = sys.f(ph);
+        let gap = |s: f64| f0 + v * s - 0.5 * s * s - sys.f(super::wrap_phase(ph + s));
+        let g: Vec<f64> = (0..=SAMPLES)
+            .map(|j| gap(tau * j as f64 / SAMPLES as f64))
+            .collect();
+        for j in 1..SAMPLES {
+            if !(g[j] < g[j - 1] && g[j] <= g[j + 1]) {
+                continue;
+            }
+            // Newton on g'(s) = v − s − f'(t̂ + s), from the sample.
+            let mut s = tau * j as f64 / SAMPLES as f64;
+            for _ in 0..20 {
+                let q = super::wrap_phase(ph + s);
+                let d1 = v - s - sys.df(q);
+                let d2 = -1.0 - sys.ddf(q);
+                if d2 <= 0.0 {
+                    break;
+                }
+                let next = (s - d1 / d2).clamp(0.0, tau);
+                if (next - s).abs() < 1e-15 {
+                    break;
+                }
+                s = next;
+            }
+            let m = gap(s).min(g[j]);
+            if m < best.0 {
+                best = (m, super::wrap_phase(ph + s));
+            }
+        }
+    }
+    best
+}

@@ -1,0 +1,190 @@
+//! `bouncemap cascade`: the period-doubling cascade from the (1, k) solution: the
+//! period-doubling points αₙ, the Feigenbaum ratios δₙ, and how each 2ⁿ branch ends
+//! (period doubling, or border collision at a breakpoint of the table, ...). With
+//! `--d LO..HI:N`, one row per fd:D table: the answer to the paper's open question of
+//! which 2ⁿ branch ends by border collision.
+
+use crate::config::flags::CascadeArgs;
+use crate::config::InputError;
+use crate::output::records::{
+    csv_writer, CascadeDoc, FamilyDoc, FamilyRecord, FamilyRow, LevelRecord, LevelRow,
+    FEIGENBAUM_DELTA,
+};
+use crate::output::Format;
+use bouncemap_engine::orbits::cascade::{cascade, Cascade};
+use bouncemap_engine::orbits::continuation::NoStart;
+use bouncemap_engine::table::Table;
+use std::io::{self, BufWriter, Write};
+
+/// The cascade of one table: Ok(Err(reason)) when it has none.
+fn one(table: &Table, args: &CascadeArgs) -> Result<Result<Cascade, String>, InputError> {
+    match cascade(table, args.r, args.k, args.depth) {
+        Ok(c) => Ok(Ok(c)),
+        Err(NoStart::Invalid(e)) => Err(e.into()),
+        Err(NoStart::NotFound(why)) => Ok(Err(why)),
+    }
+}
+
+pub fn run(args: &CascadeArgs) -> anyhow::Result<()> {
+    let mut out = BufWriter::new(io::stdout().lock());
+    if let Some(ds) = &args.d {
+        let mut rows = Vec::with_capacity(ds.0.len());
+        for &d in &ds.0 {
+            let c = one(&Table::fd(d).map_err(InputError::from)?, args)?;
+            rows.push(FamilyRecord::new(d, c.as_ref().map_err(Clone::clone)));
+        }
+        family(&mut out, args, rows)?;
+    } else {
+        let table = args.table.load()?;
+        let c = one(&table, args)?;
+        single(&mut out, args, &table, c)?;
+    }
+    out.flush()?;
+    Ok(())
+}
+
+fn single(
+    out: &mut impl Write,
+    args: &CascadeArgs,
+    table: &Table,
+    c: Result<Cascade, String>,
+) -> anyhow::Result<()> {
+    match args.format {
+        Format::Json => {
+            let doc = CascadeDoc {
+                table: table.name(),
+                r: args.r,
+                k: args.k,
+                depth: args.depth,
+                found: c.is_ok(),
+                reason: c.as_ref().err().cloned(),
+                alphas: c.as_ref().map_or(Vec::new(), |c| c.alphas.clone()),
+                deltas: c.as_ref().map_or(Vec::new(), |c| c.deltas.clone()),
+                feigenbaum_delta: FEIGENBAUM_DELTA,
+                levels: c.as_ref().map_or(Vec::new(), |c| {
+                    c.levels.iter().map(LevelRecord::from).collect()
+                }),
+                unborn: c.as_ref().ok().and_then(|c| c.unborn.clone()),
+            };
+            serde_json::to_writer(&mut *out, &doc)?;
+            writeln!(out)?;
+        }
+        Format::Csv => {
+            let mut w = csv_writer(&mut *out, &LevelRow::HEADER)?;
+            if let Ok(c) = &c {
+                for i in 0..c.levels.len() {
+                    w.serialize(LevelRow::new(c, i))?;
+                }
+            }
+            w.flush()?;
+        }
+        Format::Text => {
+            writeln!(
+                out,
+                "table {}  r {}  k {}  depth {}",
+                table.name(),
+                args.r,
+                args.k,
+                args.depth
+            )?;
+            let c = match c {
+                Ok(c) => c,
+                Err(why) => {
+                    writeln!(out, "no cascade: {why}")?;
+                    return Ok(());
+                }
+            };
+            for (i, a) in c.alphas.iter().enumerate() {
+                writeln!(out, "alpha_{} = {a:.15}", i + 1)?;
+            }
+            for (i, d) in c.deltas.iter().enumerate() {
+                writeln!(
+                    out,
+                    "delta_{} = {d:.9}   (Feigenbaum {FEIGENBAUM_DELTA:.9}; difference {:+.2e})",
+                    i + 2,
+                    d - FEIGENBAUM_DELTA
+                )?;
+            }
+            if let Some(why) = &c.unborn {
+                writeln!(out, "{why}")?;
+            }
+            for l in &c.levels {
+                let persists = match l.end.persists {
+                    Some(true) => ", goes on beyond stable",
+                    Some(false) => ", goes on beyond unstable",
+                    None if l.end.kind.as_str() == "border_collision" => ", ceases to exist",
+                    None => "",
+                };
+                writeln!(
+                    out,
+                    "({}, {}) branch from alpha {:.12}: ends by {} at alpha {:.12}, phase {:.12}, impact {}{persists}",
+                    l.period,
+                    l.period as u32 * args.k,
+                    l.alpha_start,
+                    l.end.kind.as_str(),
+                    l.end.alpha,
+                    l.end.phase,
+                    l.end.impact
+                )?;
+            }
+        }
+    }
+    Ok(())
+}
+
+fn family(out: &mut impl Write, args: &CascadeArgs, rows: Vec<FamilyRecord>) -> anyhow::Result<()> {
+    match args.format {
+        Format::Json => {
+            let doc = FamilyDoc {
+                r: args.r,
+                k: args.k,
+                depth: args.depth,
+                rows,
+            };
+            serde_json::to_writer(&mut *out, &doc)?;
+            writeln!(out)?;
+        }
+        Format::Csv => {
+            let mut w = csv_writer(&mut *out, &FamilyRow::HEADER)?;
+            for r in &rows {
+                w.serialize(FamilyRow::from(r))?;
+            }
+            w.flush()?;
+        }
+        Format::Text => {
+            writeln!(
+                out,
+                "fd:D tables, r {}  k {}  depth {}",
+                args.r, args.k, args.depth
+            )?;
+            writeln!(
+                out,
+                "{:>8}  {:>10}  {:<34} {:>16}  {:>8}  period-doubling points",
+                "D", "max period", "first branch not doubling: ends by", "alpha", "phase"
+            )?;
+            for r in &rows {
+                let end = match (r.ends_period, r.ends_by) {
+                    (Some(p), Some(k)) => format!("({p}) {k}"),
+                    _ if r.found => "none up to the depth".to_string(),
+                    _ => format!("no cascade: {}", r.reason.as_deref().unwrap_or("")),
+                };
+                let alphas = r
+                    .alphas
+                    .iter()
+                    .map(|a| format!("{a:.12}"))
+                    .collect::<Vec<_>>()
+                    .join(" ");
+                writeln!(
+                    out,
+                    "{:>8.4}  {:>10}  {:<34} {:>16}  {:>8}  {alphas}",
+                    r.d,
+                    r.max_period,
+                    end,
+                    r.alpha_end.map_or("-".into(), |a| format!("{a:.12}")),
+                    r.phase.map_or("-".into(), |p| format!("{p}")),
+                )?;
+            }
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,156 @@
+//! `bouncemap continue`: periodic orbits continued in α over a window, from the (1, k)
+//! solution, the (2, 2k) one, or a guessed (n, k) cycle: every branch reached (doubled
+//! branches started at period doublings), its points with multipliers and stability,
+//! its special points and how it ends.
+
+use crate::config::flags::{ContinueArgs, FromArg};
+use crate::config::InputError;
+use crate::output::records::{csv_writer, BranchRecord, ContinueDoc, ContinueRow};
+use crate::output::text::complex;
+use crate::output::Format;
+use bouncemap_engine::orbits::continuation::{branches, Branch, NoStart, Options, Special, Start};
+use std::io::{self, BufWriter, Write};
+
+pub fn run(args: &ContinueArgs) -> anyhow::Result<()> {
+    let table = args.table.load()?;
+    let start = match (args.from, args.n, args.t0, args.v0) {
+        (_, Some(n), Some(t0), Some(v0)) => Start::Point {
+            n,
+            k: args.k,
+            t0,
+            v0,
+        },
+        (Some(FromArg::TwoCycle), ..) => Start::TwoCycle { k: args.k },
+        _ => Start::Fixed { k: args.k },
+    };
+    let opts = Options {
+        max_period: args.max_period,
+        ..Options::default()
+    };
+    let (found, reason) = match branches(&table, args.r, args.alpha, start, opts) {
+        Ok(b) => (b, None),
+        Err(NoStart::Invalid(e)) => return Err(InputError::from(e).into()),
+        Err(NoStart::NotFound(why)) => (Vec::new(), Some(why)),
+    };
+    let start_text = match start {
+        Start::Fixed { k } => format!("fixed (1, {k})"),
+        Start::TwoCycle { k } => format!("two-cycle (2, {})", 2 * k),
+        Start::Point { n, k, t0, v0 } => format!("({n}, {k}) near t0 = {t0}, v0 = {v0}"),
+    };
+    let mut out = BufWriter::new(io::stdout().lock());
+    match args.format {
+        Format::Json => {
+            let doc = ContinueDoc {
+                table: table.name(),
+                r: args.r,
+                alpha_lo: args.alpha.0,
+                alpha_hi: args.alpha.1,
+                start: start_text,
+                found: reason.is_none(),
+                reason,
+                branches: found
+                    .iter()
+                    .enumerate()
+                    .map(|(i, b)| BranchRecord::new(i, b))
+                    .collect(),
+            };
+            serde_json::to_writer(&mut out, &doc)?;
+            writeln!(out)?;
+        }
+        Format::Csv => {
+            let mut w = csv_writer(&mut out, &ContinueRow::HEADER)?;
+            for (i, b) in found.iter().enumerate() {
+                w.serialize(ContinueRow::special(i, b, &b.begin))?;
+                for p in &b.points {
+                    w.serialize(ContinueRow::point(i, b, p))?;
+                }
+                for s in &b.specials {
+                    w.serialize(ContinueRow::special(i, b, s))?;
+                }
+                w.serialize(ContinueRow::special(i, b, &b.end))?;
+            }
+            w.flush()?;
+        }
+        Format::Text => {
+            writeln!(
+                out,
+                "table {}  r {}  alpha {}..{}  start {}",
+                table.name(),
+                args.r,
+                args.alpha.0,
+                args.alpha.1,
+                start_text
+            )?;
+            if let Some(why) = reason {
+                writeln!(out, "no branch: {why}")?;
+            }
+            for (i, b) in found.iter().enumerate() {
+                text_branch(&mut out, i, b)?;
+            }
+        }
+    }
+    out.flush()?;
+    Ok(())
+}
+
+fn text_special(out: &mut impl Write, what: &str, s: &Special) -> io::Result<()> {
+    let persists = match (s.kind.as_str(), s.persists) {
+        ("border_collision", Some(true)) => "  (goes on beyond, stable)",
+        ("border_collision", Some(false)) => "  (goes on beyond, unstable)",
+        ("border_collision", None) => "  (ceases to exist)",
+        _ => "",
+    };
+    writeln!(
+        out,
+        "  {what:<7} {:<3} {:<16} alpha {:.12}  phase {:.12}  impact {}  multipliers {}, {}{persists}",
+        s.kind.label(),
+        s.kind.as_str(),
+        s.alpha,
+        s.phase,
+        s.impact,
+        complex(s.point.multipliers[0]),
+        complex(s.point.multipliers[1])
+    )
+}
+
+fn text_branch(out: &mut impl Write, i: usize, b: &Branch) -> io::Result<()> {
+    let parent = b
+        .parent
+        .map_or(String::new(), |p| format!(", doubled from branch {p}"));
+    writeln!(
+        out,
+        "\nbranch {i}: ({}, {}){parent}, {} points",
+        b.n,
+        b.k,
+        b.points.len()
+    )?;
+    text_special(out, "begins", &b.begin)?;
+    for s in &b.specials {
+        text_special(out, "passes", s)?;
+    }
+    text_special(out, "ends", &b.end)?;
+    writeln!(
+        out,
+        "  {:>16} {:>6} {:>28} {:>28}  phases | velocities",
+        "alpha", "stable", "multiplier 1", "multiplier 2"
+    )?;
+    for p in &b.points {
+        let list = |v: &[f64]| {
+            v.iter()
+                .map(|x| format!("{x:.9}"))
+                .collect::<Vec<_>>()
+                .join(" ")
+        };
+        writeln!(
+            out,
+            "  {:>16.12} {:>6} {:>28} {:>28}  {} | {}",
+            p.alpha,
+            if p.stable { "yes" } else { "no" },
+            complex(p.multipliers[0]),
+            complex(p.multipliers[1]),
+            list(&p.phases),
+            list(&p.velocities)
+        )?;
+    }
+    Ok(())
+}

@@ -1,0 +1,410 @@
+//! Records of `continue` (branches of periodic orbits) and `cascade` (period-doubling
+//! points, how each 2ⁿ branch ends, one row per D of a family).
+
+use super::ComplexRecord;
+use bouncemap_engine::orbits::cascade::{Cascade, Level};
+use bouncemap_engine::orbits::continuation::{Branch, Special};
+use bouncemap_engine::orbits::periodic::CyclePoint;
+use serde::Serialize;
+
+/// Feigenbaum's δ, for comparison in outputs.
+pub const FEIGENBAUM_DELTA: f64 = 4.669_201_609_102_99;
+
+/// Numbers joined by ';' (a cycle's phases or velocities in one csv field).
+fn joined(v: &[f64]) -> String {
+    v.iter().map(f64::to_string).collect::<Vec<_>>().join(";")
+}
+
+/// A special point: PD, fold, border collision, grazing, onset of sticking, window exit.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SpecialRecord {
+    pub kind: &'static str,
+    pub label: &'static str,
+    pub alpha: f64,
+    pub phase: f64,
+    /// The impact of the cycle concerned (0 = the launch's).
+    pub impact: usize,
+    /// At a border collision: whether the cycle goes on beyond it stable (true),
+    /// unstable (false), or ceases to exist (null).
+    pub persists: Option<bool>,
+    pub stable: bool,
+    pub multipliers: [ComplexRecord; 2],
+}
+
+impl From<&Special> for SpecialRecord {
+    fn from(s: &Special) -> Self {
+        SpecialRecord {
+            kind: s.kind.as_str(),
+            label: s.kind.label(),
+            alpha: s.alpha,
+            phase: s.phase,
+            impact: s.impact,
+            persists: s.persists,
+            stable: s.point.stable,
+            multipliers: s.point.multipliers.map(ComplexRecord::from),
+        }
+    }
+}
+
+/// One point of a branch.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct PointRecord {
+    pub alpha: f64,
+    pub stable: bool,
+    pub multipliers: [ComplexRecord; 2],
+    pub phases: Vec<f64>,
+    pub velocities: Vec<f64>,
+    pub return_error: f64,
+}
+
+impl From<&CyclePoint> for PointRecord {
+    fn from(p: &CyclePoint) -> Self {
+        PointRecord {
+            alpha: p.alpha,
+            stable: p.stable,
+            multipliers: p.multipliers.map(ComplexRecord::from),
+            phases: p.phases.clone(),
+            velocities: p.velocities.clone(),
+            return_error: p.return_error,
+        }
+    }
+}
+
+/// One branch, in `continue --format json`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct BranchRecord {
+    pub index: usize,
+    pub n: usize,
+    pub k: u32,
+    pub parent: Option<usize>,
+    pub begin: SpecialRecord,
+    pub end: SpecialRecord,
+    pub specials: Vec<SpecialRecord>,
+    pub points: Vec<PointRecord>,
+}
+
+impl BranchRecord {
+    pub fn new(index: usize, b: &Branch) -> Self {
+        BranchRecord {
+            index,
+            n: b.n,
+            k: b.k,
+            parent: b.parent,
+            begin: SpecialRecord::from(&b.begin),
+            end: SpecialRecord::from(&b.end),
+            specials: b.specials.iter().map(SpecialRecord::from).collect(),
+            points: b.points.iter().map(PointRecord::from).collect(),
+        }
+    }
+}
+
+/// `continue --format json`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ContinueDoc<'a> {
+    pub table: &'a str,
+    pub r: f64,
+    pub alpha_lo: f64,
+    pub alpha_hi: f64,
+    pub start: String,
+    pub found: bool,
+    pub reason: Option<String>,
+    pub branches: Vec<BranchRecord>,
+}
+
+/// `continue --format csv`: one row per point (`record` = point) and per special point
+/// (`record` = its kind; begin and end included), in branch order.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ContinueRow {
+    pub branch: usize,
+    pub n: usize,
+    pub k: u32,
+    pub parent: Option<usize>,
+    pub record: &'static str,
+    pub alpha: f64,
+    pub phase: Option<f64>,
+    pub impact: Option<usize>,
+    pub persists: Option<bool>,
+    pub stable: bool,
+    pub lambda1_re: f64,
+    pub lambda1_im: f64,
+    pub lambda2_re: f64,
+    pub lambda2_im: f64,
+    pub return_error: f64,
+    pub phases: String,
+    pub velocities: String,
+}
+
+impl ContinueRow {
+    pub const HEADER: [&'static str; 17] = [
+        "branch",
+        "n",
+        "k",
+        "parent",
+        "record",
+        "alpha",
+        "phase",
+        "impact",
+        "persists",
+        "stable",
+        "lambda1_re",
+        "lambda1_im",
+        "lambda2_re",
+        "lambda2_im",
+        "return_error",
+        "phases",
+        "velocities",
+    ];
+
+    pub fn point(branch: usize, b: &Branch, p: &CyclePoint) -> Self {
+        let [l1, l2] = p.multipliers;
+        ContinueRow {
+            branch,
+            n: b.n,
+            k: b.k,
+            parent: b.parent,
+            record: "point",
+            alpha: p.alpha,
+            phase: None,
+            impact: None,
+            persists: None,
+            stable: p.stable,
+            lambda1_re: l1.re,
+            lambda1_im: l1.im,
+            lambda2_re: l2.re,
+            lambda2_im: l2.im,
+            return_error: p.return_error,
+            phases: joined(&p.phases),
+            velocities: joined(&p.velocities),
+        }
+    }
+
+    pub fn special(branch: usize, b: &Branch, s: &Special) -> Self {
+        ContinueRow {
+            record: s.kind.as_str(),
+            alpha: s.alpha,
+            phase: Some(s.phase),
+            impact: Some(s.impact),
+            persists: s.persists,
+            ..ContinueRow::point(branch, b, &s.point)
+        }
+    }
+}
+
+/// One 2ⁿ branch of a cascade.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct LevelRecord {
+    pub period: usize,
+    pub alpha_start: f64,
+    pub end: &'static str,
+    pub alpha_end: f64,
+    pub phase: f64,
+    pub impact: usize,
+    pub persists: Option<bool>,
+}
+
+impl From<&Level> for LevelRecord {
+    fn from(l: &Level) -> Self {
+        LevelRecord {
+            period: l.period,
+            alpha_start: l.alpha_start,
+            end: l.end.kind.as_str(),
+            alpha_end: l.end.alpha,
+            phase: l.end.phase,
+            impact: l.end.impact,
+            persists: l.end.persists,
+        }
+    }
+}
+
+/// `cascade --format json` (one table).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct CascadeDoc<'a> {
+    pub table: &'a str,
+    pub r: f64,
+    pub k: u32,
+    pub depth: usize,
+    pub found: bool,
+    pub reason: Option<String>,
+    pub alphas: Vec<f64>,
+    pub deltas: Vec<f64>,
+    pub feigenbaum_delta: f64,
+    pub levels: Vec<LevelRecord>,
+    /// Why the cascade stops at its last αₙ with no doubled branch, if it does.
+    pub unborn: Option<String>,
+}
+
+/// `cascade --format csv` (one table): one row per 2ⁿ branch; `alpha_pd` is αₙ where
+/// it ends by period doubling, `delta` the ratio δ at that αₙ where defined.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct LevelRow {
+    pub period: usize,
+    pub alpha_start: f64,
+    pub end: &'static str,
+    pub alpha_end: f64,
+    pub phase: f64,
+    pub impact: usize,
+    pub persists: Option<bool>,
+    pub delta: Option<f64>,
+}
+
+impl LevelRow {
+    pub const HEADER: [&'static str; 8] = [
+        "period",
+        "alpha_start",
+        "end",
+        "alpha_end",
+        "phase",
+        "impact",
+        "persists",
+        "delta",
+    ];
+
+    /// Row `i` of the cascade (δ at αᵢ₊₁ is δ index i − 1).
+    pub fn new(c: &Cascade, i: usize) -> Self {
+        let l = LevelRecord::from(&c.levels[i]);
+        LevelRow {
+            period: l.period,
+            alpha_start: l.alpha_start,
+            end: l.end,
+            alpha_end: l.alpha_end,
+            phase: l.phase,
+            impact: l.impact,
+            persists: l.persists,
+            delta: i.checked_sub(1).and_then(|j| c.deltas.get(j)).copied(),
+        }
+    }
+}
+
+/// One D of `cascade --d`: how far the cascade goes and how it is interrupted.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct FamilyRecord {
+    pub d: f64,
+    pub found: bool,
+    pub reason: Option<String>,
+    /// The longest period followed.
+    pub max_period: usize,
+    /// The end of the first branch not ending by period doubling: its period, kind,
+    /// α, phase, impact, persistence (none if every branch up to the depth doubled);
+    /// `not_born` with the doubled period and αₙ where a degenerate period doubling
+    /// starts no doubled branch.
+    pub ends_period: Option<usize>,
+    pub ends_by: Option<&'static str>,
+    pub alpha_end: Option<f64>,
+    pub phase: Option<f64>,
+    pub impact: Option<usize>,
+    pub persists: Option<bool>,
+    pub alphas: Vec<f64>,
+    pub deltas: Vec<f64>,
+}
+
+impl FamilyRecord {
+    pub fn new(d: f64, c: Result<&Cascade, String>) -> Self {
+        let empty = FamilyRecord {
+            d,
+            found: false,
+            reason: None,
+            max_period: 0,
+            ends_period: None,
+            ends_by: None,
+            alpha_end: None,
+            phase: None,
+            impact: None,
+            persists: None,
+            alphas: Vec::new(),
+            deltas: Vec::new(),
+        };
+        match c {
+            Err(reason) => FamilyRecord {
+                reason: Some(reason),
+                ..empty
+            },
+            Ok(c) => {
+                let i = c.interrupted();
+                let last = c.levels.last();
+                // No doubled branch born at the last αₙ: the cascade ends there.
+                let unborn = (i.is_none() && c.unborn.is_some()).then(|| {
+                    (
+                        2 * last.map_or(1, |l| l.period),
+                        "not_born",
+                        last.map(|l| l.end.alpha),
+                    )
+                });
+                FamilyRecord {
+                    found: true,
+                    max_period: last.map_or(0, |l| l.period),
+                    ends_period: i.map(|l| l.period).or(unborn.map(|u| u.0)),
+                    ends_by: i.map(|l| l.end.kind.as_str()).or(unborn.map(|u| u.1)),
+                    alpha_end: i.map(|l| l.end.alpha).or(unborn.and_then(|u| u.2)),
+                    phase: i.map(|l| l.end.phase),
+                    impact: i.map(|l| l.end.impact),
+                    persists: i.and_then(|l| l.end.persists),
+                    alphas: c.alphas.clone(),
+                    deltas: c.deltas.clone(),
+                    ..empty
+                }
+            }
+        }
+    }
+}
+
+/// `cascade --d --format csv`: a [`FamilyRecord`] with αₙ and δₙ joined by ';'.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct FamilyRow {
+    pub d: f64,
+    pub found: bool,
+    pub max_period: usize,
+    pub ends_period: Option<usize>,
+    pub ends_by: Option<&'static str>,
+    pub alpha_end: Option<f64>,
+    pub phase: Option<f64>,
+    pub impact: Option<usize>,
+    pub persists: Option<bool>,
+    pub alphas: String,
+    pub deltas: String,
+    pub reason: Option<String>,
+}
+
+impl FamilyRow {
+    pub const HEADER: [&'static str; 12] = [
+        "d",
+        "found",
+        "max_period",
+        "ends_period",
+        "ends_by",
+        "alpha_end",
+        "phase",
+        "impact",
+        "persists",
+        "alphas",
+        "deltas",
+        "reason",
+    ];
+}
+
+impl From<&FamilyRecord> for FamilyRow {
+    fn from(f: &FamilyRecord) -> Self {
+        FamilyRow {
+            d: f.d,
+            found: f.found,
+            max_period: f.max_period,
+            ends_period: f.ends_period,
+            ends_by: f.ends_by,
+            alpha_end: f.alpha_end,
+            phase: f.phase,
+            impact: f.impact,
+            persists: f.persists,
+            alphas: joined(&f.alphas),
+            deltas: joined(&f.deltas),
+            reason: f.reason.clone(),
+        }
+    }
+}
+
+/// `cascade --d --format json`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct FamilyDoc {
+    pub r: f64,
+    pub k: u32,
+    pub depth: usize,
+    pub rows: Vec<FamilyRecord>,
+}
