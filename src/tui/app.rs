@@ -7,6 +7,7 @@
 
 use super::components::basins::BasinsPanel;
 use super::components::bounce::Bounce;
+use super::components::branches::Branches;
 use super::components::diagram::Diagram;
 use super::components::parameters::Parameters;
 use super::components::phase_plot::PhasePlot;
@@ -35,6 +36,7 @@ pub struct App {
     pub bounce: Bounce,
     pub basins: BasinsPanel,
     pub plane: PlanePanel,
+    pub branches: Branches,
     pub presets: PresetPicker,
 }
 
@@ -62,17 +64,23 @@ impl App {
             bounce: Bounce::new(&shared.params),
             basins: BasinsPanel::default(),
             plane: PlanePanel::default(),
+            branches: Branches::default(),
             presets: PresetPicker::new(),
             shared,
         };
-        for t in [Target::Orbits, Target::Phase, Target::Diagram] {
+        for t in [
+            Target::Orbits,
+            Target::Phase,
+            Target::Diagram,
+            Target::Branches,
+        ] {
             app.shared.effect(Effect::Start(t));
         }
         app
     }
 
     /// The shared state and every stateful panel, in routing order.
-    fn parts(&mut self) -> (&mut Shared, [&mut dyn Component; 7]) {
+    fn parts(&mut self) -> (&mut Shared, [&mut dyn Component; 8]) {
         let App {
             shared,
             parameters,
@@ -82,12 +90,15 @@ impl App {
             bounce,
             basins,
             plane,
+            branches,
             ..
         } = self;
         // The plane before the diagram: while shown, it takes the diagram's keys.
         (
             shared,
-            [parameters, plane, diagram, bounce, phase, stability, basins],
+            [
+                parameters, plane, diagram, bounce, phase, stability, basins, branches,
+            ],
         )
     }
 
@@ -100,6 +111,7 @@ impl App {
             stability,
             basins,
             plane,
+            branches,
             ..
         } = self;
         let c: &mut dyn Component = match t {
@@ -108,6 +120,7 @@ impl App {
             Target::Orbits => stability,
             Target::Basins => basins,
             Target::Plane => plane,
+            Target::Branches => branches,
         };
         (shared, c)
     }
@@ -257,6 +270,7 @@ impl App {
 
     /// Tell every panel about the rows changed by the last action.
     fn announce(&mut self) {
+        self.refresh_under_cursor();
         let changed = std::mem::take(&mut self.shared.changed);
         for id in changed {
             let (shared, panels) = self.parts();
@@ -310,6 +324,21 @@ impl App {
         let Msg { to, gen, body } = msg;
         let (shared, c) = self.part(to);
         c.receive(gen, body, shared);
+        if to == Target::Branches {
+            self.refresh_under_cursor();
+        }
+    }
+
+    /// The diagram's cursor and the continued branch under it (its cycle at the
+    /// cursor's α, by Newton: microseconds), for the stability panel.
+    fn refresh_under_cursor(&mut self) {
+        use super::components::diagram::Axis;
+        let focused = self.shared.focus == Focus::Diagram;
+        self.shared.cursor = focused.then_some((self.diagram.cursor, self.diagram.ycursor));
+        self.shared.under_cursor = match (&self.shared.branches, self.shared.cursor) {
+            (Some(Ok(sk)), Some((a, y))) => sk.under(a, y, self.diagram.axis == Axis::Velocity),
+            _ => None,
+        };
     }
 
     /// Whether any worker may still send something (the loop then polls more often).

@@ -30,6 +30,7 @@ pub mod plot;
 pub mod runtime;
 pub mod settings;
 pub mod shared;
+pub mod skeleton;
 pub mod terminal;
 pub mod theme;
 pub mod workers;

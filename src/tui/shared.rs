@@ -69,6 +69,14 @@ pub struct Shared {
     pub orbits: Option<Result<OrbitInfo, String>>,
     /// (t̂, v) of the state the bounce panel has stepped to (None before a step).
     pub stepped: Option<(f64, f64)>,
+    /// The continued branches of the current α window (None while they compute, or
+    /// when the diagram sweeps r or D).
+    pub branches: Option<Result<super::skeleton::Skeleton, String>>,
+    /// The diagram's cursor (swept value, height) while the diagram has the focus.
+    pub cursor: Option<(f64, f64)>,
+    /// The continued branch nearest the cursor (its index) and its cycle at the
+    /// cursor's α.
+    pub under_cursor: Option<(usize, bouncemap_engine::orbits::periodic::CyclePoint)>,
     pub(super) effects: Vec<Effect>,
     /// Rows changed by the action being handled, to announce to every panel.
     pub(super) changed: Vec<ParamId>,
@@ -96,6 +104,9 @@ impl Shared {
             export_view: false,
             orbits: None,
             stepped: None,
+            branches: None,
+            cursor: None,
+            under_cursor: None,
             effects: Vec::new(),
             changed: Vec::new(),
         }

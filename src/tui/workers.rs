@@ -29,15 +29,17 @@ pub enum Target {
     Orbits,
     Basins,
     Plane,
+    Branches,
 }
 
 impl Target {
-    pub const ALL: [Target; 5] = [
+    pub const ALL: [Target; 6] = [
         Target::Diagram,
         Target::Phase,
         Target::Orbits,
         Target::Basins,
         Target::Plane,
+        Target::Branches,
     ];
 }
 

@@ -32,6 +32,14 @@ pub const SECTIONS: &[(&str, &[(&str, &str)])] = &[
                 "on the axis: birth and period doubling (α_PD) of the (1,k) solution",
             ),
             (
+                "⠉ lines",
+                "continued periodic branches (α sweeps): stable solid, unstable dotted dim",
+            ),
+            (
+                "PD F BC",
+                "on the axis: a branch's period doubling, fold, border collision",
+            ),
+            (
                 "λ strip",
                 "largest Lyapunov exponent per impact; ┄ zero; ▁ = −∞ (sticking)",
             ),

@@ -12,6 +12,7 @@
 
 pub mod basins;
 pub mod bounce;
+pub mod branches;
 pub mod diagram;
 pub mod help;
 pub mod legend;

@@ -124,6 +124,22 @@ fn render(app: &Shared, area: Rect, buf: &mut Buffer) {
             }
         }
     }
+    // The continued branch under the diagram's cursor (while the diagram has the focus).
+    if let (Some((i, p)), Some(Ok(sk))) = (&app.under_cursor, &app.branches) {
+        let b = &sk.branches[*i];
+        lines.push(Line::from(vec![
+            Span::styled(format!("branch ({}, {})", b.n, b.k), app.theme.mark2()),
+            Span::raw(format!(
+                " at α {}: {}",
+                fmt_num(p.alpha),
+                if p.stable { "stable" } else { "unstable" }
+            )),
+        ]));
+        lines.push(Line::from(format!(
+            "  μ {}",
+            multipliers(&p.multipliers.map(|c| (c.re, c.im)))
+        )));
+    }
     let text_h = (lines.len() as u16).min(inner.height);
     let [text, plots] =
         Layout::vertical([Constraint::Length(text_h), Constraint::Min(0)]).areas(inner);
@@ -137,6 +153,25 @@ fn render(app: &Shared, area: Rect, buf: &mut Buffer) {
         .areas(plots);
     eigen_circle(app, fixed, circ, buf);
     region_plot(app, region, buf);
+}
+
+/// A pair of multipliers: two reals, or a complex pair as re ± im i.
+fn multipliers(m: &[(f64, f64); 2]) -> String {
+    let [(a, ai), (b, _)] = *m;
+    if ai.abs() > 1e-12 * (1.0 + a.abs()) {
+        format!("{:.4} ± {:.4}i", a, ai.abs())
+    } else {
+        format!("{}, {}", modulus_signed(a), modulus_signed(b))
+    }
+}
+
+/// A real multiplier: four decimals, or the shortest form when huge or tiny.
+fn modulus_signed(x: f64) -> String {
+    if x.is_finite() && (1e-3..1e4).contains(&x.abs()) {
+        format!("{x:.4}")
+    } else {
+        bouncemap_engine::error::fmt_value(x)
+    }
 }
 
 /// An eigenvalue modulus: four decimals, or the shortest form when huge or tiny.

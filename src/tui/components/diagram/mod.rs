@@ -8,6 +8,7 @@
 //! found. It owns its sweep: the points of every value (for re-binning on zoom, axis
 //! change and resize), the zoom stack, the cursor.
 
+mod branch_layer;
 pub mod colouring;
 mod navigation;
 pub mod readout;
@@ -511,6 +512,10 @@ impl Component for Diagram {
         let plot = draw_axes(main, buf, x, y, LABEL_W, &app.theme);
         render(&self.grid, plot, buf, &app.theme, &[], Style::new());
         self.labels.paint(plot, buf, &app.theme, self.color_by);
+        // The continued branches of this window (α sweeps), under the marks below.
+        if let (Some(Ok(sk)), SweepParam::Alpha) = (&app.branches, app.params.param) {
+            branch_layer::draw(sk, x, y, self.axis == Axis::Velocity, plot, buf, &app.theme);
+        }
         if let Some(a) = strip_area {
             strip::draw(&self.slots, x, a, LABEL_W, buf, &app.theme);
         }

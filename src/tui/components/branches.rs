@@ -1,0 +1,67 @@
+//! The skeleton under the diagram: every periodic branch the continuation reaches in the
+//! current α window from the (1, k) solution (its period doublings followed onto the
+//! doubled branches), computed in the background whenever the table, r, k or the window
+//! changes (not when only α moves). The diagram draws them (stable solid, unstable
+//! dotted) with their special points on the axis; the stability panel lists the branch
+//! under the diagram's cursor. Draw-only otherwise: it has no panel of its own.
+
+use super::{Component, Target};
+use crate::tui::params::ParamId;
+use crate::tui::shared::Shared;
+use crate::tui::skeleton::{compute, Skeleton};
+use crate::tui::workers::{Body, Workers};
+use bouncemap_engine::sweep::SweepParam;
+use ratatui::buffer::Buffer;
+use ratatui::layout::Rect;
+
+/// The background continuation.
+#[derive(Default)]
+pub struct Branches {
+    pub gen: u64,
+    pending: bool,
+}
+
+impl Component for Branches {
+    fn changed(&mut self, id: ParamId, shared: &mut Shared) {
+        use ParamId::*;
+        if matches!(id, Table | D | R | K | Sweep | Lo | Hi) {
+            shared.effect(crate::tui::shared::Effect::Start(Target::Branches));
+        }
+    }
+
+    fn start(&mut self, shared: &mut Shared, workers: &Workers) {
+        let p = &shared.params;
+        if p.param != SweepParam::Alpha {
+            // Branches are continued in α: other sweeps show none.
+            workers.cancel(Target::Branches);
+            self.pending = false;
+            shared.branches = None;
+            return;
+        }
+        let (table, r, k, window) = (p.table(), p.r, p.k, (p.lo, p.hi));
+        let gen = workers.spawn(Target::Branches, "branches", move |t| {
+            if !t.stale() {
+                t.send(compute(table, r, k, window));
+            }
+        });
+        self.gen = gen;
+        self.pending = true;
+    }
+
+    fn receive(&mut self, gen: u64, body: Body, shared: &mut Shared) {
+        if gen != self.gen {
+            return;
+        }
+        if let Ok(s) = body.downcast::<Result<Skeleton, String>>() {
+            shared.branches = Some(*s);
+            self.pending = false;
+            shared.dirty = true;
+        }
+    }
+
+    fn busy(&self) -> bool {
+        self.pending
+    }
+
+    fn draw(&self, _app: &Shared, _area: Rect, _buf: &mut Buffer) {}
+}
