@@ -169,9 +169,24 @@ fn labels(sk: &Skeleton, x: Range, plot: Rect, buf: &mut Buffer, theme: &Theme) 
             _ => placed.push((col, label.to_string())),
         }
     }
+    // Beside the tick labels, not over them: the nearest free stretch of the row
+    // within four columns (over them only where there is none).
+    let right = plot.x + plot.width;
+    let free = |buf: &Buffer, c: u16, n: u16| {
+        c >= plot.x
+            && c + n <= right
+            && (c.saturating_sub(1)..(c + n + 1).min(right))
+                .all(|x| buf.cell((x, row)).is_none_or(|cell| cell.symbol() == " "))
+    };
     for (col, text) in placed {
-        let room = (plot.x + plot.width).saturating_sub(col) as usize;
+        let n = text.chars().count() as u16;
+        let at = [0i32, 1, -1, 2, -2, 3, -3, 4, -4]
+            .into_iter()
+            .map(|d| (col as i32 + d).max(0) as u16)
+            .find(|&c| free(buf, c, n))
+            .unwrap_or(col);
+        let room = right.saturating_sub(at) as usize;
         let shown: String = text.chars().take(room).collect();
-        buf.set_string(col, row, shown, theme.mark2());
+        buf.set_string(at, row, shown, theme.mark2());
     }
 }
