@@ -85,8 +85,11 @@ fn pd_and_bc_are_marked_where_fixed_and_two_cycle_put_them() {
             .unwrap_or_else(|| panic!("no {label}:\n{axis}"));
         axis[..b].chars().count()
     };
-    assert!(find("PD").abs_diff(col_of(pd)) <= 1, "{axis}");
-    assert!(find("BC").abs_diff(col_of(bc)) <= 1, "{axis}");
+    // Each label starts at its column, or up to four columns aside where a tick label
+    // is in the way.
+    assert!(find("PD").abs_diff(col_of(pd)) <= 5, "{axis}");
+    assert!(find("BC").abs_diff(col_of(bc)) <= 5, "{axis}");
+    assert!(find("PD") < find("BC"));
 }
 
 #[test]

@@ -523,7 +523,13 @@ impl Component for Diagram {
         // x axis's row so they never cover data.
         if let (Some(Ok(info)), SweepParam::Alpha) = (&app.orbits, app.params.param) {
             let axis_row = plot.y + plot.height;
-            for (a, ch) in [(info.birth, "B"), (info.pd, "P")] {
+            // With the continued branches shown, their PD label stands for α_PD.
+            let pd = if matches!(app.branches, Some(Ok(_))) {
+                None
+            } else {
+                info.pd
+            };
+            for (a, ch) in [(info.birth, "B"), (pd, "P")] {
                 if let Some(col) = a.and_then(|a| column(x, plot, a)) {
                     buf.set_string(col, axis_row, ch, app.theme.mark());
                 }
