@@ -29,7 +29,7 @@ pub const SECTIONS: &[(&str, &[(&str, &str)])] = &[
             ),
             (
                 "B  P",
-                "on the axis: birth and period doubling (α_PD) of the (1,k) solution",
+                "on the axis: birth and α_PD of the (1,k) solution (PD when branches show)",
             ),
             (
                 "⠉ lines",
