@@ -102,7 +102,7 @@ fn the_bounce_panel_has_axes_a_legend_and_a_ball_distinct_without_colour() {
     fill(&mut a);
     let s = screen(&mut a, 120, 40);
     let right = column(&s, 80, 120).join("\n");
-    for label in ["z│", "┤", "└", "table", "ball", "impact", "now", "●", "*"] {
+    for label in ["z│", "┤", "└", "table", "ball", "impact", "now", "●", "▾"] {
         assert!(right.contains(label), "missing {label}:\n{right}");
     }
     // The ball's path is drawn in • dots, the table in braille: different glyphs, so the

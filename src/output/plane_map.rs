@@ -30,9 +30,9 @@ pub const NO_LANDING: char = 'x';
 
 /// The curves' marks and names, in [`Curves::named`]'s order.
 pub const CURVE_MARKS: [(char, &str); 3] = [
-    ('b', "α_birth (1,1) born stable"),
+    ('B', "α_birth (1,1) born stable"),
     ('P', "α_PD period doubling"),
-    ('B', "border collision of (2,2)"),
+    ('C', "border collision of (2,2)"),
 ];
 
 /// What one cell shows.

@@ -1,7 +1,7 @@
 //! Bounce stepping: one impact at a time (n, N, b, 0), exactly the events of
 //! `bouncemap orbit` from the same start; the ball's flight z(t) (• dots) and the table
 //! f(t) (braille line) over the last few events (at least 0.3 periods, so chattering
-//! shows as a sequence) on axes of t in periods and z, with the impacts (*), sticks
+//! shows as a sequence) on axes of t in periods and z, with the impacts (▾), sticks
 //! and releases (▪) and the ball now (●); at the start the first flight, dim. The
 //! current event's numbers are printed beside them in shortest round-trip form.
 //! Stepping runs on the UI thread: one step of the map is bounded, microseconds of
@@ -243,7 +243,7 @@ fn render(b: &Bounce, app: &Shared, area: Rect, buf: &mut Buffer) {
     let legend = Line::from(vec![
         Span::styled(format!(" {table_glyph} table"), app.theme.table_curve()),
         Span::styled(format!(" {ball_glyph} ball"), app.theme.ball()),
-        Span::styled(" * impact", app.theme.mark()),
+        Span::styled(" ▾ impact", app.theme.mark()),
         Span::styled(" ● now ", app.theme.mark()),
     ]);
     let block = panel(app, title, false).title_bottom(legend);

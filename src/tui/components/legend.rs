@@ -86,7 +86,7 @@ pub const SECTIONS: &[(&str, &[(&str, &str)])] = &[
                 "•",
                 "the ball's path z(t); dim before the first step: the flight it will make",
             ),
-            ("*", "an impact"),
+            ("▾", "an impact"),
             ("▪", "a stick or a release"),
             ("●", "the ball now"),
         ],

@@ -2,7 +2,7 @@
 //! α across and D (an fd:D table) or r (any other table) up, every pixel coloured by
 //! the class of its orbit as the engine's plane job streams it coarse to fine (a pixel
 //! not yet computed shows the coarser one whose block it lies in), with the analytic
-//! curves over it (α_birth `b`, α_PD `P`, border collision `B`), axes with tick labels,
+//! curves over it (α_birth `B`, α_PD `P`, border collision `C`), axes with tick labels,
 //! the legend in the bottom border and a cursor. Moving the cursor moves the
 //! application's α and D (or r), so the phase plot, stability and bounce panels follow;
 //! Enter keeps that point and brings the diagram back, sweeping α there.
