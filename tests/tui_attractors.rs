@@ -365,3 +365,27 @@ fn the_basins_panel_fills_in_and_restarts_with_real_workers() {
     assert!(first < Duration::from_millis(500), "{first:?}");
     workers.cancel_all();
 }
+
+/// `E` with the basins panel shown and complete also writes the basins as figures.
+#[test]
+fn export_view_writes_the_basins_when_they_are_shown() {
+    let mut a = cubic_app(ColorMode::None);
+    tui_common::fill(&mut a);
+    filled_basins(&mut a, 120, 40);
+    let dir = std::env::temp_dir().join(format!("bouncemap-basins-view-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let stem = dir.join("b");
+    let written = bouncemap::tui::export::export_view(&a, &stem).unwrap();
+    let names: Vec<String> = written
+        .iter()
+        .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
+        .collect();
+    assert!(names.contains(&"b-basins.svg".to_string()), "{names:?}");
+    assert!(names.contains(&"b-basins.png".to_string()), "{names:?}");
+    let svg = std::fs::read_to_string(dir.join("b-basins.svg")).unwrap();
+    assert!(
+        svg.contains("periodic (1, 1)") && svg.contains("sticking"),
+        "legend"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -7,7 +7,8 @@
 //!
 //! `E` writes the same two files and the current view as figures beside them:
 //! `NAME-diagram.svg/.png` (the diagram over its zoom window, the parameters in the
-//! caption) and `NAME-phase.svg/.png` (the phase plot), through
+//! caption) and `NAME-phase.svg/.png` (the phase plot), and with the basins panel
+//! shown and complete `NAME-basins.svg/.png`, through
 //! [`crate::output::figure`].
 
 use super::app::App;
@@ -35,19 +36,28 @@ fn paths(stem: &Path) -> (PathBuf, PathBuf) {
     (with(stem, ".csv"), with(stem, ".txt"))
 }
 
-/// The files `E` writes for `stem`, besides the csv and the text.
-pub fn view_paths(stem: &Path) -> Vec<PathBuf> {
-    ["-diagram.svg", "-diagram.png", "-phase.svg", "-phase.png"]
-        .iter()
-        .map(|e| with(stem, e))
-        .collect()
+/// The files `E` writes for `stem`, besides the csv and the text: the diagram, the
+/// phase plot, and the basins when that panel is shown with a complete picture.
+pub fn view_paths(stem: &Path, basins: bool) -> Vec<PathBuf> {
+    let mut ends = vec!["-diagram.svg", "-diagram.png", "-phase.svg", "-phase.png"];
+    if basins {
+        ends.extend(["-basins.svg", "-basins.png"]);
+    }
+    ends.iter().map(|e| with(stem, e)).collect()
 }
 
 /// `E`: the csv and the text of [`export`], and the diagram and the phase plot as
 /// SVG and PNG. Returns every path written.
 pub fn export_view(app: &App, stem: &Path) -> Result<Vec<PathBuf>, String> {
     use crate::output::figure::{self, DiagramAxis, ImageFormat, DEFAULT_DPI};
-    let views = view_paths(stem);
+    let b = &app.basins;
+    let basins = match (b.shown, &b.spec, &b.basins) {
+        (true, Some(spec), Some(pic)) if pic.complete() => {
+            Some(figure::basins::basins_figure(spec, pic))
+        }
+        _ => None,
+    };
+    let views = view_paths(stem, basins.is_some());
     if let Some(p) = views.iter().find(|p| p.exists()) {
         return Err(format!(
             "export: {} exists and is kept; type another name",
@@ -88,10 +98,14 @@ pub fn export_view(app: &App, stem: &Path) -> Result<Vec<PathBuf>, String> {
         ),
     );
     let mut written = vec![csv, txt];
-    for (fig, svg, png) in [
+    let mut figures = vec![
         (&diagram, &views[0], &views[1]),
         (&phase, &views[2], &views[3]),
-    ] {
+    ];
+    if let Some(f) = &basins {
+        figures.push((f, &views[4], &views[5]));
+    }
+    for (fig, svg, png) in figures {
         figure::write(fig, svg, ImageFormat::Svg, None, DEFAULT_DPI)
             .and_then(|_| figure::write(fig, png, ImageFormat::Png, None, DEFAULT_DPI))
             .map_err(|e| format!("export: {e}"))?;
