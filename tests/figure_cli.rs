@@ -527,3 +527,61 @@ fn the_lyapunov_figure_shows_ln_r_on_the_stable_branch() {
     assert!(std::fs::metadata(&out).unwrap().len() > 1000);
     std::fs::remove_dir_all(&d).unwrap();
 }
+
+/// `figure plane` over (α, D): every pixel is a cell of exactly one class, and on the
+/// row D = 0 (F_0, f'' = −2α on the stable solution's piece) the α_PD curve and the
+/// end of the period-1 cells sit at the closed form α_PD = −κ_c/2 = (1 + r²)/(1 + r)².
+#[test]
+fn the_plane_figure_covers_every_pixel_and_puts_alpha_pd_at_its_closed_form() {
+    let d = dir("plane");
+    let (out, data) = (d.join("p.svg"), d.join("p.json"));
+    ok(&bouncemap(&[
+        "figure",
+        "plane",
+        "--table",
+        "fd",
+        "--x",
+        "alpha:0.45..0.6",
+        "--y",
+        "d:0..1",
+        "--r",
+        "0.8",
+        "--pixels",
+        "60x11",
+        "--out",
+        s(&out),
+        "--data",
+        s(&data),
+    ]));
+    let fig = json(&data);
+    let all = fig["panels"][0]["series"].as_array().unwrap();
+    let cells: usize = all
+        .iter()
+        .filter(|s| s["kind"] == "cells")
+        .map(|s| s["points"].as_array().unwrap().len())
+        .sum();
+    assert_eq!(cells, 60 * 11);
+    let r: f64 = 0.8;
+    let pd0 = (1.0 + r * r) / ((1.0 + r) * (1.0 + r));
+    let line = all.iter().find(|s| s["name"] == "alpha_pd").unwrap()["lines"][0][0].clone();
+    assert_eq!(line[1].as_f64().unwrap(), 0.0);
+    assert!(
+        (line[0].as_f64().unwrap() - pd0).abs() < 1e-10,
+        "{line} vs {pd0}"
+    );
+    let dx = 0.15 / 59.0;
+    let period1 = series(&fig, "period-1");
+    let last = period1
+        .iter()
+        .filter(|p| p[1].as_f64().unwrap() == 0.0)
+        .map(|p| p[0].as_f64().unwrap())
+        .fold(f64::NEG_INFINITY, f64::max);
+    assert!(
+        (last - pd0).abs() <= dx,
+        "last period-1 pixel {last}, α_PD {pd0}"
+    );
+    // The figure's own --size is inches; the plane's pixels are --pixels.
+    let svg = std::fs::read_to_string(&out).unwrap();
+    assert!(svg.contains("border collision of (2, 2)"));
+    std::fs::remove_dir_all(&d).unwrap();
+}

@@ -18,6 +18,7 @@ use crate::output::sink::AtomicFile;
 use bouncemap_engine::attractors::basins::BasinSpec;
 use bouncemap_engine::jobs::{Control, Executor, Progress as JobProgress};
 use bouncemap_engine::orbits::scaling::{log_spaced, scaling_row, ScalingRow};
+use bouncemap_engine::plane::PlaneSpec;
 use bouncemap_engine::sweep::{self, Shard, SweepSpec, ValueResult};
 use std::io::Write;
 use std::path::Path;
@@ -31,6 +32,8 @@ pub const QUICK_TRANSIENT: u64 = 20_000;
 /// `--quick` for `basins`: the grid at most, and each start's transient.
 pub const QUICK_GRID: (usize, usize) = (80, 40);
 pub const QUICK_BASIN_TRANSIENT: u64 = 1000;
+/// `--quick` for `plane`: the pixels at most (its transient as a diagram's).
+pub const QUICK_PLANE: (usize, usize) = (100, 50);
 /// r and k of the paper's Fig. 4 and 5.
 const PAPER_R: f64 = 0.8;
 const PAPER_K: u32 = 1;
@@ -58,6 +61,19 @@ pub fn run(args: &FigureArgs) -> anyhow::Result<()> {
         FigureName::Lyapunov(a) => {
             let mut spec = quick(config::sweep::sweep_spec_from(a, Shard::WHOLE)?, args.quick);
             spec.lyapunov = true;
+            Some(spec)
+        }
+        _ => None,
+    };
+    let plane_spec = match &args.name {
+        FigureName::Plane(a) => {
+            let mut spec = config::plane::plane_spec_from(&a.spec, a.pixels, Shard::WHOLE)?;
+            if args.quick {
+                spec.x.n = spec.x.n.min(QUICK_PLANE.0);
+                spec.y.n = spec.y.n.min(QUICK_PLANE.1);
+                spec.transient = spec.transient.min(QUICK_TRANSIENT);
+                spec.validate().map_err(InputError::from)?;
+            }
             Some(spec)
         }
         _ => None,
@@ -95,7 +111,7 @@ pub fn run(args: &FigureArgs) -> anyhow::Result<()> {
     let executor = Executor::new(threads)?;
     let fig = build(
         &args.name,
-        (diagram_spec, basin_spec),
+        (diagram_spec, basin_spec, plane_spec),
         args.quick,
         &executor,
         threads,
@@ -209,16 +225,16 @@ pub fn fig5_d() -> Vec<f64> {
     log_spaced(FIG5_D.0, FIG5_D.1, FIG5_D.2)
 }
 
-/// The figure `name`; `specs` are the checked sweep of `diagram` and `lyapunov` and
-/// the checked grid of `basins`.
+/// The figure `name`; `specs` are the checked sweep of `diagram` and `lyapunov`, the
+/// checked grid of `basins` and the checked plane of `plane`.
 fn build(
     name: &FigureName,
-    specs: (Option<SweepSpec>, Option<BasinSpec>),
+    specs: (Option<SweepSpec>, Option<BasinSpec>, Option<PlaneSpec>),
     q: bool,
     executor: &Executor,
     threads: usize,
 ) -> anyhow::Result<Figure> {
-    let (diagram_spec, basin_spec) = specs;
+    let (diagram_spec, basin_spec, plane_spec) = specs;
     let panel_name = |n: &FigureName| n.as_str().to_string();
     match name {
         FigureName::Fig2 => shapes::fig2(),
@@ -280,6 +296,16 @@ fn build(
             let spec = diagram_spec.expect("the diagram's sweep was checked first");
             let values = run_sweep(&spec, executor, "lyapunov")?;
             Ok(figure::lyapunov::lyapunov_figure(&spec, &values))
+        }
+        FigureName::Plane(_) => {
+            let spec = plane_spec.expect("the plane was checked first");
+            let plane = super::plane::compute(&spec, executor)?;
+            let curves = bouncemap_engine::plane::curves(&spec);
+            Ok(figure::plane::plane_figure(
+                &spec,
+                plane.pixels(),
+                curves.as_ref(),
+            ))
         }
         FigureName::Basins(_) => {
             let spec = basin_spec.expect("the basins' grid was checked first");

@@ -154,7 +154,7 @@ fn already_done(path: &Path, layout: Layout, spec: &PlaneSpec) -> Result<String,
 }
 
 /// Run the plane to the end with progress on stderr.
-fn compute(spec: &PlaneSpec, executor: &Executor) -> anyhow::Result<Plane> {
+pub fn compute(spec: &PlaneSpec, executor: &Executor) -> anyhow::Result<Plane> {
     let job = PlaneJob::new(spec.clone())?;
     let handle = executor.start(job, &Control::new());
     let mut plane = Plane::new(spec);

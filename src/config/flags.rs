@@ -531,9 +531,9 @@ pub enum PlaneStartArg {
     Cold,
 }
 
-/// `bouncemap plane`.
+/// What a plane is of: `plane`'s and `figure plane`'s shared flags.
 #[derive(Args, Debug, Clone)]
-pub struct PlaneArgs {
+pub struct PlaneSpecArgs {
     /// Table shape: fd (the F_D family, for a d axis), fd:D, sine, quad, cubic or PATH.toml.
     #[arg(long, default_value = "fd", value_name = "TABLE")]
     pub table: String,
@@ -549,9 +549,6 @@ pub struct PlaneArgs {
     /// Restitution r where it is not an axis; valid (0, 1) [default: 0.8].
     #[arg(long, value_parser = rules::R.real(), value_name = "R")]
     pub r: Option<f64>,
-    /// Pixels along x × along y, e.g. 400x200; at most 4000 per side and 10⁶ in all.
-    #[arg(long, default_value = "400x200", value_parser = parse_plane_size, value_name = "WxH")]
-    pub size: (usize, usize),
     /// End of each pixel's transient in table periods (early stop on cycles).
     #[arg(long, default_value_t = rules::PLANE_TRANSIENT.default as u64, value_parser = rules::PLANE_TRANSIENT.whole::<u64>(), value_name = "PERIODS")]
     pub transient: u64,
@@ -561,6 +558,27 @@ pub struct PlaneArgs {
     /// Do not measure the largest Lyapunov exponent (unsettled pixels are then `unresolved`).
     #[arg(long)]
     pub no_lyapunov: bool,
+}
+
+/// `bouncemap figure plane`: the plane's flags, its pixels as `--pixels` (`--size` is
+/// the figure's size there).
+#[derive(Args, Debug, Clone)]
+pub struct FigurePlaneArgs {
+    #[command(flatten)]
+    pub spec: PlaneSpecArgs,
+    /// Pixels along x × along y, e.g. 400x200; at most 4000 per side and 10⁶ in all.
+    #[arg(long, default_value = "400x200", value_parser = parse_plane_size, value_name = "WxH")]
+    pub pixels: (usize, usize),
+}
+
+/// `bouncemap plane`.
+#[derive(Args, Debug, Clone)]
+pub struct PlaneArgs {
+    #[command(flatten)]
+    pub spec: PlaneSpecArgs,
+    /// Pixels along x × along y, e.g. 400x200; at most 4000 per side and 10⁶ in all.
+    #[arg(long, default_value = "400x200", value_parser = parse_plane_size, value_name = "WxH")]
+    pub size: (usize, usize),
     /// Output format.
     #[arg(long, value_enum, default_value_t = PlaneFormat::Csv)]
     pub format: PlaneFormat,
@@ -737,6 +755,9 @@ pub enum FigureName {
     /// The basins of attraction of one system: `basins`' flags (--table, --alpha, --r, --grid, ...).
     #[command(allow_negative_numbers = true)]
     Basins(Box<BasinsSpecArgs>),
+    /// A two-parameter map: `plane`'s flags (--table, --x PARAM:LO..HI, --y PARAM:LO..HI, ...), the pixels as --pixels WxH.
+    #[command(allow_negative_numbers = true)]
+    Plane(Box<FigurePlaneArgs>),
 }
 
 impl FigureName {
@@ -756,6 +777,7 @@ impl FigureName {
             FigureName::Diagram(_) => "diagram",
             FigureName::Lyapunov(_) => "lyapunov",
             FigureName::Basins(_) => "basins",
+            FigureName::Plane(_) => "plane",
         }
     }
 }

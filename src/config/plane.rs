@@ -1,13 +1,13 @@
 //! `plane`'s flags into one validated [`PlaneSpec`]: the axes `PARAM:LO..HI`, the table
 //! (`fd` names the F_D family for a d axis), the fixed parameters and the start.
 
-use super::flags::{PlaneArgs, PlaneStartArg};
+use super::flags::{PlaneArgs, PlaneSpecArgs, PlaneStartArg};
 use super::rules::{self, Rule};
 use super::sweep::shard;
 use super::table_spec::TableSpec;
 use super::InputError;
 use bouncemap_engine::plane::{Axis, PlaneSpec, PlaneStart};
-use bouncemap_engine::sweep::SweepParam;
+use bouncemap_engine::sweep::{Shard, SweepParam};
 
 /// The rule of an axis parameter.
 fn rule_of(p: SweepParam) -> Rule {
@@ -51,7 +51,19 @@ pub fn parse_axis(flag: &str, s: &str, n: usize) -> Result<Axis, InputError> {
 
 /// The plane `plane`'s flags describe.
 pub fn plane_spec(args: &PlaneArgs) -> Result<PlaneSpec, InputError> {
-    let (nx, ny) = args.size;
+    plane_spec_from(
+        &args.spec,
+        args.size,
+        shard(args.shard, |name| std::env::var(name).ok())?,
+    )
+}
+
+/// The plane `plane`'s spec flags describe with `nx × ny` pixels, computing part `part`.
+pub fn plane_spec_from(
+    args: &PlaneSpecArgs,
+    (nx, ny): (usize, usize),
+    part: Shard,
+) -> Result<PlaneSpec, InputError> {
     let x = parse_axis("x", &args.x, nx)?;
     let y = parse_axis("y", &args.y, ny)?;
     let has_d = x.param == SweepParam::D || y.param == SweepParam::D;
@@ -89,7 +101,7 @@ pub fn plane_spec(args: &PlaneArgs) -> Result<PlaneSpec, InputError> {
         PlaneStartArg::Cold => PlaneStart::Cold,
     };
     spec.lyapunov = !args.no_lyapunov;
-    spec.shard = shard(args.shard, |name| std::env::var(name).ok())?;
+    spec.shard = part;
     spec.validate()?;
     Ok(spec)
 }

@@ -11,7 +11,7 @@
 //! [`shapes`] (Fig. 2), [`diagram`] (Fig. 3, Fig. 4's upper row, `diagram` and the
 //! terminal's diagram view), [`scaling`] (Fig. 4's lower row, Fig. 5), [`phase`] (the
 //! terminal's phase plot), [`lyapunov`] (a diagram over its largest exponent),
-//! [`basins`] (basins of attraction). A new kind of picture is one more function returning a
+//! [`basins`] (basins of attraction), [`plane`] (two-parameter maps). A new kind of picture is one more function returning a
 //! [`Figure`] (and one more [`FigureName`](crate::config::flags::FigureName) for the
 //! command).
 //!
@@ -22,6 +22,7 @@ pub mod basins;
 pub mod diagram;
 pub mod lyapunov;
 pub mod phase;
+pub mod plane;
 pub mod raster;
 pub mod scaling;
 pub mod shapes;
