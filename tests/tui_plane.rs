@@ -218,3 +218,27 @@ fn the_text_pictures_colours_are_the_applications_period_colours() {
         );
     }
 }
+
+/// `E` with the plane view shown and complete also writes the plane as figures.
+#[test]
+fn export_view_writes_the_plane_when_it_is_shown() {
+    let mut a = app(ColorMode::None);
+    tui_common::fill(&mut a);
+    filled(&mut a, 120, 40);
+    let dir = std::env::temp_dir().join(format!("bouncemap-plane-view-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let stem = dir.join("p");
+    let written = bouncemap::tui::export::export_view(&a, &stem).unwrap();
+    let names: Vec<String> = written
+        .iter()
+        .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
+        .collect();
+    assert!(names.contains(&"p-plane.svg".to_string()), "{names:?}");
+    assert!(names.contains(&"p-plane.png".to_string()), "{names:?}");
+    let svg = std::fs::read_to_string(dir.join("p-plane.svg")).unwrap();
+    assert!(
+        svg.contains("period 1") && svg.contains("of (1, 1)"),
+        "legend"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -7,8 +7,9 @@
 //!
 //! `E` writes the same two files and the current view as figures beside them:
 //! `NAME-diagram.svg/.png` (the diagram over its zoom window, the parameters in the
-//! caption) and `NAME-phase.svg/.png` (the phase plot), and with the basins panel
-//! shown and complete `NAME-basins.svg/.png`, through
+//! caption) and `NAME-phase.svg/.png` (the phase plot), and with the basins panel or
+//! the plane view shown and complete `NAME-basins.svg/.png` or `NAME-plane.svg/.png`,
+//! through
 //! [`crate::output::figure`].
 
 use super::app::App;
@@ -37,11 +38,15 @@ fn paths(stem: &Path) -> (PathBuf, PathBuf) {
 }
 
 /// The files `E` writes for `stem`, besides the csv and the text: the diagram, the
-/// phase plot, and the basins when that panel is shown with a complete picture.
-pub fn view_paths(stem: &Path, basins: bool) -> Vec<PathBuf> {
+/// phase plot, and the basins and the plane when they are shown with a complete
+/// picture.
+pub fn view_paths(stem: &Path, basins: bool, plane: bool) -> Vec<PathBuf> {
     let mut ends = vec!["-diagram.svg", "-diagram.png", "-phase.svg", "-phase.png"];
     if basins {
         ends.extend(["-basins.svg", "-basins.png"]);
+    }
+    if plane {
+        ends.extend(["-plane.svg", "-plane.png"]);
     }
     ends.iter().map(|e| with(stem, e)).collect()
 }
@@ -57,7 +62,16 @@ pub fn export_view(app: &App, stem: &Path) -> Result<Vec<PathBuf>, String> {
         }
         _ => None,
     };
-    let views = view_paths(stem, basins.is_some());
+    let pl = &app.plane;
+    let plane = match (pl.shown, &pl.spec, &pl.plane) {
+        (true, Some(spec), Some(pic)) if pic.complete() => Some(figure::plane::plane_figure(
+            spec,
+            pic.pixels(),
+            pl.curves.as_ref(),
+        )),
+        _ => None,
+    };
+    let views = view_paths(stem, basins.is_some(), plane.is_some());
     if let Some(p) = views.iter().find(|p| p.exists()) {
         return Err(format!(
             "export: {} exists and is kept; type another name",
@@ -102,8 +116,10 @@ pub fn export_view(app: &App, stem: &Path) -> Result<Vec<PathBuf>, String> {
         (&diagram, &views[0], &views[1]),
         (&phase, &views[2], &views[3]),
     ];
-    if let Some(f) = &basins {
-        figures.push((f, &views[4], &views[5]));
+    let mut next = 4;
+    for f in [&basins, &plane].into_iter().flatten() {
+        figures.push((f, &views[next], &views[next + 1]));
+        next += 2;
     }
     for (fig, svg, png) in figures {
         figure::write(fig, svg, ImageFormat::Svg, None, DEFAULT_DPI)
