@@ -92,6 +92,24 @@ pub const SECTIONS: &[(&str, &[(&str, &str)])] = &[
         ],
     ),
     (
+        "Plane (M)",
+        &[
+            (
+                "colours",
+                "each pixel's class, as the diagram's period colours (two per cell)",
+            ),
+            (
+                "· : + * #",
+                "without colour: period 1, 2, 4, 8, other; ▒ sticking, █ chaos, ? unsettled",
+            ),
+            (
+                "B P C",
+                "curves: birth and α_PD of (1,1), border collision of (2,2)",
+            ),
+            ("╋", "the cursor: the application's α and D (or r)"),
+        ],
+    ),
+    (
         "Basins (B)",
         &[
             (
