@@ -225,3 +225,12 @@ fn the_table_view_shows_f_and_its_derivatives_with_breakpoints() {
     let s = screen(&mut a, 80, 24);
     assert!(s.contains("F″│"), "{s}");
 }
+
+/// Every line of the legend fits an 80-column terminal (inside the overlay's border).
+#[test]
+fn every_legend_line_fits_80_columns() {
+    let a = app(Marker::Braille);
+    for l in bouncemap::tui::components::legend::lines(&a.shared) {
+        assert!(l.width() <= 78, "{} columns: {l}", l.width());
+    }
+}

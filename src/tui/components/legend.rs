@@ -21,7 +21,7 @@ pub const SECTIONS: &[(&str, &[(&str, &str)])] = &[
             ("│", "the current value of the swept parameter (α, r or D)"),
             (
                 "┆ ┄",
-                "the cursor (diagram focused): value and height; readout top right",
+                "the cursor (diagram focused); its readout is top right",
             ),
             (
                 "┃ ━",
@@ -29,19 +29,19 @@ pub const SECTIONS: &[(&str, &[(&str, &str)])] = &[
             ),
             (
                 "B  P",
-                "on the axis: birth and α_PD of the (1,k) solution (PD when branches show)",
+                "on the axis: birth, α_PD of (1,k) (PD when branches show)",
             ),
             (
                 "⠉ lines",
-                "continued periodic branches (α sweeps): stable solid, unstable dotted dim",
+                "periodic branches (α sweeps): stable solid, unstable dotted",
             ),
             (
                 "PD F BC",
-                "on the axis: a branch's period doubling, fold, border collision",
+                "on the axis: period doubling, fold, border collision",
             ),
             (
                 "λ strip",
-                "largest Lyapunov exponent per impact; ┄ zero; ▁ = −∞ (sticking)",
+                "largest Lyapunov exponent per impact; ┄ 0; ▁ −∞ (sticks)",
             ),
         ],
     ),
@@ -60,20 +60,20 @@ pub const SECTIONS: &[(&str, &[(&str, &str)])] = &[
         &[
             (
                 "[═══]",
-                "the stable band κ_c < f'' < 0 on the f'' line (ticks: ends, κ_c, 0)",
+                "the stable band κ_c < f'' < 0 on the labelled f'' line",
             ),
             (
                 "◆ ◇",
-                "the (1,k) solution, stable and unstable: its f'' and its eigenvalues",
+                "the (1,k) solution (stable, unstable): f'', eigenvalues",
             ),
             ("◂ ▸", "an f'' beyond the ends of the line"),
             (
                 "circle",
-                "|λ| = 1; outside it the radius is logarithmic, dotted ring |λ| = 10",
+                "|λ| = 1; beyond it a log radius, dotted ring |λ| = 10",
             ),
             (
                 "B  P",
-                "(α, r) plane: birth and α_PD curves of the (1,k) solution (E: ends otherwise)",
+                "(α, r) plane: birth and α_PD curves of (1,k) (E: other end)",
             ),
             ("◎", "the current (α, r)"),
         ],
@@ -84,7 +84,7 @@ pub const SECTIONS: &[(&str, &[(&str, &str)])] = &[
             ("⠤ line", "the table f(t), t in periods"),
             (
                 "•",
-                "the ball's path z(t); dim before the first step: the flight it will make",
+                "the ball's path z(t); dim at the start: the next flight",
             ),
             ("▾", "an impact"),
             ("▪", "a stick or a release"),
@@ -96,11 +96,11 @@ pub const SECTIONS: &[(&str, &[(&str, &str)])] = &[
         &[
             (
                 "colours",
-                "each pixel's class, as the diagram's period colours (two per cell)",
+                "each pixel's class in the period colours (two per cell)",
             ),
             (
                 "· : + * #",
-                "without colour: period 1, 2, 4, 8, other; ▒ sticking, █ chaos, ? unsettled",
+                "no colour: period 1 2 4 8 other; ▒ sticks █ chaos ? unsettled",
             ),
             (
                 "B P C",
