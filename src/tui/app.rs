@@ -333,7 +333,8 @@ impl App {
     /// cursor's α, by Newton: microseconds), for the stability panel.
     fn refresh_under_cursor(&mut self) {
         use super::components::diagram::Axis;
-        let focused = self.shared.focus == Focus::Diagram;
+        // The plane view takes the diagram's place (and its keys): no diagram cursor.
+        let focused = self.shared.focus == Focus::Diagram && !self.plane.shown;
         self.shared.cursor = focused.then_some((self.diagram.cursor, self.diagram.ycursor));
         self.shared.under_cursor = match (&self.shared.branches, self.shared.cursor) {
             (Some(Ok(sk)), Some((a, y))) => sk.under(a, y, self.diagram.axis == Axis::Velocity),
