@@ -1,0 +1,128 @@
+//! `figure`'s flags: the options every figure shares and the figure names.
+
+use super::*;
+
+/// `bouncemap figure NAME`: options shared by every figure.
+#[derive(Args, Debug, Clone)]
+#[command(
+    subcommand_value_name = "NAME",
+    subcommand_help_heading = "Figures",
+    subcommand_required = true,
+    arg_required_else_help = false
+)]
+pub struct FigureArgs {
+    #[command(subcommand)]
+    pub name: FigureName,
+    /// Output file, .svg (vector) or .png [default: NAME.png].
+    #[arg(long, global = true, value_name = "FILE")]
+    pub out: Option<String>,
+    /// Output format when the file name does not say (e.g. a device) [default: from --out].
+    #[arg(long, global = true, value_enum)]
+    pub format: Option<ImageFormat>,
+    /// Size WxH in inches, each side in [1, 12] [default: the figure's own, one column
+    /// (3.4 in) or the page width (7 in) of a two-column paper].
+    #[arg(long, global = true, value_parser = parse_size, value_name = "WxH")]
+    pub size: Option<(f64, f64)>,
+    /// Pixels per inch of a PNG; valid 50 to 600 [default: 300].
+    #[arg(long, global = true, value_parser = rules::DPI.whole::<u32>(), value_name = "N")]
+    pub dpi: Option<u32>,
+    /// A preview in seconds: fewer values and a shorter transient.
+    #[arg(long, global = true)]
+    pub quick: bool,
+    /// Also write the numbers behind the figure (every series) as JSON to FILE.
+    #[arg(long, global = true, value_name = "FILE")]
+    pub data: Option<String>,
+    /// Worker threads [default: all cores].
+    #[arg(long, global = true, value_parser = rules::THREADS.whole::<usize>(), value_name = "N")]
+    pub threads: Option<usize>,
+}
+
+/// The figures `bouncemap figure` draws.
+#[derive(Subcommand, Debug, Clone)]
+pub enum FigureName {
+    /// Fig. 2: F_D, F_D', F_D'' over one period for D = 0, 0.1, 0.5, 1.
+    #[command(name = "fig2")]
+    Fig2,
+    /// Fig. 3: the six bifurcation diagrams (a)-(f) (presets fig3a-fig3f).
+    #[command(name = "fig3")]
+    Fig3,
+    /// Fig. 3(a): F_0.
+    #[command(name = "fig3a")]
+    Fig3a,
+    /// Fig. 3(b): F_0.1.
+    #[command(name = "fig3b")]
+    Fig3b,
+    /// Fig. 3(c): F_0.3.
+    #[command(name = "fig3c")]
+    Fig3c,
+    /// Fig. 3(d): F_0.5.
+    #[command(name = "fig3d")]
+    Fig3d,
+    /// Fig. 3(e): F_1.
+    #[command(name = "fig3e")]
+    Fig3e,
+    /// Fig. 3(f): the sine.
+    #[command(name = "fig3f")]
+    Fig3f,
+    /// Fig. 4: enlarged diagrams near α_PD (D = 0.001, 0.01, 0.1) and the power laws of ΔT, Δt.
+    #[command(name = "fig4")]
+    Fig4,
+    /// Fig. 5: b_T and b_t against D, with the paper's analytic lines as printed and corrected.
+    #[command(name = "fig5")]
+    Fig5,
+    /// Any sweep as a bifurcation diagram: takes `sweep`'s flags (--preset, --table, --alpha LO..HI, ...).
+    #[command(allow_negative_numbers = true)]
+    Diagram(Box<SweepSpecArgs>),
+    /// A sweep's diagram with its largest Lyapunov exponent underneath: `sweep`'s flags.
+    #[command(allow_negative_numbers = true)]
+    Lyapunov(Box<SweepSpecArgs>),
+    /// The basins of attraction of one system: `basins`' flags (--table, --alpha, --r, --grid, ...).
+    #[command(allow_negative_numbers = true)]
+    Basins(Box<BasinsSpecArgs>),
+    /// A two-parameter map: `plane`'s flags (--table, --x PARAM:LO..HI, --y PARAM:LO..HI, ...), the pixels as --pixels WxH.
+    #[command(allow_negative_numbers = true)]
+    Plane(Box<FigurePlaneArgs>),
+}
+
+impl FigureName {
+    /// The name on the command line.
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            FigureName::Fig2 => "fig2",
+            FigureName::Fig3 => "fig3",
+            FigureName::Fig3a => "fig3a",
+            FigureName::Fig3b => "fig3b",
+            FigureName::Fig3c => "fig3c",
+            FigureName::Fig3d => "fig3d",
+            FigureName::Fig3e => "fig3e",
+            FigureName::Fig3f => "fig3f",
+            FigureName::Fig4 => "fig4",
+            FigureName::Fig5 => "fig5",
+            FigureName::Diagram(_) => "diagram",
+            FigureName::Lyapunov(_) => "lyapunov",
+            FigureName::Basins(_) => "basins",
+            FigureName::Plane(_) => "plane",
+        }
+    }
+}
+
+/// `--size WxH`: width and height in inches, each checked by [`rules::FIG_SIDE`].
+pub fn parse_size(s: &str) -> Result<(f64, f64), String> {
+    let bad = || {
+        format!(
+            "'{s}' is not a size: valid {}, e.g. 3.4x2.6",
+            rules::FIG_SIDE.limit.text
+        )
+    };
+    let (w, h) = s.trim().split_once(['x', 'X', '\u{d7}']).ok_or_else(bad)?;
+    let side = |t: &str, which: &str| {
+        rules::FIG_SIDE.parse(t).map_err(|e| {
+            if e.contains("out of range") {
+                format!("{which} {e}")
+            } else {
+                bad()
+            }
+        })
+    };
+    Ok((side(w, "width")?, side(h, "height")?))
+}

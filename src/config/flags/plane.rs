@@ -1,0 +1,114 @@
+//! `plane`'s flags, shared with `figure plane`.
+
+use super::*;
+
+/// Output format of `plane`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, Default)]
+pub enum PlaneFormat {
+    /// One row per pixel: x, y, class, period, table_periods, lyapunov, status.
+    #[default]
+    Csv,
+    /// The same per pixel, plus the analytic curves.
+    Json,
+    /// The picture as text: one glyph per class (sparse to dense), axes with tick
+    /// labels, the curves drawn over it and a legend.
+    Braille,
+}
+
+/// How each pixel's orbit starts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, Default)]
+pub enum PlaneStartArg {
+    /// Next to the (1, 1) solution where it exists (the paper's start), else cold.
+    #[default]
+    NearFixedPoint,
+    /// t̂0 = 0, v0 = f'(0) + 0.5, on the table.
+    Cold,
+}
+
+/// What a plane is of: `plane`'s and `figure plane`'s shared flags.
+#[derive(Args, Debug, Clone)]
+pub struct PlaneSpecArgs {
+    /// Table shape: fd (the F_D family, for a d axis), fd:D, sine, quad, cubic or PATH.toml.
+    #[arg(long, default_value = "fd", value_name = "TABLE")]
+    pub table: String,
+    /// The horizontal axis: PARAM:LO..HI with PARAM alpha, r or d.
+    #[arg(long, value_name = "PARAM:LO..HI", allow_hyphen_values = true)]
+    pub x: String,
+    /// The vertical axis: PARAM:LO..HI with PARAM alpha, r or d.
+    #[arg(long, value_name = "PARAM:LO..HI", allow_hyphen_values = true)]
+    pub y: String,
+    /// Amplitude α where it is not an axis; valid (0, 1000] [default: 0.45].
+    #[arg(long, value_parser = rules::ALPHA.real(), value_name = "A")]
+    pub alpha: Option<f64>,
+    /// Restitution r where it is not an axis; valid (0, 1) [default: 0.8].
+    #[arg(long, value_parser = rules::R.real(), value_name = "R")]
+    pub r: Option<f64>,
+    /// End of each pixel's transient in table periods (early stop on cycles).
+    #[arg(long, default_value_t = rules::PLANE_TRANSIENT.default as u64, value_parser = rules::PLANE_TRANSIENT.whole::<u64>(), value_name = "PERIODS")]
+    pub transient: u64,
+    /// Where each pixel's orbit starts.
+    #[arg(long, value_enum, default_value_t = PlaneStartArg::NearFixedPoint)]
+    pub start: PlaneStartArg,
+    /// Do not measure the largest Lyapunov exponent (unsettled pixels are then `unresolved`).
+    #[arg(long)]
+    pub no_lyapunov: bool,
+}
+
+/// `bouncemap figure plane`: the plane's flags, its pixels as `--pixels` (`--size` is
+/// the figure's size there).
+#[derive(Args, Debug, Clone)]
+pub struct FigurePlaneArgs {
+    #[command(flatten)]
+    pub spec: PlaneSpecArgs,
+    /// Pixels along x × along y, e.g. 400x200; at most 4000 per side and 10⁶ in all.
+    #[arg(long, default_value = "400x200", value_parser = parse_plane_size, value_name = "WxH")]
+    pub pixels: (usize, usize),
+}
+
+/// `bouncemap plane`.
+#[derive(Args, Debug, Clone)]
+pub struct PlaneArgs {
+    #[command(flatten)]
+    pub spec: PlaneSpecArgs,
+    /// Pixels along x × along y, e.g. 400x200; at most 4000 per side and 10⁶ in all.
+    #[arg(long, default_value = "400x200", value_parser = parse_plane_size, value_name = "WxH")]
+    pub size: (usize, usize),
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = PlaneFormat::Csv)]
+    pub format: PlaneFormat,
+    /// Write to FILE instead of stdout.
+    #[arg(long, value_name = "FILE")]
+    pub out: Option<String>,
+    /// Compute only the I-th of N interleaved parts (pixels whose index is I − 1 modulo
+    /// N), or `auto` (the Slurm array task's part); join the parts with `merge`.
+    #[arg(long, value_parser = parse_shard_arg, value_name = "I/N|auto")]
+    pub shard: Option<ShardArg>,
+    /// Do nothing if --out FILE already holds this part of this plane, complete and
+    /// verified (checked as `merge` checks a part); otherwise compute it.
+    #[arg(long)]
+    pub resume: bool,
+    /// Picture width in characters [default: the terminal's].
+    #[arg(long, value_parser = rules::CELLS.whole::<u16>(), value_name = "COLS")]
+    pub width: Option<u16>,
+    /// Picture height in lines [default: the terminal's].
+    #[arg(long, value_parser = rules::CELLS.whole::<u16>(), value_name = "LINES")]
+    pub height: Option<u16>,
+    /// Worker threads [default: SLURM_CPUS_PER_TASK when set, else one per core].
+    #[arg(long, value_parser = rules::THREADS.whole::<usize>(), value_name = "N")]
+    pub threads: Option<usize>,
+}
+
+/// `WxH`: plane sides, each in 1..=4000, at most 10⁶ pixels.
+pub fn parse_plane_size(s: &str) -> Result<(usize, usize), String> {
+    use bouncemap_engine::plane::{MAX_PIXELS, MAX_SIDE};
+    let bad = || {
+        format!("'{s}' is not a size: valid WxH with each side in 1..={MAX_SIDE} and at most {MAX_PIXELS} pixels, e.g. 400x200")
+    };
+    let (a, b) = s.trim().split_once(['x', 'X']).ok_or_else(bad)?;
+    let nx: usize = a.trim().parse().map_err(|_| bad())?;
+    let ny: usize = b.trim().parse().map_err(|_| bad())?;
+    if nx == 0 || ny == 0 || nx > MAX_SIDE || ny > MAX_SIDE || nx * ny > MAX_PIXELS {
+        return Err(bad());
+    }
+    Ok((nx, ny))
+}

@@ -1,0 +1,214 @@
+//! Records of `lyapunov` and `basins`, and the exponent and attractor columns of
+//! `sweep`: exponents (with `-inf`), attractor kinds, basin rows and documents.
+
+use super::*;
+
+/// A Lyapunov exponent in outputs: a number, `-inf` for a superstable (sticking or
+/// resting) orbit (a string in json, which has no infinities), empty/null where the
+/// orbit has none.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Exponent(pub Option<f64>);
+
+impl Serialize for Exponent {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        match self.0 {
+            Some(x) if x == f64::NEG_INFINITY => s.serialize_str("-inf"),
+            Some(x) if x.is_finite() => s.serialize_f64(x),
+            _ => s.serialize_none(),
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for Exponent {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Exponent, D::Error> {
+        #[derive(Deserialize)]
+        #[serde(untagged)]
+        enum Raw {
+            Number(f64),
+            Text(String),
+        }
+        match Option::<Raw>::deserialize(d)? {
+            None => Ok(Exponent(None)),
+            Some(Raw::Number(x)) => Ok(Exponent(Some(x))),
+            Some(Raw::Text(t)) if t == "-inf" => Ok(Exponent(Some(f64::NEG_INFINITY))),
+            Some(Raw::Text(t)) if t.is_empty() => Ok(Exponent(None)),
+            Some(Raw::Text(t)) => t
+                .parse::<f64>()
+                .map(|x| Exponent(Some(x)))
+                .map_err(|_| serde::de::Error::custom(format!("'{t}' is not an exponent"))),
+        }
+    }
+}
+
+/// The kind of an attractor.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum AttractorKind {
+    Periodic,
+    Sticking,
+    Chaotic,
+    Unsettled,
+    Resting,
+    Escaping,
+}
+
+impl From<bouncemap_engine::attractors::Kind> for AttractorKind {
+    fn from(k: bouncemap_engine::attractors::Kind) -> Self {
+        use bouncemap_engine::attractors::Kind as K;
+        match k {
+            K::Periodic => AttractorKind::Periodic,
+            K::Sticking => AttractorKind::Sticking,
+            K::Chaotic => AttractorKind::Chaotic,
+            K::Unsettled => AttractorKind::Unsettled,
+            K::Resting => AttractorKind::Resting,
+            K::Escaping => AttractorKind::Escaping,
+        }
+    }
+}
+
+/// `lyapunov`'s result (the csv row; json adds the system and the start).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct LyapunovRow {
+    /// What the orbit settled on.
+    pub kind: AttractorKind,
+    /// Events and table periods per cycle, for cycles.
+    pub events: Option<usize>,
+    pub periods: Option<i64>,
+    /// `cycle` (eigenvalues of the cycle's Jacobian) or `qr`; empty where none.
+    pub method: Option<&'static str>,
+    /// The exponents per impact, largest first.
+    pub lambda1: Exponent,
+    pub lambda2: Exponent,
+    /// The exponents per table period.
+    pub lambda1_per_period: Exponent,
+    pub lambda2_per_period: Exponent,
+    /// Standard errors per impact over the measurement's blocks (0 for a cycle).
+    pub stderr1: Option<f64>,
+    pub stderr2: Option<f64>,
+    /// λ1 + λ2 per impact, and 2 ln r beside it.
+    pub sum: Exponent,
+    pub two_ln_r: f64,
+    /// Impacts measured and the table periods they took.
+    pub impacts: Option<u64>,
+    pub measured_periods: Option<f64>,
+}
+
+impl LyapunovRow {
+    pub const HEADER: [&'static str; 14] = [
+        "kind",
+        "events",
+        "periods",
+        "method",
+        "lambda1",
+        "lambda2",
+        "lambda1_per_period",
+        "lambda2_per_period",
+        "stderr1",
+        "stderr2",
+        "sum",
+        "two_ln_r",
+        "impacts",
+        "measured_periods",
+    ];
+
+    pub fn new(found: &bouncemap_engine::attractors::Found, r: f64) -> LyapunovRow {
+        use bouncemap_engine::attractors::lyapunov::Spectrum;
+        let none = Exponent(None);
+        let inf = Exponent(Some(f64::NEG_INFINITY));
+        let mut row = LyapunovRow {
+            kind: found.kind.into(),
+            events: found.events,
+            periods: found.periods,
+            method: None,
+            lambda1: none,
+            lambda2: none,
+            lambda1_per_period: none,
+            lambda2_per_period: none,
+            stderr1: None,
+            stderr2: None,
+            sum: none,
+            two_ln_r: 2.0 * r.ln(),
+            impacts: None,
+            measured_periods: None,
+        };
+        match found.spectrum {
+            Some(Spectrum::Finite(e)) => {
+                row.method = Some(e.method.as_str());
+                row.lambda1 = Exponent(Some(e.per_impact[0]));
+                row.lambda2 = Exponent(Some(e.per_impact[1]));
+                row.lambda1_per_period = Exponent(Some(e.per_period[0]));
+                row.lambda2_per_period = Exponent(Some(e.per_period[1]));
+                row.stderr1 = Some(e.stderr[0]).filter(|x| x.is_finite());
+                row.stderr2 = Some(e.stderr[1]).filter(|x| x.is_finite());
+                row.sum = Exponent(Some(e.per_impact[0] + e.per_impact[1]));
+                row.impacts = Some(e.impacts);
+                row.measured_periods = Some(e.periods);
+            }
+            Some(Spectrum::Sticking) => {
+                row.lambda1 = inf;
+                row.lambda2 = inf;
+                row.lambda1_per_period = inf;
+                row.lambda2_per_period = inf;
+                row.sum = inf;
+            }
+            Some(Spectrum::Grazing) | None => {}
+        }
+        row
+    }
+}
+
+/// `lyapunov`'s json.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct LyapunovDoc<'a> {
+    pub table: &'a str,
+    pub alpha: f64,
+    pub r: f64,
+    pub start: InitialRecord,
+    pub transient: u64,
+    #[serde(flatten)]
+    pub result: LyapunovRow,
+}
+
+/// One attractor of a basin picture or of a sweep value (json).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AttractorRecord {
+    /// 1, 2, …: largest basin first.
+    pub id: usize,
+    pub kind: AttractorKind,
+    pub events: Option<usize>,
+    pub periods: Option<i64>,
+    /// A point on it: phase and velocity right after an event.
+    pub phase: Option<f64>,
+    pub v: Option<f64>,
+    /// Largest exponent per impact.
+    pub lyapunov: Exponent,
+    /// Share of the starts that ended on it.
+    pub fraction: f64,
+}
+
+/// One csv row of `basins`: a start and its attractor's id.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct BasinRow {
+    pub t0: f64,
+    pub w0: f64,
+    pub attractor: Option<usize>,
+}
+
+impl BasinRow {
+    pub const HEADER: [&'static str; 3] = ["t0", "w0", "attractor"];
+}
+
+/// `basins`'s json.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct BasinsDoc<'a> {
+    pub table: &'a str,
+    pub alpha: f64,
+    pub r: f64,
+    /// Starts along t̂0 and along w0, and the top of w0.
+    pub grid: [usize; 2],
+    pub w_max: f64,
+    pub transient: u64,
+    pub starts: usize,
+    pub attractors: Vec<AttractorRecord>,
+}
