@@ -23,7 +23,7 @@
 use super::classes::{of_pixel, Class};
 use super::records::{solver_name, EarlyStop, Exponent};
 use super::sweep_file::{clip, fnv1a, one_line, parse_shard, shard_name, Hashing, FNV_START, TOOL};
-use super::sweep_file::{spec_hash, Layout};
+use super::sweep_file::{csv_rows, spec_hash, split_csv_part, Layout};
 use bouncemap_engine::plane::{Curves, Pixel, PlaneSpec};
 use bouncemap_engine::sweep::{grid_value, Outcome, Shard};
 use serde::{Deserialize, Serialize};
@@ -383,58 +383,26 @@ pub fn read_part(name: &str, text: &str) -> Result<PlanePart, String> {
 }
 
 fn read_csv(name: &str, text: &str) -> Result<PlanePart, String> {
-    let mut lines = text.split_inclusive('\n');
-    let mut next_line = |what: &str, n: usize| -> Result<String, String> {
-        let l = lines
-            .next()
-            .ok_or_else(|| format!("{name}: line {n}: missing ({what})"))?;
-        Ok(l.trim_end_matches(['\n', '\r']).to_string())
-    };
-    let field = |line: String, key: &str, n: usize| -> Result<String, String> {
-        line.strip_prefix(&format!("# {key} "))
-            .map(str::to_string)
-            .ok_or_else(|| {
-                format!(
-                    "{name}: line {n}: expected '# {key} …', found '{}'",
-                    clip(&line)
-                )
-            })
-    };
-    let first = next_line("provenance", 1)?;
-    if !(first.starts_with("# bouncemap ") && first.ends_with(" plane")) {
-        return Err(format!(
-            "{name}: not a plane file with provenance (line 1 is '{}'; valid files start '# {TOOL} plane')",
-            clip(&first)
-        ));
-    }
-    let tool = first["# ".len()..first.len() - " plane".len()].to_string();
-    let spec = field(next_line("spec", 2)?, "spec", 2)?;
-    let hash = field(next_line("spec-hash", 3)?, "spec-hash", 3)?;
-    let shard_text = field(next_line("shard", 4)?, "shard", 4)?;
-    let count_text = field(next_line("pixels", 5)?, "pixels", 5)?;
-    let header: PlaneHeader = serde_json::from_str(&spec).map_err(|e| {
+    let p = split_csv_part(name, text, "plane", "pixels")?;
+    let (tool, hash, shard_text, body, end) = (p.tool, p.hash, p.shard_text, p.body, p.end);
+    let header: PlaneHeader = serde_json::from_str(&p.spec).map_err(|e| {
         format!(
             "{name}: line 2: not a plane specification ({})",
             one_line(&e.to_string())
         )
     })?;
-    let pixels: usize = count_text
+    let pixels: usize = p
+        .count_text
         .parse()
-        .map_err(|_| format!("{name}: line 5: '{}' is not a count", clip(&count_text)))?;
+        .map_err(|_| format!("{name}: line 5: '{}' is not a count", clip(&p.count_text)))?;
     let shard = parse_shard(&shard_text).map_err(|e| format!("{name}: line 4: {e}"))?;
-    let head = next_line("header row", 6)?;
-    if head != header.header_row() {
+    if p.head != header.header_row() {
         return Err(format!(
             "{name}: line 6: header '{}' is not '{}'",
-            clip(&head),
+            clip(&p.head),
             header.header_row()
         ));
     }
-    let rest: String = lines.collect();
-    let (body, end) = match rest.trim_end_matches('\n').rsplit_once('\n') {
-        Some((b, e)) => (format!("{b}\n"), e.to_string()),
-        None => (String::new(), rest.trim_end_matches('\n').to_string()),
-    };
     let names = csv::StringRecord::from(vec![
         "x",
         "y",
@@ -444,29 +412,12 @@ fn read_csv(name: &str, text: &str) -> Result<PlanePart, String> {
         "lyapunov",
         "status",
     ]);
-    let mut reader = csv::ReaderBuilder::new()
-        .has_headers(false)
-        .flexible(true)
-        .from_reader(body.as_bytes());
     let mut rows = Vec::new();
-    for (k, rec) in reader.records().enumerate() {
-        let line = 7 + k;
-        let malformed = |what: String| format!("{name}: line {line}: malformed row: {what}");
-        let rec = rec.map_err(|e| malformed(one_line(&e.to_string())))?;
-        if rec.len() != names.len() {
-            return Err(malformed(format!(
-                "{} fields, expected {}",
-                rec.len(),
-                names.len()
-            )));
-        }
-        let row: PixelRow = rec.deserialize(Some(&names)).map_err(|e| match e.kind() {
-            csv::ErrorKind::Deserialize { err, .. } => malformed(one_line(&err.kind().to_string())),
-            _ => malformed(one_line(&e.to_string())),
-        })?;
-        row.check().map_err(malformed)?;
+    csv_rows(name, &body, &names, |row: PixelRow| {
+        row.check()?;
         rows.push(row);
-    }
+        Ok(())
+    })?;
     let sum = fnv1a(FNV_START, body.as_bytes());
     let want_end = format!("# end {} pixels, checksum {sum:016x}", rows.len());
     if end != want_end {

@@ -347,7 +347,29 @@ pub(super) fn parse_shard(s: &str) -> Result<Option<Shard>, String> {
         .ok_or_else(|| format!("shard '{s}' is not I/N with 1 ≤ I ≤ N"))
 }
 
-fn read_csv(name: &str, text: &str) -> Result<Part, String> {
+/// A csv part split into its provenance lines, header row, rows and end line.
+pub(super) struct CsvPart {
+    pub tool: String,
+    pub spec: String,
+    pub hash: String,
+    pub shard_text: String,
+    pub count_text: String,
+    /// Line 6, the header row.
+    pub head: String,
+    /// The rows (line 7 on), each ending in a newline.
+    pub body: String,
+    /// The last line.
+    pub end: String,
+}
+
+/// Split a csv part of `kind` (`sweep`, `plane`) whose line 5 is `# {count_key} N`:
+/// the provenance lines checked for their keys, the rest by line.
+pub(super) fn split_csv_part(
+    name: &str,
+    text: &str,
+    kind: &str,
+    count_key: &str,
+) -> Result<CsvPart, String> {
     let mut lines = text.split_inclusive('\n');
     let mut next_line = |what: &str, n: usize| -> Result<String, String> {
         let l = lines
@@ -366,58 +388,91 @@ fn read_csv(name: &str, text: &str) -> Result<Part, String> {
             })
     };
     let first = next_line("provenance", 1)?;
-    if !(first.starts_with("# bouncemap ") && first.ends_with(" sweep")) {
+    let suffix = format!(" {kind}");
+    if !(first.starts_with("# bouncemap ") && first.ends_with(&suffix)) {
         return Err(format!(
-            "{name}: not a sweep file with provenance (line 1 is '{}'; valid files start '# {TOOL} sweep')",
+            "{name}: not a {kind} file with provenance (line 1 is '{}'; valid files start '# {TOOL} {kind}')",
             clip(&first)
         ));
     }
-    let tool = first["# ".len()..first.len() - " sweep".len()].to_string();
+    let tool = first["# ".len()..first.len() - suffix.len()].to_string();
     let spec = field(next_line("spec", 2)?, "spec", 2)?;
     let hash = field(next_line("spec-hash", 3)?, "spec-hash", 3)?;
     let shard_text = field(next_line("shard", 4)?, "shard", 4)?;
-    let values_text = field(next_line("values", 5)?, "values", 5)?;
-    let header: SweepHeader = serde_json::from_str(&spec)
-        .map_err(|e| format!("{name}: line 2: not a sweep specification ({e})"))?;
-    let values: usize = values_text
-        .parse()
-        .map_err(|_| format!("{name}: line 5: '{}' is not a count", clip(&values_text)))?;
-    let shard = parse_shard(&shard_text).map_err(|e| format!("{name}: line 4: {e}"))?;
+    let count_text = field(next_line(count_key, 5)?, count_key, 5)?;
     let head = next_line("header row", 6)?;
-    let columns = header_row(&header);
-    let want = columns.join(",");
-    if head != want {
-        return Err(format!(
-            "{name}: line 6: header '{}' is not '{want}'",
-            clip(&head)
-        ));
-    }
     // The rows, then the end line.
     let rest: String = lines.collect();
     let (body, end) = match rest.trim_end_matches('\n').rsplit_once('\n') {
         Some((b, e)) => (format!("{b}\n"), e.to_string()),
         None => (String::new(), rest.trim_end_matches('\n').to_string()),
     };
+    Ok(CsvPart {
+        tool,
+        spec,
+        hash,
+        shard_text,
+        count_text,
+        head,
+        body,
+        end,
+    })
+}
+
+/// Each row of `body` (line 7 on), exactly as wide as `names` and deserialized by them,
+/// handed to `each` with its line; any failure is "{name}: line L: malformed row: …".
+pub(super) fn csv_rows<T: serde::de::DeserializeOwned>(
+    name: &str,
+    body: &str,
+    names: &csv::StringRecord,
+    mut each: impl FnMut(T) -> Result<(), String>,
+) -> Result<(), String> {
     let mut reader = csv::ReaderBuilder::new()
         .has_headers(false)
         .flexible(true)
         .from_reader(body.as_bytes());
-    let mut out: Vec<PartValue> = Vec::new();
-    let mut rows = 0usize;
-    let width = columns.len();
-    let names = csv::StringRecord::from(columns.clone());
     for (k, rec) in reader.records().enumerate() {
         // Rows are one line each (no field holds a newline): row k is line 7 + k.
         let line = 7 + k;
         let malformed = |what: String| format!("{name}: line {line}: malformed row: {what}");
         let rec = rec.map_err(|e| malformed(one_line(&e.to_string())))?;
-        if rec.len() != width {
-            return Err(malformed(format!("{} fields, expected {width}", rec.len())));
+        if rec.len() != names.len() {
+            return Err(malformed(format!(
+                "{} fields, expected {}",
+                rec.len(),
+                names.len()
+            )));
         }
-        let row: SweepRow = rec.deserialize(Some(&names)).map_err(|e| match e.kind() {
+        let row: T = rec.deserialize(Some(names)).map_err(|e| match e.kind() {
             csv::ErrorKind::Deserialize { err, .. } => malformed(one_line(&err.kind().to_string())),
             _ => malformed(one_line(&e.to_string())),
         })?;
+        each(row).map_err(malformed)?;
+    }
+    Ok(())
+}
+
+fn read_csv(name: &str, text: &str) -> Result<Part, String> {
+    let p = split_csv_part(name, text, "sweep", "values")?;
+    let header: SweepHeader = serde_json::from_str(&p.spec)
+        .map_err(|e| format!("{name}: line 2: not a sweep specification ({e})"))?;
+    let values: usize = p
+        .count_text
+        .parse()
+        .map_err(|_| format!("{name}: line 5: '{}' is not a count", clip(&p.count_text)))?;
+    let shard = parse_shard(&p.shard_text).map_err(|e| format!("{name}: line 4: {e}"))?;
+    let columns = header_row(&header);
+    let want = columns.join(",");
+    if p.head != want {
+        return Err(format!(
+            "{name}: line 6: header '{}' is not '{want}'",
+            clip(&p.head)
+        ));
+    }
+    let mut out: Vec<PartValue> = Vec::new();
+    let mut rows = 0usize;
+    let names = csv::StringRecord::from(columns.clone());
+    csv_rows(name, &p.body, &names, |row: SweepRow| {
         rows += 1;
         match out.last_mut() {
             Some(PartValue::Csv { index, rows }) if *index == row.index => rows.push(row),
@@ -426,25 +481,26 @@ fn read_csv(name: &str, text: &str) -> Result<Part, String> {
                 rows: vec![row],
             }),
         }
-    }
-    let sum = fnv1a(FNV_START, body.as_bytes());
+        Ok(())
+    })?;
+    let sum = fnv1a(FNV_START, p.body.as_bytes());
     let want_end = format!(
         "# end {} values, {rows} rows, checksum {sum:016x}",
         out.len()
     );
-    if end != want_end {
+    if p.end != want_end {
         return Err(format!(
             "{name}: truncated or damaged: its last line is '{}', expected '{want_end}'",
-            clip(&end)
+            clip(&p.end)
         ));
     }
     Ok(Part {
         name: name.to_string(),
         layout: Layout::Csv,
         provenance: Provenance {
-            tool,
-            spec_hash: hash,
-            shard: shard_text,
+            tool: p.tool,
+            spec_hash: p.hash,
+            shard: p.shard_text,
             values,
         },
         header,
