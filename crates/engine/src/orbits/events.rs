@@ -115,48 +115,14 @@ pub(crate) fn special(kind: Kind, p: &CyclePoint, phase: f64, impact: usize) -> 
 /// `lo`. To a few ulps of the arclength.
 pub(crate) fn bracketed_root_nan(
     g: &mut dyn FnMut(f64) -> f64,
-    mut lo: f64,
-    mut hi: f64,
-    mut glo: f64,
-    mut ghi: f64,
+    lo: f64,
+    hi: f64,
+    glo: f64,
+    ghi: f64,
 ) -> Option<f64> {
-    let mut side = 0;
-    for i in 0..200 {
-        let mut x = (lo * ghi - hi * glo) / (ghi - glo);
-        if !(x > lo && x < hi) || i % 3 == 2 {
-            x = 0.5 * (lo + hi);
-        }
-        if x <= lo || x >= hi {
-            break;
-        }
-        let gx = g(x);
-        if gx == 0.0 {
-            return Some(x);
-        }
-        if gx.is_nan() {
-            hi = x;
-            continue;
-        }
-        if (gx < 0.0) == (glo < 0.0) {
-            lo = x;
-            glo = gx;
-            if side == 1 {
-                ghi *= 0.5;
-            }
-            side = 1;
-        } else {
-            hi = x;
-            ghi = gx;
-            if side == -1 {
-                glo *= 0.5;
-            }
-            side = -1;
-        }
-        if hi - lo <= 4.0 * f64::EPSILON * hi.abs().max(1e-300) {
-            break;
-        }
-    }
-    // The end past the crossing: continuing from it does not meet the same one again.
-    let _ = glo;
-    Some(hi)
+    Some(match super::illinois(g, (lo, hi), (glo, ghi), 200, 3) {
+        super::Illinois::Root(x) => x,
+        // The end past the crossing: continuing from it does not meet the same one again.
+        super::Illinois::Bracket { hi, .. } => hi,
+    })
 }

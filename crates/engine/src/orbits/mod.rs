@@ -114,9 +114,8 @@ pub(crate) fn wrap_phase(t: f64) -> f64 {
 
 /// Root of `g` in [lo, hi] where g(lo) and g(hi) differ in sign (Illinois false
 /// position with bisection safeguard), to the last few ulps.
-pub(crate) fn bracketed_root(g: &dyn Fn(f64) -> f64, mut lo: f64, mut hi: f64) -> Option<f64> {
-    let mut glo = g(lo);
-    let mut ghi = g(hi);
+pub(crate) fn bracketed_root(g: &dyn Fn(f64) -> f64, lo: f64, hi: f64) -> Option<f64> {
+    let (glo, ghi) = (g(lo), g(hi));
     if glo == 0.0 {
         return Some(lo);
     }
@@ -126,10 +125,45 @@ pub(crate) fn bracketed_root(g: &dyn Fn(f64) -> f64, mut lo: f64, mut hi: f64) -
     if !(glo.is_finite() && ghi.is_finite()) || (glo < 0.0) == (ghi < 0.0) {
         return None;
     }
+    Some(
+        match illinois(&mut |x| g(x), (lo, hi), (glo, ghi), 300, 4) {
+            Illinois::Root(x) => x,
+            Illinois::Bracket { lo, hi, glo, ghi } => {
+                if glo.abs() <= ghi.abs() {
+                    lo
+                } else {
+                    hi
+                }
+            }
+        },
+    )
+}
+
+/// How [`illinois`] ended: on an exact zero, or with a bracket a few ulps wide.
+pub(crate) enum Illinois {
+    Root(f64),
+    Bracket {
+        lo: f64,
+        hi: f64,
+        glo: f64,
+        ghi: f64,
+    },
+}
+
+/// Illinois false position on [lo, hi] from end values of opposite signs, a bisection
+/// every `bisect_every`-th step, at most `iterations` evaluations, until the bracket is
+/// a few ulps wide. A failed evaluation (NaN) moves the upper end down to it.
+pub(crate) fn illinois(
+    g: &mut dyn FnMut(f64) -> f64,
+    (mut lo, mut hi): (f64, f64),
+    (mut glo, mut ghi): (f64, f64),
+    iterations: usize,
+    bisect_every: usize,
+) -> Illinois {
     let mut side = 0;
-    for i in 0..300 {
+    for i in 0..iterations {
         let mut x = (lo * ghi - hi * glo) / (ghi - glo);
-        if !(x > lo && x < hi) || i % 4 == 3 {
+        if !(x > lo && x < hi) || i % bisect_every == bisect_every - 1 {
             x = 0.5 * (lo + hi);
         }
         if x <= lo || x >= hi {
@@ -137,7 +171,11 @@ pub(crate) fn bracketed_root(g: &dyn Fn(f64) -> f64, mut lo: f64, mut hi: f64) -
         }
         let gx = g(x);
         if gx == 0.0 {
-            return Some(x);
+            return Illinois::Root(x);
+        }
+        if gx.is_nan() {
+            hi = x;
+            continue;
         }
         if (gx < 0.0) == (glo < 0.0) {
             lo = x;
@@ -154,11 +192,11 @@ pub(crate) fn bracketed_root(g: &dyn Fn(f64) -> f64, mut lo: f64, mut hi: f64) -
             }
             side = -1;
         }
-        if hi - lo <= 4.0 * f64::EPSILON * lo.abs().max(hi.abs()) {
+        if hi - lo <= 4.0 * f64::EPSILON * lo.abs().max(hi.abs()).max(1e-300) {
             break;
         }
     }
-    Some(if glo.abs() <= ghi.abs() { lo } else { hi })
+    Illinois::Bracket { lo, hi, glo, ghi }
 }
 
 #[cfg(test)]
