@@ -40,3 +40,24 @@ pub fn run(cmd: Command) -> anyhow::Result<()> {
         Command::Figure(a) => figure::run(&a),
     }
 }
+
+/// The file `--resume` checks and the layout the run writes (`sweep`, `plane`):
+/// `--resume` needs `--out` and a verifiable format (csv or json; `layout` None for
+/// braille).
+fn resume_target(
+    layout: Option<crate::output::sweep_file::Layout>,
+    out: Option<&str>,
+) -> Result<(&str, crate::output::sweep_file::Layout), crate::config::InputError> {
+    use crate::config::InputError;
+    let layout = layout.ok_or_else(|| {
+        InputError(
+            "--resume with --format braille: valid with --format csv or json, whose files can be verified".into(),
+        )
+    })?;
+    match out {
+        Some(out) => Ok((out, layout)),
+        None => Err(InputError(
+            "--resume without --out: valid with --out FILE, the file to check and write".into(),
+        )),
+    }
+}

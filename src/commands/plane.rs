@@ -26,7 +26,12 @@ pub fn run(args: &PlaneArgs) -> anyhow::Result<()> {
     let spec = config::plane::plane_spec(args)?;
     let threads = config::threads(args.threads)?;
     if args.resume {
-        let (out, layout) = resume_target(args)?;
+        let layout = match args.format {
+            PlaneFormat::Csv => Some(Layout::Csv),
+            PlaneFormat::Json => Some(Layout::Json),
+            PlaneFormat::Braille => None,
+        };
+        let (out, layout) = super::resume_target(layout, args.out.as_deref())?;
         match already_done(Path::new(out), layout, &spec) {
             Ok(done) => {
                 eprintln!("bouncemap: --resume: {done}: nothing to compute");
@@ -93,25 +98,6 @@ pub fn run(args: &PlaneArgs) -> anyhow::Result<()> {
     };
     write(&mut sink).map_err(|e| sink.describe(e))?;
     sink.finish()
-}
-
-/// The file `--resume` checks and the layout this run writes.
-fn resume_target(args: &PlaneArgs) -> Result<(&str, Layout), InputError> {
-    let layout = match args.format {
-        PlaneFormat::Csv => Layout::Csv,
-        PlaneFormat::Json => Layout::Json,
-        PlaneFormat::Braille => {
-            return Err(InputError(
-                "--resume with --format braille: valid with --format csv or json, whose files can be verified".into(),
-            ))
-        }
-    };
-    match args.out.as_deref() {
-        Some(out) => Ok((out, layout)),
-        None => Err(InputError(
-            "--resume without --out: valid with --out FILE, the file to check and write".into(),
-        )),
-    }
 }
 
 /// Whether `path` already holds the part of `spec` this run would write, complete and

@@ -37,7 +37,12 @@ pub fn run(args: &SweepArgs) -> anyhow::Result<()> {
     let spec = config::sweep::sweep_spec(args)?;
     let threads = config::threads(args.threads)?;
     if args.resume {
-        let (out, layout) = resume_target(args)?;
+        let layout = match args.format {
+            SweepFormat::Csv => Some(Layout::Csv),
+            SweepFormat::Json => Some(Layout::Json),
+            SweepFormat::Braille => None,
+        };
+        let (out, layout) = super::resume_target(layout, args.out.as_deref())?;
         match already_done(Path::new(out), layout, &spec) {
             Ok(done) => {
                 eprintln!("bouncemap: --resume: {done}: nothing to compute");
@@ -66,26 +71,6 @@ pub fn run(args: &SweepArgs) -> anyhow::Result<()> {
     };
     result.map_err(|e| sink.describe(e))?;
     sink.finish()
-}
-
-/// The file `--resume` checks, and the layout this run writes: `--resume` needs an
-/// output file of the sweep file's layouts.
-fn resume_target(args: &SweepArgs) -> Result<(&str, Layout), InputError> {
-    let layout = match args.format {
-        SweepFormat::Csv => Layout::Csv,
-        SweepFormat::Json => Layout::Json,
-        SweepFormat::Braille => {
-            return Err(InputError(
-                "--resume with --format braille: valid with --format csv or json, whose files can be verified".into(),
-            ))
-        }
-    };
-    match args.out.as_deref() {
-        Some(out) => Ok((out, layout)),
-        None => Err(InputError(
-            "--resume without --out: valid with --out FILE, the file to check and write".into(),
-        )),
-    }
 }
 
 /// Whether `path` already holds the part of `spec` this run would write, complete and
