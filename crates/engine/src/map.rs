@@ -94,6 +94,11 @@ pub enum Halt {
 /// every sum of periods the engine forms stay exact and far from i64 overflow.
 pub const MAX_PERIOD: i64 = 1 << 52;
 
+/// The largest |period| a flight may start from: every flight the accepted inputs allow
+/// lasts far less than 2⁴⁰ periods (velocities and heights are bounded), so its landing
+/// stays within [`MAX_PERIOD`]. One comparison per flight, on the launch.
+const MAX_LAUNCH_PERIOD: i64 = MAX_PERIOD - (1 << 40);
+
 /// Whether an event time is inside the exact range.
 fn in_range(period: i64) -> bool {
     (-MAX_PERIOD..=MAX_PERIOD).contains(&period)
@@ -255,6 +260,12 @@ impl ImpactMap {
 
     fn fly(&mut self) -> Result<Event, Halt> {
         let st = self.state;
+        if st.period.unsigned_abs() > MAX_LAUNCH_PERIOD as u64 {
+            return Err(Halt::TimeOutOfRange {
+                period: st.period,
+                phase: st.phase,
+            });
+        }
         if self.solver == Solver::Exact && st.height == 0.0 && st.w > 0.0 {
             if let Some((period, phase)) = chatter_limit(&self.sys, &self.chatter, &st) {
                 return Ok(self.stick_at(period, phase, false));
@@ -268,10 +279,6 @@ impl ImpactMap {
             w: st.w,
         };
         match self.flights.landing(&self.sys, &launch) {
-            Ok(l) if !in_range(l.period) => Err(Halt::TimeOutOfRange {
-                period: st.period,
-                phase: st.phase,
-            }),
             Ok(l) => {
                 let df = l.df;
                 let w = -self.sys.r * l.vrel;
