@@ -20,7 +20,10 @@
 #   3. a shard made to fail (its part's path is a directory): the merge job must end,
 #      failed, with a message naming the shard; after the cause is removed, the same
 #      submission computes only that shard and the merge equals step 1's;
-#   4. the README's workstation commands (GNU parallel, and the xargs alternative).
+#   4. the README's workstation commands (GNU parallel, and the xargs alternative);
+#   5. a small (α, D) plane in 3 shards (800 pixels, so parts of unequal size) through
+#      submit.sh: the merged plane.csv must equal the unsharded plane but for the
+#      shard line (merged 3/3 for 1/1); submitted again, every shard resumes.
 #
 # It stops exactly the daemons it started (a zombie counts as stopped) and removes its
 # scratch directory. Every wait is bounded; on failure it prints the daemons' and the
@@ -492,5 +495,45 @@ for tool in parallel xargs; do
     same_as_unsharded "$dir/sweep.csv"
 done
 say "4. passed in $((SECONDS - t0)) s: GNU parallel and xargs shards merged into the unsharded file"
+
+# ------------------------------------------------------------------ 5. a plane
+say "5. a plane through submit.sh"
+t0=$SECONDS
+plane_args=(plane --table fd --x alpha:0.45..0.60 --y d:0..1 --r 0.8 --size 40x20 --transient 2000)
+plane_whole=$work/plane-whole.csv
+"$bin" "${plane_args[@]}" --format csv --out "$plane_whole" 2>/dev/null
+grep -qx '# shard 1/1' "$plane_whole" || fail "the unsharded plane has no '# shard 1/1' line"
+[[ $(grep -v '^#' "$plane_whole" | tail -n +2 | wc -l) -eq 800 ]] ||
+    fail "the unsharded plane does not hold 800 pixels"
+planes=$work/runs/plane
+PARTS=3 assets/slurm/submit.sh "$planes" -- "${plane_args[@]}" >"$work/log/plane-submit.out"
+wait_for_jobs 300
+run=$(realpath "$planes/logs/latest")
+[[ $(job_states "$(record "$run" array_job)" | sort | uniq -c | sed 's/^ *//') == "3 COMPLETED 0:0" ]] ||
+    fail "the 3 plane shards did not all complete: $(job_states "$(record "$run" array_job)" | tr '\n' ' ')"
+[[ $(job_states "$(record "$run" merge_job)") == "COMPLETED 0:0" ]] ||
+    fail "the plane's merge job: $(job_states "$(record "$run" merge_job)")"
+# 800 pixels in 3 parts: 267, 267 and 266 rows.
+for i in 1 2 3; do
+    grep -qx "# shard $i/3" "$planes/part-$i-of-3.csv" || fail "part-$i-of-3.csv is not shard $i/3"
+    grep -q "plane of $((i < 3 ? 267 : 266)) pixels started" "$run/shard-$i.log" ||
+        fail "shard $i did not compute its $((i < 3 ? 267 : 266)) pixels: $run/shard-$i.log"
+done
+grep -qx '# shard merged 3/3' "$planes/plane.csv" || fail "plane.csv has no '# shard merged 3/3' line"
+diff <(without_shard "$planes/plane.csv") <(without_shard "$plane_whole") >/dev/null ||
+    fail "the merged plane differs from the unsharded plane beyond its shard line"
+before=$(inode_and_mtime "$planes"/part-*-of-3.csv)
+merged=$(cat "$planes/plane.csv")
+PARTS=3 assets/slurm/submit.sh "$planes" -- "${plane_args[@]}" >"$work/log/plane-again.out"
+wait_for_jobs 300
+run=$(realpath "$planes/logs/latest")
+[[ $(inode_and_mtime "$planes"/part-*-of-3.csv) == "$before" ]] || fail "a plane part was rewritten"
+for i in 1 2 3; do
+    grep -q "already holds shard $i/3 of this plane" "$run/shard-$i.log" ||
+        fail "plane shard $i did not resume: $run/shard-$i.log"
+done
+[[ $(job_states "$(record "$run" merge_job)") == "COMPLETED 0:0" ]] || fail "the plane's second merge job did not complete"
+[[ $(cat "$planes/plane.csv") == "$merged" ]] || fail "the plane's second merge differs from the first"
+say "5. passed in $((SECONDS - t0)) s: 3 plane shards merged into the unsharded plane, and resumed"
 
 say "PASSED"
