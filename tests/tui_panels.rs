@@ -226,6 +226,45 @@ fn the_table_view_shows_f_and_its_derivatives_with_breakpoints() {
     assert!(s.contains("F″│"), "{s}");
 }
 
+/// One meaning per symbol: a mark listed under two panels' headings is one of the few
+/// that mean the same thing in each (birth and α_PD of (1,k), the (1,k) solution,
+/// events as braille dots); the plane view's glyphs and curve marks are its own.
+#[test]
+fn no_legend_symbol_has_two_meanings_across_panels() {
+    use bouncemap::tui::components::legend::SECTIONS;
+    use std::collections::BTreeMap;
+    const SAME_EVERYWHERE: [&str; 5] = ["B", "P", "◆", "◇", "⣿"];
+    let mut seen: BTreeMap<&str, Vec<&str>> = BTreeMap::new();
+    for (heading, rows) in SECTIONS {
+        for (sym, _) in rows.iter() {
+            // Words ("dots", "lines", "no colour") name a look, not a mark.
+            for t in sym.split_whitespace() {
+                if t.chars().count() > 1 && t.chars().all(|c| c.is_ascii_lowercase()) {
+                    continue;
+                }
+                let at = seen.entry(t).or_default();
+                if !at.contains(heading) {
+                    at.push(heading);
+                }
+            }
+        }
+    }
+    for (t, headings) in &seen {
+        assert!(
+            headings.len() == 1 || SAME_EVERYWHERE.contains(t),
+            "'{t}' is listed under {headings:?}"
+        );
+    }
+    let plane = seen.iter().filter(|(_, h)| h.contains(&"Plane (M)"));
+    let marks: Vec<&str> = plane.map(|(t, _)| *t).collect();
+    for m in ["·", ":", "+", "*", "#", "x", "B", "P", "C", "╋"] {
+        assert!(
+            marks.contains(&m),
+            "the plane's '{m}' is not in the legend: {marks:?}"
+        );
+    }
+}
+
 /// Every line of the legend fits an 80-column terminal (inside the overlay's border).
 #[test]
 fn every_legend_line_fits_80_columns() {

@@ -103,6 +103,10 @@ pub const SECTIONS: &[(&str, &[(&str, &str)])] = &[
                 "no colour: period 1 2 4 8 other; ▒ sticks █ chaos ? unsettled",
             ),
             (
+                "x",
+                "no colour: no landing or at rest (left blank in colour)",
+            ),
+            (
                 "B P C",
                 "curves: birth and α_PD of (1,1), border collision of (2,2)",
             ),
