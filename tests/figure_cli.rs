@@ -580,8 +580,61 @@ fn the_plane_figure_covers_every_pixel_and_puts_alpha_pd_at_its_closed_form() {
         (last - pd0).abs() <= dx,
         "last period-1 pixel {last}, α_PD {pd0}"
     );
+    // The caption says the table, what is fixed and the size, and names the curves drawn.
+    let caption = fig["caption"][0].as_str().unwrap();
+    assert!(
+        caption.starts_with("fd:D, r = 0.8: 60\u{d7}11 pixels"),
+        "{caption}"
+    );
+    assert!(caption.contains("border collision of (2, 2)."), "{caption}");
     // The figure's own --size is inches; the plane's pixels are --pixels.
     let svg = std::fs::read_to_string(&out).unwrap();
     assert!(svg.contains("border collision of (2, 2)"));
+    std::fs::remove_dir_all(&d).unwrap();
+}
+
+/// `figure plane --quick` caps the pixels at 100×50 and the transient at 2·10⁴; an
+/// (α, r) plane fixes nothing, and its caption says only the table.
+#[test]
+fn the_quick_plane_figure_is_at_most_100_by_50_pixels_and_2e4_periods() {
+    let d = dir("plane-quick");
+    let (out, data) = (d.join("q.svg"), d.join("q.json"));
+    ok(&bouncemap(&[
+        "figure",
+        "plane",
+        "--quick",
+        "--table",
+        "sine",
+        "--x",
+        "alpha:0.02..0.025",
+        "--y",
+        "r:0.6..0.9",
+        "--pixels",
+        "400x200",
+        "--transient",
+        "50000",
+        "--out",
+        s(&out),
+        "--data",
+        s(&data),
+    ]));
+    let fig = json(&data);
+    let cells: usize = fig["panels"][0]["series"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|s| s["kind"] == "cells")
+        .map(|s| s["points"].as_array().unwrap().len())
+        .sum();
+    assert_eq!(cells, 100 * 50);
+    let caption = fig["caption"][0].as_str().unwrap();
+    assert!(
+        caption.starts_with("sine: 100\u{d7}50 pixels, each an orbit"),
+        "{caption}"
+    );
+    assert!(
+        caption.contains("up to 2\u{b7}10\u{2074} table periods"),
+        "{caption}"
+    );
     std::fs::remove_dir_all(&d).unwrap();
 }

@@ -1,10 +1,12 @@
 //! `figure plane`: a two-parameter map as a figure. Every pixel is a cell coloured by
 //! its orbit's class (the diagram's period colours), the analytic curves drawn over it
 //! (α_birth, α_PD of the (1, 1) solution, the (2, 2) border collision), a legend with
-//! each class's share of the pixels.
+//! each class's share of the pixels. The legends sit in the plot's corners where they
+//! hide least: the fewest pixels unlike the rest beneath them, no curve if avoidable.
 
 use super::diagram::{param_label, table_title};
-use super::{Axis, Color, Corner, Dash, Figure, Layer, Legend, Panel, Swatch};
+use super::svg::LEGEND_FONT;
+use super::{fmt_count, text, Axis, Color, Corner, Dash, Figure, Layer, Legend, Panel, Swatch};
 use crate::output::classes::Class;
 use crate::output::plane_file::{rows, NO_LANDING};
 use crate::output::text::shortest;
@@ -51,6 +53,14 @@ pub fn plane_figure(spec: &PlaneSpec, pixels: &[Option<Pixel>], curves: Option<&
             slot.1.push([row.x, row.y]);
         }
     }
+    // What the corners' legends would hide: each pixel's class (its index in
+    // `by_class`) at its place in the plot, and the curves' points.
+    let placed: Vec<([f64; 2], usize)> = by_class
+        .iter()
+        .enumerate()
+        .flat_map(|(k, (_, c))| c.iter().map(move |p| (*p, k)))
+        .collect();
+    let mut curve_points: Vec<[f64; 2]> = Vec::new();
     let mut panel = Panel::new(
         Axis::new(
             param_label(spec.x.param),
@@ -74,7 +84,13 @@ pub fn plane_figure(spec: &PlaneSpec, pixels: &[Option<Pixel>], curves: Option<&
             Some(c) => describe(c),
             None => "no landing or at rest".to_string(),
         };
-        entries.push((Swatch::band(color), format!("{label} ({share:.1}%)")));
+        // A class of a few pixels is never shown as 0.0 %.
+        let share = if share < 0.05 {
+            "<0.1%".to_string()
+        } else {
+            format!("{share:.1}%")
+        };
+        entries.push((Swatch::band(color), format!("{label} ({share})")));
         panel.layers.push(Layer::Cells {
             name,
             centres,
@@ -83,6 +99,7 @@ pub fn plane_figure(spec: &PlaneSpec, pixels: &[Option<Pixel>], curves: Option<&
         });
     }
     let mut curve_entries = Vec::new();
+    let mut drawn: Vec<&str> = Vec::new();
     if let Some(c) = curves {
         for ((name, values), (dash, text)) in c.named().into_iter().zip([
             (Dash::Dotted, "$\u{3b1}$ birth of (1, 1)"),
@@ -111,6 +128,7 @@ pub fn plane_figure(spec: &PlaneSpec, pixels: &[Option<Pixel>], curves: Option<&
             if !lines.iter().flatten().any(inside) {
                 continue;
             }
+            curve_points.extend(lines.iter().flatten().filter(|p| inside(p)).copied());
             panel.layers.push(Layer::Lines {
                 name: name.to_string(),
                 lines,
@@ -119,49 +137,135 @@ pub fn plane_figure(spec: &PlaneSpec, pixels: &[Option<Pixel>], curves: Option<&
                 width: 0.9,
             });
             curve_entries.push((Swatch::line(Color::BLACK, dash), text.to_string()));
+            drawn.push(text);
         }
     }
-    // The classes bottom right and the curves top left: in the paper's planes those
-    // corners are uniform (sticking, period 1).
-    panel.legends.push(Legend {
-        corner: Corner::BottomRight,
-        entries,
-    });
-    if !curve_entries.is_empty() {
-        panel.legends.push(Legend {
-            corner: Corner::TopLeft,
-            entries: curve_entries,
-        });
+    // The classes' legend (the larger) first, then the curves' in another corner.
+    let (nx, ny) = (spec.x.n.max(1), spec.y.n.max(1));
+    let fractions = |p: &[f64; 2]| [panel.x.fraction(p[0]), panel.y.fraction(p[1])];
+    let placed: Vec<([f64; 2], usize)> = placed.iter().map(|(p, k)| (fractions(p), *k)).collect();
+    let curve_points: Vec<[f64; 2]> = curve_points.iter().map(fractions).collect();
+    let legends: Vec<_> = [entries, curve_entries]
+        .into_iter()
+        .filter(|e| !e.is_empty())
+        .collect();
+    let sizes: Vec<[f64; 2]> = legends.iter().map(|e| legend_size(e)).collect();
+    let corners = place(&sizes, &placed, &curve_points, nx.max(ny));
+    for (entries, corner) in legends.into_iter().zip(corners) {
+        panel.legends.push(Legend { corner, entries });
     }
     panel.title = Some(match (spec.x.param, spec.y.param) {
         (SweepParam::D, _) | (_, SweepParam::D) => "$F_D$".to_string(),
         _ => table_title(&spec.table),
     });
-    let fixed: Vec<String> = [SweepParam::Alpha, SweepParam::R]
-        .into_iter()
-        .filter(|p| *p != spec.x.param && *p != spec.y.param)
-        .map(|p| match p {
-            SweepParam::Alpha => format!("α = {}", shortest(spec.alpha)),
-            _ => format!("r = {}", shortest(spec.r)),
-        })
-        .collect();
+    // The table and what is fixed, as the diagram's caption begins.
+    let d_axis = spec.x.param == SweepParam::D || spec.y.param == SweepParam::D;
+    let mut head = vec![if d_axis {
+        "fd:D".to_string()
+    } else {
+        spec.table.name().to_string()
+    }];
+    for p in [SweepParam::Alpha, SweepParam::R] {
+        if p != spec.x.param && p != spec.y.param {
+            head.push(match p {
+                SweepParam::Alpha => format!("\u{3b1} = {}", shortest(spec.alpha)),
+                _ => format!("r = {}", shortest(spec.r)),
+            });
+        }
+    }
+    let start = match spec.start {
+        bouncemap_engine::plane::PlaneStart::NearFixedPoint => {
+            "next to the (1, 1) solution (cold where it does not exist)"
+        }
+        bouncemap_engine::plane::PlaneStart::Cold => "from the cold start",
+    };
+    let mut caption = format!(
+        "{}: {}\u{d7}{} pixels, each an orbit started {start} and followed for up to {} table periods (early stop on cycles), coloured by what it settles on; chaotic: not settled with largest Lyapunov exponent above 10\u{207b}\u{00b3}.",
+        head.join(", "),
+        spec.x.n,
+        spec.y.n,
+        fmt_count(spec.transient),
+    );
+    if !drawn.is_empty() {
+        caption.push_str(&format!(" Lines (analytic): {}.", drawn.join("; ")));
+    }
     Figure {
         name: "plane".into(),
         panels: vec![panel],
         columns: 1,
-        caption: vec![format!(
-            "{}\u{d7}{} pixels, {}; each pixel's orbit started {} and followed for up to {} table periods (early stop on cycles), coloured by what it settles on; chaotic: not settled with largest Lyapunov exponent above 10\u{207b}\u{00b3}. Lines: the analytic curves of the (1, 1) and (2, 2) solutions.",
-            spec.x.n,
-            spec.y.n,
-            fixed.join(", "),
-            match spec.start {
-                bouncemap_engine::plane::PlaneStart::NearFixedPoint => "next to the (1, 1) solution",
-                bouncemap_engine::plane::PlaneStart::Cold => "from the cold start",
-            },
-            spec.transient
-        )],
+        caption: vec![caption],
         size: (5.0, 3.4),
     }
+}
+
+/// The plot of the default figure (5.0 × 3.4 in, a caption of about four lines) in
+/// points: a legend's share of it, for choosing where it goes.
+const FRAME_PT: [f64; 2] = [319.0, 180.0];
+
+/// A legend's width and height as fractions of the plot, with its inset (as the SVG
+/// layer draws it: a 14 pt swatch, 1.35 lines per entry).
+fn legend_size(entries: &[(Swatch, String)]) -> [f64; 2] {
+    let widest = entries
+        .iter()
+        .map(|(_, t)| text::width(t, LEGEND_FONT))
+        .fold(0.0, f64::max);
+    let w = 3.5 + 23.5 + widest;
+    let h = 3.5 + 3.0 + 1.35 * LEGEND_FONT * entries.len() as f64;
+    [(w / FRAME_PT[0]).min(1.0), (h / FRAME_PT[1]).min(1.0)]
+}
+
+/// The corners of legends of `sizes` (fractions of the plot), each in the free corner
+/// where it hides least, in order: the fewest pixels (`placed`: where, of which class)
+/// unlike most of those beneath it, a hidden curve point weighing as `line` pixels (a
+/// line of them: the curves have a point per row or column). Ties go to the bottom
+/// right, top left, top right, bottom left in that order.
+fn place(
+    sizes: &[[f64; 2]],
+    placed: &[([f64; 2], usize)],
+    curve_points: &[[f64; 2]],
+    line: usize,
+) -> Vec<Corner> {
+    let classes = placed.iter().map(|(_, k)| k + 1).max().unwrap_or(0);
+    let hidden = |corner: Corner, size: [f64; 2]| {
+        let under = |p: &[f64; 2]| covers(corner, size, p);
+        let mut count = vec![0usize; classes];
+        for (p, k) in placed {
+            if under(p) {
+                count[*k] += 1;
+            }
+        }
+        let n: usize = count.iter().sum();
+        let unlike = n - count.iter().max().copied().unwrap_or(0);
+        unlike + curve_points.iter().filter(|p| under(p)).count() * line
+    };
+    let mut free = vec![
+        Corner::BottomRight,
+        Corner::TopLeft,
+        Corner::TopRight,
+        Corner::BottomLeft,
+    ];
+    sizes
+        .iter()
+        .map(|&size| {
+            let best = (0..free.len())
+                .min_by_key(|&i| hidden(free[i], size))
+                .expect("a free corner for each legend");
+            free.remove(best)
+        })
+        .collect()
+}
+
+/// Whether a legend of `size` in `corner` covers the point `p` (fractions of the plot).
+fn covers(corner: Corner, size: [f64; 2], p: &[f64; 2]) -> bool {
+    let x = match corner {
+        Corner::TopLeft | Corner::BottomLeft => p[0] <= size[0],
+        Corner::TopRight | Corner::BottomRight => p[0] >= 1.0 - size[0],
+    };
+    let y = match corner {
+        Corner::BottomLeft | Corner::BottomRight => p[1] <= size[1],
+        Corner::TopLeft | Corner::TopRight => p[1] >= 1.0 - size[1],
+    };
+    x && y
 }
 
 /// A class in words for the legend.
@@ -175,5 +279,62 @@ fn describe(c: Class) -> String {
         Class::Sticking => "sticking".into(),
         Class::Chaotic => "chaotic".into(),
         Class::Unresolved => "unresolved".into(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A 20 × 10 plot of class 0 but for the cells `other` gives class 1.
+    fn grid(other: impl Fn(f64, f64) -> bool) -> Vec<([f64; 2], usize)> {
+        let mut out = Vec::new();
+        for j in 0..10 {
+            for i in 0..20 {
+                let p = [(i as f64 + 0.5) / 20.0, (j as f64 + 0.5) / 10.0];
+                out.push((p, usize::from(other(p[0], p[1]))));
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn a_legend_goes_where_the_pixels_are_uniform() {
+        // Mixed on the right half and at the top left: only the bottom left is uniform.
+        let placed = grid(|x, y| {
+            (x > 0.5 && ((x * 20.0) as usize).is_multiple_of(2)) || (x < 0.5 && y > 0.5 && x < 0.1)
+        });
+        assert_eq!(
+            place(&[[0.3, 0.4]], &placed, &[], 20),
+            vec![Corner::BottomLeft]
+        );
+        // Uniform everywhere: the first corner.
+        let uniform = grid(|_, _| false);
+        assert_eq!(
+            place(&[[0.3, 0.4]], &uniform, &[], 20),
+            vec![Corner::BottomRight]
+        );
+    }
+
+    #[test]
+    fn the_second_legend_avoids_the_first_and_the_curves() {
+        let uniform = grid(|_, _| false);
+        // A curve up the left edge: the top left and bottom left each hide some of it.
+        let curve: Vec<[f64; 2]> = (0..10).map(|j| [0.05, (j as f64 + 0.5) / 10.0]).collect();
+        assert_eq!(
+            place(&[[0.3, 0.4], [0.2, 0.1]], &uniform, &curve, 20),
+            vec![Corner::BottomRight, Corner::TopRight]
+        );
+    }
+
+    #[test]
+    fn a_legend_covers_its_corner_only() {
+        let size = [0.3, 0.4];
+        assert!(covers(Corner::TopLeft, size, &[0.1, 0.9]));
+        assert!(!covers(Corner::TopLeft, size, &[0.1, 0.5]));
+        assert!(covers(Corner::BottomRight, size, &[0.8, 0.2]));
+        assert!(!covers(Corner::BottomRight, size, &[0.6, 0.2]));
+        assert!(covers(Corner::TopRight, size, &[0.75, 0.65]));
+        assert!(covers(Corner::BottomLeft, size, &[0.0, 0.0]));
     }
 }
