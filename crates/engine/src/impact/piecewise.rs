@@ -20,7 +20,9 @@
 
 use super::{crossing_times, floor, landing_on, FlightError, Landing, Launch, MAX_FLIGHT_PIECES};
 use crate::exact_sum::{ball_at, flight_time};
-use crate::poly::{first_root_cubic_from, first_root_low_degree, Poly, MAX_COEFFS};
+use crate::poly::{
+    first_root_cubic_from, first_root_low_degree, root_in_monotone_bracket, Poly, MAX_COEFFS,
+};
 use crate::system::System;
 use crate::table::Piece;
 use std::fmt::Debug;
@@ -65,6 +67,14 @@ impl<P: AsRef<Span>> Prepared<P> {
         i
     }
 }
+
+/// Below this value of τ(|v| + τ), the ball's height at a later piece's start is taken
+/// from the plain f64 evaluation z0 + τ(v − τ/2) the skip test computes anyway, and its
+/// velocity as v − τ: their rounding errors are then at most u(|z0| + 5τ(|v| + τ)) and
+/// 2uτ (u = 2⁻⁵³), the size of the rounding the root search makes in evaluating the gap
+/// on the piece. Beyond it (long flights, where v τ and τ²/2 cancel to a small height)
+/// they are computed in double-double, rounded once ([`ball_at`]).
+const SHORT_FLIGHT: f64 = 2.0;
 
 /// Where a piece lies in phase, and α times its rigorous maximum (the skip bound).
 #[derive(Clone, Copy, Debug)]
@@ -118,8 +128,9 @@ pub(super) trait PieceGap: Sized {
     /// Value at s = 0 and the rounding bound of that value (one term, exactly c0).
     fn at_start(&self) -> (f64, f64);
 
-    /// The first root in [0, len]; the value at 0 is positive beyond its rounding bound.
-    fn first_root(&self, len: f64) -> Option<f64>;
+    /// The first root on `piece` (s in [0, its length]); the value at 0 is positive
+    /// beyond its rounding bound.
+    fn first_root(&self, piece: &Self::Piece) -> Option<f64>;
 
     /// The slope at s.
     fn slope(&self, s: f64) -> f64;
@@ -197,8 +208,8 @@ impl PieceGap for Poly {
         )
     }
 
-    fn first_root(&self, len: f64) -> Option<f64> {
-        Poly::first_root(self, 0.0, len)
+    fn first_root(&self, piece: &GeneralPiece) -> Option<f64> {
+        Poly::first_root(self, 0.0, piece.span.end - piece.span.start)
     }
 
     fn slope(&self, s: f64) -> f64 {
@@ -270,6 +281,12 @@ impl CubicGap {
 /// A piece of degree ≤ 3 for the fixed-size search: F's coefficients (in general storage
 /// too, for the rare launches that take the general route) and the α-scaled ones of a
 /// later piece's gap [zb − α f₀, vb − α f₁, −½ − α f₂, −α f₃].
+///
+/// With L the piece's length, a later piece's gap at s = L is c₀ + L c₁ + L²(g₂ + L g₃)
+/// and its slope there c₁ + L(2g₂ + 3L g₃): the parts that do not depend on the ball
+/// are computed here once, and so is whether the gap's slope is monotone on the piece
+/// (the vertex of c₁ + 2g₂ s + 3g₃ s² lies outside (0, L)), in which case the slopes
+/// at the ends alone say whether the gap is monotone.
 #[derive(Clone, Debug)]
 pub(super) struct CubicPiece {
     span: Span,
@@ -279,6 +296,12 @@ pub(super) struct CubicPiece {
     af1: f64,
     g2: f64,
     g3: f64,
+    len: f64,
+    /// L²(g₂ + L g₃), L²(|g₂| + L |g₃|) and L(2g₂ + 3L g₃).
+    end_rest: f64,
+    end_mag: f64,
+    end_slope: f64,
+    slope_monotone: bool,
 }
 
 impl AsRef<Span> for CubicPiece {
@@ -308,14 +331,23 @@ impl PieceGap for CubicGap {
 
     fn prepare(piece: &Piece, alpha: f64) -> CubicPiece {
         let f = piece.f.low_coeffs();
+        let (g2, g3) = (-0.5 - alpha * f[2], -alpha * f[3]);
+        let len = piece.end - piece.start;
+        let vertex = -g2 / (3.0 * g3);
         CubicPiece {
             span: Span::of(piece, alpha),
             f,
             poly: piece.f,
             af0: alpha * f[0],
             af1: alpha * f[1],
-            g2: -0.5 - alpha * f[2],
-            g3: -alpha * f[3],
+            g2,
+            g3,
+            len,
+            end_rest: len * len * (g2 + len * g3),
+            end_mag: len * len * (g2.abs() + len * g3.abs()),
+            end_slope: len * (2.0 * g2 + 3.0 * len * g3),
+            // g3 = 0 gives an infinite (or NaN) vertex: a linear slope.
+            slope_monotone: !(vertex > 0.0 && vertex < len),
         }
     }
 
@@ -367,10 +399,37 @@ impl PieceGap for CubicGap {
     }
 
     #[inline]
-    fn first_root(&self, len: f64) -> Option<f64> {
+    fn first_root(&self, piece: &CubicPiece) -> Option<f64> {
         // Called once the value at 0 is known to be positive beyond its rounding.
+        let c = &self.c;
+        let len = piece.len;
+        if piece.slope_monotone {
+            // The slopes at the ends bound the slope on the piece.
+            let (d0, d1) = (c[1], c[1] + piece.end_slope);
+            if d0 >= 0.0 && d1 >= 0.0 {
+                // Nondecreasing from a positive value.
+                return None;
+            }
+            if d0 < 0.0 && d1 < 0.0 {
+                // Decreasing: a root exactly when the value at the end is not positive
+                // (beyond the rounding bound of a cubic's evaluation, as
+                // `first_root_cubic_from`).
+                let p1 = c[0] + (len * c[1] + piece.end_rest);
+                let bound = 16.0 * f64::EPSILON * (c[0].abs() + (len * c[1].abs() + piece.end_mag));
+                if p1 > bound {
+                    return None;
+                }
+                if p1 >= -bound {
+                    return Some(len);
+                }
+                let start = piece.span.start;
+                return Some(root_in_monotone_bracket(
+                    c, 0.0, len, c[0], p1, d0, d1, start,
+                ));
+            }
+        }
         if self.len == 4 {
-            first_root_cubic_from(&self.c, 0.0, len, self.c[0])
+            first_root_cubic_from(&self.c, 0.0, len, self.c[0], piece.span.start)
         } else {
             first_root_low_degree(&self.c, self.len, 0.0, len)
         }
@@ -420,79 +479,88 @@ pub(super) fn piecewise_landing<G: PieceGap>(
 
     // Later pieces: gap from absolute heights, skipping where the ball is above the table.
     let z0 = alpha * q0 + launch.height;
+    // The ball surely lands before it falls below the table's minimum, at τ = `last`
+    // (the walk stops a period after it: a guard).
+    let last = descent_below(z0, v, prep.bottom);
+    // The ball's height in plain f64, for the skip tests only: they keep a margin far
+    // above its rounding for every τ the walk reaches (up to `last` + 2).
+    let height = |tau: f64| z0 + tau * (v - 0.5 * tau);
+    let reach = last + 2.0;
+    let margin = 1e-9 * (1.0 + z0.abs() + reach * (v.abs() + reach));
     // Whole periods are skipped where the ball is above the table's top at both ends of
     // the period (its path is concave, so in between too), up to the period in which it
-    // falls below the top again. The ball surely lands before it falls below the table's
-    // minimum (`last`: a guard, computed once the walk is two periods in).
-    let mut last = f64::INFINITY;
-    let margin0 = 1e-9 * (1.0 + z0.abs());
+    // falls below the top again.
+    let top = prep.top + margin;
     let mut m: i64 = 0;
+    // The height at the start of the next piece is carried over from the end of the one
+    // before.
+    let mut tau_lo = span.end - phi;
+    let mut z_lo = height(tau_lo);
     j += 1;
     for _ in 0..MAX_FLIGHT_PIECES {
         if j == pieces.len() {
             j = 0;
             m += 1;
-            let t0 = m as f64 - phi;
-            let t1 = t0 + 1.0;
-            let margin = margin0 + 1e-9 * ((v * t1).abs() + t1 * t1);
-            if z0 + t1 * (v - 0.5 * t1) > prep.top + margin
-                && z0 + t0 * (v - 0.5 * t0) > prep.top + margin
-            {
-                let target = floor(phi + descent_below(z0, v, prep.top)) as i64;
+            if z_lo > top && height(m as f64 + 1.0 - phi) > top {
+                let target = floor(phi + descent_below_cold(z0, v, prep.top)) as i64;
                 if target > m {
                     m = target;
-                    continue;
+                    tau_lo = m as f64 - phi;
+                    z_lo = height(tau_lo);
                 }
             }
-            if m >= 2 && last == f64::INFINITY {
-                last = descent_below(z0, v, prep.bottom);
-            }
         }
-        let p = &pieces[j];
-        let span = p.as_ref();
-        let tau_lo = m as f64 + span.start - phi;
-        let len = span.end - span.start;
-        let tau_hi = tau_lo + len;
         if tau_lo > last + 1.0 {
             break;
         }
-        let zb_rough = z0 + tau_lo * (v - 0.5 * tau_lo);
-        let ze = z0 + tau_hi * (v - 0.5 * tau_hi);
-        // Skip with a margin far above the rounding of the rough heights.
-        let margin = margin0 + 1e-9 * ((v * tau_hi).abs() + tau_hi * tau_hi);
-        if zb_rough.min(ze) > span.top + margin {
-            j += 1;
-            continue;
+        let p = &pieces[j];
+        let span = p.as_ref();
+        let tau_hi = m as f64 + span.end - phi;
+        let z_hi = height(tau_hi);
+        let above = span.top + margin;
+        if !(z_lo > above && z_hi > above) {
+            let (zb, vb) = if tau_lo * (v.abs() + tau_lo) <= SHORT_FLIGHT {
+                (z_lo, v - tau_lo)
+            } else {
+                ball_at(z0, v, flight_time(m, span.start, phi))
+            };
+            let g = G::later_piece(p, zb, vb);
+            // At s = 0 the value is c0 itself, its rounding bound that of one term.
+            let (g0, err) = g.at_start();
+            let root = if g0 <= err {
+                Some(0.0)
+            } else {
+                g.first_root(p)
+            };
+            if let Some(s) = root {
+                return Ok(landing_on(
+                    launch,
+                    m,
+                    span.start,
+                    s,
+                    tau_lo + s,
+                    g.slope(s),
+                    alpha * G::table_slope(p, s),
+                ));
+            }
         }
-        let (zb, vb) = ball_at(z0, v, flight_time(m, span.start, phi));
-        let g = G::later_piece(p, zb, vb);
-        // At s = 0 the value is c0 itself, its rounding bound that of one term.
-        let (g0, err) = g.at_start();
-        let root = if g0 <= err {
-            Some(0.0)
-        } else {
-            g.first_root(len)
-        };
-        if let Some(s) = root {
-            return Ok(landing_on(
-                launch,
-                m,
-                span.start,
-                s,
-                tau_lo + s,
-                g.slope(s),
-                alpha * G::table_slope(p, s),
-            ));
-        }
+        tau_lo = tau_hi;
+        z_lo = z_hi;
         j += 1;
     }
     Err(FlightError::NoLanding)
 }
 
-/// When the ball, at height z0 with velocity v at τ = 0, falls below `level` (0 if it
-/// is never above it). Out of line: needed only for flights that span periods.
+/// [`descent_below`] out of line: needed only for flights that span periods.
 #[cold]
 #[inline(never)]
+fn descent_below_cold(z0: f64, v: f64, level: f64) -> f64 {
+    descent_below(z0, v, level)
+}
+
+/// When the ball, at height z0 with velocity v at τ = 0, falls below `level` (0 if it
+/// is never above it).
+#[inline]
 fn descent_below(z0: f64, v: f64, level: f64) -> f64 {
     crossing_times(z0, v, level).map_or(0.0, |c| c.1)
 }

@@ -14,14 +14,27 @@ pub(super) fn first_root_cubic(c: &[f64; 4], lo: f64, hi: f64) -> Option<f64> {
     if at_lo.0.abs() <= at_lo.1 {
         return Some(lo);
     }
-    first_root_cubic_from(c, lo, hi, at_lo.0)
+    first_root_cubic_from(c, lo, hi, at_lo.0, 0.0)
 }
 
 /// [`first_root_low_degree`] for a cubic (`c[3]` ≠ 0) on `[lo, hi]` whose value at `lo`,
 /// `at_lo`, is known and nonzero beyond its rounding bound (e.g. a gap that is positive
 /// where the search starts).
+///
+/// `offset` is what the root will be added to (a piece's start phase, or 0): the root is
+/// refined to a fraction of an ulp of offset + root, not of the root alone.
+///
+/// On a segment that begins (ends) at a critical point x_c, the slope vanishes there and
+/// the refinement starts from the quadratic Taylor model at x_c,
+/// x_c ± √(−2p(x_c)/p″(x_c)).
 #[inline]
-pub fn first_root_cubic_from(c: &[f64; 4], lo: f64, hi: f64, at_lo: f64) -> Option<f64> {
+pub fn first_root_cubic_from(
+    c: &[f64; 4],
+    lo: f64,
+    hi: f64,
+    at_lo: f64,
+    offset: f64,
+) -> Option<f64> {
     if lo.is_nan() || hi.is_nan() || lo > hi {
         return None;
     }
@@ -48,14 +61,21 @@ pub fn first_root_cubic_from(c: &[f64; 4], lo: f64, hi: f64, at_lo: f64) -> Opti
         let cur_zero = cur.0.abs() <= cur.1;
         if !cur_zero && (prev.0 < 0.0) != (cur.0 < 0.0) {
             let (x0, x1) = (pts[i - 1], pts[i]);
-            let start = if n == 2 {
+            if n == 2 {
                 // No critical point inside: the slopes at the ends have one sign.
                 let slope = |x: f64| (a * x + b) * x + cc;
-                inverse_hermite(x0, x1, prev.0, cur.0, slope(x0), slope(x1))
+                let (d0, d1) = (slope(x0), slope(x1));
+                return Some(root_in_monotone_bracket(
+                    c, x0, x1, prev.0, cur.0, d0, d1, offset,
+                ));
+            }
+            let curv = |x: f64| 2.0 * c[2] + 6.0 * c[3] * x;
+            let start = if i > 1 {
+                x0 + (-2.0 * prev.0 / curv(x0)).sqrt()
             } else {
-                x0 - prev.0 * (x1 - x0) / (cur.0 - prev.0)
+                x1 - (-2.0 * cur.0 / curv(x1)).sqrt()
             };
-            return Some(refine_cubic(c, x0, x1, prev.0, start));
+            return Some(steps_in_bracket(c, x0, x1, prev.0, start, offset));
         }
         if cur_zero {
             return Some(pts[i]);
@@ -63,6 +83,67 @@ pub fn first_root_cubic_from(c: &[f64; 4], lo: f64, hi: f64, at_lo: f64) -> Opti
         prev = cur;
     }
     None
+}
+
+/// The root of a cubic in `(x0, x1)`, where it is monotone (no critical point inside)
+/// with values `p0`, `p1` of opposite signs and slopes `d0`, `d1` at the ends:
+/// fourth-order steps ([`steps_in_bracket`]) from the inverse-Hermite start, typically
+/// within 10⁻⁴ of the root, so that one step usually suffices.
+#[inline]
+#[allow(clippy::too_many_arguments)]
+pub fn root_in_monotone_bracket(
+    c: &[f64; 4],
+    x0: f64,
+    x1: f64,
+    p0: f64,
+    p1: f64,
+    d0: f64,
+    d1: f64,
+    offset: f64,
+) -> f64 {
+    let start = inverse_hermite(x0, x1, p0, p1, d0, d1);
+    steps_in_bracket(c, x0, x1, p0, start, offset)
+}
+
+/// The root of a cubic in `(x0, x1)`, where it is monotone and `p(x0) = p0` has the
+/// opposite sign of `p(x1)`, by fourth-order steps from `start`.
+///
+/// The steps are [`refine_cubic`]'s, with the same stopping test (the first two terms
+/// left out below half an ulp of offset + result), without its bracket bookkeeping: a
+/// start or step outside the bracket, or slow convergence, hands over to
+/// [`refine_cubic`].
+#[inline]
+fn steps_in_bracket(c: &[f64; 4], x0: f64, x1: f64, p0: f64, start: f64, offset: f64) -> f64 {
+    let mut x = start;
+    for _ in 0..4 {
+        if !(x > x0 && x < x1) {
+            break;
+        }
+        let v = ((c[3] * x + c[2]) * x + c[1]) * x + c[0];
+        let r = 1.0 / ((3.0 * c[3] * x + 2.0 * c[2]) * x + c[1]);
+        let h = v * r;
+        let a2 = (3.0 * c[3] * x + c[2]) * r;
+        let a3 = c[3] * r;
+        let next = x - h * (1.0 + h * (a2 + h * (2.0 * a2 * a2 - a3)));
+        if fourth_order_done(h, a2, a3, next, offset) && next > x0 && next < x1 {
+            return next;
+        }
+        x = next;
+    }
+    refine_cubic(c, x0, x1, p0, start, offset)
+}
+
+/// Whether a fourth-order step (see [`refine_cubic`]) with these h, a₂ and a₃ has
+/// reached `next` to within half an ulp of offset + next: the first two terms left out,
+/// 5|a₂|(a₂² + |a₃|) h⁴ + (14a₂⁴ + 21a₂²|a₃| + 3a₃²) |h|⁵, below that. With
+/// K = a₂² + |a₃| the second bracket is at most 14K², so the two are at most
+/// K h⁴ (5|a₂| + 14K|h|).
+#[inline]
+fn fourth_order_done(h: f64, a2: f64, a3: f64, next: f64, offset: f64) -> bool {
+    let h2 = h * h;
+    let k = a2 * a2 + a3.abs();
+    let left = k * h2 * h2 * (5.0 * a2.abs() + 14.0 * k * h.abs());
+    2.0 * left <= EPS * (next.abs() + offset.abs())
 }
 
 /// Where a monotone function with values `p0`, `p1` (opposite signs) and slopes `d0`,
@@ -90,7 +171,8 @@ fn inverse_hermite(x0: f64, x1: f64, p0: f64, p1: f64, d0: f64, d1: f64) -> f64 
 /// 5|a₂|(a₂² + |a₃|) h⁴ + (14a₂⁴ + 21a₂²|a₃| + 3a₃²) |h|⁵, cannot vanish by cancellation
 /// (where a₂² = a₃, or at an inflection point).
 #[inline]
-fn refine_cubic(c: &[f64; 4], mut a: f64, mut b: f64, pa: f64, start: f64) -> f64 {
+fn refine_cubic(c: &[f64; 4], mut a: f64, mut b: f64, pa: f64, start: f64, offset: f64) -> f64 {
+    let offset = offset.abs();
     let neg_at_a = pa < 0.0;
     let mut x = if start > a && start < b {
         start
@@ -114,12 +196,9 @@ fn refine_cubic(c: &[f64; 4], mut a: f64, mut b: f64, pa: f64, start: f64) -> f6
         let a3 = c[3] * r;
         let next = x - h * (1.0 + h * (a2 + h * (2.0 * a2 * a2 - a3)));
         if next > a && next < b {
-            let (h2, a22, a3a) = (h * h, a2 * a2, a3.abs());
-            let left = h2
-                * h2
-                * (5.0 * a2.abs() * (a22 + a3a)
-                    + h.abs() * (14.0 * a22 * a22 + 21.0 * a22 * a3a + 3.0 * a3 * a3));
-            if (next - x).abs() <= 4.0 * EPS * x.abs() || 2.0 * left <= EPS * next.abs() {
+            if (next - x).abs() <= 4.0 * EPS * (x.abs() + offset)
+                || fourth_order_done(h, a2, a3, next, offset)
+            {
                 return next;
             }
             x = next;
