@@ -266,7 +266,13 @@ impl ImpactMap {
                 phase: st.phase,
             });
         }
-        if self.solver == Solver::Exact && st.height == 0.0 && st.w > 0.0 {
+        // Most impacts leave faster than any resolvable chattering sequence starts: one
+        // comparison dismisses them.
+        if st.w <= self.chatter.w_max
+            && self.solver == Solver::Exact
+            && st.height == 0.0
+            && st.w > 0.0
+        {
             if let Some((period, phase)) = chatter_limit(&self.sys, &self.chatter, &st) {
                 return Ok(self.stick_at(period, phase, false));
             }

@@ -32,6 +32,8 @@ use std::fmt::Debug;
 #[derive(Clone, Debug)]
 pub(super) struct Prepared<P> {
     pieces: Vec<P>,
+    /// The pieces' start phases, apart for a compact search.
+    starts: Vec<f64>,
     alpha: f64,
     /// α times the table's rigorous bounds (min, max).
     bottom: f64,
@@ -50,6 +52,7 @@ impl<P: AsRef<Span>> Prepared<P> {
                 .iter()
                 .map(|p| G::prepare(p, alpha))
                 .collect(),
+            starts: sys.table.pieces().iter().map(|p| p.start).collect(),
             alpha,
             bottom: alpha * lo,
             top: alpha * hi,
@@ -60,11 +63,7 @@ impl<P: AsRef<Span>> Prepared<P> {
     /// [`crate::table::Table::segment_index`].
     #[inline]
     fn index(&self, phase: f64) -> usize {
-        let mut i = self.pieces.len() - 1;
-        while i > 0 && phase < self.pieces[i].as_ref().start {
-            i -= 1;
-        }
-        i
+        self.starts[1..].iter().take_while(|&&s| s <= phase).count()
     }
 }
 
@@ -377,10 +376,21 @@ impl PieceGap for CubicGap {
         if quotient_keeps_sign(w, g2, g3, len) {
             return Ok((None, q0));
         }
-        let quotient = CubicGap::new([w, g2, g3, 0.0]);
-        let hit = first_root_low_degree(&quotient.c, quotient.len, 0.0, len)
-            .filter(|&s| s > 0.0)
-            .map(|s| Hit {
+        let root = if g3 < 0.0 {
+            // Concave and positive at 0: one positive root, in the cancellation-free
+            // form of the closed formula.
+            let sd = (g2 * g2 - 4.0 * g3 * w).sqrt();
+            let s = if g2 <= 0.0 {
+                2.0 * w / (sd - g2)
+            } else {
+                (g2 + sd) / (-2.0 * g3)
+            };
+            (s <= len).then_some(s)
+        } else {
+            let quotient = CubicGap::new([w, g2, g3, 0.0]);
+            first_root_low_degree(&quotient.c, quotient.len, 0.0, len).filter(|&s| s > 0.0)
+        };
+        let hit = root.map(|s| Hit {
                 s,
                 slope: w + s * (2.0 * g2 + 3.0 * g3 * s),
             });
@@ -389,7 +399,12 @@ impl PieceGap for CubicGap {
 
     #[inline]
     fn later_piece(piece: &CubicPiece, zb: f64, vb: f64) -> Self {
-        CubicGap::new([zb - piece.af0, vb - piece.af1, piece.g2, piece.g3])
+        let c = [zb - piece.af0, vb - piece.af1, piece.g2, piece.g3];
+        if piece.g3 != 0.0 {
+            CubicGap { c, len: 4 }
+        } else {
+            CubicGap::new(c)
+        }
     }
 
     #[inline]
@@ -479,18 +494,16 @@ pub(super) fn piecewise_landing<G: PieceGap>(
 
     // Later pieces: gap from absolute heights, skipping where the ball is above the table.
     let z0 = alpha * q0 + launch.height;
-    // The ball surely lands before it falls below the table's minimum, at τ = `last`
-    // (the walk stops a period after it: a guard).
-    let last = descent_below(z0, v, prep.bottom);
-    // The ball's height in plain f64, for the skip tests only: they keep a margin far
-    // above its rounding for every τ the walk reaches (up to `last` + 2).
+    // The ball's height in plain f64, for the skip tests: they keep a margin far above
+    // its rounding for every τ ≤ `reach`. The first margin covers the next two periods;
+    // a walk that goes on computes when the ball falls below the table's minimum
+    // (`last`: it surely lands before, and the walk stops a period after it) and extends
+    // the margin to there.
     let height = |tau: f64| z0 + tau * (v - 0.5 * tau);
-    let reach = last + 2.0;
-    let margin = 1e-9 * (1.0 + z0.abs() + reach * (v.abs() + reach));
-    // Whole periods are skipped where the ball is above the table's top at both ends of
-    // the period (its path is concave, so in between too), up to the period in which it
-    // falls below the top again.
-    let top = prep.top + margin;
+    let margin_to = |reach: f64| 1e-9 * (1.0 + z0.abs() + reach * (v.abs() + reach));
+    let mut reach = 2.0;
+    let mut margin = margin_to(reach);
+    let mut last = f64::INFINITY;
     let mut m: i64 = 0;
     // The height at the start of the next piece is carried over from the end of the one
     // before.
@@ -501,6 +514,15 @@ pub(super) fn piecewise_landing<G: PieceGap>(
         if j == pieces.len() {
             j = 0;
             m += 1;
+            if m as f64 + 1.0 > reach {
+                last = descent_below_cold(z0, v, prep.bottom);
+                reach = last + 2.0;
+                margin = margin_to(reach);
+            }
+            // Whole periods are skipped where the ball is above the table's top at both
+            // ends of the period (its path is concave, so in between too), up to the
+            // period in which it falls below the top again.
+            let top = prep.top + margin;
             if z_lo > top && height(m as f64 + 1.0 - phi) > top {
                 let target = floor(phi + descent_below_cold(z0, v, prep.top)) as i64;
                 if target > m {
@@ -551,17 +573,11 @@ pub(super) fn piecewise_landing<G: PieceGap>(
     Err(FlightError::NoLanding)
 }
 
-/// [`descent_below`] out of line: needed only for flights that span periods.
+/// When the ball, at height z0 with velocity v at τ = 0, falls below `level` (0 if it
+/// is never above it). Out of line: needed only for flights that span periods.
 #[cold]
 #[inline(never)]
 fn descent_below_cold(z0: f64, v: f64, level: f64) -> f64 {
-    descent_below(z0, v, level)
-}
-
-/// When the ball, at height z0 with velocity v at τ = 0, falls below `level` (0 if it
-/// is never above it).
-#[inline]
-fn descent_below(z0: f64, v: f64, level: f64) -> f64 {
     crossing_times(z0, v, level).map_or(0.0, |c| c.1)
 }
 

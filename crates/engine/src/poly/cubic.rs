@@ -112,7 +112,7 @@ pub fn root_in_monotone_bracket(
 /// left out below half an ulp of offset + result), without its bracket bookkeeping: a
 /// start or step outside the bracket, or slow convergence, hands over to
 /// [`refine_cubic`].
-#[inline]
+#[inline(always)]
 fn steps_in_bracket(c: &[f64; 4], x0: f64, x1: f64, p0: f64, start: f64, offset: f64) -> f64 {
     let mut x = start;
     for _ in 0..4 {
