@@ -313,6 +313,9 @@ impl ImpactMap {
         }
     }
 
+    // Out of line, as `release` and `chatter_limit`: rarer than impacts, they would only
+    // lengthen the impact path's prologue.
+    #[inline(never)]
     fn stick_at(&mut self, period: i64, phase: f64, release_after: bool) -> Event {
         let df = self.sys.df(phase);
         self.state = State {
@@ -333,6 +336,7 @@ impl ImpactMap {
         }
     }
 
+    #[inline(never)]
     fn release(&mut self) -> Result<Event, Halt> {
         let st = self.state;
         match self
@@ -460,6 +464,7 @@ fn chatter_window(sys: &System, c: &Chatter, st: &State) -> Option<(f64, bool)> 
 /// ([`chatter_window`]), the accumulation time; the ball then rides on the table. The
 /// accumulation must lie before the end of the table's smooth stretch and where the
 /// table still accelerates downward slower than gravity.
+#[inline(never)]
 fn chatter_limit(sys: &System, c: &Chatter, st: &State) -> Option<(i64, f64)> {
     let (window, forced) = chatter_window(sys, c, st)?;
     let mut end = st.phase + window;

@@ -21,7 +21,8 @@
 use super::{crossing_times, floor, landing_on, FlightError, Landing, Launch, MAX_FLIGHT_PIECES};
 use crate::exact_sum::{ball_at, flight_time};
 use crate::poly::{
-    first_root_cubic_from, first_root_low_degree, root_in_monotone_bracket, Poly, MAX_COEFFS,
+    first_root_cubic_from, first_root_low_degree, root_after_maximum, root_in_monotone_bracket,
+    Poly, MAX_COEFFS,
 };
 use crate::system::System;
 use crate::table::Piece;
@@ -134,8 +135,8 @@ pub(super) trait PieceGap: Sized {
     /// The slope at s.
     fn slope(&self, s: f64) -> f64;
 
-    /// The table's slope F'(s) on `piece` (in its local variable).
-    fn table_slope(piece: &Self::Piece, s: f64) -> f64;
+    /// The table's velocity α F'(s) on `piece` (in its local variable).
+    fn table_velocity(piece: &Self::Piece, s: f64) -> f64;
 }
 
 /// A piece for the general search: its polynomials, and the α-scaled gap template of a
@@ -145,6 +146,7 @@ pub(super) struct GeneralPiece {
     span: Span,
     f: Poly,
     d1: Poly,
+    alpha: f64,
     /// α f₀ and α f₁.
     af0: f64,
     af1: f64,
@@ -175,6 +177,7 @@ impl PieceGap for Poly {
             span: Span::of(piece, alpha),
             f,
             d1: piece.d1,
+            alpha,
             af0: alpha * f.coeff(0),
             af1: alpha * f.coeff(1),
             gap,
@@ -215,8 +218,8 @@ impl PieceGap for Poly {
         self.eval_d(s).1
     }
 
-    fn table_slope(piece: &GeneralPiece, s: f64) -> f64 {
-        piece.d1.eval(s)
+    fn table_velocity(piece: &GeneralPiece, s: f64) -> f64 {
+        piece.alpha * piece.d1.eval(s)
     }
 }
 
@@ -295,6 +298,13 @@ pub(super) struct CubicPiece {
     af1: f64,
     g2: f64,
     g3: f64,
+    g3_times_3: f64,
+    /// A bound of |g2 τ + g3 τ²| for every launch on the piece (g2 = −½ − α Q''(0)/2 at
+    /// the launch, τ up to the piece's end), with a margin for rounding: a launch with a
+    /// larger relative velocity w cannot meet the piece again.
+    quotient_bound: f64,
+    /// α F' on the piece: α f₁, 2α f₂, 3α f₃.
+    velocity: [f64; 3],
     len: f64,
     /// L²(g₂ + L g₃), L²(|g₂| + L |g₃|) and L(2g₂ + 3L g₃).
     end_rest: f64,
@@ -341,6 +351,12 @@ impl PieceGap for CubicGap {
             af1: alpha * f[1],
             g2,
             g3,
+            g3_times_3: 3.0 * g3,
+            // g2 at the launch is linear in its offset, so |g2| is largest at an end.
+            quotient_bound: (1.0 + 1e-9)
+                * len
+                * ((g2.abs()).max((g2 + 3.0 * g3 * len).abs()) + g3.abs() * len),
+            velocity: [alpha * f[1], 2.0 * alpha * f[2], 3.0 * alpha * f[3]],
             len,
             end_rest: len * len * (g2 + len * g3),
             end_mag: len * len * (g2.abs() + len * g3.abs()),
@@ -366,13 +382,17 @@ impl PieceGap for CubicGap {
             return general_launch_piece(&piece.poly, alpha, off, len, launch);
         }
         let [f0, f1, f2, f3] = piece.f;
-        // Taylor coefficients of F at `off`: Q(0) and Q''(0)/2 (Q'''/6 = f3).
+        // Taylor coefficients of F at `off`: Q(0), and Q''(0)/2 = f2 + 3 f3 off in the
+        // gap's g2 = −½ − α Q''(0)/2 (Q'''/6 = f3).
         let q0 = ((f3 * off + f2) * off + f1) * off + f0;
-        let q2 = f2 + 3.0 * f3 * off;
-        let g2 = -0.5 - alpha * q2;
-        let g3 = piece.g3;
-        // gap(τ)/τ = w + g2 τ + g3 τ², positive at τ = 0.
+        // gap(τ)/τ = w + g2 τ + g3 τ², positive at τ = 0; most launches leave fast enough
+        // that it stays positive on any stretch of the piece.
         let w = launch.w;
+        if w > piece.quotient_bound {
+            return Ok((None, q0));
+        }
+        let g2 = piece.g2 + piece.g3_times_3 * off;
+        let g3 = piece.g3;
         if quotient_keeps_sign(w, g2, g3, len) {
             return Ok((None, q0));
         }
@@ -391,9 +411,9 @@ impl PieceGap for CubicGap {
             first_root_low_degree(&quotient.c, quotient.len, 0.0, len).filter(|&s| s > 0.0)
         };
         let hit = root.map(|s| Hit {
-                s,
-                slope: w + s * (2.0 * g2 + 3.0 * g3 * s),
-            });
+            s,
+            slope: w + s * (2.0 * g2 + 3.0 * g3 * s),
+        });
         Ok((hit, q0))
     }
 
@@ -409,8 +429,9 @@ impl PieceGap for CubicGap {
 
     #[inline]
     fn at_start(&self) -> (f64, f64) {
+        // The bound of four coefficients, whatever the degree.
         let g0 = self.c[0];
-        (g0, (4 * self.len) as f64 * f64::EPSILON * g0.abs())
+        (g0, 16.0 * f64::EPSILON * g0.abs())
     }
 
     #[inline]
@@ -424,6 +445,19 @@ impl PieceGap for CubicGap {
             if d0 >= 0.0 && d1 >= 0.0 {
                 // Nondecreasing from a positive value.
                 return None;
+            }
+            if d0 > 0.0 && d1 < 0.0 {
+                // Rising to one maximum, then falling: a root exactly when the value at
+                // the end is not positive; it lies after the maximum.
+                let p1 = c[0] + (len * c[1] + piece.end_rest);
+                let bound = 16.0 * f64::EPSILON * (c[0].abs() + (len * c[1].abs() + piece.end_mag));
+                if p1 > bound {
+                    return None;
+                }
+                if p1 >= -bound {
+                    return Some(len);
+                }
+                return Some(root_after_maximum(c, len, piece.span.start));
             }
             if d0 < 0.0 && d1 < 0.0 {
                 // Decreasing: a root exactly when the value at the end is not positive
@@ -457,9 +491,9 @@ impl PieceGap for CubicGap {
     }
 
     #[inline]
-    fn table_slope(piece: &CubicPiece, s: f64) -> f64 {
-        let [_, f1, f2, f3] = piece.f;
-        f1 + s * (2.0 * f2 + 3.0 * f3 * s)
+    fn table_velocity(piece: &CubicPiece, s: f64) -> f64 {
+        let [v0, v1, v2] = piece.velocity;
+        v0 + s * (v1 + v2 * s)
     }
 }
 
@@ -488,7 +522,7 @@ pub(super) fn piecewise_landing<G: PieceGap>(
             off + s,
             s,
             slope,
-            alpha * G::table_slope(first, off + s),
+            G::table_velocity(first, off + s),
         ));
     }
 
@@ -503,19 +537,29 @@ pub(super) fn piecewise_landing<G: PieceGap>(
     let margin_to = |reach: f64| 1e-9 * (1.0 + z0.abs() + reach * (v.abs() + reach));
     let mut reach = 2.0;
     let mut margin = margin_to(reach);
-    let mut last = f64::INFINITY;
+    // The walk stops a period after `last`.
+    let mut stop = f64::INFINITY;
+    // Whole periods m (also as f64) and the pieces walked, for the work bound.
     let mut m: i64 = 0;
+    let mut mf = 0.0;
+    let mut walked = 0;
     // The height at the start of the next piece is carried over from the end of the one
     // before.
     let mut tau_lo = span.end - phi;
     let mut z_lo = height(tau_lo);
     j += 1;
-    for _ in 0..MAX_FLIGHT_PIECES {
+    loop {
         if j == pieces.len() {
             j = 0;
             m += 1;
-            if m as f64 + 1.0 > reach {
-                last = descent_below_cold(z0, v, prep.bottom);
+            mf = m as f64;
+            walked += pieces.len();
+            if walked > MAX_FLIGHT_PIECES {
+                break;
+            }
+            if mf + 1.0 > reach {
+                let last = descent_below_cold(z0, v, prep.bottom);
+                stop = last + 1.0;
                 reach = last + 2.0;
                 margin = margin_to(reach);
             }
@@ -523,21 +567,22 @@ pub(super) fn piecewise_landing<G: PieceGap>(
             // ends of the period (its path is concave, so in between too), up to the
             // period in which it falls below the top again.
             let top = prep.top + margin;
-            if z_lo > top && height(m as f64 + 1.0 - phi) > top {
+            if z_lo > top && height(mf + 1.0 - phi) > top {
                 let target = floor(phi + descent_below_cold(z0, v, prep.top)) as i64;
                 if target > m {
                     m = target;
-                    tau_lo = m as f64 - phi;
+                    mf = m as f64;
+                    tau_lo = mf - phi;
                     z_lo = height(tau_lo);
                 }
             }
         }
-        if tau_lo > last + 1.0 {
+        if tau_lo > stop {
             break;
         }
         let p = &pieces[j];
         let span = p.as_ref();
-        let tau_hi = m as f64 + span.end - phi;
+        let tau_hi = mf + span.end - phi;
         let z_hi = height(tau_hi);
         let above = span.top + margin;
         if !(z_lo > above && z_hi > above) {
@@ -562,7 +607,7 @@ pub(super) fn piecewise_landing<G: PieceGap>(
                     s,
                     tau_lo + s,
                     g.slope(s),
-                    alpha * G::table_slope(p, s),
+                    G::table_velocity(p, s),
                 ));
             }
         }

@@ -105,6 +105,29 @@ pub fn root_in_monotone_bracket(
     steps_in_bracket(c, x0, x1, p0, start, offset)
 }
 
+/// The root of a cubic in `(0, hi)` that rises from a positive value at 0 to its one
+/// maximum inside and then falls to a negative value at `hi` (its slope positive at 0
+/// and negative at `hi`, monotone in between). The maximum x_c comes from the slope's
+/// root in closed form (the one where the slope falls through zero); the refinement
+/// starts from the quadratic Taylor model there, x_c + √(−2p(x_c)/p″(x_c)). `offset` as
+/// in [`first_root_cubic_from`].
+#[inline]
+pub fn root_after_maximum(c: &[f64; 4], hi: f64, offset: f64) -> f64 {
+    // p' = c1 + 2c2 x + 3c3 x²: positive at 0, negative at hi, one root between.
+    let (a, b, cc) = (3.0 * c[3], 2.0 * c[2], c[1]);
+    let disc = (b * b - 4.0 * a * cc).max(0.0);
+    let q = -0.5 * (b + b.signum() * disc.sqrt());
+    let (r1, r2) = (q / a, cc / q);
+    let xc = if r1 > 0.0 && r1 < hi { r1 } else { r2 };
+    if !(xc > 0.0 && xc < hi) {
+        return first_root_cubic_from(c, 0.0, hi, c[0], offset).unwrap_or(hi);
+    }
+    let pc = ((c[3] * xc + c[2]) * xc + c[1]) * xc + c[0];
+    let curv = 2.0 * c[2] + 6.0 * c[3] * xc;
+    let start = xc + (-2.0 * pc / curv).sqrt();
+    steps_in_bracket(c, xc, hi, pc, start, offset)
+}
+
 /// The root of a cubic in `(x0, x1)`, where it is monotone and `p(x0) = p0` has the
 /// opposite sign of `p(x1)`, by fourth-order steps from `start`.
 ///
