@@ -439,7 +439,7 @@ impl PieceGap for CubicGap {
         // Called once the value at 0 is known to be positive beyond its rounding.
         let c = &self.c;
         let len = piece.len;
-        if piece.slope_monotone {
+        if self.len == 4 && piece.slope_monotone {
             // The slopes at the ends bound the slope on the piece.
             let (d0, d1) = (c[1], c[1] + piece.end_slope);
             if d0 >= 0.0 && d1 >= 0.0 {
