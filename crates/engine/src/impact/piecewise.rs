@@ -64,7 +64,12 @@ impl<P: AsRef<Span>> Prepared<P> {
     /// [`crate::table::Table::segment_index`].
     #[inline]
     fn index(&self, phase: f64) -> usize {
-        self.starts[1..].iter().take_while(|&&s| s <= phase).count()
+        let starts = &self.starts[..];
+        let mut i = 0;
+        while i + 1 < starts.len() && starts[i + 1] <= phase {
+            i += 1;
+        }
+        i
     }
 }
 
