@@ -40,7 +40,7 @@
 //!
 //! The work is bounded: at most [`MAX_SINE_STEPS`] pieces and safe steps per flight.
 
-use super::sine_pieces::{center, eval, eval_d, locate, L, N, SINE};
+use super::sine_pieces::{center, eval, eval_d, index, locate, L, N, SINE};
 use super::{crossing_times, landing_on, normalize, FlightError, Landing, Launch, MAX_SINE_STEPS};
 use crate::exact_sum::{ball_at, flight_time};
 use crate::poly::first_root_low_degree;
@@ -306,7 +306,7 @@ fn search(
     // The piece holding φ + from: period m after the launch's, index k.
     let place = |tau: f64| {
         let (m, phase) = normalize(0, phi + tau);
-        (m, ((phase * N as f64) as usize).min(N - 1))
+        (m, index(phase))
     };
     let (mut m, mut k) = place(from);
     let mut steps = 0;

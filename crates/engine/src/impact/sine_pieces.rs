@@ -67,10 +67,17 @@ pub(super) fn center(k: usize) -> f64 {
     (k as f64 + 0.5) * (1.0 / N as f64)
 }
 
+/// The index of the piece holding `phase` ∈ [0, 1). (Converted through i64, whose
+/// saturating conversion is a few instructions shorter than usize's.)
+#[inline]
+pub(super) fn index(phase: f64) -> usize {
+    ((phase * N as f64) as i64 as usize).min(N - 1)
+}
+
 /// The piece holding `phase` ∈ [0, 1) and the offset s = phase − c_k.
 #[inline]
 pub(super) fn locate(phase: f64) -> (usize, f64) {
-    let k = ((phase * N as f64) as usize).min(N - 1);
+    let k = index(phase);
     (k, phase - center(k))
 }
 
