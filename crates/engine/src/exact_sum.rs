@@ -38,14 +38,16 @@ fn split(a: f64) -> (f64, f64) {
 /// The flight time τ = m + a − b as a double-double (m ≥ 0; a, b phases in [0, 1]).
 ///
 /// Usually m + a is exact (few periods, or a piece start with few bits, as F_D's 0 and
-/// ½): then one two-sum gives τ. Fast2Sum's error term a − ((m + a) − m), exact since
-/// m ≥ |a| or m = 0, says whether it is.
+/// ½) and at least b (a later piece's start): then one Fast2Sum of it and −b gives τ.
+/// Fast2Sum's error term a − ((m + a) − m), exact since m ≥ |a| or m = 0, says whether
+/// m + a is exact.
 #[inline]
 pub fn flight_time(m: i64, a: f64, b: f64) -> (f64, f64) {
     let mf = m as f64;
     let s = mf + a;
-    if s - mf == a {
-        return two_sum(s, -b);
+    if s - mf == a && s >= b {
+        let t = s - b;
+        return (t, (s - t) - b);
     }
     let (d, de) = two_sum(a, -b);
     let (s, se) = two_sum(mf, d);
@@ -53,8 +55,9 @@ pub fn flight_time(m: i64, a: f64, b: f64) -> (f64, f64) {
     (hi, lo)
 }
 
-/// Height z0 + v τ − τ²/2 and velocity v − τ of a ball at flight time τ (a double-double),
-/// each rounded once to f64.
+/// Height z0 + v τ − τ²/2 and velocity v − τ of a ball at flight time τ (a double-double):
+/// the height rounded once to f64, the velocity to within an ulp (it enters the gap's
+/// linear coefficient, which is rounded anyway).
 ///
 /// The height is z0 + τ u with u = v − τ/2: u is a double-double (the sum v − t/2 is
 /// exact as two f64s, then − tl/2), the product t·u exact, and the terms left (t·ue,
@@ -67,8 +70,7 @@ pub fn ball_at(z0: f64, v: f64, tau: (f64, f64)) -> (f64, f64) {
     let (p, pe) = two_prod(t, u);
     let (s, se) = two_sum(z0, p);
     let z = s + (se + pe + t * ue + tl * u);
-    let (vs, ve) = two_sum(v, -t);
-    (z, vs + (ve - tl))
+    (z, (v - t) - tl)
 }
 
 #[cfg(test)]

@@ -21,8 +21,8 @@
 use super::{crossing_times, floor, landing_on, FlightError, Landing, Launch, MAX_FLIGHT_PIECES};
 use crate::exact_sum::{ball_at, flight_time};
 use crate::poly::{
-    first_root_cubic_from, first_root_low_degree, root_after_maximum, root_in_monotone_bracket,
-    Poly, MAX_COEFFS,
+    first_root_cubic_from, first_root_low_degree, root_after_maximum, root_falling_from_zero, Poly,
+    MAX_COEFFS,
 };
 use crate::system::System;
 use crate::table::Piece;
@@ -476,10 +476,7 @@ impl PieceGap for CubicGap {
                 if p1 >= -bound {
                     return Some(len);
                 }
-                let start = piece.span.start;
-                return Some(root_in_monotone_bracket(
-                    c, 0.0, len, c[0], p1, d0, d1, start,
-                ));
+                return Some(root_falling_from_zero(c, len, piece.span.start));
             }
         }
         if self.len == 4 {

@@ -105,6 +105,27 @@ pub fn root_in_monotone_bracket(
     steps_in_bracket(c, x0, x1, p0, start, offset)
 }
 
+/// The root of a cubic in `(0, hi)` along which it falls from p(0) = c₀ > 0 (its slope
+/// negative throughout) to a negative value at `hi`.
+///
+/// The start is the root of the quadratic model c₀ + c₁x + a x² (in its cancellation-
+/// free form, c₁ < 0), with the cubic term folded into a = c₂ + c₃x at the estimate
+/// before (from a = c₂, twice): each fold shrinks the start's error by about the relative
+/// size of the cubic term, so that on the pieces of F_D one fourth-order step
+/// ([`steps_in_bracket`]) usually suffices. `offset` as in [`first_root_cubic_from`].
+#[inline(always)]
+pub fn root_falling_from_zero(c: &[f64; 4], hi: f64, offset: f64) -> f64 {
+    let mut x = 0.0;
+    let mut a = c[2];
+    for _ in 0..2 {
+        // A model without a real root (disc < 0) gives the linear estimate −c₀/c₁.
+        let disc = (c[1] * c[1] - 4.0 * a * c[0]).max(0.0);
+        x = 2.0 * c[0] / (disc.sqrt() - c[1]);
+        a = c[2] + c[3] * x;
+    }
+    steps_in_bracket(c, 0.0, hi, c[0], x, offset)
+}
+
 /// The root of a cubic in `(0, hi)` that rises from a positive value at 0 to its one
 /// maximum inside and then falls to a negative value at `hi` (its slope positive at 0
 /// and negative at `hi`, monotone in between). The maximum x_c comes from the slope's

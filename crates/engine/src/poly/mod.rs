@@ -24,7 +24,9 @@ const EPS: f64 = f64::EPSILON;
 
 mod cubic;
 use cubic::first_root_cubic;
-pub use cubic::{first_root_cubic_from, root_after_maximum, root_in_monotone_bracket};
+pub use cubic::{
+    first_root_cubic_from, root_after_maximum, root_falling_from_zero, root_in_monotone_bracket,
+};
 
 impl Default for Poly {
     fn default() -> Self {
