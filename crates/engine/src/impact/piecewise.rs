@@ -21,8 +21,8 @@
 use super::{crossing_times, floor, landing_on, FlightError, Landing, Launch, MAX_FLIGHT_PIECES};
 use crate::exact_sum::{ball_at, flight_time};
 use crate::poly::{
-    first_root_cubic_from, first_root_low_degree, root_after_maximum, root_falling_from_zero, Poly,
-    MAX_COEFFS,
+    first_root_cubic_from, first_root_low_degree, root_after_maximum, root_before_minimum,
+    root_falling_from_zero, Poly, MAX_COEFFS,
 };
 use crate::system::System;
 use crate::table::Piece;
@@ -65,6 +65,10 @@ impl<P: AsRef<Span>> Prepared<P> {
     #[inline]
     fn index(&self, phase: f64) -> usize {
         let starts = &self.starts[..];
+        // Two pieces (F_D and every table of that shape): one comparison.
+        if let [_, second] = starts {
+            return usize::from(*second <= phase);
+        }
         let mut i = 0;
         while i + 1 < starts.len() && starts[i + 1] <= phase {
             i += 1;
@@ -293,7 +297,8 @@ impl CubicGap {
 /// and its slope there c₁ + L(2g₂ + 3L g₃): the parts that do not depend on the ball
 /// are computed here once, and so is whether the gap's slope is monotone on the piece
 /// (the vertex of c₁ + 2g₂ s + 3g₃ s² lies outside (0, L)), in which case the slopes
-/// at the ends alone say whether the gap is monotone.
+/// at the ends alone say whether the gap is monotone. That shortcut is for true cubics
+/// (g₃ ≠ 0): a gap of lower degree keeps its closed-form roots.
 #[derive(Clone, Debug)]
 pub(super) struct CubicPiece {
     span: Span,
@@ -315,7 +320,8 @@ pub(super) struct CubicPiece {
     end_rest: f64,
     end_mag: f64,
     end_slope: f64,
-    slope_monotone: bool,
+    /// A cubic gap (g₃ ≠ 0) whose slope is monotone on the piece.
+    cubic_slope_monotone: bool,
 }
 
 impl AsRef<Span> for CubicPiece {
@@ -366,8 +372,8 @@ impl PieceGap for CubicGap {
             end_rest: len * len * (g2 + len * g3),
             end_mag: len * len * (g2.abs() + len * g3.abs()),
             end_slope: len * (2.0 * g2 + 3.0 * len * g3),
-            // g3 = 0 gives an infinite (or NaN) vertex: a linear slope.
-            slope_monotone: !(vertex > 0.0 && vertex < len),
+            // (g3 = 0 would give an infinite or NaN vertex; such gaps are not cubic.)
+            cubic_slope_monotone: g3 != 0.0 && !(vertex > 0.0 && vertex < len),
         }
     }
 
@@ -444,7 +450,7 @@ impl PieceGap for CubicGap {
         // Called once the value at 0 is known to be positive beyond its rounding.
         let c = &self.c;
         let len = piece.len;
-        if self.len == 4 && piece.slope_monotone {
+        if piece.cubic_slope_monotone {
             // The slopes at the ends bound the slope on the piece.
             let (d0, d1) = (c[1], c[1] + piece.end_slope);
             if d0 >= 0.0 && d1 >= 0.0 {
@@ -477,6 +483,10 @@ impl PieceGap for CubicGap {
                     return Some(len);
                 }
                 return Some(root_falling_from_zero(c, len, piece.span.start));
+            }
+            if d0 < 0.0 && d1 > 0.0 {
+                // Falling to one minimum, then rising: a root only before the minimum.
+                return root_before_minimum(c, len, piece.span.start);
             }
         }
         if self.len == 4 {

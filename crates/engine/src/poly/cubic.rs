@@ -149,6 +149,36 @@ pub fn root_after_maximum(c: &[f64; 4], hi: f64, offset: f64) -> f64 {
     steps_in_bracket(c, xc, hi, pc, start, offset)
 }
 
+/// The first root of a cubic in `(0, hi]` that falls from a positive value at 0 to its
+/// one minimum inside and then rises (its slope negative at 0 and positive at `hi`,
+/// monotone in between): None when the minimum is positive beyond its rounding bound (the
+/// end's value is then checked as [`first_root_cubic_from`] does), the minimum itself when
+/// it is zero within that bound, else the root before it, refined from the quadratic
+/// Taylor model there, x_c − √(−2p(x_c)/p″(x_c)). The same points, bounds and start as
+/// [`first_root_cubic_from`], without its general scan. `offset` as there.
+#[inline(never)]
+pub fn root_before_minimum(c: &[f64; 4], hi: f64, offset: f64) -> Option<f64> {
+    let (a, b, cc) = (3.0 * c[3], 2.0 * c[2], c[1]);
+    let disc = b * b - 4.0 * a * cc;
+    let q = -0.5 * (b + b.signum() * disc.sqrt());
+    let (r1, r2) = (q / a, cc / q);
+    let xc = if r1 > 0.0 && r1 < hi { r1 } else { r2 };
+    if !(disc > 0.0 && xc > 0.0 && xc < hi) {
+        return first_root_cubic_from(c, 0.0, hi, c[0], offset);
+    }
+    let (pc, bound) = cubic_eval_with_bound(c, 4, xc);
+    if pc.abs() <= bound {
+        return Some(xc);
+    }
+    if pc > 0.0 {
+        let (p1, bound1) = cubic_eval_with_bound(c, 4, hi);
+        return (p1 <= 0.0 || p1.abs() <= bound1).then_some(hi);
+    }
+    let curv = 2.0 * c[2] + 6.0 * c[3] * xc;
+    let start = xc - (-2.0 * pc / curv).sqrt();
+    Some(steps_in_bracket(c, 0.0, xc, c[0], start, offset))
+}
+
 /// The root of a cubic in `(x0, x1)`, where it is monotone and `p(x0) = p0` has the
 /// opposite sign of `p(x1)`, by fourth-order steps from `start`.
 ///

@@ -25,7 +25,8 @@ const EPS: f64 = f64::EPSILON;
 mod cubic;
 use cubic::first_root_cubic;
 pub use cubic::{
-    first_root_cubic_from, root_after_maximum, root_falling_from_zero, root_in_monotone_bracket,
+    first_root_cubic_from, root_after_maximum, root_before_minimum, root_falling_from_zero,
+    root_in_monotone_bracket,
 };
 
 impl Default for Poly {
@@ -668,6 +669,77 @@ mod tests {
             );
         }
         assert!(worst > 0.0, "the comparison must not be vacuous");
+    }
+
+    #[test]
+    fn shortcut_roots_of_shaped_cubics_match_bisection() {
+        // Random cubics positive at 0 whose slope is monotone on [0, hi], sorted by the
+        // slopes' signs at the ends into the three shapes with a shortcut; each root (or
+        // its absence) is checked against bisection with compensated signs.
+        let mut rng = Xorshift::new(0x5851f42d4c957f2d);
+        let mut rnd = || rng.next() * 2.0 - 1.0;
+        let mut checked = [0usize; 3];
+        for i in 0..60000 {
+            let c = [0.05 + rnd().abs(), 2.0 * rnd(), 2.0 * rnd(), rnd()];
+            let (hi, offset) = (0.2 + rnd().abs(), if i % 2 == 0 { 0.0 } else { 0.5 });
+            let vertex = -c[2] / (3.0 * c[3]);
+            if vertex > 0.0 && vertex < hi {
+                continue;
+            }
+            let slope = |x: f64| cubic_eval_d3(&c, x)[1];
+            let (d0, d1) = (slope(0.0), slope(hi));
+            let end = eval_compensated(&c, hi);
+            let allowed = |x: f64| {
+                let (_, bound) = cubic_eval_with_bound(&c, 4, x);
+                2.0 * EPS * (x.abs() + offset) + bound / slope(x).abs()
+            };
+            let check = |x: f64, reference: f64| {
+                let err = (x - reference).abs();
+                assert!(
+                    err <= allowed(reference),
+                    "{c:?} on [0, {hi}]: {x} vs {reference}"
+                );
+            };
+            if d0 < 0.0 && d1 < 0.0 && end < -1e-6 {
+                check(
+                    root_falling_from_zero(&c, hi, offset),
+                    bisect_reference(&c, 0.0, hi),
+                );
+                checked[0] += 1;
+            } else if d0 > 0.0 && d1 < 0.0 && end < -1e-6 {
+                check(
+                    root_after_maximum(&c, hi, offset),
+                    bisect_reference(&c, 0.0, hi),
+                );
+                checked[1] += 1;
+            } else if d0 < 0.0 && d1 > 0.0 {
+                // The minimum, where the slope (increasing) crosses zero, by bisection.
+                let (mut a, mut b) = (0.0, hi);
+                for _ in 0..200 {
+                    let m = 0.5 * (a + b);
+                    if slope(m) < 0.0 {
+                        a = m;
+                    } else {
+                        b = m;
+                    }
+                }
+                let least = eval_compensated(&c, a);
+                let got = root_before_minimum(&c, hi, offset);
+                if least < -1e-6 {
+                    check(
+                        got.expect("a root before the minimum"),
+                        bisect_reference(&c, 0.0, a),
+                    );
+                } else if least > 1e-6 {
+                    assert_eq!(got, None, "{c:?} on [0, {hi}]: minimum {least}");
+                }
+                checked[2] += 1;
+            }
+        }
+        assert!(
+            checked.iter().all(|&n| n > 1000),
+            "each shape tested: {checked:?}"
+        );
     }
 
     #[test]
