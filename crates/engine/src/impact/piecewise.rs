@@ -457,9 +457,11 @@ impl PieceGap for CubicGap {
                 // Nondecreasing from a positive value.
                 return None;
             }
-            if d0 > 0.0 && d1 < 0.0 {
-                // Rising to one maximum, then falling: a root exactly when the value at
-                // the end is not positive; it lies after the maximum.
+            if d1 < 0.0 && d0 != 0.0 {
+                // Falling at the end, after one maximum (d0 > 0) or throughout: a root
+                // exactly when the value at the end is not positive (beyond the rounding
+                // bound of a cubic's evaluation, as `first_root_cubic_from`); after the
+                // maximum, if there is one.
                 let p1 = c[0] + (len * c[1] + piece.end_rest);
                 let bound = 16.0 * f64::EPSILON * (c[0].abs() + (len * c[1].abs() + piece.end_mag));
                 if p1 > bound {
@@ -468,21 +470,12 @@ impl PieceGap for CubicGap {
                 if p1 >= -bound {
                     return Some(len);
                 }
-                return Some(root_after_maximum(c, len, piece.span.start));
-            }
-            if d0 < 0.0 && d1 < 0.0 {
-                // Decreasing: a root exactly when the value at the end is not positive
-                // (beyond the rounding bound of a cubic's evaluation, as
-                // `first_root_cubic_from`).
-                let p1 = c[0] + (len * c[1] + piece.end_rest);
-                let bound = 16.0 * f64::EPSILON * (c[0].abs() + (len * c[1].abs() + piece.end_mag));
-                if p1 > bound {
-                    return None;
-                }
-                if p1 >= -bound {
-                    return Some(len);
-                }
-                return Some(root_falling_from_zero(c, len, piece.span.start));
+                let start = piece.span.start;
+                return Some(if d0 > 0.0 {
+                    root_after_maximum(c, len, start)
+                } else {
+                    root_falling_from_zero(c, len, start)
+                });
             }
             if d0 < 0.0 && d1 > 0.0 {
                 // Falling to one minimum, then rising: a root only before the minimum.
