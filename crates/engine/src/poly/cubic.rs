@@ -1,6 +1,8 @@
-//! The first root of a cubic on an interval: critical points in closed form, an
-//! inverse-Hermite start on a monotone stretch, fourth-order steps in a shrinking
-//! bracket. The hot path of every landing on a table of degree ≤ 3.
+//! The first root of a cubic on an interval: one route per shape where the slope is
+//! monotone (falling throughout, rising then falling, falling then rising), a general
+//! scan between the critical points otherwise, and fourth-order steps in a shrinking
+//! bracket from a start near the root. The hot path of every landing on a table of
+//! degree ≤ 3.
 
 use super::*;
 
@@ -91,7 +93,7 @@ pub fn first_root_cubic_from(
 /// within 10⁻⁴ of the root, so that one step usually suffices.
 #[inline]
 #[allow(clippy::too_many_arguments)]
-pub fn root_in_monotone_bracket(
+fn root_in_monotone_bracket(
     c: &[f64; 4],
     x0: f64,
     x1: f64,

@@ -26,7 +26,6 @@ mod cubic;
 use cubic::first_root_cubic;
 pub use cubic::{
     first_root_cubic_from, root_after_maximum, root_before_minimum, root_falling_from_zero,
-    root_in_monotone_bracket,
 };
 
 impl Default for Poly {
