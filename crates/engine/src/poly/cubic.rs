@@ -71,11 +71,10 @@ pub fn first_root_cubic_from(
                     c, x0, x1, prev.0, cur.0, d0, d1, offset,
                 ));
             }
-            let curv = |x: f64| 2.0 * c[2] + 6.0 * c[3] * x;
             let start = if i > 1 {
-                x0 + (-2.0 * prev.0 / curv(x0)).sqrt()
+                start_beside_critical(c, x0, prev.0, 1.0)
             } else {
-                x1 - (-2.0 * cur.0 / curv(x1)).sqrt()
+                start_beside_critical(c, x1, cur.0, -1.0)
             };
             return Some(steps_in_bracket(c, x0, x1, prev.0, start, offset));
         }
@@ -136,18 +135,11 @@ pub fn root_falling_from_zero(c: &[f64; 4], hi: f64, offset: f64) -> f64 {
 /// in [`first_root_cubic_from`].
 #[inline]
 pub fn root_after_maximum(c: &[f64; 4], hi: f64, offset: f64) -> f64 {
-    // p' = c1 + 2c2 x + 3c3 x²: positive at 0, negative at hi, one root between.
-    let (a, b, cc) = (3.0 * c[3], 2.0 * c[2], c[1]);
-    let disc = (b * b - 4.0 * a * cc).max(0.0);
-    let q = -0.5 * (b + b.signum() * disc.sqrt());
-    let (r1, r2) = (q / a, cc / q);
-    let xc = if r1 > 0.0 && r1 < hi { r1 } else { r2 };
-    if !(xc > 0.0 && xc < hi) {
+    let Some(xc) = critical_point_inside(c, hi) else {
         return first_root_cubic_from(c, 0.0, hi, c[0], offset).unwrap_or(hi);
-    }
+    };
     let pc = ((c[3] * xc + c[2]) * xc + c[1]) * xc + c[0];
-    let curv = 2.0 * c[2] + 6.0 * c[3] * xc;
-    let start = xc + (-2.0 * pc / curv).sqrt();
+    let start = start_beside_critical(c, xc, pc, 1.0);
     steps_in_bracket(c, xc, hi, pc, start, offset)
 }
 
@@ -160,14 +152,9 @@ pub fn root_after_maximum(c: &[f64; 4], hi: f64, offset: f64) -> f64 {
 /// [`first_root_cubic_from`], without its general scan. `offset` as there.
 #[inline(never)]
 pub fn root_before_minimum(c: &[f64; 4], hi: f64, offset: f64) -> Option<f64> {
-    let (a, b, cc) = (3.0 * c[3], 2.0 * c[2], c[1]);
-    let disc = b * b - 4.0 * a * cc;
-    let q = -0.5 * (b + b.signum() * disc.sqrt());
-    let (r1, r2) = (q / a, cc / q);
-    let xc = if r1 > 0.0 && r1 < hi { r1 } else { r2 };
-    if !(disc > 0.0 && xc > 0.0 && xc < hi) {
+    let Some(xc) = critical_point_inside(c, hi) else {
         return first_root_cubic_from(c, 0.0, hi, c[0], offset);
-    }
+    };
     let (pc, bound) = cubic_eval_with_bound(c, 4, xc);
     if pc.abs() <= bound {
         return Some(xc);
@@ -176,9 +163,32 @@ pub fn root_before_minimum(c: &[f64; 4], hi: f64, offset: f64) -> Option<f64> {
         let (p1, bound1) = cubic_eval_with_bound(c, 4, hi);
         return (p1 <= 0.0 || p1.abs() <= bound1).then_some(hi);
     }
-    let curv = 2.0 * c[2] + 6.0 * c[3] * xc;
-    let start = xc - (-2.0 * pc / curv).sqrt();
+    let start = start_beside_critical(c, xc, pc, -1.0);
     Some(steps_in_bracket(c, 0.0, xc, c[0], start, offset))
+}
+
+/// The one critical point of a cubic in `(0, hi)`, for a cubic whose slope changes sign
+/// once there: the slope's root inside, from its closed form in the cancellation-free
+/// arrangement. None if rounding leaves the slope no root inside (the general scan
+/// then decides).
+#[inline(always)]
+fn critical_point_inside(c: &[f64; 4], hi: f64) -> Option<f64> {
+    // p' = c1 + 2c2 x + 3c3 x².
+    let (a, b, cc) = (3.0 * c[3], 2.0 * c[2], c[1]);
+    let disc = b * b - 4.0 * a * cc;
+    let q = -0.5 * (b + b.signum() * disc.sqrt());
+    let (r1, r2) = (q / a, cc / q);
+    let xc = if r1 > 0.0 && r1 < hi { r1 } else { r2 };
+    (disc > 0.0 && xc > 0.0 && xc < hi).then_some(xc)
+}
+
+/// A start for the root next to a critical point x_c where the cubic has the value `pc`:
+/// the root of the quadratic Taylor model there, x_c ± √(−2p(x_c)/p″(x_c)), on the side
+/// `side` (1 after x_c, −1 before).
+#[inline(always)]
+fn start_beside_critical(c: &[f64; 4], xc: f64, pc: f64, side: f64) -> f64 {
+    let curv = 2.0 * c[2] + 6.0 * c[3] * xc;
+    xc + side * (-2.0 * pc / curv).sqrt()
 }
 
 /// The root of a cubic in `(x0, x1)`, where it is monotone and `p(x0) = p0` has the
