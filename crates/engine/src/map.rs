@@ -393,7 +393,8 @@ impl ImpactMap {
 #[derive(Clone, Copy, Debug)]
 struct Chatter {
     /// Above this relative velocity no resolvable sequence starts (the window exceeds
-    /// [`CHATTER_WINDOW`] even for the largest 1 + f''), and the test stops at once.
+    /// [`CHATTER_WINDOW`] even for the largest 1 + f''): the map dismisses such an impact
+    /// with this one comparison.
     w_max: f64,
     /// Bounds of |f''''| and |f⁽⁵⁾| over the table (α included).
     k4: f64,
@@ -432,10 +433,8 @@ impl Chatter {
 /// for the orders beyond) within [`CHATTER_ERROR`]. Below [`W_FLOOR`] the leading order
 /// is taken whatever its window ("forced").
 fn chatter_window(sys: &System, c: &Chatter, st: &State) -> Option<(f64, bool)> {
-    // Most impacts are dismissed here without evaluating the table.
-    if st.w > c.w_max {
-        return None;
-    }
+    // (Above `c.w_max` the window below exceeds CHATTER_WINDOW; the map tests that
+    // before it calls here.)
     let jet = sys.jet(st.phase);
     let a = 1.0 + jet[2];
     if a <= 0.0 {
