@@ -2,8 +2,7 @@
 //! panel answers within 100 ms while a sweep keeps every core of the executor busy, and
 //! while that sweep is paused (its workers parked on their threads).
 
-mod tui_common;
-
+use crate::tui_common::app;
 use bouncemap::output::hitgrid::Marker;
 use bouncemap::tui::components::Target;
 use bouncemap::tui::workers::Workers;
@@ -11,7 +10,6 @@ use bouncemap_engine::jobs::Executor;
 use bouncemap_engine::sweep::{SweepJob, SweepParam, SweepSpec};
 use bouncemap_engine::Table;
 use std::time::{Duration, Instant};
-use tui_common::app;
 
 /// Start the orbit analysis through the app and time it until its answer arrives.
 fn analysis_time(a: &mut bouncemap::tui::app::App, workers: &Workers) -> Duration {

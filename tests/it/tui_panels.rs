@@ -4,15 +4,13 @@
 //! chattering sequence shown as a sequence, shortest round-trip numbers; the stepped
 //! state in the phase plot; the table view.
 
-mod tui_common;
-
+use crate::tui_common::{app, fill, render, text};
 use bouncemap::output::hitgrid::Marker;
 use bouncemap::tui::app::{App, Overlay};
 use bouncemap::tui::components::bounce::{curves, MIN_SPAN};
 use bouncemap::tui::keymap::Action;
 use bouncemap::tui::params::ParamId;
 use bouncemap_engine::{kappa_c, EventKind, ImpactMap, Solver, State, System, Table};
-use tui_common::{app, fill, render, text};
 
 fn screen(a: &mut App, w: u16, h: u16) -> String {
     text(&render(a, w, h))

@@ -1,7 +1,6 @@
 //! Keys map to the right actions, and actions change the state as documented.
 
-mod tui_common;
-
+use crate::tui_common::{app, fill, size};
 use bouncemap::output::hitgrid::Marker;
 use bouncemap::tui::app::{Effect, Focus, Overlay};
 use bouncemap::tui::components::diagram::Axis;
@@ -11,7 +10,6 @@ use bouncemap::tui::params::ParamId;
 use bouncemap::tui::workers::Msg;
 use bouncemap_engine::{ImpactMap, Solver};
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
-use tui_common::{app, fill, size};
 
 fn press(a: &mut bouncemap::tui::app::App, code: KeyCode, m: KeyModifiers) {
     if a.editing() {

@@ -3,8 +3,7 @@
 //! explained, lines stay visible without colour, messages fit, ranges are the command
 //! line's, resizing refines instead of starting over, help fits at 80×24.
 
-mod tui_common;
-
+use crate::tui_common::{app, buffer_text, fill, render, size, text};
 use bouncemap::config::display::ColorMode;
 use bouncemap::output::hitgrid::Marker;
 use bouncemap::tui::app::{App, Effect, Overlay};
@@ -22,7 +21,6 @@ use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::style::Modifier;
 use std::time::Instant;
-use tui_common::{app, buffer_text, fill, render, size, text};
 
 fn alpha_pd(p: &Params) -> f64 {
     stability_windows(&p.table(), p.r, 1).unwrap()[0]

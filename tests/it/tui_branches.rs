@@ -3,8 +3,7 @@
 //! on the axis where `fixed` and `two-cycle` put them, and the branch under the
 //! diagram's cursor listed in the stability panel with its multipliers.
 
-mod tui_common;
-
+use crate::tui_common::{app, fill, render, text};
 use bouncemap::output::hitgrid::Marker;
 use bouncemap::tui::app::{App, Effect, Focus};
 use bouncemap::tui::components::Target;
@@ -15,7 +14,6 @@ use bouncemap::tui::workers::Msg;
 use bouncemap_engine::orbits::stability_windows;
 use bouncemap_engine::orbits::two_cycle::{border_collision, two_cycle};
 use bouncemap_engine::{System, Table};
-use tui_common::{app, fill, render, text};
 
 /// Change a parameter row as typing it does.
 fn set(a: &mut App, id: ParamId, value: &str) {

@@ -4,8 +4,7 @@
 //! application's α and D; Enter bringing the diagram back at that point; the key in the
 //! help; and the first coarse picture with real workers.
 
-mod tui_common;
-
+use crate::tui_common::size;
 use bouncemap::config::display::ColorMode;
 use bouncemap::output::classes::Class;
 use bouncemap::output::hitgrid::Marker;
@@ -22,7 +21,6 @@ use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use std::time::{Duration, Instant};
-use tui_common::size;
 
 fn app(mode: ColorMode) -> App {
     let mut params = Params::default();
@@ -80,7 +78,7 @@ fn the_plane_view_shows_classes_curves_axes_and_legend() {
         .diagram;
     let mut buf = Buffer::empty(Rect::new(0, 0, pane.right(), pane.bottom()));
     a.plane.draw(&a.shared, pane, &mut buf);
-    let s = tui_common::buffer_text(&buf);
+    let s = crate::tui_common::buffer_text(&buf);
     assert!(s.contains("Plane α×D · done 1.5s"), "{s}");
     assert!(s.contains("·1 :2 +4 *8 #n ▒stick █chaos"), "{s}");
     assert!(
@@ -105,7 +103,7 @@ fn the_plane_view_shows_classes_curves_axes_and_legend() {
 fn with_colour_each_cell_is_two_pixels_coloured_by_class() {
     let mut a = app(ColorMode::Ansi256);
     filled(&mut a, 120, 40);
-    let t = tui_common::render(&mut a, 120, 40);
+    let t = crate::tui_common::render(&mut a, 120, 40);
     let theme = Theme::new(ColorMode::Ansi256);
     let colour = |c: Class| theme.class(c).fg.unwrap();
     let buf = t.backend().buffer();
@@ -154,8 +152,8 @@ fn the_cursor_moves_alpha_and_d_and_enter_sweeps_alpha_there() {
     assert!(!a.plane.shown);
     assert_eq!(a.params.param, SweepParam::Alpha);
     assert!(a.take_effects().contains(&Effect::Start(Target::Diagram)));
-    let t = tui_common::render(&mut a, 120, 40);
-    assert!(tui_common::text(&t).contains("Bifurcation diagram"));
+    let t = crate::tui_common::render(&mut a, 120, 40);
+    assert!(crate::tui_common::text(&t).contains("Bifurcation diagram"));
 }
 
 #[test]
@@ -223,7 +221,7 @@ fn the_text_pictures_colours_are_the_applications_period_colours() {
 #[test]
 fn export_view_writes_the_plane_when_it_is_shown() {
     let mut a = app(ColorMode::None);
-    tui_common::fill(&mut a);
+    crate::tui_common::fill(&mut a);
     filled(&mut a, 120, 40);
     let dir = std::env::temp_dir().join(format!("bouncemap-plane-view-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();

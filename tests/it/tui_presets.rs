@@ -1,15 +1,13 @@
 //! The terminal application's presets are the headless ones: loading a preset in the
 //! picker makes the diagram run exactly the sweep `bouncemap sweep --preset NAME` runs.
 
-mod tui_common;
-
+use crate::tui_common::{app, size};
 use bouncemap::config::flags::{Cli, Command};
 use bouncemap::config::presets::PRESETS;
 use bouncemap::output::hitgrid::Marker;
 use bouncemap::tui::app::Overlay;
 use bouncemap::tui::keymap::Action;
 use clap::Parser;
-use tui_common::{app, size};
 
 #[test]
 fn every_preset_in_the_picker_runs_the_headless_sweep() {

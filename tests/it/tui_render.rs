@@ -2,14 +2,12 @@
 //! data: the whole screen at 120×40 and 80×24, each panel, the overlays, the fallbacks
 //! (half blocks, too small a terminal). Snapshots live in tests/snapshots/.
 
-mod tui_common;
-
+use crate::tui_common::{app, fill, render, size, text};
 use bouncemap::output::hitgrid::Marker;
 use bouncemap::tui::app::{App, Effect, Overlay};
 use bouncemap::tui::components::{status, Component, Target};
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
-use tui_common::{app, fill, render, size, text};
 
 fn panel(f: impl Fn(&App, Rect, &mut Buffer), w: u16, h: u16) -> String {
     let mut a = app(Marker::Braille);
@@ -18,7 +16,7 @@ fn panel(f: impl Fn(&App, Rect, &mut Buffer), w: u16, h: u16) -> String {
     let area = Rect::new(0, 0, w, h);
     let mut buf = Buffer::empty(area);
     f(&a, area, &mut buf);
-    tui_common::buffer_text(&buf)
+    crate::tui_common::buffer_text(&buf)
 }
 
 #[test]

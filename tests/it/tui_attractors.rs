@@ -3,8 +3,7 @@
 //! the basins panel filling in and restarting with real workers. Data come from the
 //! engine (sweeps and basin jobs run here), never from literals.
 
-mod tui_common;
-
+use crate::tui_common::{buffer_text, size, sweep_msg};
 use bouncemap::config::display::ColorMode;
 use bouncemap::output::classes::Class;
 use bouncemap::output::hitgrid::Marker;
@@ -24,7 +23,6 @@ use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::style::Modifier;
 use std::time::{Duration, Instant};
-use tui_common::{buffer_text, size, sweep_msg};
 
 fn key(a: &mut App, c: char) {
     if let Some(act) = a
@@ -256,8 +254,8 @@ fn the_basins_panel_shows_both_attractors_with_a_legend() {
     filled_basins(&mut a, 120, 40);
     let b = a.basins.basins.as_ref().unwrap();
     assert!(b.complete());
-    let t = tui_common::render(&mut a, 120, 40);
-    let s = tui_common::text(&t);
+    let t = crate::tui_common::render(&mut a, 120, 40);
+    let s = crate::tui_common::text(&t);
     assert!(s.contains("Basins t̂0×w0 · 2 found · done"), "{s}");
     assert!(s.contains("periodic (1, 1) λ -0.2231"), "{s}");
     // A stick–release cycle of one table period; its event count includes the
@@ -277,7 +275,7 @@ fn the_basins_panel_shows_both_attractors_with_a_legend() {
     // B again: the phase plot is back, the basins job is stopped.
     key(&mut a, 'B');
     assert!(!a.basins.shown);
-    let s = tui_common::text(&tui_common::render(&mut a, 120, 40));
+    let s = crate::tui_common::text(&crate::tui_common::render(&mut a, 120, 40));
     assert!(s.contains("Phase (t̂, v)"));
 }
 
@@ -370,7 +368,7 @@ fn the_basins_panel_fills_in_and_restarts_with_real_workers() {
 #[test]
 fn export_view_writes_the_basins_when_they_are_shown() {
     let mut a = cubic_app(ColorMode::None);
-    tui_common::fill(&mut a);
+    crate::tui_common::fill(&mut a);
     filled_basins(&mut a, 120, 40);
     let dir = std::env::temp_dir().join(format!("bouncemap-basins-view-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();

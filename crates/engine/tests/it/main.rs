@@ -1,0 +1,9 @@
+//! The engine's integration tests, one test binary with a module per area.
+
+mod attractors;
+mod continuation;
+mod engine_properties;
+mod long_runs;
+mod orbits;
+mod plane;
+mod sweep;

@@ -1,0 +1,27 @@
+//! The integration tests of the `bouncemap` binary, one test binary (one link of the
+//! crate) with a module per area.
+
+mod architecture;
+mod array_and_resume;
+mod attractors_cli;
+mod cli_orbit;
+mod continuation_cli;
+mod figure_cli;
+mod merge_property;
+mod orbits_cli;
+mod plane_cli;
+mod reliability;
+mod sweep_cli;
+mod table_files;
+mod tui_attractors;
+mod tui_branches;
+mod tui_common;
+mod tui_e2e;
+mod tui_keys;
+mod tui_latency;
+mod tui_panels;
+mod tui_plane;
+mod tui_presets;
+mod tui_render;
+mod tui_screen;
+mod tui_terminal;
