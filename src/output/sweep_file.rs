@@ -25,7 +25,7 @@
 //! bounded by the values in flight, not by the run.
 
 use super::records::{PointRecord, SweepHeader, SweepRow, SweepValue};
-use bouncemap_engine::sweep::{grid_value, Shard, SweepParam, ValueResult, Warm};
+use bouncemap_engine::sweep::{chain_len, grid_value, Shard, SweepParam, ValueResult, Warm};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeSet;
 use std::io::{self, Write};
@@ -547,7 +547,7 @@ fn check_values(part: &Part) -> Result<(), String> {
         }
         prev = Some(i);
         if let Some(s) = part.shard {
-            if !s.holds(i, warm) {
+            if !s.holds(i, chain_len(warm)) {
                 return Err(format!(
                     "value {i} does not belong to shard {}",
                     shard_name(s)
@@ -559,7 +559,7 @@ fn check_values(part: &Part) -> Result<(), String> {
             .map_err(|e| format!("value {i}: {e}"))?;
     }
     let expected = match part.shard {
-        Some(s) => (0..h.steps).filter(|&i| s.holds(i, warm)).count(),
+        Some(s) => s.items_of(h.steps, chain_len(warm)),
         None => h.steps,
     };
     if part.values.len() != part.provenance.values || part.values.len() != expected {

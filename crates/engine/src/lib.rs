@@ -19,19 +19,23 @@
 pub mod attractors;
 pub mod error;
 pub mod exact_sum;
+pub mod grid;
 pub mod impact;
 pub mod jobs;
 pub mod limits;
+pub mod linalg;
 pub mod map;
 pub mod orbits;
 pub mod plane;
 pub mod poly;
+pub mod run;
 pub mod sweep;
 pub mod system;
 pub mod table;
 pub mod tangent;
 #[cfg(test)]
 mod test_rng;
+pub mod time;
 
 pub use error::EngineError;
 pub use impact::{Landing, Launch, Solver};

@@ -17,9 +17,10 @@
 //! the exact solver; the paper's grid solver runs as the paper describes it.
 
 use crate::error::EngineError;
-use crate::impact::{normalize, FlightError, FlightSolver, Launch, Solver};
+use crate::impact::{FlightError, FlightSolver, Launch, Solver};
 use crate::limits;
 use crate::system::System;
+use crate::time::normalize;
 
 /// The longest accumulation window the map resolves in one jump (the error bound of the
 /// estimate, [`CHATTER_ERROR`], usually decides far below it).

@@ -9,10 +9,11 @@
 //! chunk in the job's own order (not the order chunks happen to finish), so the
 //! numbering does not depend on timing.
 
-use super::{launch, settle, Found, Registry, Settle};
+use super::{settle, Found, Registry, Settle};
 use crate::error::EngineError;
 use crate::jobs::{Context, Job, Pass};
 use crate::limits;
+use crate::run::start::launch;
 use crate::system::System;
 use std::collections::BTreeMap;
 

@@ -19,8 +19,8 @@
 //! as [`Spectrum::Sticking`], never as a NaN. A landing with zero relative velocity
 //! makes it unbounded: [`Spectrum::Grazing`].
 
+use crate::linalg::{mat_mul, moduli_tr_det, Complex};
 use crate::map::{Event, EventKind, ImpactMap, State};
-use crate::orbits::{mat_mul, Complex};
 use crate::tangent::{tangent, Tangent};
 
 /// Blocks of the measured stretch over which the convergence estimate is taken.
@@ -323,7 +323,7 @@ pub fn cycle_spectrum(
     if let Some(s) = spectrum {
         return Ok((out, s));
     }
-    let mu = eigen_moduli(m[0][0] + m[1][1], det);
+    let mu = moduli_tr_det(m[0][0] + m[1][1], det);
     let impacts = out.len() as u64;
     let n = impacts as f64;
     let k = periods.max(1) as f64;
@@ -339,21 +339,6 @@ pub fn cycle_spectrum(
             method: Method::Cycle,
         }),
     ))
-}
-
-/// |μ₁| ≥ |μ₂| for the eigenvalues of a real 2×2 matrix with trace `tr` and determinant
-/// `det` (the smaller from det / μ₁, free of cancellation).
-pub fn eigen_moduli(tr: f64, det: f64) -> [f64; 2] {
-    let half = 0.5 * tr;
-    let disc = half * half - det;
-    if disc >= 0.0 {
-        let big = half.abs() + disc.sqrt();
-        let small = if big > 0.0 { (det / big).abs() } else { 0.0 };
-        [big, small]
-    } else {
-        let m = det.abs().sqrt();
-        [m, m]
-    }
 }
 
 /// The moduli of two eigenvalues as exponents of one event: ln|μ|.
@@ -412,16 +397,5 @@ mod tests {
                 "{q:?} vs {want:?}"
             );
         }
-    }
-
-    #[test]
-    fn the_moduli_of_a_rotation_and_a_shear() {
-        // [[0, −2], [2, 0]]: ±2i. [[3, 1], [0, 1e-20]]: 3 and 1e-20 without cancellation.
-        assert_eq!(eigen_moduli(0.0, 4.0), [2.0, 2.0]);
-        let m = eigen_moduli(3.0 + 1e-20, 3e-20);
-        assert!(
-            (m[0] - 3.0).abs() < 1e-15 && (m[1] / 1e-20 - 1.0).abs() < 1e-12,
-            "{m:?}"
-        );
     }
 }

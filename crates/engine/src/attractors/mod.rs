@@ -1,7 +1,7 @@
 //! Attractors: what an orbit ends on, which starts end on the same one, and how much
 //! of the state space goes to each.
 //!
-//! * [`identify`] takes an orbit run to the end of its transient (a [`ValueRun`], with
+//! * [`identify`] takes an orbit run to the end of its transient (a [`OrbitRun`], with
 //!   the sweep's early stop) and says what it settled on ([`Found`]): a cycle (its
 //!   events, (n, k), the eigenvalues of its Jacobian), a stick–release cycle, a resting
 //!   ball, an escape (no landing), or an unsettled orbit, sampled for
@@ -28,10 +28,10 @@ pub mod lyapunov;
 
 use crate::impact::Solver;
 use crate::map::{EventKind, ImpactMap, State};
-use crate::sweep::detect::Periodicity;
-use crate::sweep::run::{Advance, ValueRun};
-use crate::sweep::{Outcome, SweepPoint};
+use crate::run::detect::Periodicity;
+use crate::run::{Advance, OrbitRun, Outcome, Point};
 use crate::system::System;
+use crate::time::phase_distance;
 use lyapunov::{cycle_spectrum, qr_spectrum, CycleEvent, Spectrum, Stop};
 use std::collections::HashSet;
 
@@ -184,11 +184,6 @@ pub fn box_start(s: usize, w_max: f64) -> (f64, f64) {
     (x, w_max * y)
 }
 
-/// A ball launched from the table at phase `t0` with relative velocity `w0`.
-pub fn launch(sys: &System, t0: f64, w0: f64) -> Option<State> {
-    State::launch(sys, 0, t0, sys.df(t0) + w0, 0.0).ok()
-}
-
 /// Run `start` to its attractor: the transient with early stop, then [`identify`].
 /// None if cancelled. `keep` events before the end of the transient are returned too.
 pub fn settle(
@@ -197,9 +192,9 @@ pub fn settle(
     settle: &Settle,
     keep: usize,
     cancelled: &mut dyn FnMut(u64) -> bool,
-) -> Option<(Found, Outcome, Vec<SweepPoint>, u64)> {
+) -> Option<(Found, Outcome, Vec<Point>, u64)> {
     let map = ImpactMap::new(sys.clone(), settle.solver, start);
-    let mut run = ValueRun::new(map, keep, settle.periodicity);
+    let mut run = OrbitRun::new(map, keep, settle.periodicity);
     let end = settle.transient as i64;
     let (outcome, points) = match run.advance(end, end, cancelled) {
         Advance::Done(o, p) => (o, p),
@@ -337,12 +332,6 @@ fn canonical(mut cycle: Vec<CycleEvent>) -> Vec<CycleEvent> {
         cycle.rotate_left(start);
     }
     cycle
-}
-
-/// Circular phase distance.
-fn phase_distance(a: f64, b: f64) -> f64 {
-    let d = (a - b).abs();
-    d.min(1.0 - d)
 }
 
 /// Whether two cycles are one: same length and, for some rotation, every event of the
@@ -532,6 +521,7 @@ impl Registry {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::run::start::launch;
     use crate::table::Table;
 
     #[test]

@@ -1,10 +1,8 @@
 //! The paper's Section IV solver, kept for comparison with the exact one.
 
-use super::{
-    crossing_times, floor, normalize, FlightError, Landing, Launch, GRID_CELLS, GRID_STEP,
-    GRID_TOLERANCE,
-};
+use super::{crossing_times, FlightError, Landing, Launch, GRID_CELLS, GRID_STEP, GRID_TOLERANCE};
 use crate::system::System;
+use crate::time::{floor, normalize};
 
 /// The paper's solver: sign test at the nodes of a fixed 10⁻² grid, bisection to 10⁻⁹.
 ///

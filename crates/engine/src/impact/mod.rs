@@ -27,6 +27,7 @@ mod sine_pieces;
 use super::poly;
 use super::system::System;
 use super::table::Shape;
+use crate::time::normalize;
 
 /// Which next-impact solver to use.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -136,43 +137,6 @@ impl FlightSolver {
             Kind::General(p) => piecewise::piecewise_landing::<poly::Poly>(p, launch),
         }
     }
-}
-
-/// ⌊x⌋, inline: without SSE4.1 the standard library's `floor` is a library call, and
-/// this sits on the solvers' hot path. Exact for every f64 (values of magnitude 2⁵² and
-/// above are already integers; NaN stays NaN).
-#[inline]
-pub(crate) fn floor(x: f64) -> f64 {
-    if x.abs() < 4_503_599_627_370_496.0 {
-        let t = x as i64 as f64;
-        if t > x {
-            t - 1.0
-        } else {
-            t
-        }
-    } else {
-        x
-    }
-}
-
-/// Normalise (period, phase) so the phase is in [0, 1). The period arithmetic is
-/// checked: a sum beyond i64 saturates at i64::MIN or i64::MAX (never wraps), which the
-/// map then reports as [`Halt::TimeOutOfRange`](crate::map::Halt::TimeOutOfRange).
-#[inline]
-pub fn normalize(period: i64, phase: f64) -> (i64, f64) {
-    if (0.0..1.0).contains(&phase) {
-        return (period, phase);
-    }
-    let k = floor(phase);
-    let mut p = phase - k;
-    // `as` saturates for phases beyond i64 (and maps NaN to 0; the solvers never
-    // produce one).
-    let mut n = period.saturating_add(k as i64);
-    if p >= 1.0 {
-        p -= 1.0;
-        n = n.saturating_add(1);
-    }
-    (n, p)
 }
 
 /// Flight times at which the ball, z(τ) = z0 + vτ − τ²/2, crosses height `level`:

@@ -18,7 +18,7 @@
 //! ball's height at both ends is above the piece's maximum (and whole periods where it is
 //! above the table's top), and isolates one cubic root on the piece where the ball lands.
 
-use super::{crossing_times, floor, landing_on, FlightError, Landing, Launch, MAX_FLIGHT_PIECES};
+use super::{crossing_times, landing_on, FlightError, Landing, Launch, MAX_FLIGHT_PIECES};
 use crate::exact_sum::{ball_at, flight_time};
 use crate::poly::{
     first_root_cubic_from, first_root_low_degree, root_after_maximum, root_before_minimum,
@@ -26,6 +26,7 @@ use crate::poly::{
 };
 use crate::system::System;
 use crate::table::Piece;
+use crate::time::floor;
 use std::fmt::Debug;
 
 /// A piecewise table prepared for one α: its pieces in the form one [`PieceGap`]

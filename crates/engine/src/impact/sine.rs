@@ -41,9 +41,10 @@
 //! The work is bounded: at most [`MAX_SINE_STEPS`] pieces and safe steps per flight.
 
 use super::sine_pieces::{center, eval, eval_d, index, locate, L, N, SINE};
-use super::{crossing_times, landing_on, normalize, FlightError, Landing, Launch, MAX_SINE_STEPS};
+use super::{crossing_times, landing_on, FlightError, Landing, Launch, MAX_SINE_STEPS};
 use crate::exact_sum::{ball_at, flight_time};
 use crate::poly::first_root_low_degree;
+use crate::time::normalize;
 use std::f64::consts::PI;
 
 /// Unit roundoff 2⁻⁵³.

@@ -53,10 +53,11 @@
 //! assert_eq!((bs[1].n, bs[1].parent), (2, Some(0)));
 //! ```
 
-use super::events::{bracketed_root_nan, signed_distance, special};
 pub use super::events::{jump_phases, Kind, Special};
+use super::events::{signed_distance, special};
 use super::fixed::{fixed_points, stability_window};
 use super::periodic::{correct, map_for, pass, CyclePoint, PassError};
+use super::roots::bracketed_root_nan;
 use super::two_cycle::two_cycle;
 use crate::error::EngineError;
 use crate::map::ImpactMap;

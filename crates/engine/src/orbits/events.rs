@@ -109,20 +109,3 @@ pub(crate) fn special(kind: Kind, p: &CyclePoint, phase: f64, impact: usize) -> 
         persists: None,
     }
 }
-
-/// A root of `g` on [lo, hi] from known end values of opposite signs, by Illinois false
-/// position with bisection every few steps; a failed evaluation (NaN) halves toward
-/// `lo`. To a few ulps of the arclength.
-pub(crate) fn bracketed_root_nan(
-    g: &mut dyn FnMut(f64) -> f64,
-    lo: f64,
-    hi: f64,
-    glo: f64,
-    ghi: f64,
-) -> Option<f64> {
-    Some(match super::illinois(g, (lo, hi), (glo, ghi), 200, 3) {
-        super::Illinois::Root(x) => x,
-        // The end past the crossing: continuing from it does not meet the same one again.
-        super::Illinois::Bracket { hi, .. } => hi,
-    })
-}

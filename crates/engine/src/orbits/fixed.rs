@@ -12,12 +12,14 @@
 //! intervals in phase, whose ends are roots of F', F'' or c F'' − κ_c F' (exact
 //! polynomial root isolation on each piece, the closed form for the sine).
 
-use super::{bracketed_root, eigenvalues_2x2, fixed_point_slope, Complex};
+use super::roots::bracketed_root;
 use crate::error::EngineError;
 use crate::impact::{next_landing, Launch, Solver};
 use crate::limits;
+use crate::linalg::{eigenvalues_2x2, Complex};
 use crate::system::{kappa_c, System};
 use crate::table::{Segment, Table};
+use crate::time::wrap_phase;
 
 const MAX_ALPHA: f64 = limits::ALPHA.hi;
 
@@ -305,7 +307,7 @@ fn phase_on(comp: &[Stretch], target: f64) -> Option<f64> {
         let g = |t: f64| s.seg.jet(t)[1] - target;
         let (glo, ghi) = (g(s.lo), g(s.hi));
         if glo >= 0.0 && ghi <= 0.0 {
-            return bracketed_root(&g, s.lo, s.hi).map(super::wrap_phase);
+            return bracketed_root(&g, s.lo, s.hi).map(wrap_phase);
         }
     }
     None
@@ -383,7 +385,7 @@ pub fn stability_windows(
             end = WindowEnd::Inadmissible;
         }
         let phase_birth = if i0 == 0 {
-            super::wrap_phase(first.lo)
+            wrap_phase(first.lo)
         } else {
             phase_on(&comp, c / birth).unwrap_or(first.lo)
         };
@@ -391,7 +393,7 @@ pub fn stability_windows(
             WindowEnd::Inadmissible | WindowEnd::AlphaLimit => {
                 phase_on(&comp, c / alpha_hi).unwrap_or(last.hi)
             }
-            _ => super::wrap_phase(last.hi),
+            _ => wrap_phase(last.hi),
         };
         out.push(StabilityWindow {
             k,
@@ -457,6 +459,10 @@ pub fn alpha_at_delta_kappa(
     Ok(best.and_then(|(_, t, seg)| {
         let j = seg.jet(t);
         let alpha = c / j[1];
-        (alpha > 0.0 && alpha <= MAX_ALPHA).then_some((alpha, super::wrap_phase(t)))
+        (alpha > 0.0 && alpha <= MAX_ALPHA).then_some((alpha, wrap_phase(t)))
     }))
+}
+/// The velocity derivative of the (1, k) solution: f'(t̂*) = (k/2)(1 − r)/(1 + r).
+pub fn fixed_point_slope(r: f64, k: u32) -> f64 {
+    0.5 * k as f64 * (1.0 - r) / (1.0 + r)
 }

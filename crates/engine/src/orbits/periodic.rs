@@ -16,11 +16,12 @@
 //! flights' determinants, which is r²ⁿ on a cycle (so no Neimark–Sacker point exists;
 //! [`CyclePoint::det_error`] is the check).
 
-use super::{eigenvalues_tr_det, Complex};
 use crate::impact::Solver;
+use crate::linalg::{eigenvalues_tr_det, mat_mul, solve, Complex};
 use crate::map::{EventKind, ImpactMap, State};
 use crate::system::System;
 use crate::tangent::flight;
+use crate::time::wrap_phase;
 
 /// The largest return error |(tₙ − t₀ − k, vₙ − v₀)| of an accepted cycle.
 pub const RETURN_TOLERANCE: f64 = 1e-11;
@@ -81,7 +82,7 @@ pub struct Pass {
 /// with velocity `v0`; `map` must hold the system (α set) to use.
 pub fn pass(map: &mut ImpactMap, t0: f64, v0: f64, n: usize, k: u32) -> Result<Pass, PassError> {
     let period = t0.floor();
-    let phase = super::wrap_phase(t0 - period);
+    let phase = wrap_phase(t0 - period);
     let sys = map.system().clone();
     let start =
         State::launch(&sys, period as i64, phase, v0, 0.0).map_err(|_| PassError::BadLaunch)?;
@@ -111,7 +112,7 @@ pub fn pass(map: &mut ImpactMap, t0: f64, v0: f64, n: usize, k: u32) -> Result<P
         let fl = flight(&sys, &before, &e).ok_or(PassError::Grazing { phase: e.phase })?;
         let j = fl.jacobian();
         let c = fl.alpha_column_with(fl.ddf);
-        m = super::mat_mul(j, m);
+        m = mat_mul(j, m);
         col = [
             j[0][0] * col[0] + j[0][1] * col[1] + c[0],
             j[1][0] * col[0] + j[1][1] * col[1] + c[1],
@@ -220,7 +221,7 @@ pub(crate) fn accept(
     let multipliers = eigenvalues_tr_det(tr, r2n);
     let stable = multipliers.iter().all(|l| l.abs() < 1.0);
     let mut phases = Vec::with_capacity(n);
-    phases.push(super::wrap_phase(x[1]));
+    phases.push(wrap_phase(x[1]));
     phases.extend_from_slice(&p.phases[..n - 1]);
     let mut velocities = Vec::with_capacity(n);
     velocities.push(x[2]);
@@ -252,32 +253,6 @@ pub(crate) fn accept(
         det_error: p.det / r2n - 1.0,
         monodromy: p.monodromy,
     })
-}
-
-/// Solve 3×3 `a x = b` by Gaussian elimination with partial pivoting.
-pub(crate) fn solve3(mut a: [[f64; 3]; 3], mut b: [f64; 3]) -> Option<[f64; 3]> {
-    for c in 0..3 {
-        let p = (c..3).max_by(|&i, &j| a[i][c].abs().total_cmp(&a[j][c].abs()))?;
-        if a[p][c] == 0.0 || !a[p][c].is_finite() {
-            return None;
-        }
-        a.swap(c, p);
-        b.swap(c, p);
-        for i in c + 1..3 {
-            let f = a[i][c] / a[c][c];
-            let pivot = a[c];
-            for (x, p) in a[i][c..].iter_mut().zip(&pivot[c..]) {
-                *x -= f * p;
-            }
-            b[i] -= f * b[c];
-        }
-    }
-    let mut x = [0.0; 3];
-    for i in (0..3).rev() {
-        let s: f64 = (i + 1..3).map(|j| a[i][j] * x[j]).sum();
-        x[i] = (b[i] - s) / a[i][i];
-    }
-    x.iter().all(|v| v.is_finite()).then_some(x)
 }
 
 /// A map prepared for `sys` (the exact solver, any state: each pass sets its own).
@@ -346,7 +321,7 @@ pub(crate) fn correct(
         ];
         let g = (0..3).map(|i| tau[i] * (x[i] - x0[i])).sum::<f64>() - h;
         let b = [p.residual[0], p.residual[1], g];
-        let d = solve3(a, b).ok_or(PassError::NoConvergence)?;
+        let d = solve(a, b).ok_or(PassError::NoConvergence)?;
         for i in 0..3 {
             x[i] -= d[i];
         }
@@ -399,7 +374,7 @@ pub fn min_interior_gap(sys: &System, pt: &CyclePoint) -> (f64, f64) {
     for i in 0..pt.n {
         let (ph, v, tau) = (pt.phases[i], pt.velocities[i], pt.flights[i]);
         let f0 = sys.f(ph);
-        let gap = |s: f64| f0 + v * s - 0.5 * s * s - sys.f(super::wrap_phase(ph + s));
+        let gap = |s: f64| f0 + v * s - 0.5 * s * s - sys.f(wrap_phase(ph + s));
         let g: Vec<f64> = (0..=SAMPLES)
             .map(|j| gap(tau * j as f64 / SAMPLES as f64))
             .collect();
@@ -410,7 +385,7 @@ pub fn min_interior_gap(sys: &System, pt: &CyclePoint) -> (f64, f64) {
             // Newton on g'(s) = v − s − f'(t̂ + s), from the sample.
             let mut s = tau * j as f64 / SAMPLES as f64;
             for _ in 0..20 {
-                let q = super::wrap_phase(ph + s);
+                let q = wrap_phase(ph + s);
                 let d1 = v - s - sys.df(q);
                 let d2 = -1.0 - sys.ddf(q);
                 if d2 <= 0.0 {
@@ -424,7 +399,7 @@ pub fn min_interior_gap(sys: &System, pt: &CyclePoint) -> (f64, f64) {
             }
             let m = gap(s).min(g[j]);
             if m < best.0 {
-                best = (m, super::wrap_phase(ph + s));
+                best = (m, wrap_phase(ph + s));
             }
         }
     }

@@ -22,12 +22,14 @@
 //! analytically; a solution whose phases leave that piece is reported as such (it is
 //! past a border collision). The residuals of the original four equations are reported.
 
-use crate::impact::normalize;
+use crate::linalg::{eigenvalues_2x2, mat_mul, solve, Complex};
 use crate::system::{kappa_c, System};
+use crate::time::{normalize, wrap_phase};
 
 const MAX_ALPHA: f64 = crate::limits::ALPHA.hi;
+use super::fixed::fixed_point_slope;
 use super::fixed::{fixed_points, lands_after, stability_window, FixedPoint, WindowEnd};
-use super::{eigenvalues_2x2, fixed_point_slope, mat_mul, Complex};
+use super::roots::bracketed_root;
 use crate::table::Table;
 use crate::table::{Segment, TAYLOR_TERMS};
 use std::fmt;
@@ -268,7 +270,7 @@ impl Equations<'_> {
         let (mut g, mut jac) = self.residual_and_jacobian(&x);
         let mut gn = norm(&g);
         for it in 1..=60u32 {
-            let dx = solve4(jac, g.map(|v| -v))?;
+            let dx = solve(jac, g.map(|v| -v))?;
             let mut lambda = 1.0;
             let mut accepted = false;
             for _ in 0..30 {
@@ -302,35 +304,6 @@ impl Equations<'_> {
         }
         (gn <= 1e-11 * (1.0 + self.k * self.k)).then_some((x, 60))
     }
-}
-
-/// Solve the 4×4 system a·x = b by Gaussian elimination with partial pivoting.
-fn solve4(mut a: [[f64; 4]; 4], mut b: [f64; 4]) -> Option<[f64; 4]> {
-    for col in 0..4 {
-        let piv = (col..4).max_by(|&i, &j| a[i][col].abs().total_cmp(&a[j][col].abs()))?;
-        if a[piv][col] == 0.0 || !a[piv][col].is_finite() {
-            return None;
-        }
-        a.swap(col, piv);
-        b.swap(col, piv);
-        for row in col + 1..4 {
-            let f = a[row][col] / a[col][col];
-            let pivot_row = a[col];
-            for (dst, src) in a[row][col..].iter_mut().zip(&pivot_row[col..]) {
-                *dst -= f * src;
-            }
-            b[row] -= f * b[col];
-        }
-    }
-    let mut x = [0.0; 4];
-    for row in (0..4).rev() {
-        let mut s = b[row];
-        for c in row + 1..4 {
-            s -= a[row][c] * x[c];
-        }
-        x[row] = s / a[row][row];
-    }
-    x.iter().all(|v| v.is_finite()).then_some(x)
 }
 
 /// The (1, k) solution a (2, 2k) branch is sought around: the admissible one with
@@ -671,18 +644,18 @@ pub fn border_collision(
                 eqs(alpha).solve(guess).map(|(x, _)| x)
             };
             let g = |alpha: f64| solve_at(alpha).map_or(f64::NAN, |x| b.border_margin(&x));
-            let alpha = super::bracketed_root(&g, a0, a1)
-                .ok_or(NoBorderCollision::BranchLost { alpha: a0 })?;
+            let alpha =
+                bracketed_root(&g, a0, a1).ok_or(NoBorderCollision::BranchLost { alpha: a0 })?;
             let x = solve_at(alpha).ok_or(NoBorderCollision::BranchLost { alpha })?;
             let h = x[1].sqrt();
             let low = (x[0] - h - b.seg.start).abs() <= (b.seg.end - x[0] - h).abs();
             return Ok(BorderCollision {
                 k,
                 alpha,
-                phase: super::wrap_phase(if low { b.seg.start } else { b.seg.end }),
+                phase: wrap_phase(if low { b.seg.start } else { b.seg.end }),
                 alpha_pd,
-                phase0: super::wrap_phase(x[0] - h),
-                phase1: super::wrap_phase(x[0] + h),
+                phase0: wrap_phase(x[0] - h),
+                phase1: wrap_phase(x[0] + h),
                 v0: x[2] - h * x[3],
                 v1: x[2] + h * x[3],
                 steps: b.steps,
@@ -704,7 +677,7 @@ pub fn map_check(
     max_bounces: u64,
 ) -> Option<(u64, f64)> {
     use crate::map::{ImpactMap, State};
-    let start = super::wrap_phase(tc.phase0 + perturbation);
+    let start = wrap_phase(tc.phase0 + perturbation);
     let v = tc.v0 + sys.df(start) - sys.df(tc.phase0);
     let state = State::launch(sys, 0, start, v, 0.0).ok()?;
     let mut map = ImpactMap::new(sys.clone(), crate::impact::Solver::Exact, state);

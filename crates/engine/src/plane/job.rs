@@ -6,7 +6,7 @@ use crate::attractors::{self, Settle};
 use crate::error::EngineError;
 use crate::jobs::{Context, Control, Executor, Job, Pass};
 use crate::map::ImpactMap;
-use crate::sweep::run::{has_sticking, Advance, ValueRun};
+use crate::run::{has_sticking, Advance, OrbitRun};
 
 /// One work item's results.
 #[derive(Clone, Debug, PartialEq)]
@@ -45,7 +45,7 @@ impl PlaneJob {
             return Some(None);
         };
         let map = ImpactMap::new(sys.clone(), self.spec.solver, start);
-        let mut run = ValueRun::new(map, KEEP, self.spec.periodicity);
+        let mut run = OrbitRun::new(map, KEEP, self.spec.periodicity);
         let end = self.spec.transient as i64;
         let (outcome, points) = match run.advance(end, end, &mut |n| cx.tick(n)) {
             Advance::Done(o, p) => (o, p),

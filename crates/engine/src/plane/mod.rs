@@ -31,11 +31,16 @@ mod job;
 pub use curves::{curves, Curves};
 pub use job::{collect, Plane, PlaneChunk, PlaneJob};
 
-use crate::error::{fmt_value, EngineError};
+use crate::error::EngineError;
+use crate::grid::{Shard, SweepParam};
 use crate::impact::Solver;
 use crate::limits;
 use crate::map::State;
-use crate::sweep::{grid_value, near_fixed_point, Outcome, Periodicity, Shard, SweepParam};
+use crate::run::detect::Periodicity;
+use crate::run::start::near_fixed_point;
+use crate::run::Outcome;
+// Until the binary imports it from `grid`.
+pub use crate::grid::Axis;
 use crate::system::System;
 use crate::table::Table;
 
@@ -54,52 +59,6 @@ pub const DEFAULT_TRANSIENT: u64 = 20_000;
 pub const KEEP: usize = 64;
 /// Impacts over which an unsettled pixel's exponent is measured (QR).
 pub const LYAPUNOV_SAMPLE: u64 = 2_000;
-
-/// One axis of a plane: `n` pixels from `lo` to `hi` (both ends exact).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Axis {
-    pub param: SweepParam,
-    pub lo: f64,
-    pub hi: f64,
-    pub n: usize,
-}
-
-impl Axis {
-    /// The value of pixel `i`.
-    pub fn value(&self, i: usize) -> f64 {
-        grid_value(self.lo, self.hi, self.n, i)
-    }
-
-    /// The pixel whose value is nearest `x` (clamped to the axis).
-    pub fn pixel_of(&self, x: f64) -> usize {
-        if self.n <= 1 || self.hi <= self.lo {
-            return 0;
-        }
-        let f = (x - self.lo) / (self.hi - self.lo) * (self.n - 1) as f64;
-        (f.round().max(0.0) as usize).min(self.n - 1)
-    }
-
-    fn validate(&self) -> Result<(), EngineError> {
-        if self.n == 0 || self.n > MAX_SIDE {
-            return Err(EngineError::InvalidParameter {
-                name: "size",
-                value: self.n.to_string(),
-                range: "1 ..= 4000 pixels per side",
-            });
-        }
-        if !(self.lo.is_finite() && self.hi.is_finite() && self.lo <= self.hi) {
-            return Err(EngineError::InvalidParameter {
-                name: self.param.as_str(),
-                value: format!("{}..{}", fmt_value(self.lo), fmt_value(self.hi)),
-                range: "a window LO..HI with LO ≤ HI",
-            });
-        }
-        let limit = self.param.limit();
-        limit.check(self.lo)?;
-        limit.check(self.hi)?;
-        Ok(())
-    }
-}
 
 /// Where each pixel's orbit starts.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -192,13 +151,12 @@ impl PlaneSpec {
 
     /// Whether pixel `index` belongs to this spec's shard.
     pub fn holds(&self, index: usize) -> bool {
-        index % self.shard.count == self.shard.index
+        self.shard.holds(index, 1)
     }
 
     /// Pixels in this spec's shard.
     pub fn shard_len(&self) -> usize {
-        let (n, c, i) = (self.len(), self.shard.count, self.shard.index);
-        n / c + usize::from(i < n % c)
+        self.shard.items_of(self.len(), 1)
     }
 
     /// The value of `param` at (x, y).
@@ -235,8 +193,8 @@ impl PlaneSpec {
 
     /// Check every setting; the message names the setting, the value and the range.
     pub fn validate(&self) -> Result<(), EngineError> {
-        self.x.validate()?;
-        self.y.validate()?;
+        self.x.validate(MAX_SIDE, "1 ..= 4000 pixels per side")?;
+        self.y.validate(MAX_SIDE, "1 ..= 4000 pixels per side")?;
         if self.x.param == self.y.param {
             return Err(EngineError::Inconsistent(format!(
                 "x and y are both {}: valid two different parameters of alpha, r and d",
@@ -265,16 +223,9 @@ impl PlaneSpec {
         }
         limits::TRANSIENT.check(self.transient as f64)?;
         if let Some(p) = self.periodicity {
-            limits::MAX_PERIOD.check(p.max_period as f64)?;
-            limits::TOLERANCE.check(p.tolerance)?;
+            p.validate()?;
         }
-        if self.shard.count == 0 || self.shard.index >= self.shard.count {
-            return Err(EngineError::InvalidParameter {
-                name: "shard",
-                value: format!("{}/{}", self.shard.index + 1, self.shard.count),
-                range: "I/N with 1 ≤ I ≤ N",
-            });
-        }
+        self.shard.validate()?;
         // Every corner's system (the ranges are checked, so only a table beyond the
         // solver's bounds at the largest α can fail here).
         for (x, y) in [

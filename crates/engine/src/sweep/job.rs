@@ -6,72 +6,13 @@
 //! started from its neighbour's final state; the preview then runs every value cold
 //! (provisional results only, nothing is kept).
 
-use super::run::{has_sticking, Advance, ValueRun};
 use super::{chain_len, SweepSpec, Warm, LYAPUNOV_SAMPLE};
 use crate::attractors::{self, box_start, default_w_max, Kind, Registry, Settle};
 use crate::error::EngineError;
 use crate::jobs::{Context, Job, Pass};
-use crate::map::{EventKind, ImpactMap, State};
-
-/// One recorded event of a value.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SweepPoint {
-    /// Phase t̂ in [0, 1).
-    pub phase: f64,
-    /// Ball velocity after the event.
-    pub v: f64,
-    pub kind: EventKind,
-}
-
-/// What became of one value.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Outcome {
-    /// Provisional (pass 0): the run has reached this period and goes on.
-    Running { reached: i64 },
-    /// Settled on a cycle of `events` events in `periods` table periods; the run
-    /// stopped at period `stopped_at` and the cycle was continued to T.
-    Periodic {
-        events: usize,
-        periods: i64,
-        stopped_at: i64,
-    },
-    /// Ran the full transient without settling on a cycle of at most `max_period`
-    /// events (chaos, a long or slowly converging cycle, or early stop switched off).
-    Unsettled,
-    /// The ball rides on the table forever from this time on.
-    Resting { period: i64, phase: f64 },
-    /// The ball did not land within the solver's work bound.
-    NoLanding { period: i64, phase: f64 },
-}
-
-impl Outcome {
-    /// Lower-case name used in every output format.
-    pub fn as_str(&self) -> &'static str {
-        match self {
-            Outcome::Running { .. } => "running",
-            Outcome::Periodic { .. } => "periodic",
-            Outcome::Unsettled => "unsettled",
-            Outcome::Resting { .. } => "resting",
-            Outcome::NoLanding { .. } => "no-landing",
-        }
-    }
-
-    /// Events per detected cycle.
-    pub fn period(&self) -> Option<usize> {
-        match self {
-            Outcome::Periodic { events, .. } => Some(*events),
-            _ => None,
-        }
-    }
-
-    /// Table periods per detected cycle (the k of an (n, k) orbit).
-    pub fn table_periods(&self) -> Option<i64> {
-        match self {
-            Outcome::Periodic { periods, .. } => Some(*periods),
-            _ => None,
-        }
-    }
-}
+use crate::map::{ImpactMap, State};
+use crate::run::start::launch;
+use crate::run::{has_sticking, Advance, OrbitRun, Outcome, Point};
 
 /// The result for one value.
 #[derive(Clone, Debug, PartialEq)]
@@ -83,7 +24,7 @@ pub struct ValueResult {
     /// True when this is the value's final result (no later batch will replace it).
     pub complete: bool,
     /// Recorded events, oldest first.
-    pub points: Vec<SweepPoint>,
+    pub points: Vec<Point>,
     pub outcome: Outcome,
     /// Whether the points include a stick or a release.
     pub sticking: bool,
@@ -122,7 +63,7 @@ pub struct ValueAttractor {
 pub struct Carried {
     index: usize,
     value: f64,
-    run: ValueRun,
+    run: OrbitRun,
 }
 
 /// A sweep, ready to run on an executor. Its items are the shard's chains (single
@@ -238,7 +179,7 @@ impl SweepJob {
         let settle = self.settle(sample);
         let mut registry = Registry::new();
         // Per attractor id: the points and outcome of the first start that found it.
-        let mut first: Vec<(Vec<SweepPoint>, Outcome)> = Vec::new();
+        let mut first: Vec<(Vec<Point>, Outcome)> = Vec::new();
         let mut lead: Option<(Outcome, Option<f64>)> = None;
         let mut events = 0;
         for s in 0..self.spec.starts {
@@ -246,7 +187,7 @@ impl SweepJob {
                 self.spec.initial_state(&sys).ok()
             } else {
                 let (t0, w0) = box_start(s - 1, w_max);
-                attractors::launch(&sys, t0, w0)
+                launch(&sys, t0, w0)
             };
             let Some(start) = start else { continue };
             let Some((found, outcome, points, n)) =
@@ -297,7 +238,7 @@ impl SweepJob {
         );
     }
 
-    fn new_run(&self, index: usize, warm_from: Option<&State>) -> Option<(f64, ValueRun)> {
+    fn new_run(&self, index: usize, warm_from: Option<&State>) -> Option<(f64, OrbitRun)> {
         let value = self.spec.value(index);
         let sys = self.spec.system_at(value).ok()?;
         let state = warm_from
@@ -309,7 +250,7 @@ impl SweepJob {
         let map = ImpactMap::new(sys, self.spec.solver, state);
         Some((
             value,
-            ValueRun::new(map, self.spec.keep, self.spec.periodicity),
+            OrbitRun::new(map, self.spec.keep, self.spec.periodicity),
         ))
     }
 
@@ -319,7 +260,7 @@ impl SweepJob {
         &self,
         index: usize,
         value: f64,
-        run: &mut ValueRun,
+        run: &mut OrbitRun,
         checkpoint: i64,
         provisional: bool,
         cx: &Context<'_, ValueResult>,

@@ -63,19 +63,20 @@
 //! assert!(!handle.wait().cancelled);
 //! ```
 
-pub mod detect;
 mod job;
-pub mod run;
 
-pub use detect::Periodicity;
-pub use job::{Outcome, SweepJob, SweepPoint, ValueAttractor, ValueResult};
+pub use job::{SweepJob, ValueAttractor, ValueResult};
+// Until the binary imports them from where they live.
+pub use crate::grid::{grid_value, Shard, SweepParam};
+pub use crate::run::detect::Periodicity;
+pub use crate::run::start::near_fixed_point;
+pub use crate::run::{Outcome, Point as SweepPoint};
 
 use crate::error::EngineError;
 use crate::impact::Solver;
 use crate::jobs::{Batch, Control, Executor, Handle};
 use crate::limits;
 use crate::map::State;
-use crate::orbits::fixed::fixed_points;
 use crate::system::System;
 use crate::table::Table;
 
@@ -91,47 +92,11 @@ pub const DEFAULT_PREVIEW: u64 = 1_000;
 pub const MAX_STARTS: usize = 1000;
 /// Impacts over which an unsettled value's exponent is measured (QR).
 pub const LYAPUNOV_SAMPLE: u64 = 10_000;
-/// Phase offset from the (1, 1) fixed point of a `near_fixed_point` start.
-pub const FIXED_POINT_OFFSET: f64 = 1e-3;
 
 /// One streamed result of a sweep.
 pub type SweepBatch = Batch<ValueResult>;
 /// A sweep running in the background.
 pub type SweepHandle = Handle<ValueResult>;
-
-/// The swept parameter.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum SweepParam {
-    /// The amplitude α.
-    Alpha,
-    /// The restitution coefficient r.
-    R,
-    /// D of the paper's F_D table.
-    D,
-}
-
-impl SweepParam {
-    /// Every swept parameter.
-    pub const ALL: [SweepParam; 3] = [SweepParam::Alpha, SweepParam::R, SweepParam::D];
-
-    /// Lower-case name used in every output format (`alpha`, `r`, `d`).
-    pub fn as_str(self) -> &'static str {
-        match self {
-            SweepParam::Alpha => "alpha",
-            SweepParam::R => "r",
-            SweepParam::D => "d",
-        }
-    }
-
-    /// The range of the parameter.
-    pub fn limit(self) -> limits::Limit {
-        match self {
-            SweepParam::Alpha => limits::ALPHA,
-            SweepParam::R => limits::R,
-            SweepParam::D => limits::D,
-        }
-    }
-}
 
 /// Where every cold-started value begins.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -190,62 +155,12 @@ impl Warm {
     }
 }
 
-/// The phase t̂* of the (1, 1) solution: f'(t̂*) = ½(1 − r)/(1 + r) with f''(t̂*) < 0,
-/// preferring one with κ_c < f''(t̂*) (stable). None if the table is too weak.
-pub fn fixed_point_phase(sys: &System) -> Option<f64> {
-    let candidates = fixed_points(sys, 1).ok()?;
-    let kc = sys.kappa_c();
-    candidates
-        .iter()
-        .find(|p| p.ddf < 0.0 && p.ddf > kc)
-        .or_else(|| candidates.iter().find(|p| p.ddf < 0.0))
-        .map(|p| p.phase)
-}
-
-/// The paper's start next to the (1, 1) solution: phase t̂* + [`FIXED_POINT_OFFSET`],
-/// v = ½ (at least the table's velocity), if there is a (1, 1) solution.
-pub fn near_fixed_point(sys: &System) -> Option<State> {
-    let t = fixed_point_phase(sys)?;
-    let (_, phase) = crate::impact::normalize(0, t + FIXED_POINT_OFFSET);
-    State::launch(sys, 0, phase, 0.5_f64.max(sys.df(phase)), 0.0).ok()
-}
-
-/// Which interleaved part of a sweep to compute: chains c with c % count == index.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Shard {
-    /// 0-based part number, < count.
-    pub index: usize,
-    pub count: usize,
-}
-
-impl Shard {
-    /// The whole sweep.
-    pub const WHOLE: Shard = Shard { index: 0, count: 1 };
-
-    /// Whether value `index` of a sweep with continuation `warm` belongs to this part:
-    /// chains of [`chain_len`] consecutive values are dealt out round-robin.
-    pub fn holds(&self, index: usize, warm: Warm) -> bool {
-        (index / chain_len(warm)) % self.count == self.index
-    }
-}
-
 /// Values per chain: one without continuation, [`WARM_CHAIN`] with it.
 pub fn chain_len(warm: Warm) -> usize {
     if warm == Warm::Off {
         1
     } else {
         WARM_CHAIN
-    }
-}
-
-/// Value `i` of `steps` evenly spaced values from `lo` to `hi` (both ends exact).
-pub fn grid_value(lo: f64, hi: f64, steps: usize, i: usize) -> f64 {
-    if steps <= 1 {
-        lo
-    } else if i + 1 == steps {
-        hi
-    } else {
-        lo + (hi - lo) * (i as f64) / ((steps - 1) as f64)
     }
 }
 
@@ -354,11 +269,7 @@ impl SweepSpec {
     /// Value indices of this sweep's shard, in chains of consecutive indices (one value
     /// per chain without continuation), each in the order it is run.
     pub fn chains(&self) -> Vec<Vec<usize>> {
-        let len = if self.warm == Warm::Off {
-            1
-        } else {
-            WARM_CHAIN
-        };
+        let len = chain_len(self.warm);
         (0..self.steps.div_ceil(len))
             .filter(|c| c % self.shard.count == self.shard.index)
             .map(|c| {
@@ -374,33 +285,17 @@ impl SweepSpec {
 
     /// Values in this sweep's shard.
     pub fn shard_values(&self) -> usize {
-        (0..self.steps)
-            .filter(|&i| self.shard.holds(i, self.warm))
-            .count()
+        self.shard.items_of(self.steps, chain_len(self.warm))
     }
 
     /// Check every setting; the message names the setting, the value and the range.
     pub fn validate(&self) -> Result<(), EngineError> {
         limits::STEPS.check(self.steps as f64)?;
-        if !(self.lo.is_finite() && self.hi.is_finite() && self.lo <= self.hi) {
-            return Err(EngineError::InvalidParameter {
-                name: self.param.as_str(),
-                value: format!(
-                    "{}..{}",
-                    crate::error::fmt_value(self.lo),
-                    crate::error::fmt_value(self.hi)
-                ),
-                range: "a window LO..HI with LO ≤ HI",
-            });
-        }
-        let limit = self.param.limit();
-        limit.check(self.lo)?;
-        limit.check(self.hi)?;
+        crate::grid::check_window(self.param, self.lo, self.hi)?;
         limits::TRANSIENT.check(self.transient as f64)?;
         limits::KEEP.check(self.keep as f64)?;
         if let Some(p) = self.periodicity {
-            limits::MAX_PERIOD.check(p.max_period as f64)?;
-            limits::TOLERANCE.check(p.tolerance)?;
+            p.validate()?;
         }
         if !(1..=MAX_STARTS).contains(&self.starts) {
             return Err(EngineError::InvalidParameter {
@@ -424,13 +319,7 @@ impl SweepSpec {
                 });
             }
         }
-        if self.shard.count == 0 || self.shard.index >= self.shard.count {
-            return Err(EngineError::InvalidParameter {
-                name: "shard",
-                value: format!("{}/{}", self.shard.index + 1, self.shard.count),
-                range: "I/N with 1 ≤ I ≤ N",
-            });
-        }
+        self.shard.validate()?;
         match self.param {
             SweepParam::Alpha => {
                 limits::R.check(self.r)?;
@@ -514,16 +403,5 @@ mod tests {
         let c = spec.chains();
         assert_eq!(c[0][0], WARM_CHAIN - 1);
         assert!(c[0].windows(2).all(|w| w[0] == w[1] + 1));
-    }
-
-    #[test]
-    fn the_near_fixed_point_start_is_on_the_closed_form_branch() {
-        // fd:0.1, α = 0.45, r = 0.8: f'(t̂*) = ½(1 − r)/(1 + r) on the first piece,
-        // α(3D t² − (2 + D) t + ½) = 1/18, the smaller root.
-        let sys = System::new(Table::fd(0.1).unwrap(), 0.45, 0.8).unwrap();
-        let (a, d): (f64, f64) = (0.45, 0.1);
-        let (qa, qb, qc) = (3.0 * d * a, -(2.0 + d) * a, 0.5 * a - 1.0 / 18.0);
-        let t = (-qb - (qb * qb - 4.0 * qa * qc).sqrt()) / (2.0 * qa);
-        assert!((fixed_point_phase(&sys).unwrap() - t).abs() < 1e-14);
     }
 }

@@ -407,7 +407,7 @@ impl Table {
             let seg = self.segment(j);
             let from = if step == 0 { phase } else { seg.start };
             if let Some(at) = seg.release(alpha, from, step == 0 && strictly_after) {
-                return Some(crate::impact::normalize(per, at));
+                return Some(crate::time::normalize(per, at));
             }
         }
         None

@@ -8,7 +8,7 @@ use bouncemap_engine::orbits::cascade::cascade;
 use bouncemap_engine::orbits::continuation::{branches, point_at, Branch, Kind, Options, Start};
 use bouncemap_engine::orbits::periodic::{cycle, CyclePoint};
 use bouncemap_engine::orbits::{border_collision, eigenvalues_2x2, stability_window, two_cycle};
-use bouncemap_engine::sweep::run::{Advance, ValueRun};
+use bouncemap_engine::run::{Advance, OrbitRun};
 use bouncemap_engine::sweep::{Outcome, Periodicity};
 use bouncemap_engine::system::System;
 use bouncemap_engine::table::Table;
@@ -250,7 +250,7 @@ fn simulate(table: &Table, alpha: f64, p: &CyclePoint) -> Outcome {
     let sys = System::new(table.clone(), alpha, R).unwrap();
     let st = State::launch(&sys, 0, p.phases[0], p.velocities[0] + 1e-9, 0.0).unwrap();
     let map = ImpactMap::new(sys, Solver::Exact, st);
-    let mut run = ValueRun::new(map, 64, Some(Periodicity::default()));
+    let mut run = OrbitRun::new(map, 64, Some(Periodicity::default()));
     let end = 200_000;
     match run.advance(end, end, &mut |_| false) {
         Advance::Done(o, _) => o,

@@ -116,7 +116,7 @@ fn time_at_the_end_of_its_range_stops_instead_of_wrapping() {
 /// (period, phase) normalisation saturates instead of wrapping.
 #[test]
 fn normalisation_saturates_at_the_ends_of_i64() {
-    use bouncemap_engine::impact::normalize;
+    use bouncemap_engine::time::normalize;
     assert_eq!(normalize(i64::MAX, 2.5), (i64::MAX, 0.5));
     assert_eq!(normalize(i64::MIN, -2.5), (i64::MIN, 0.5));
     assert_eq!(normalize(5, 1e300).0, i64::MAX);

@@ -219,12 +219,12 @@ fn near_fixed_point_start_uses_the_closed_form_fixed_point() {
         // Quadratic formula on the first piece, the root with f'' < 0.
         let (qa, qb, qc) = (3.0 * d * a, -(2.0 + d) * a, 0.5 * a - target);
         let t = (-qb - (qb * qb - 4.0 * qa * qc).sqrt()) / (2.0 * qa);
-        let got = sweep::fixed_point_phase(&sys).unwrap();
+        let got = bouncemap_engine::run::start::fixed_point_phase(&sys).unwrap();
         assert!((got - t).abs() < 1e-13, "α = {a}: {got} vs {t}");
     }
     // Sine: 2πα cos 2πt̂ = target with sin 2πt̂ > 0.
     let sys = System::new(Table::sine(), 0.03, r).unwrap();
-    let got = sweep::fixed_point_phase(&sys).unwrap();
+    let got = bouncemap_engine::run::start::fixed_point_phase(&sys).unwrap();
     assert!((sys.df(got) - target).abs() < 1e-14 && sys.jet(got)[2] < 0.0);
     // Started there, the stable band below α_PD gives the (1, 1) solution everywhere,
     // where the default hop from t̂ = 0 falls on sticking orbits for some values.

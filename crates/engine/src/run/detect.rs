@@ -37,6 +37,15 @@ pub struct Periodicity {
     pub tolerance: f64,
 }
 
+impl Periodicity {
+    /// Check the longest cycle and the tolerance against their ranges.
+    pub fn validate(&self) -> Result<(), crate::error::EngineError> {
+        crate::limits::MAX_PERIOD.check(self.max_period as f64)?;
+        crate::limits::TOLERANCE.check(self.tolerance)?;
+        Ok(())
+    }
+}
+
 impl Default for Periodicity {
     fn default() -> Self {
         Periodicity {

@@ -1,6 +1,14 @@
-//! One parameter value's computation: iterate the impact map to the end of the
-//! transient (or to a detected cycle), keeping only the last `keep` events, and
-//! resumable across the progressive passes of a sweep.
+//! One orbit from one start to the end of its transient: iterate the impact map,
+//! keep the last `keep` events, detect the cycle it settles on and stop early, and
+//! resume across checkpoints. Below every client that runs orbits: sweeps (one run per
+//! value), attractor identification and basins (one per start), planes (one per
+//! pixel).
+//!
+//! * [`OrbitRun`]: the resumable run and its [`Advance`]; [`Outcome`]: what became of
+//!   it; [`Point`]: one recorded event.
+//! * [`detect`]: the periodicity detector behind the early stop.
+//! * [`start`]: the starts every client uses (next to the (1, 1) solution, a launch
+//!   from the table).
 //!
 //! Recorded points are the last `keep` events whose time is before the end of the
 //! transient T (event period < T), exactly what a plain run of [`ImpactMap`] to T
@@ -18,27 +26,90 @@
 //! which the map only ever adds to) to a little before T and computes the last cycles
 //! for real, so the recorded points are exactly the full run's.
 
-use super::detect::{Cycle, Detector, Periodicity, Rec};
-use super::job::{Outcome, SweepPoint};
+pub mod detect;
+pub mod start;
+
 use crate::map::{Event, EventKind, Halt, ImpactMap, State};
+use detect::{Cycle, Detector, Periodicity, Rec};
 use std::collections::VecDeque;
 
 use crate::jobs::CANCEL_EVERY;
 
-/// Why [`ValueRun::advance`] returned.
+/// One recorded event of a run.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Point {
+    /// Phase t̂ in [0, 1).
+    pub phase: f64,
+    /// Ball velocity after the event.
+    pub v: f64,
+    pub kind: EventKind,
+}
+
+/// What became of one run.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Outcome {
+    /// Provisional (a checkpoint of a resumable run): it has reached this period and
+    /// goes on.
+    Running { reached: i64 },
+    /// Settled on a cycle of `events` events in `periods` table periods; the run
+    /// stopped at period `stopped_at` and the cycle was continued to T.
+    Periodic {
+        events: usize,
+        periods: i64,
+        stopped_at: i64,
+    },
+    /// Ran the full transient without settling on a cycle of at most `max_period`
+    /// events (chaos, a long or slowly converging cycle, or early stop switched off).
+    Unsettled,
+    /// The ball rides on the table forever from this time on.
+    Resting { period: i64, phase: f64 },
+    /// The ball did not land within the solver's work bound.
+    NoLanding { period: i64, phase: f64 },
+}
+
+impl Outcome {
+    /// Lower-case name used in every output format.
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            Outcome::Running { .. } => "running",
+            Outcome::Periodic { .. } => "periodic",
+            Outcome::Unsettled => "unsettled",
+            Outcome::Resting { .. } => "resting",
+            Outcome::NoLanding { .. } => "no-landing",
+        }
+    }
+
+    /// Events per detected cycle.
+    pub fn period(&self) -> Option<usize> {
+        match self {
+            Outcome::Periodic { events, .. } => Some(*events),
+            _ => None,
+        }
+    }
+
+    /// Table periods per detected cycle (the k of an (n, k) orbit).
+    pub fn table_periods(&self) -> Option<i64> {
+        match self {
+            Outcome::Periodic { periods, .. } => Some(*periods),
+            _ => None,
+        }
+    }
+}
+
+/// Why [`OrbitRun::advance`] returned.
 #[derive(Debug)]
 pub enum Advance {
     /// The run is finished: its outcome and recorded points.
-    Done(Outcome, Vec<SweepPoint>),
+    Done(Outcome, Vec<Point>),
     /// The checkpoint was reached before the end; the run can be resumed.
     Checkpoint,
     /// The cancellation test said stop.
     Cancelled,
 }
 
-/// A resumable run of one parameter value.
+/// A resumable run of one orbit.
 #[derive(Clone, Debug)]
-pub struct ValueRun {
+pub struct OrbitRun {
     map: ImpactMap,
     keep: usize,
     ring: VecDeque<Rec>,
@@ -56,9 +127,9 @@ pub struct ValueRun {
     jumped: Option<(usize, i64, i64)>,
 }
 
-impl ValueRun {
-    pub fn new(map: ImpactMap, keep: usize, periodicity: Option<Periodicity>) -> ValueRun {
-        ValueRun {
+impl OrbitRun {
+    pub fn new(map: ImpactMap, keep: usize, periodicity: Option<Periodicity>) -> OrbitRun {
+        OrbitRun {
             map,
             keep: keep.max(1),
             ring: VecDeque::with_capacity(keep.max(1)),
@@ -93,7 +164,7 @@ impl ValueRun {
     }
 
     /// The recorded points so far (the last `keep` events before the latest checkpoint).
-    pub fn points(&self) -> Vec<SweepPoint> {
+    pub fn points(&self) -> Vec<Point> {
         self.ring.iter().map(point).collect()
     }
 
@@ -209,7 +280,7 @@ impl ValueRun {
     }
 
     /// The last `keep` events before `end`, continuing the detected cycle.
-    fn continue_cycle(&self, cycle: Cycle, end: i64) -> Vec<SweepPoint> {
+    fn continue_cycle(&self, cycle: Cycle, end: i64) -> Vec<Point> {
         let det = self.detector.as_ref().expect("a detector found the cycle");
         let p = cycle.events as i64;
         let k = cycle.periods;
@@ -245,8 +316,8 @@ impl ValueRun {
     }
 }
 
-fn point(r: &Rec) -> SweepPoint {
-    SweepPoint {
+fn point(r: &Rec) -> Point {
+    Point {
         phase: r.phase,
         v: r.v,
         kind: r.kind,
@@ -265,6 +336,6 @@ fn halt_outcome(h: Halt) -> Outcome {
 }
 
 /// Whether any point is a stick or a release.
-pub fn has_sticking(points: &[SweepPoint]) -> bool {
+pub fn has_sticking(points: &[Point]) -> bool {
     points.iter().any(|p| p.kind != EventKind::Impact)
 }
