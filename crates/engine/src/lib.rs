@@ -26,6 +26,7 @@ pub mod limits;
 pub mod linalg;
 pub mod map;
 pub mod orbits;
+pub mod picture;
 pub mod plane;
 pub mod poly;
 pub mod run;

@@ -2,25 +2,22 @@
 //! run to its attractor, as a [`Job`].
 //!
 //! Grid point (i, j) starts at t̂0 = (i + ½)/nx, w0 = W (j + ½)/ny (cell centres), with
-//! v0 = f'(t̂0) + w0, on the table. The job runs coarse to fine: pass 0 the points with
-//! i and j multiples of 8, then 4, 2 and 1 (each pass only the points the earlier ones
-//! left out), in chunks of [`CHUNK`] points, so a viewer can draw a complete rough picture
-//! early and refine it. [`Basins`] assigns attractors on the consumer's side, chunk by
-//! chunk in the job's own order (not the order chunks happen to finish), so the
-//! numbering does not depend on timing.
+//! v0 = f'(t̂0) + w0, on the table. The job is a [picture](crate::picture), coarse to
+//! fine: pass 0 the points with i and j multiples of 8, then 4, 2 and 1, in chunks of
+//! [`CHUNK`] points, so a viewer can draw a complete rough picture early and refine it.
+//! [`Basins`] assigns attractors on the consumer's side, chunk by chunk in the job's own
+//! order (not the order chunks happen to finish), so the numbering does not depend on
+//! timing.
 
 use super::{settle, Found, Registry, Settle};
 use crate::error::EngineError;
-use crate::jobs::{Context, Job, Pass};
 use crate::limits;
+use crate::picture::{Cells, Chunk, Picture, PictureJob, Sequencer};
 use crate::run::start::launch;
 use crate::system::System;
-use std::collections::BTreeMap;
 
 /// Points per work item.
 pub const CHUNK: usize = 32;
-/// Strides of the passes, coarse to fine.
-pub const STRIDES: [usize; 4] = [8, 4, 2, 1];
 /// The largest grid side, and the most grid points.
 pub const MAX_SIDE: usize = 4000;
 pub const MAX_POINTS: usize = 1_000_000;
@@ -100,202 +97,128 @@ impl BasinSpec {
             self.w_max * (j as f64 + 0.5) / self.ny as f64,
         )
     }
-
-    /// The grid points of pass `p`, in index order.
-    fn pass_points(&self, p: usize) -> Vec<usize> {
-        let s = STRIDES[p];
-        let coarser = STRIDES.get(p.wrapping_sub(1)).copied().filter(|_| p > 0);
-        (0..self.len())
-            .filter(|&k| {
-                let (i, j) = (k % self.nx, k / self.nx);
-                let on = |s: usize| i % s == 0 && j % s == 0;
-                on(s) && !coarser.is_some_and(on)
-            })
-            .collect()
-    }
 }
 
-/// One grid point's attractor.
-#[derive(Clone, Debug, PartialEq)]
-pub struct BasinPoint {
-    pub index: usize,
-    pub found: Found,
-}
+/// One work item's results, numbered in the job's order: (grid index, attractor) of
+/// complete starts; a start that cannot be launched is left out.
+pub type BasinChunk = Chunk<Found>;
 
-/// One work item's results, numbered in the job's order.
-#[derive(Clone, Debug, PartialEq)]
-pub struct BasinChunk {
-    /// Position of the chunk in the job (pass by pass, item by item).
-    pub seq: usize,
-    /// Complete results only; a start that cannot be launched is left out.
-    pub points: Vec<BasinPoint>,
-    /// Grid points the chunk covered (including any left out).
-    pub covered: usize,
-}
+/// The basin picture as a job: a [`PictureJob`] over its starts.
+pub type BasinsJob = PictureJob<BasinCells>;
 
-/// The basin picture as a job.
-pub struct BasinsJob {
+/// What the basin picture computes per grid point: its spec, validated.
+pub struct BasinCells {
     spec: BasinSpec,
-    passes: Vec<Vec<usize>>,
-    /// Chunks before each pass.
-    offsets: Vec<usize>,
 }
 
 impl BasinsJob {
+    /// Validate `spec` and lay out its passes.
     pub fn new(spec: BasinSpec) -> Result<BasinsJob, EngineError> {
         spec.validate()?;
-        let passes: Vec<Vec<usize>> = (0..STRIDES.len()).map(|p| spec.pass_points(p)).collect();
-        let mut offsets = Vec::new();
-        let mut total = 0;
-        for p in &passes {
-            offsets.push(total);
-            total += p.len().div_ceil(CHUNK);
-        }
-        Ok(BasinsJob {
-            spec,
-            passes,
-            offsets,
-        })
+        Ok(PictureJob::over(BasinCells { spec }))
     }
 
+    /// The specification.
     pub fn spec(&self) -> &BasinSpec {
-        &self.spec
-    }
-
-    /// Chunks in the whole job.
-    pub fn chunks(&self) -> usize {
-        self.passes.iter().map(|p| p.len().div_ceil(CHUNK)).sum()
+        &self.cells().spec
     }
 }
 
-impl Job for BasinsJob {
-    type State = ();
-    type Output = BasinChunk;
+impl Cells for BasinCells {
+    type Cell = Found;
 
-    fn passes(&self) -> Vec<Pass> {
-        self.passes
-            .iter()
-            .map(|p| Pass::natural(p.len().div_ceil(CHUNK)))
-            .collect()
+    fn size(&self) -> (usize, usize) {
+        (self.spec.nx, self.spec.ny)
     }
 
-    fn units(&self) -> usize {
-        self.spec.len()
+    fn chunk(&self) -> usize {
+        CHUNK
     }
 
-    fn work(&self, pass: usize, item: usize, _: &mut Option<()>, cx: &Context<'_, BasinChunk>) {
-        let pts = &self.passes[pass];
-        let range = item * CHUNK..((item + 1) * CHUNK).min(pts.len());
-        let mut out = Vec::with_capacity(range.len());
-        for &index in &pts[range.clone()] {
-            let (t0, w0) = self.spec.start(index);
-            let Some(start) = launch(&self.spec.sys, t0, w0) else {
-                continue;
-            };
-            let Some((found, ..)) = settle(&self.spec.sys, start, &self.spec.settle, 1, &mut |n| {
-                cx.tick(n)
-            }) else {
-                return;
-            };
-            out.push(BasinPoint { index, found });
-        }
-        // Progress counts grid points.
-        let covered = range.len();
-        cx.emit_units(
-            BasinChunk {
-                seq: self.offsets[pass] + item,
-                points: out,
-                covered,
-            },
-            covered,
-        );
+    fn spread(&self) -> bool {
+        false
+    }
+
+    /// One start run to its attractor.
+    fn compute(&self, index: usize, tick: &mut dyn FnMut(u64) -> bool) -> Option<Option<Found>> {
+        let (t0, w0) = self.spec.start(index);
+        let Some(start) = launch(&self.spec.sys, t0, w0) else {
+            return Some(None);
+        };
+        let (found, ..) = settle(&self.spec.sys, start, &self.spec.settle, 1, tick)?;
+        Some(Some(found))
     }
 }
 
 /// The basin picture as it fills in: the attractor of every grid point assigned so far.
 #[derive(Clone, Debug)]
 pub struct Basins {
-    nx: usize,
-    ny: usize,
     /// Attractor id per grid point.
-    labels: Vec<Option<u32>>,
+    labels: Picture<u32>,
     registry: Registry,
     /// Chunks received ahead of their turn.
-    pending: BTreeMap<usize, BasinChunk>,
-    next: usize,
-    /// Grid points assigned (or left out).
-    covered: usize,
+    order: Sequencer<Found>,
 }
 
 impl Basins {
+    /// An empty picture of `spec`.
     pub fn new(spec: &BasinSpec) -> Basins {
         Basins {
-            nx: spec.nx,
-            ny: spec.ny,
-            labels: vec![None; spec.len()],
+            labels: Picture::blank(spec.nx, spec.ny, spec.len()),
             registry: Registry::new(),
-            pending: BTreeMap::new(),
-            next: 0,
-            covered: 0,
+            order: Sequencer::default(),
         }
     }
 
     /// Take a chunk; assign it and any waiting chunks whose turn it now is. Returns the
     /// grid indices newly labelled.
     pub fn absorb(&mut self, chunk: BasinChunk) -> Vec<usize> {
-        self.pending.insert(chunk.seq, chunk);
         let mut labelled = Vec::new();
-        while let Some(c) = self.pending.remove(&self.next) {
-            for p in &c.points {
-                let id = self.registry.assign(&p.found);
-                self.labels[p.index] = Some(id as u32);
-                labelled.push(p.index);
+        for c in self.order.push(chunk) {
+            for (index, found) in &c.cells {
+                let id = self.registry.assign(found);
+                self.labels.set(*index, id as u32);
+                labelled.push(*index);
             }
-            self.covered += c.covered;
-            self.next += 1;
+            self.labels.cover(c.covered);
         }
         labelled
     }
 
     /// The grid size (nx, ny).
     pub fn grid(&self) -> (usize, usize) {
-        (self.nx, self.ny)
+        self.labels.size()
     }
 
     /// The attractor id of grid point (i, j), if assigned.
     pub fn label(&self, i: usize, j: usize) -> Option<u32> {
-        self.labels.get(j * self.nx + i).copied().flatten()
+        self.labels.get(i, j).copied()
     }
 
     /// Labels of every grid point, index j·nx + i.
     pub fn labels(&self) -> &[Option<u32>] {
-        &self.labels
+        self.labels.cells()
     }
 
+    /// The attractors found so far.
     pub fn registry(&self) -> &Registry {
         &self.registry
     }
 
     /// Grid points done.
     pub fn covered(&self) -> usize {
-        self.covered
+        self.labels.covered()
     }
 
     /// Whether every grid point is done.
     pub fn complete(&self) -> bool {
-        self.covered == self.labels.len()
+        self.labels.complete()
     }
 
     /// The label shown for grid point (i, j) while the picture fills in: its own, or
     /// that of the nearest coarser grid point already assigned (the block it lies in).
     pub fn preview_label(&self, i: usize, j: usize) -> Option<u32> {
-        for s in [1, 2, 4, 8] {
-            let (ci, cj) = (i - i % s, j - j % s);
-            if let Some(l) = self.label(ci, cj) {
-                return Some(l);
-            }
-        }
-        None
+        self.labels.preview(i, j).copied()
     }
 }
 
@@ -308,27 +231,4 @@ pub fn collect(spec: &BasinSpec, executor: &crate::jobs::Executor) -> Result<Bas
         basins.absorb(b.data);
     });
     Ok(basins)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::table::Table;
-
-    #[test]
-    fn the_passes_cover_every_point_once() {
-        let sys = System::new(Table::fd(0.1).unwrap(), 0.45, 0.8).unwrap();
-        for (nx, ny) in [(1, 1), (7, 3), (17, 9), (64, 32)] {
-            let spec = BasinSpec {
-                nx,
-                ny,
-                ..BasinSpec::new(sys.clone())
-            };
-            let mut all: Vec<usize> = (0..4).flat_map(|p| spec.pass_points(p)).collect();
-            all.sort();
-            assert_eq!(all, (0..nx * ny).collect::<Vec<_>>());
-            // Pass 0 is the stride-8 sublattice.
-            assert_eq!(spec.pass_points(0).len(), nx.div_ceil(8) * ny.div_ceil(8));
-        }
-    }
 }

@@ -15,11 +15,11 @@
 //! memory is a few dozen bytes per pixel.
 //!
 //! # Coarse to fine
-//! The job runs in four passes: the pixels whose i and j are multiples of 8, then of
-//! 4, of 2, and the rest (each pass only what the earlier ones left out), in chunks of
-//! [`CHUNK`] pixels handed out spread over the pass. A viewer draws every pixel from
-//! the nearest coarser one computed so far ([`Plane::preview`]) and so has a complete
-//! rough picture after the first pass (1/64 of the work).
+//! The plane is a [picture](crate::picture): four passes, the pixels whose i and j are
+//! multiples of 8, then of 4, of 2, and the rest, in chunks of [`CHUNK`] pixels handed
+//! out spread over the pass. A viewer draws every pixel from the nearest coarser one
+//! computed so far ([`Plane::preview`]) and so has a complete rough picture after the
+//! first pass (1/64 of the work).
 //!
 //! # Shards
 //! Shard I/N holds the pixels whose index is I − 1 modulo N: every shard covers the whole
@@ -29,7 +29,7 @@ mod curves;
 mod job;
 
 pub use curves::{curves, Curves};
-pub use job::{collect, Plane, PlaneChunk, PlaneJob};
+pub use job::{collect, Plane, PlaneCells, PlaneChunk, PlaneJob};
 
 use crate::error::EngineError;
 use crate::grid::{Shard, SweepParam};
@@ -46,8 +46,7 @@ use crate::table::Table;
 
 /// Pixels per work item.
 pub const CHUNK: usize = 16;
-/// Strides of the passes, coarse to fine.
-pub const STRIDES: [usize; 4] = [8, 4, 2, 1];
+pub use crate::picture::STRIDES;
 /// The largest side, and the most pixels.
 pub const MAX_SIDE: usize = 4000;
 pub const MAX_PIXELS: usize = 1_000_000;
