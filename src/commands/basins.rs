@@ -58,9 +58,9 @@ pub fn compute(spec: &BasinSpec, executor: &Executor) -> anyhow::Result<Basins> 
 fn title(spec: &BasinSpec) -> String {
     format!(
         "{}  alpha = {}  r = {}  grid {}x{}  w0 ∈ [0, {}]  T = {}",
-        spec.sys.table.name(),
-        shortest(spec.sys.alpha),
-        shortest(spec.sys.r),
+        spec.sys.table().name(),
+        shortest(spec.sys.alpha()),
+        shortest(spec.sys.r()),
         spec.nx,
         spec.ny,
         shortest(spec.w_max),
@@ -91,9 +91,9 @@ fn write(
         }
         BasinsFormat::Json => {
             let doc = BasinsDoc {
-                table: spec.sys.table.name(),
-                alpha: spec.sys.alpha,
-                r: spec.sys.r,
+                table: spec.sys.table().name(),
+                alpha: spec.sys.alpha(),
+                r: spec.sys.r(),
                 grid: [spec.nx, spec.ny],
                 w_max: spec.w_max,
                 transient: spec.settle.transient,

@@ -468,13 +468,13 @@ fn solver_row(c: &Case, budget: Duration) -> Result<SolverRow, InputError> {
 /// α(3D t² − (2 + D) t + ½) = ½ (1 − r)/(1 + r) on the first piece; on the sine
 /// 2πα cos 2πt* = ½ (1 − r)/(1 + r) with sin 2πt* > 0.
 fn fixed_point_phase(sys: &System) -> f64 {
-    let a = sys.alpha;
-    let target = 0.5 * (1.0 - sys.r) / (1.0 + sys.r);
-    if matches!(sys.table.shape(), Shape::Sine) {
+    let a = sys.alpha();
+    let target = 0.5 * (1.0 - sys.r()) / (1.0 + sys.r());
+    if matches!(sys.table().shape(), Shape::Sine) {
         let tau = 2.0 * std::f64::consts::PI;
         return (target / (tau * a)).acos() / tau;
     }
-    let d = sys.table.d().unwrap_or(0.0);
+    let d = sys.table().d().unwrap_or(0.0);
     let (qa, qb, qc) = (3.0 * d * a, -(2.0 + d) * a, 0.5 * a - target);
     if qa == 0.0 {
         -qc / qb

@@ -12,15 +12,15 @@ use std::io::{self, BufWriter, Write};
 pub fn run(args: &FixedArgs) -> anyhow::Result<()> {
     let sys = config::system(&args.system)?;
     let points = fixed_points(&sys, args.k)?;
-    let windows = stability_windows(&sys.table, sys.r, args.k)?;
+    let windows = stability_windows(&sys.table(), sys.r(), args.k)?;
     let mut out = BufWriter::new(io::stdout().lock());
     match args.format {
         Format::Json => {
             let first = windows.first();
             let doc = FixedDoc {
-                table: sys.table.name(),
-                alpha: sys.alpha,
-                r: sys.r,
+                table: sys.table().name(),
+                alpha: sys.alpha(),
+                r: sys.r(),
                 k: args.k,
                 kappa_c: sys.kappa_c(),
                 solutions: points.iter().map(FixedSolution::from).collect(),
@@ -42,16 +42,16 @@ pub fn run(args: &FixedArgs) -> anyhow::Result<()> {
             writeln!(
                 out,
                 "table {}  alpha {}  r {}  k {}",
-                sys.table.name(),
-                sys.alpha,
-                sys.r,
+                sys.table().name(),
+                sys.alpha(),
+                sys.r(),
                 args.k
             )?;
             writeln!(
                 out,
                 "kappa_c = {:.15}   (1,k) solutions need f'(t*) = {:.15}, v* = {}",
                 sys.kappa_c(),
-                fixed_point_slope(sys.r, args.k),
+                fixed_point_slope(sys.r(), args.k),
                 0.5 * args.k as f64
             )?;
             if points.is_empty() {

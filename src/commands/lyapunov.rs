@@ -23,8 +23,8 @@ pub fn run(args: &LyapunovArgs) -> anyhow::Result<()> {
         let s = near_fixed_point(&sys).ok_or_else(|| {
             InputError(format!(
                 "--near-fixed-point: table {} at alpha = {} has no (1,1) solution to start next to (valid from the birth alpha that `bouncemap fixed` prints)",
-                sys.table.name(),
-                sys.alpha
+                sys.table().name(),
+                sys.alpha()
             ))
         })?;
         (s, InitialRecord::Named("near-fixed-point".into()))
@@ -47,14 +47,14 @@ pub fn run(args: &LyapunovArgs) -> anyhow::Result<()> {
     };
     let (found, ..) = attractors::settle(&sys, start, &settle, 1, &mut |_| false)
         .expect("an uncancellable run finishes");
-    let row = LyapunovRow::new(&found, sys.r);
+    let row = LyapunovRow::new(&found, sys.r());
     let mut out = BufWriter::new(io::stdout().lock());
     match args.format {
         Format::Json => {
             let doc = LyapunovDoc {
-                table: sys.table.name(),
-                alpha: sys.alpha,
-                r: sys.r,
+                table: sys.table().name(),
+                alpha: sys.alpha(),
+                r: sys.r(),
                 start: initial,
                 transient: args.transient,
                 result: row,
@@ -82,9 +82,9 @@ fn text(
     writeln!(
         out,
         "table {}  alpha {}  r {}  transient {} periods",
-        sys.table.name(),
-        sys.alpha,
-        sys.r,
+        sys.table().name(),
+        sys.alpha(),
+        sys.r(),
         args.transient
     )?;
     let period = match (found.events, found.periods) {
@@ -96,7 +96,7 @@ fn text(
         _ => String::new(),
     };
     writeln!(out, "orbit: {}{period}", found.kind.as_str())?;
-    let two_ln_r = 2.0 * sys.r.ln();
+    let two_ln_r = 2.0 * sys.r().ln();
     match found.spectrum {
         Some(Spectrum::Finite(e)) => {
             match e.method {

@@ -67,9 +67,9 @@ impl<W: Write> Sink<W> {
             Format::Json => {
                 let s = map.system();
                 let head = serde_json::to_string(&OrbitHeader {
-                    table: s.table.name(),
-                    alpha: s.alpha,
-                    r: s.r,
+                    table: s.table().name(),
+                    alpha: s.alpha(),
+                    r: s.r(),
                     solver: solver_name(map.solver()),
                 })?;
                 // The header object, left open for the events array.

@@ -29,14 +29,14 @@ pub fn run(args: &TwoCycleArgs) -> anyhow::Result<()> {
         .ok()
         .filter(|tc| tc.stable && tc.admissible)
         .and_then(|tc| map_check(&sys, tc, CHECK_PERTURBATION, CHECK_BOUNCES));
-    let border = border_collision(&sys.table, sys.r, args.k);
+    let border = border_collision(&sys.table(), sys.r(), args.k);
     let mut out = BufWriter::new(io::stdout().lock());
     match args.format {
         Format::Json => {
             let doc = TwoCycleDoc {
-                table: sys.table.name(),
-                alpha: sys.alpha,
-                r: sys.r,
+                table: sys.table().name(),
+                alpha: sys.alpha(),
+                r: sys.r(),
                 k: args.k,
                 kappa_c: sys.kappa_c(),
                 fixed: fp.as_ref().map(FixedSolution::from),
@@ -60,9 +60,9 @@ pub fn run(args: &TwoCycleArgs) -> anyhow::Result<()> {
             writeln!(
                 out,
                 "table {}  alpha {}  r {}  k {}  kappa_c = {:.15}",
-                sys.table.name(),
-                sys.alpha,
-                sys.r,
+                sys.table().name(),
+                sys.alpha(),
+                sys.r(),
                 args.k,
                 sys.kappa_c()
             )?;

@@ -288,7 +288,7 @@ impl ImpactMap {
         match self.flights.landing(&self.sys, &launch) {
             Ok(l) => {
                 let df = l.df;
-                let w = -self.sys.r * l.vrel;
+                let w = -self.sys.r() * l.vrel;
                 self.state = State {
                     period: l.period,
                     phase: l.phase,
@@ -340,11 +340,12 @@ impl ImpactMap {
     #[inline(never)]
     fn release(&mut self) -> Result<Event, Halt> {
         let st = self.state;
-        match self
-            .sys
-            .table
-            .release_after(self.sys.alpha, st.period, st.phase, st.release_after)
-        {
+        match self.sys.table().release_after(
+            self.sys.alpha(),
+            st.period,
+            st.phase,
+            st.release_after,
+        ) {
             Some((period, _)) if !in_range(period) => Err(Halt::TimeOutOfRange {
                 period: st.period,
                 phase: st.phase,
@@ -409,15 +410,15 @@ struct Chatter {
 
 impl Chatter {
     fn new(sys: &System) -> Chatter {
-        let r = sys.r;
-        let a_max = 1.0 + sys.alpha * sys.table.accel_bound();
+        let r = sys.r();
+        let a_max = 1.0 + sys.alpha() * sys.table().accel_bound();
         let (r2, r3, r4) = (r * r, r * r * r, r * r * r * r);
         let q = r2 + r + 1.0;
         let d = 540.0 * (r2 + 1.0) * q;
         Chatter {
             w_max: (0.5 * CHATTER_WINDOW * a_max * (1.0 - r)).max(W_FLOOR),
-            k4: sys.alpha * sys.table.derivative_bound(4),
-            k5: sys.alpha * sys.table.derivative_bound(5),
+            k4: sys.alpha() * sys.table().derivative_bound(4),
+            k5: sys.alpha() * sys.table().derivative_bound(5),
             c3j: (2.0 * r2 + 3.0 * r + 2.0) / (9.0 * q),
             c3k: (1.0 + r) * (1.0 + r) / (12.0 * q),
             c4l: 9.0 * (r4 + 4.0 * r3 + 4.0 * r + 1.0) / d,
@@ -441,7 +442,7 @@ fn chatter_window(sys: &System, c: &Chatter, st: &State) -> Option<(f64, bool)> 
     if a <= 0.0 {
         return None;
     }
-    let t0 = 2.0 * st.w / (a * (1.0 - sys.r));
+    let t0 = 2.0 * st.w / (a * (1.0 - sys.r()));
     if st.w <= W_FLOOR {
         return Some((t0, true));
     }
@@ -468,7 +469,7 @@ fn chatter_window(sys: &System, c: &Chatter, st: &State) -> Option<(f64, bool)> 
 fn chatter_limit(sys: &System, c: &Chatter, st: &State) -> Option<(i64, f64)> {
     let (window, forced) = chatter_window(sys, c, st)?;
     let mut end = st.phase + window;
-    let smooth_end = sys.table.smooth_until(st.phase);
+    let smooth_end = sys.table().smooth_until(st.phase);
     if end >= smooth_end {
         if !forced {
             return None;
@@ -496,7 +497,7 @@ mod tests {
         let mut sum = 0.0;
         for _ in 0..10_000 {
             let a = 1.0 + sys.ddf(phase);
-            let left = 2.0 * w / (a * (1.0 - sys.r));
+            let left = 2.0 * w / (a * (1.0 - sys.r()));
             if left < 1e-13 {
                 return sum + left;
             }
@@ -509,7 +510,7 @@ mod tests {
             };
             let l = solver.landing(sys, &launch).unwrap();
             sum += l.flight;
-            (period, phase, w) = (l.period, l.phase, -sys.r * l.vrel);
+            (period, phase, w) = (l.period, l.phase, -sys.r() * l.vrel);
         }
         panic!("no accumulation");
     }

@@ -6,12 +6,14 @@ use crate::error::EngineError;
 use crate::limits;
 use crate::table::Table;
 
-/// The physical system the impact map runs on.
+/// The physical system the impact map runs on. Its fields are private: every System
+/// was checked by [`System::new`] (or [`System::set_alpha`]), so no code can hold one
+/// outside the ranges the solvers are established for.
 #[derive(Clone, Debug, PartialEq)]
 pub struct System {
-    pub table: Table,
-    pub alpha: f64,
-    pub r: f64,
+    table: Table,
+    alpha: f64,
+    r: f64,
 }
 
 impl System {
@@ -30,6 +32,24 @@ impl System {
         check_alpha(&self.table, alpha)?;
         self.alpha = alpha;
         Ok(())
+    }
+
+    /// The table shape F.
+    #[inline]
+    pub fn table(&self) -> &Table {
+        &self.table
+    }
+
+    /// The amplitude α.
+    #[inline]
+    pub fn alpha(&self) -> f64 {
+        self.alpha
+    }
+
+    /// The restitution coefficient r.
+    #[inline]
+    pub fn r(&self) -> f64 {
+        self.r
     }
 
     /// f, f', f'', f''' at `phase` (α included; right derivatives at breakpoints).

@@ -99,7 +99,7 @@ pub fn flight(sys: &System, before: &State, e: &Event) -> Option<Flight> {
     let tau = (e.period - before.period) as f64 + (e.phase - before.phase);
     // A start above the table (height z0) adds a constant to G: same derivatives.
     let w = before.w;
-    let table = &sys.table;
+    let table = &sys.table();
     let big_f = table.value(before.phase) - table.value(e.phase);
     Some(Flight {
         a: (w - tau) / u,
@@ -108,7 +108,7 @@ pub fn flight(sys: &System, before: &State, e: &Event) -> Option<Flight> {
         df_alpha: table.derivative(e.phase, 1),
         ddf: sys.ddf(e.phase),
         u_landing: u.abs(),
-        r: sys.r,
+        r: sys.r(),
     })
 }
 
@@ -212,7 +212,7 @@ mod tests {
                         assert!(
                             (fd[r][c] - j[r][c]).abs() <= 1e-6 * scale,
                             "{} α={alpha} start ({phase}, {v}): J[{r}][{c}] = {} vs {}",
-                            sys.table.name(),
+                            sys.table().name(),
                             j[r][c],
                             fd[r][c]
                         );
@@ -255,7 +255,7 @@ mod tests {
                     assert!(
                         (fd[r] - col[r]).abs() <= 1e-6 * (1.0 + col[r].abs()),
                         "{} α={alpha} ({phase}, {v}): {col:?} vs {fd:?}",
-                        sys.table.name()
+                        sys.table().name()
                     );
                 }
                 checked += 1;
@@ -281,7 +281,7 @@ mod tests {
             {
                 if p.kind == EventKind::Impact {
                     let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
-                    let want = sys.r * sys.r * p.vrel.abs() / e.vrel.abs();
+                    let want = sys.r() * sys.r() * p.vrel.abs() / e.vrel.abs();
                     assert!((det - want).abs() <= 1e-9 * want, "{det} vs {want}");
                     checked += 1;
                 }
@@ -308,7 +308,7 @@ mod tests {
             let Tangent::Flight { jacobian: j, .. } = tangent(&sys, &st, &e) else {
                 panic!("not a flight");
             };
-            let a = fixed_point_jacobian(sys.r, fp.ddf);
+            let a = fixed_point_jacobian(sys.r(), fp.ddf);
             for r in 0..2 {
                 for c in 0..2 {
                     assert!((j[r][c] - a[r][c]).abs() < 1e-9, "k={k}: {j:?} vs {a:?}");

@@ -93,9 +93,9 @@ pub fn basins_figure(spec: &BasinSpec, basins: &Basins) -> Figure {
     }
     panel.title = Some(format!(
         "{}, $\u{3b1}$ = {}, $r$ = {}",
-        super::diagram::table_title(&spec.sys.table),
-        shortest(spec.sys.alpha),
-        shortest(spec.sys.r)
+        super::diagram::table_title(&spec.sys.table()),
+        shortest(spec.sys.alpha()),
+        shortest(spec.sys.r())
     ));
     panel.legends.push(Legend {
         corner: Corner::TopRight,

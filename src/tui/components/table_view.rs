@@ -21,7 +21,7 @@ const MARGIN: u16 = 7;
 /// located exactly by the engine's release search from a sampled bracket.
 pub fn release_phases(sys: &System) -> Vec<f64> {
     const N: usize = 4096;
-    let below = |t: f64| sys.alpha * sys.table.jet(t)[2] < -1.0;
+    let below = |t: f64| sys.alpha() * sys.table().jet(t)[2] < -1.0;
     let mut out: Vec<f64> = Vec::new();
     let mut prev = below(1.0 - 0.5 / N as f64);
     for i in 0..N {
@@ -29,7 +29,7 @@ pub fn release_phases(sys: &System) -> Vec<f64> {
         let now = below(t);
         if now && !prev {
             let from = (t - 1.0 / N as f64).rem_euclid(1.0);
-            if let Some((_, at)) = sys.table.release_after(sys.alpha, 0, from, false) {
+            if let Some((_, at)) = sys.table().release_after(sys.alpha(), 0, from, false) {
                 if !out.iter().any(|&q| (q - at).abs() < 1e-9) {
                     out.push(at);
                 }
@@ -87,12 +87,12 @@ pub fn draw(app: &Shared, area: Rect, buf: &mut Buffer) {
         _ => Vec::new(),
     };
     let breaks: Vec<f64> = sys
-        .table
+        .table()
         .breakpoints()
         .into_iter()
         .filter(|&b| b > 0.0 && b < 1.0)
         .collect();
-    let threshold = -1.0 / sys.alpha;
+    let threshold = -1.0 / sys.alpha();
     let releases = release_phases(&sys);
     for (order, area) in [p0, p1, p2].into_iter().enumerate() {
         let name = ["F", "F′", "F″"][order];
@@ -154,7 +154,7 @@ fn plot(
     let pts: Vec<(f64, f64)> = (0..=n)
         .map(|i| {
             let t = (i as f64 / n as f64).min(1.0 - 1e-12);
-            (t, sys.table.jet(t)[order])
+            (t, sys.table().jet(t)[order])
         })
         .collect();
     let (mut lo, mut hi) = pts
@@ -223,7 +223,7 @@ fn plot(
                 }
             }
             for &(t, stable) in marks.fixed {
-                let y = sys.table.jet(t)[order];
+                let y = sys.table().jet(t)[order];
                 ctx.print(
                     t,
                     y,

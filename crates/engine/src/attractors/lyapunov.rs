@@ -244,7 +244,7 @@ pub fn qr_spectrum(
                 // |u| of the landing that produced `before`: w = r|u| after an impact
                 // (for a launch that did not follow an impact, any positive scale).
                 let u_before = if before.w > 0.0 {
-                    before.w / sys.r
+                    before.w / sys.r()
                 } else {
                     1.0
                 };
@@ -316,7 +316,7 @@ pub fn cycle_spectrum(
             }
             Tangent::Flight { jacobian: j, .. } => {
                 m = mat_mul(j, m);
-                det *= sys.r * (j[0][1] - j[0][0]);
+                det *= sys.r() * (j[0][1] - j[0][0]);
             }
         }
     }

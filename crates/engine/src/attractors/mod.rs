@@ -169,7 +169,7 @@ pub fn cell(phase: f64, v: f64) -> u64 {
 /// The default height W of the start box: twice the table's largest velocity α·max|F'|,
 /// at least 1 (the (1, 1) and (1, 2) orbits leave the table with w ≈ ½ and ≈ 1).
 pub fn default_w_max(sys: &System) -> f64 {
-    (2.0 * sys.alpha * sys.table.velocity_bound()).max(1.0)
+    (2.0 * sys.alpha() * sys.table().velocity_bound()).max(1.0)
 }
 
 /// Start `s` of a set spread over the box [0, 1) × [0, W]: the additive recurrence with

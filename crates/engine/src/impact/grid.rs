@@ -21,8 +21,8 @@ pub(super) fn grid_landing(sys: &System, launch: &Launch) -> Result<Landing, Fli
         let (_, ph) = normalize(0, phi + tau);
         z0 + tau * (v - 0.5 * tau) - sys.f(ph)
     };
-    let (lo_f, _) = sys.table.range();
-    let last = crossing_times(z0, v, sys.alpha * lo_f).map_or(1.0, |c| c.1) + 1.0;
+    let (lo_f, _) = sys.table().range();
+    let last = crossing_times(z0, v, sys.alpha() * lo_f).map_or(1.0, |c| c.1) + 1.0;
     let max_nodes = ((last / GRID_STEP).ceil() as i64 + 2).min(1 << 40);
     let cell = (floor(phi * GRID_CELLS as f64) as i64).min(GRID_CELLS - 1);
     let node_tau = |i: i64| {

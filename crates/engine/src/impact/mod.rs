@@ -114,10 +114,10 @@ enum Kind {
 impl FlightSolver {
     /// The solver `solver` prepared for `sys`.
     pub(crate) fn new(sys: &System, solver: Solver) -> FlightSolver {
-        let kind = match (solver, sys.table.shape()) {
+        let kind = match (solver, sys.table().shape()) {
             (Solver::Grid, _) => Kind::Grid,
-            (Solver::Exact, Shape::Sine) => Kind::Sine(Box::new(sine::Bounds::new(sys.alpha))),
-            (Solver::Exact, Shape::Piecewise(_)) if sys.table.max_degree() <= 3 => {
+            (Solver::Exact, Shape::Sine) => Kind::Sine(Box::new(sine::Bounds::new(sys.alpha()))),
+            (Solver::Exact, Shape::Piecewise(_)) if sys.table().max_degree() <= 3 => {
                 Kind::Cubic(piecewise::Prepared::new::<piecewise::CubicGap>(sys))
             }
             (Solver::Exact, Shape::Piecewise(_)) => {

@@ -45,16 +45,16 @@ pub(super) struct Prepared<P> {
 impl<P: AsRef<Span>> Prepared<P> {
     /// Prepare `sys`'s pieces (its table must be piecewise) for the search `G`.
     pub(super) fn new<G: PieceGap<Piece = P>>(sys: &System) -> Prepared<P> {
-        let alpha = sys.alpha;
-        let (lo, hi) = sys.table.range();
+        let alpha = sys.alpha();
+        let (lo, hi) = sys.table().range();
         Prepared {
             pieces: sys
-                .table
+                .table()
                 .pieces()
                 .iter()
                 .map(|p| G::prepare(p, alpha))
                 .collect(),
-            starts: sys.table.pieces().iter().map(|p| p.start).collect(),
+            starts: sys.table().pieces().iter().map(|p| p.start).collect(),
             alpha,
             bottom: alpha * lo,
             top: alpha * hi,

@@ -280,11 +280,11 @@ impl Family {
         t0: f64,
         v0: f64,
     ) -> Result<CyclePoint, NoStart> {
-        self.map.set_alpha(sys.alpha).map_err(NoStart::Invalid)?;
+        self.map.set_alpha(sys.alpha()).map_err(NoStart::Invalid)?;
         super::periodic::solve_at(&mut self.map, n, k, t0, v0).map_err(|e| {
             NoStart::NotFound(format!(
                 "no ({n}, {k}) cycle near t0 = {t0}, v0 = {v0} at alpha = {}: {}",
-                sys.alpha,
+                sys.alpha(),
                 e.as_str()
             ))
         })
@@ -644,8 +644,8 @@ impl Family {
 
     fn impact_speed(&self, pt: &CyclePoint, i: usize) -> f64 {
         // The launch's relative velocity is r|u| of the impact before it.
-        let w = pt.velocities[i] - pt.alpha * self.map.system().table.derivative(pt.phases[i], 1);
-        w / self.map.system().r
+        let w = pt.velocities[i] - pt.alpha * self.map.system().table().derivative(pt.phases[i], 1);
+        w / self.map.system().r()
     }
 
     /// The first sign change of a test function between `a` and `b` (one corrector

@@ -129,10 +129,10 @@ pub fn lands_after(sys: &System, phase: f64, v: f64, flight: f64) -> (bool, Opti
 /// Every (1, k) solution of `sys`, in phase order.
 pub fn fixed_points(sys: &System, k: u32) -> Result<Vec<FixedPoint>, EngineError> {
     check_k(k)?;
-    let c = fixed_point_slope(sys.r, k);
+    let c = fixed_point_slope(sys.r(), k);
     let mut phases: Vec<f64> = Vec::new();
-    for seg in sys.table.segments() {
-        for t in seg.roots(-c / sys.alpha, 1.0, 0.0) {
+    for seg in sys.table().segments() {
+        for t in seg.roots(-c / sys.alpha(), 1.0, 0.0) {
             let t = if t >= 1.0 { t - 1.0 } else { t };
             phases.push(t.max(0.0));
         }
@@ -158,7 +158,7 @@ pub fn fixed_points(sys: &System, k: u32) -> Result<Vec<FixedPoint>, EngineError
 pub fn fixed_point_at(sys: &System, k: u32, phase: f64) -> FixedPoint {
     let j = sys.jet(phase);
     let v = 0.5 * k as f64;
-    let jacobian = fixed_point_jacobian(sys.r, j[2]);
+    let jacobian = fixed_point_jacobian(sys.r(), j[2]);
     let eigenvalues = eigenvalues_2x2(jacobian);
     let (admissible, flight) = lands_after(sys, phase, v, k as f64);
     FixedPoint {
@@ -168,7 +168,7 @@ pub fn fixed_point_at(sys: &System, k: u32, phase: f64) -> FixedPoint {
         df: j[1],
         ddf: j[2],
         dddf: j[3],
-        delta_kappa: kappa_c(sys.r) - j[2],
+        delta_kappa: kappa_c(sys.r()) - j[2],
         jacobian,
         eigenvalues,
         flight,
@@ -346,7 +346,9 @@ pub fn stability_windows(
         }
         // Admissibility along the window, sampled, with bisection where it changes.
         let admissible_at = |sys: &mut System, alpha: f64| -> bool {
-            sys.alpha = alpha;
+            if sys.set_alpha(alpha).is_err() {
+                return false;
+            }
             match phase_on(&comp, c / alpha) {
                 Some(t) => lands_after(sys, t, 0.5 * k as f64, k as f64).0,
                 None => false,

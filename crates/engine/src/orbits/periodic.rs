@@ -216,7 +216,7 @@ pub(crate) fn accept(
     if error.is_nan() || error > RETURN_TOLERANCE {
         return Err(PassError::NotReturning { error });
     }
-    let r2n = sys.r.powi(2 * n as i32);
+    let r2n = sys.r().powi(2 * n as i32);
     let tr = p.monodromy[0][0] + p.monodromy[1][1];
     let multipliers = eigenvalues_tr_det(tr, r2n);
     let stable = multipliers.iter().all(|l| l.abs() < 1.0);
@@ -270,7 +270,7 @@ pub fn solve_at(
     t0: f64,
     v0: f64,
 ) -> Result<CyclePoint, PassError> {
-    let mut x = [map.system().alpha, t0, v0];
+    let mut x = [map.system().alpha(), t0, v0];
     for _ in 0..MAX_NEWTON {
         let p = pass(map, x[1], x[2], n, k)?;
         let m = p.monodromy;

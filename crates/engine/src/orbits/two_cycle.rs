@@ -326,7 +326,7 @@ pub fn two_cycle(sys: &System, k: u32) -> Result<TwoCycle, NoTwoCycle> {
 /// The (2, 2k) solution near a given (1, k) solution.
 pub fn two_cycle_at(sys: &System, fp: &FixedPoint) -> Result<TwoCycle, NoTwoCycle> {
     let k = fp.k;
-    let seg = sys.table.segment_at(fp.phase);
+    let seg = sys.table().segment_at(fp.phase);
     if seg.is_quadratic() {
         return Err(NoTwoCycle::LocallyQuadratic {
             delta_kappa: fp.delta_kappa,
@@ -339,19 +339,19 @@ pub fn two_cycle_at(sys: &System, fp: &FixedPoint) -> Result<TwoCycle, NoTwoCycl
     }
     let eq = Equations {
         seg,
-        alpha: sys.alpha,
-        r: sys.r,
+        alpha: sys.alpha(),
+        r: sys.r(),
         k: k as f64,
     };
-    let paper = approximation_paper(fp.df, fp.dddf, fp.delta_kappa, sys.r, k);
-    let corrected = approximation_corrected(fp.df, fp.dddf, fp.delta_kappa, sys.r, k);
+    let paper = approximation_paper(fp.df, fp.dddf, fp.delta_kappa, sys.r(), k);
+    let corrected = approximation_corrected(fp.df, fp.dddf, fp.delta_kappa, sys.r(), k);
     let mut solved = None;
     if let Some(a) = corrected {
         let x0 = eq.start(fp.phase + 0.5 * a.delta_big_t, 0.25 * a.delta_t * a.delta_t);
         solved = eq.solve(x0).filter(|(x, _)| x[1] > 0.0);
     }
     if solved.is_none() {
-        solved = continue_from_pd(&sys.table, sys.r, k, sys.alpha);
+        solved = continue_from_pd(&sys.table(), sys.r(), k, sys.alpha());
     }
     let (x, iters) = solved.ok_or(NoTwoCycle::NoConvergence)?;
     finish(sys, fp, &seg, x, iters, paper, corrected)
@@ -383,7 +383,7 @@ fn finish(
     let kf = k as f64;
     let dt = 2.0 * h;
     let (v0, v1) = (sigma - h * u, sigma + h * u);
-    let (r, a) = (sys.r, sys.alpha);
+    let (r, a) = (sys.r(), sys.alpha());
     let j0 = seg.jet(t0).map(|v| a * v);
     let j1 = seg.jet(t1).map(|v| a * v);
     // The paper's four equations, as a check of the transformed system.
@@ -410,7 +410,7 @@ fn finish(
     let admissible = lands_after(sys, p0, v0, kf + dt).0 && lands_after(sys, p1, v1, kf - dt).0;
     Ok(TwoCycle {
         k,
-        alpha: sys.alpha,
+        alpha: sys.alpha(),
         fixed: *fp,
         phase0: p0,
         phase1: p1,

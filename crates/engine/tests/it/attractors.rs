@@ -39,7 +39,7 @@ fn the_fixed_points_exponents_are_the_logs_of_its_eigenvalues() {
             .find(|p| p.admissible && p.ddf < 0.0)
             .unwrap();
         // A from its closed form, its eigenvalues from the quadratic formula.
-        let r = sys.r;
+        let r = sys.r();
         let a = [
             [1.0, 1.0 + r],
             [(1.0 + r) * fp.ddf, (1.0 + r).powi(2) * fp.ddf + r * r],
@@ -92,7 +92,7 @@ fn a_chaotic_orbit_sums_to_two_ln_r_and_matches_two_nearby_orbits() {
         panic!()
     };
     assert_eq!(e.impacts, 100_000);
-    let two_ln_r = 2.0 * sys.r.ln();
+    let two_ln_r = 2.0 * sys.r().ln();
     let sum = e.per_impact[0] + e.per_impact[1];
     assert!(
         (sum - two_ln_r).abs() < 1e-6,
@@ -150,7 +150,7 @@ fn a_chaotic_orbit_sums_to_two_ln_r_and_matches_two_nearby_orbits() {
 fn the_cubic_tables_basins_hold_the_fixed_point_and_a_sticking_cycle() {
     let sys = System::new(Table::fd(1.0).unwrap(), 0.47, 0.8).unwrap();
     // t̂* by bisection on f'(t) = c on the rising side before the maximum, f'' < 0.
-    let c = 0.5 * (1.0 - sys.r) / (1.0 + sys.r);
+    let c = 0.5 * (1.0 - sys.r()) / (1.0 + sys.r());
     let (mut lo, mut hi) = (0.0, 0.25);
     assert!(sys.df(lo) > c && sys.df(hi) < c);
     for _ in 0..200 {
