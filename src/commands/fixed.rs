@@ -12,7 +12,7 @@ use std::io::{self, BufWriter, Write};
 pub fn run(args: &FixedArgs) -> anyhow::Result<()> {
     let sys = config::system(&args.system)?;
     let points = fixed_points(&sys, args.k)?;
-    let windows = stability_windows(&sys.table(), sys.r(), args.k)?;
+    let windows = stability_windows(sys.table(), sys.r(), args.k)?;
     let mut out = BufWriter::new(io::stdout().lock());
     match args.format {
         Format::Json => {

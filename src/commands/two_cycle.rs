@@ -29,7 +29,7 @@ pub fn run(args: &TwoCycleArgs) -> anyhow::Result<()> {
         .ok()
         .filter(|tc| tc.stable && tc.admissible)
         .and_then(|tc| map_check(&sys, tc, CHECK_PERTURBATION, CHECK_BOUNCES));
-    let border = border_collision(&sys.table(), sys.r(), args.k);
+    let border = border_collision(sys.table(), sys.r(), args.k);
     let mut out = BufWriter::new(io::stdout().lock());
     match args.format {
         Format::Json => {

@@ -57,7 +57,7 @@ pub fn orbit_info(sys: &System, k: u32) -> Result<OrbitInfo, String> {
             stable: f.classification == Classification::Stable,
         })
         .collect();
-    let window = orbits::stability_window(&sys.table(), sys.r(), k).map_err(|e| e.to_string())?;
+    let window = orbits::stability_window(sys.table(), sys.r(), k).map_err(|e| e.to_string())?;
     let two = match orbits::two_cycle(sys, k) {
         Ok(t) if t.admissible => vec![(t.phase0, t.v0), (t.phase1, t.v1)],
         _ => Vec::new(),
@@ -65,7 +65,7 @@ pub fn orbit_info(sys: &System, k: u32) -> Result<OrbitInfo, String> {
     let region = (0..REGION_ROWS)
         .map(|i| {
             let r = (i as f64 + 0.5) / REGION_ROWS as f64;
-            let intervals = orbits::stability_windows(&sys.table(), r, k)
+            let intervals = orbits::stability_windows(sys.table(), r, k)
                 .map(|ws| {
                     ws.iter()
                         .map(|w| (w.alpha_birth, w.alpha_end, w.alpha_pd().is_some()))

@@ -222,7 +222,7 @@ fn toggle_axis_pause_help_presets_export_quit() {
     // α is placed just below the sine's α_PD (the fixed command's value), inside the
     // preset's window, not clamped to its edge.
     let sys = a.system();
-    let pd = bouncemap_engine::orbits::stability_windows(&sys.table(), sys.r(), 1).unwrap()[0]
+    let pd = bouncemap_engine::orbits::stability_windows(sys.table(), sys.r(), 1).unwrap()[0]
         .alpha_pd()
         .unwrap();
     assert!(

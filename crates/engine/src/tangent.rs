@@ -99,7 +99,7 @@ pub fn flight(sys: &System, before: &State, e: &Event) -> Option<Flight> {
     let tau = (e.period - before.period) as f64 + (e.phase - before.phase);
     // A start above the table (height z0) adds a constant to G: same derivatives.
     let w = before.w;
-    let table = &sys.table();
+    let table = sys.table();
     let big_f = table.value(before.phase) - table.value(e.phase);
     Some(Flight {
         a: (w - tau) / u,

@@ -93,7 +93,7 @@ pub fn basins_figure(spec: &BasinSpec, basins: &Basins) -> Figure {
     }
     panel.title = Some(format!(
         "{}, $\u{3b1}$ = {}, $r$ = {}",
-        super::diagram::table_title(&spec.sys.table()),
+        super::diagram::table_title(spec.sys.table()),
         shortest(spec.sys.alpha()),
         shortest(spec.sys.r())
     ));

@@ -351,7 +351,7 @@ pub fn two_cycle_at(sys: &System, fp: &FixedPoint) -> Result<TwoCycle, NoTwoCycl
         solved = eq.solve(x0).filter(|(x, _)| x[1] > 0.0);
     }
     if solved.is_none() {
-        solved = continue_from_pd(&sys.table(), sys.r(), k, sys.alpha());
+        solved = continue_from_pd(sys.table(), sys.r(), k, sys.alpha());
     }
     let (x, iters) = solved.ok_or(NoTwoCycle::NoConvergence)?;
     finish(sys, fp, &seg, x, iters, paper, corrected)

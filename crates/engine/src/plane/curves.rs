@@ -69,13 +69,13 @@ pub fn curves(spec: &PlaneSpec) -> Option<Curves> {
                 continue;
             }
         };
-        let window = stability_window(&sys.table(), sys.r(), 1).ok().flatten();
+        let window = stability_window(sys.table(), sys.r(), 1).ok().flatten();
         birth.push(window.map(|w| w.alpha_birth));
         let alpha_pd = window.and_then(|w| w.alpha_pd());
         pd.push(alpha_pd);
         border.push(
             alpha_pd
-                .and_then(|_| border_collision(&sys.table(), sys.r(), 1).ok())
+                .and_then(|_| border_collision(sys.table(), sys.r(), 1).ok())
                 .map(|b| b.alpha),
         );
     }
