@@ -1,7 +1,9 @@
-//! The binary's layering, checked from its sources: among the modules of every parent
-//! (the crate's `config`, `commands`, `output`, `tui`; the children of each of those)
-//! the "uses" graph has no cycle. A path `crate::a::b`, `super::x` or `self::y` in a
-//! file counts as a use of the module it names.
+//! The layering of both crates, checked from their sources. In the engine and in the
+//! binary, among the modules of every parent (the crate's top-level modules; the
+//! children of each of those) the "uses" graph has no cycle; and the crate's top-level
+//! modules use only modules of their own layer or the layers below it ([`ENGINE_LAYERS`],
+//! [`BINARY_LAYERS`]). A path `crate::a::b`, `super::x` or `self::y` in a file counts as
+//! a use of the module it names.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -128,20 +130,47 @@ fn resolve(module: &[String], is_dir_module: bool, prefix: &str, segs: &[String]
     base
 }
 
-#[test]
-fn no_module_uses_a_sibling_that_uses_it_back() {
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+/// The engine's top-level modules, bottom layer first: a module may use its own layer
+/// and the layers below.
+const ENGINE_LAYERS: &[&[&str]] = &[
+    &[
+        "error",
+        "limits",
+        "time",
+        "linalg",
+        "exact_sum",
+        "poly",
+        "test_rng",
+    ],
+    &["table"],
+    &["system"],
+    &["impact"],
+    &["map", "tangent"],
+    &["jobs", "grid"],
+    &["orbits"],
+    &["run"],
+    &["attractors", "picture"],
+    &["sweep", "plane"],
+];
+
+/// The binary's top-level modules, bottom layer first (the engine lies below them all).
+const BINARY_LAYERS: &[&[&str]] = &[&["output"], &["config"], &["commands", "tui"]];
+
+/// parent path → sibling → siblings it uses, for the crate whose sources are in `src`.
+fn uses(src: &Path) -> BTreeMap<Vec<String>, BTreeMap<String, BTreeSet<String>>> {
     let mut files = Vec::new();
-    rust_files(&src, &mut files);
-    // parent path → sibling → siblings it uses
+    rust_files(src, &mut files);
     let mut graph: BTreeMap<Vec<String>, BTreeMap<String, BTreeSet<String>>> = BTreeMap::new();
     for f in &files {
-        let module = module_of(&src, f);
+        let module = module_of(src, f);
         let is_dir_module = f
             .file_name()
             .is_some_and(|n| n == "mod.rs" || n == "lib.rs" || n == "main.rs");
         let text = std::fs::read_to_string(f).unwrap();
-        for target in references(&module, is_dir_module, &text) {
+        // A file's unit tests may use any layer (to compare with a closed form found
+        // higher up): they are not part of the module graph.
+        let text = text.split("#[cfg(test)]\nmod tests").next().unwrap_or("");
+        for target in references(&module, is_dir_module, text) {
             let common = module
                 .iter()
                 .zip(&target)
@@ -157,6 +186,66 @@ fn no_module_uses_a_sibling_that_uses_it_back() {
             }
         }
     }
+    graph
+}
+
+fn engine_src() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("crates/engine/src")
+}
+
+fn binary_src() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("src")
+}
+
+/// Every use between top-level modules goes to the same layer or one below.
+fn assert_layered(src: &Path, layers: &[&[&str]]) {
+    let graph = uses(src);
+    let layer = |m: &str| layers.iter().position(|l| l.contains(&m));
+    let top = graph
+        .get(&Vec::new())
+        .expect("no top-level uses found: the scan is broken");
+    for (from, targets) in top {
+        let Some(lf) = layer(from) else {
+            assert!(
+                matches!(from.as_str(), "lib" | "main"),
+                "module {from} of {} is in no layer: add it to the layer list",
+                src.display()
+            );
+            continue;
+        };
+        for to in targets {
+            let lt = layer(to).unwrap_or_else(|| panic!("module {to} is in no layer"));
+            assert!(
+                lt <= lf,
+                "{from} (layer {lf}) uses {to} (layer {lt}), a layer above it, in {}",
+                src.display()
+            );
+        }
+    }
+}
+
+#[test]
+fn the_engine_uses_only_layers_below() {
+    assert_layered(&engine_src(), ENGINE_LAYERS);
+}
+
+#[test]
+fn the_binary_uses_only_layers_below() {
+    assert_layered(&binary_src(), BINARY_LAYERS);
+}
+
+#[test]
+fn no_engine_module_uses_a_sibling_that_uses_it_back() {
+    assert_no_cycle(&engine_src());
+}
+
+#[test]
+fn no_module_uses_a_sibling_that_uses_it_back() {
+    assert_no_cycle(&binary_src());
+}
+
+fn assert_no_cycle(src: &Path) {
+    let graph = uses(src);
     assert!(
         graph.contains_key(&Vec::new()),
         "no top-level uses found: the scan is broken"

@@ -9,8 +9,11 @@ pub enum EngineError {
     /// A numeric parameter outside its valid range.
     #[error("{name} = {value} is out of range: valid {range}")]
     InvalidParameter {
+        /// The parameter (`alpha`, `r`, `k`, ...).
         name: &'static str,
+        /// The value given, as messages print it.
         value: String,
+        /// The valid range, as refusals state it.
         range: &'static str,
     },
     /// A piecewise table that cannot be used (not C¹, bad pieces, too large).

@@ -1,26 +1,55 @@
 //! bouncemap-engine: the bouncing ball impact map, exact, and everything computed from
-//! it.
+//! it. No terminal, no files, no printing, no global state: errors are [`EngineError`]
+//! values, and everything but the executor's workers is synchronous.
 //!
-//! * [`table`]: table shapes behind one smooth-segment interface; [`system`]: table + α
-//!   + r; [`limits`]: every accepted range; [`poly`], [`exact_sum`]: the numerics.
-//! * [`impact`]: next-contact solvers (exact per shape, and the paper's grid);
-//!   [`map`]: the impact map with chattering, sticking and release.
-//! * [`orbits`]: (1, k) and (2, 2k) solutions, stability windows, scaling laws.
-//! * [`tangent`]: the Jacobian of one event; [`attractors`]: what orbits settle on,
-//!   Lyapunov exponents, basins of attraction.
-//! * [`jobs`]: the executor for computations over many work items; [`sweep`]: the
-//!   bifurcation diagram, its first client; [`attractors::basins`]: the basin picture;
-//!   [`plane`]: two-parameter maps with their analytic curves.
+//! # What a library user needs
+//! * **The system**: a [`Table`] (the sine, the paper's F_D, checked piecewise
+//!   polynomials) with α and r is a [`System`], validated on construction;
+//!   [`limits`] holds every accepted range.
+//! * **The map**: [`ImpactMap`] steps a [`State`] from event to event (impact, stick,
+//!   release) exactly, with chattering and sticking handled; [`next_landing`] is one
+//!   flight; [`tangent`] the Jacobian of one event.
+//! * **Orbits**: [`orbits`] — the (1, k) solutions and their stability windows, the
+//!   (2, 2k) solutions, (n, k) cycles by Newton's method, continuation in α with its
+//!   special points, the period-doubling cascade, the paper's scaling laws.
+//! * **Runs and attractors**: [`run`] runs one orbit to the end of its transient and
+//!   detects the cycle it settles on; [`attractors`] says what it settled on, its
+//!   Lyapunov exponents, and which starts share an attractor (basins).
+//! * **Computations over many items**: [`jobs`] (the executor: passes, generations,
+//!   pause), [`grid`] (parameter grids and shards), [`sweep`] (bifurcation diagrams),
+//!   [`picture`] (coarse-to-fine pictures over a grid: [`plane`] and the basins).
+//! * **Numerics every part shares**: [`time`] ((period, phase) time), [`linalg`]
+//!   (small solves and 2 × 2 eigenvalues).
 //!
-//! No terminal, no files, no printing, no global state: errors are [`EngineError`]
-//! values; the binary turns them into messages and exit codes. Everything but the
-//! executor's workers is synchronous.
+//! ```
+//! use bouncemap_engine::{ImpactMap, Solver, State, System, Table};
+//! use bouncemap_engine::orbits::{fixed_points, Classification};
+//!
+//! // The paper's piecewise cubic table at α = 0.45, r = 0.8.
+//! let sys = System::new(Table::fd(1.0).unwrap(), 0.45, 0.8).unwrap();
+//! // Its (1, 1) solutions: f'(t̂*) = ½(1 − r)/(1 + r), one of them stable.
+//! let stable = fixed_points(&sys, 1)
+//!     .unwrap()
+//!     .into_iter()
+//!     .find(|p| p.classification == Classification::Stable)
+//!     .unwrap();
+//! // A ball launched just off it settles on it: one impact per table period.
+//! let start = State::start(&sys, stable.phase + 1e-3, Some(0.5), 0.0).unwrap();
+//! let mut map = ImpactMap::new(sys, Solver::Exact, start);
+//! let events: Vec<_> = (0..2000).map(|_| map.step().unwrap()).collect();
+//! let (a, b) = (&events[1998], &events[1999]);
+//! assert_eq!(b.period - a.period, 1);
+//! assert!((b.phase - stable.phase).abs() < 1e-9);
+//! ```
+//!
+//! The solvers behind [`next_landing`] (exact root isolation per table shape, and the
+//! paper's time grid for comparison), the polynomial numerics and the double-double
+//! arithmetic are internal.
+#![warn(missing_docs)]
 
 pub mod attractors;
 pub mod error;
-pub mod exact_sum;
 pub mod grid;
-pub mod impact;
 pub mod jobs;
 pub mod limits;
 pub mod linalg;
@@ -28,18 +57,21 @@ pub mod map;
 pub mod orbits;
 pub mod picture;
 pub mod plane;
-pub mod poly;
 pub mod run;
 pub mod sweep;
 pub mod system;
 pub mod table;
 pub mod tangent;
-#[cfg(test)]
-mod test_rng;
 pub mod time;
 
+mod exact_sum;
+mod impact;
+mod poly;
+#[cfg(test)]
+mod test_rng;
+
 pub use error::EngineError;
-pub use impact::{Landing, Launch, Solver};
+pub use impact::{next_landing, FlightError, Landing, Launch, Solver};
 pub use map::{Event, EventKind, Halt, ImpactMap, Mode, State, DEFAULT_HOP};
 pub use system::{kappa_c, System};
 pub use table::Table;

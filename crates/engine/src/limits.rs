@@ -10,9 +10,13 @@ use crate::error::EngineError;
 pub struct Limit {
     /// The name used in refusals (`alpha`, `r`, `k`, ...).
     pub name: &'static str,
+    /// Lower end.
     pub lo: f64,
+    /// Upper end.
     pub hi: f64,
+    /// Whether the lower end is excluded.
     pub lo_open: bool,
+    /// Whether the upper end is excluded.
     pub hi_open: bool,
     /// Only whole numbers are accepted.
     pub whole: bool,
@@ -158,6 +162,7 @@ pub const CASCADE_DEPTH: Limit = whole("depth", 1.0, 12.0, "a whole number in [1
 pub const CYCLE_N: Limit = whole("n", 1.0, 1024.0, "a whole number in [1, 1024]");
 /// Number of D values of a cascade over the F_D family.
 pub const D_COUNT: Limit = whole("d count", 1.0, 1000.0, "a whole number in [1, 1000]");
+/// Phase and velocity tolerance of cycle detection.
 pub const TOLERANCE: Limit = open_closed("tolerance", 0.0, 1e-3, "(0, 1e-3]");
 
 #[cfg(test)]

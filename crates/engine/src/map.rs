@@ -60,6 +60,7 @@ impl EventKind {
 /// One event of the map.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Event {
+    /// Impact, stick or release.
     pub kind: EventKind,
     /// Integer part of the time.
     pub period: i64,
@@ -82,13 +83,28 @@ impl Event {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Halt {
     /// The ball rides on the table forever from this time: f'' ≥ −1 everywhere.
-    Resting { period: i64, phase: f64 },
+    Resting {
+        /// Whole table periods of the time.
+        period: i64,
+        /// Phase, in [0, 1).
+        phase: f64,
+    },
     /// The ball did not land within the solver's work bound.
-    NoLanding { period: i64, phase: f64 },
+    NoLanding {
+        /// Whole table periods of the time.
+        period: i64,
+        /// Phase, in [0, 1).
+        phase: f64,
+    },
     /// The next event would lie beyond [`MAX_PERIOD`] periods, where (period, phase)
     /// stops being exact; never reached from accepted inputs (transients ≤ 10¹², flights
     /// bounded), but checked so time can never wrap.
-    TimeOutOfRange { period: i64, phase: f64 },
+    TimeOutOfRange {
+        /// Whole table periods of the time.
+        period: i64,
+        /// Phase, in [0, 1).
+        phase: f64,
+    },
 }
 
 /// The largest |period| an event may have: 2⁵², so that `period as f64 + phase` and
@@ -127,13 +143,16 @@ impl std::fmt::Display for Halt {
 /// Whether the ball is in flight or riding on the table.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Mode {
+    /// In free flight.
     Flying,
+    /// Riding on the table (between a stick and its release).
     Stuck,
 }
 
 /// The state right after the last event.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct State {
+    /// Whole table periods of the event time.
     pub period: i64,
     /// Phase in [0, 1).
     pub phase: f64,
@@ -143,6 +162,7 @@ pub struct State {
     pub w: f64,
     /// Height above the table (nonzero only for an initial state).
     pub height: f64,
+    /// In flight or riding on the table.
     pub mode: Mode,
     /// After a failed lift-off: look for a release strictly after this instant.
     release_after: bool,
@@ -212,6 +232,7 @@ pub struct ImpactMap {
 }
 
 impl ImpactMap {
+    /// A map at `state` of `sys`, with the solver prepared once for the system.
     pub fn new(sys: System, solver: Solver, state: State) -> ImpactMap {
         let flights = FlightSolver::new(&sys, solver);
         let chatter = Chatter::new(&sys);
@@ -224,14 +245,17 @@ impl ImpactMap {
         }
     }
 
+    /// The system it runs on.
     pub fn system(&self) -> &System {
         &self.sys
     }
 
+    /// The next-contact solver.
     pub fn solver(&self) -> Solver {
         self.solver
     }
 
+    /// The state after the latest event.
     pub fn state(&self) -> &State {
         &self.state
     }

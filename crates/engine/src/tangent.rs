@@ -35,7 +35,9 @@ pub enum Tangent {
     /// An impact after a flight: J, and |u| at the landing (for the coordinates in
     /// which det J is exactly r²; see [`Tangent::scaled`]).
     Flight {
+        /// The Jacobian of the event in (t, v).
         jacobian: [[f64; 2]; 2],
+        /// Relative velocity at the landing (the determinant's denominator).
         u_landing: f64,
     },
     /// A stick or a release: the state after it does not depend on the state before.

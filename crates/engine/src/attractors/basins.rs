@@ -1,5 +1,5 @@
 //! Basins of attraction: a grid of starts over the box t̂0 ∈ [0, 1) × w0 ∈ [0, W], each
-//! run to its attractor, as a [`Job`].
+//! run to its attractor, as a [`Job`](crate::jobs::Job).
 //!
 //! Grid point (i, j) starts at t̂0 = (i + ½)/nx, w0 = W (j + ½)/ny (cell centres), with
 //! v0 = f'(t̂0) + w0, on the table. The job is a [picture](crate::picture), coarse to
@@ -20,6 +20,7 @@ use crate::system::System;
 pub const CHUNK: usize = 32;
 /// The largest grid side, and the most grid points.
 pub const MAX_SIDE: usize = 4000;
+/// The most grid points.
 pub const MAX_POINTS: usize = 1_000_000;
 /// The default grid.
 pub const DEFAULT_GRID: (usize, usize) = (200, 100);
@@ -27,12 +28,15 @@ pub const DEFAULT_GRID: (usize, usize) = (200, 100);
 /// Everything that defines a basin picture.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BasinSpec {
+    /// The system whose basins are drawn.
     pub sys: System,
     /// Grid points along t̂0 and along w0.
     pub nx: usize,
+    /// Grid points along w0.
     pub ny: usize,
     /// Top of the w0 range.
     pub w_max: f64,
+    /// How each start is run to its attractor.
     pub settle: Settle,
 }
 

@@ -81,6 +81,7 @@ pub struct Exponents {
     pub impacts: u64,
     /// Table periods they took.
     pub periods: f64,
+    /// How the exponents were obtained.
     pub method: Method,
 }
 
@@ -283,8 +284,11 @@ pub fn qr_spectrum(
 /// One event of a cycle, as stepped from a state on it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CycleEvent {
+    /// Impact, stick or release.
     pub kind: EventKind,
+    /// Phase t̂ of the event, in [0, 1).
     pub phase: f64,
+    /// Ball velocity right after it.
     pub v: f64,
 }
 

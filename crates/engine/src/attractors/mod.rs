@@ -41,6 +41,7 @@ pub const MATCH: f64 = 1e-8;
 pub const OVERLAP: f64 = 0.5;
 /// Phase cells per period, and velocity cells per unit of velocity.
 pub const CELLS_PER_PERIOD: f64 = 128.0;
+/// Velocity cells per unit of velocity.
 pub const CELLS_PER_VELOCITY: f64 = 64.0;
 /// An unsettled orbit is chaotic only when its largest exponent per impact exceeds this
 /// (and three standard errors).
@@ -58,6 +59,7 @@ pub struct Settle {
     pub periodicity: Option<Periodicity>,
     /// Events sampled after an unsettled transient (cells and exponents).
     pub sample: u64,
+    /// The next-contact solver.
     pub solver: Solver,
 }
 
@@ -92,6 +94,7 @@ pub enum Kind {
 }
 
 impl Kind {
+    /// Every kind, in output order.
     pub const ALL: [Kind; 6] = [
         Kind::Periodic,
         Kind::Sticking,
@@ -130,9 +133,11 @@ pub enum Signature {
 /// The attractor one start ended on.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Found {
+    /// What the orbit settled on.
     pub kind: Kind,
     /// Events and table periods per cycle, for cycles.
     pub events: Option<usize>,
+    /// Table periods per cycle, for cycles.
     pub periods: Option<i64>,
     /// A point on it: (phase, v) right after an event (for a cycle the event of smallest
     /// phase; for an unsettled orbit its last sampled event; for a resting ball where it
@@ -140,6 +145,7 @@ pub struct Found {
     pub point: Option<(f64, f64)>,
     /// Both exponents, where the orbit has them.
     pub spectrum: Option<Spectrum>,
+    /// What identifies the attractor among others (its cycle, or the cells it visits).
     pub signature: Signature,
 }
 
@@ -354,8 +360,11 @@ fn same_cycle(a: &[CycleEvent], b: &[CycleEvent]) -> bool {
 /// An attractor found by one or more starts.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Attractor {
+    /// What the attractor is.
     pub kind: Kind,
+    /// Events per cycle, for cycles.
     pub events: Option<usize>,
+    /// Table periods per cycle, for cycles.
     pub periods: Option<i64>,
     /// A point on it (of the first start that found it).
     pub point: Option<(f64, f64)>,
@@ -388,6 +397,7 @@ pub struct Registry {
 }
 
 impl Registry {
+    /// An empty registry.
     pub fn new() -> Registry {
         Registry::default()
     }

@@ -53,6 +53,7 @@ pub const MAX_SINE_STEPS: usize = 100_000;
 /// The ball leaving the table (or starting a free flight).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Launch {
+    /// Whole table periods of the launch time.
     pub period: i64,
     /// Phase in [0, 1).
     pub phase: f64,
@@ -68,7 +69,9 @@ pub struct Launch {
 /// Where and how the ball meets the table.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Landing {
+    /// Whole table periods of the landing time.
     pub period: i64,
+    /// Phase of the landing, in [0, 1).
     pub phase: f64,
     /// Flight duration.
     pub flight: f64,

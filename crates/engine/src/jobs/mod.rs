@@ -76,7 +76,9 @@ pub trait Job: Send + Sync + 'static {
 /// wants).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Pass {
+    /// Number of items.
     pub len: usize,
+    /// Hand the items out spread over the range (bit-reversed) rather than in order.
     pub spread: bool,
 }
 
@@ -139,8 +141,11 @@ impl Control {
 /// One result of a job, with the generation and pass that produced it.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Batch<T> {
+    /// The generation of the [`Control`] the job ran under.
     pub generation: u64,
+    /// The pass that produced it.
     pub pass: u32,
+    /// The result itself.
     pub data: T,
 }
 
@@ -183,9 +188,11 @@ impl Progress {
 /// How a job ended.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Summary {
+    /// The generation the job ran under.
     pub generation: u64,
     /// True if the generation changed (or the handle was dropped) before the end.
     pub cancelled: bool,
+    /// Progress at the end.
     pub progress: Progress,
 }
 

@@ -32,12 +32,15 @@ pub struct Level {
 /// The cascade: αₙ, the levels, the δ ratios.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Cascade {
+    /// The k of the (1, k) solution the cascade starts from.
     pub k: u32,
+    /// The restitution coefficient.
     pub r: f64,
     /// α₁ < α₂ < …: the period-doubling points found.
     pub alphas: Vec<f64>,
     /// δₙ = (αₙ − αₙ₋₁)/(αₙ₊₁ − αₙ) for n = 2, 3, … (index 0 is δ₂).
     pub deltas: Vec<f64>,
+    /// Each 2ⁿ branch: where it is born and how it ends.
     pub levels: Vec<Level>,
     /// Set when no doubled branch is born at the last αₙ.
     pub unborn: Option<String>,

@@ -70,7 +70,9 @@ pub const H_MIN: f64 = 1e-11;
 /// One continued branch of (n, k) cycles.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Branch {
+    /// Events per cycle.
     pub n: usize,
+    /// Table periods per cycle.
     pub k: u32,
     /// The branch it doubled from (index into the returned list).
     pub parent: Option<usize>,
@@ -80,6 +82,7 @@ pub struct Branch {
     pub specials: Vec<Special>,
     /// How the branch ends at its first and last point.
     pub begin: Special,
+    /// How the branch ends at its last point.
     pub end: Special,
 }
 
@@ -96,6 +99,7 @@ pub struct Options {
     pub stop_at_pd: bool,
     /// First and largest arclength step.
     pub h_init: f64,
+    /// Largest arclength step.
     pub h_max: f64,
 }
 
@@ -116,16 +120,32 @@ impl Default for Options {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Start {
     /// The (1, k) solution with f'' < 0 (at LO, or at its birth if later).
-    Fixed { k: u32 },
+    Fixed {
+        /// Table periods between bounces.
+        k: u32,
+    },
     /// The (2, 2k) solution just past (1, k)'s period doubling (or at LO if later).
-    TwoCycle { k: u32 },
+    TwoCycle {
+        /// Half the table periods of the two-cycle.
+        k: u32,
+    },
     /// An (n, k) cycle near the launch (t̂₀, v₀) at α = LO.
-    Point { n: usize, k: u32, t0: f64, v0: f64 },
+    Point {
+        /// Events per cycle.
+        n: usize,
+        /// Table periods per cycle.
+        k: u32,
+        /// Phase of the launch guess.
+        t0: f64,
+        /// Velocity of the launch guess.
+        v0: f64,
+    },
 }
 
 /// Why no branch could be started.
 #[derive(Clone, Debug, PartialEq)]
 pub enum NoStart {
+    /// The window or the settings were refused.
     Invalid(EngineError),
     /// No start of that kind in the window (the reason in words).
     NotFound(String),

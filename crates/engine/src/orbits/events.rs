@@ -23,11 +23,12 @@ pub enum Kind {
     WindowExit,
     /// The corrector failed with no sign of the above.
     NoConvergence,
-    /// The step bound of [`Options::max_steps`] was reached.
+    /// The step bound of [`Options::max_steps`](super::continuation::Options::max_steps) was reached.
     StepLimit,
 }
 
 impl Kind {
+    /// Name in every output format.
     pub fn as_str(self) -> &'static str {
         match self {
             Kind::PeriodDoubling => "period_doubling",
@@ -59,7 +60,9 @@ impl Kind {
 /// A special point of a branch.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Special {
+    /// What happens there.
     pub kind: Kind,
+    /// Where, in α.
     pub alpha: f64,
     /// The phase concerned: the breakpoint at a border collision, the touching phase at
     /// a grazing, the slowest impact's at the onset of sticking, t̂₀ otherwise.

@@ -51,6 +51,7 @@ impl Classification {
 /// One (1, k) solution.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FixedPoint {
+    /// Table periods between bounces.
     pub k: u32,
     /// Phase t̂* in [0, 1).
     pub phase: f64,
@@ -58,7 +59,9 @@ pub struct FixedPoint {
     pub v: f64,
     /// f'(t̂*), f''(t̂*), f'''(t̂*) (right derivatives at a breakpoint).
     pub df: f64,
+    /// f′′(t̂*).
     pub ddf: f64,
+    /// f′′′(t̂*).
     pub dddf: f64,
     /// Δκ = κ_c − f''(t̂*) (positive past the period-doubling point).
     pub delta_kappa: f64,
@@ -69,7 +72,9 @@ pub struct FixedPoint {
     /// Duration of the free flight until the first contact (k when admissible; None if
     /// the solver found no contact).
     pub flight: Option<f64>,
+    /// Whether the free flight of k periods meets the table only at its end.
     pub admissible: bool,
+    /// Stable, period-doubling unstable, or fold unstable, from the eigenvalues.
     pub classification: Classification,
 }
 
@@ -208,13 +213,17 @@ impl WindowEnd {
 /// An α interval on which a stable, admissible (1, k) solution exists.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct StabilityWindow {
+    /// Table periods between bounces.
     pub k: u32,
     /// Where the stable solution first exists and is admissible, and its phase there.
     pub alpha_birth: f64,
+    /// The phase at the birth.
     pub phase_birth: f64,
     /// Where it stops being stable, its phase there, and why.
     pub alpha_end: f64,
+    /// The phase at the end.
     pub phase_end: f64,
+    /// Why the window ends.
     pub end: WindowEnd,
 }
 

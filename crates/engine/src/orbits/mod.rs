@@ -3,7 +3,7 @@
 //! * [`fixed`]: the (1, k) solutions (one bounce every k periods), their Jacobian,
 //!   eigenvalues and classification, and the α interval on which a stable one exists
 //!   (its birth and its period-doubling point α_PD).
-//! * [`two_cycle`]: the (2, 2k) solutions near a (1, k) one, solved exactly by Newton's
+//! * [`two_cycle`](mod@two_cycle): the (2, 2k) solutions near a (1, k) one, solved exactly by Newton's
 //!   method, the asymptotic approximation near the period-doubling point (the paper's
 //!   printed one and the corrected one), and the border collision of the branch.
 //! * [`periodic`]: (n, k) cycles of the exact map by Newton's method on n steps of it,

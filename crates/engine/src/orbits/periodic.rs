@@ -36,16 +36,26 @@ pub enum PassError {
     /// The map halted (the ball rests for good or did not land).
     Halt,
     /// An event of the n was a stick or a release, at this phase: not an impact cycle.
-    Stick { phase: f64 },
+    Stick {
+        /// Its phase.
+        phase: f64,
+    },
     /// A landing with zero relative velocity: the tangent map is unbounded.
-    Grazing { phase: f64 },
+    Grazing {
+        /// Its phase.
+        phase: f64,
+    },
     /// Newton's method did not converge within [`MAX_NEWTON`] iterations.
     NoConvergence,
     /// Converged, but the map stepped n times returns only within this distance.
-    NotReturning { error: f64 },
+    NotReturning {
+        /// Largest difference of phase or velocity after n steps.
+        error: f64,
+    },
 }
 
 impl PassError {
+    /// Name in every output format.
     pub fn as_str(&self) -> &'static str {
         match self {
             PassError::BadLaunch => "bad_launch",
@@ -71,6 +81,7 @@ pub struct Pass {
     pub det: f64,
     /// Impact phases t̂₁ … t̂ₙ (t̂ₙ is t̂₀ again on a cycle) and launch velocities after them.
     pub phases: Vec<f64>,
+    /// Launch velocities after those impacts.
     pub velocities: Vec<f64>,
     /// Times of the impacts from the launch (continuous in the parameters).
     pub times: Vec<f64>,
@@ -138,13 +149,17 @@ pub fn pass(map: &mut ImpactMap, t0: f64, v0: f64, n: usize, k: u32) -> Result<P
 /// One accepted point of an (n, k) cycle.
 #[derive(Clone, Debug, PartialEq)]
 pub struct CyclePoint {
+    /// Events per cycle.
     pub n: usize,
+    /// Table periods per cycle.
     pub k: u32,
+    /// The amplitude α of this point.
     pub alpha: f64,
     /// The launch time t₀ as the continuation carries it (its phase is `phases[0]`).
     pub t0: f64,
     /// The n impact phases, from the launch's, and the launch velocities after them.
     pub phases: Vec<f64>,
+    /// Launch velocities after those impacts.
     pub velocities: Vec<f64>,
     /// The flight times, launch i to impact i + 1 (they sum to k).
     pub flights: Vec<f64>,
@@ -153,6 +168,7 @@ pub struct CyclePoint {
     /// For even n and k: the return after n/2 impacts, (t_{n/2} − t₀ − k/2, v_{n/2} − v₀),
     /// zero where a doubled cycle collapses onto the one it doubled from.
     pub half_return: Option<[f64; 2]>,
+    /// Multipliers of the cycle (eigenvalues of the n-fold map's Jacobian).
     pub multipliers: [Complex; 2],
     /// Both multipliers inside the unit circle.
     pub stable: bool,

@@ -21,8 +21,11 @@ use crate::table::Table;
 /// A straight-line least-squares fit y = slope·x + intercept.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Fit {
+    /// Slope of the line.
     pub slope: f64,
+    /// Its intercept.
     pub intercept: f64,
+    /// Points fitted.
     pub points: usize,
 }
 
@@ -73,7 +76,9 @@ pub fn exact_at(table: &Table, r: f64, k: u32, delta_kappa: f64) -> Option<TwoCy
 pub struct ExactPoint {
     /// Δκ = κ_c − f''(t̂*) of the solution's system.
     pub delta_kappa: f64,
+    /// ΔT = t̂₁* + t̂₀* − 2t̂*.
     pub delta_big_t: f64,
+    /// Δt = t̂₁* − t̂₀*.
     pub delta_t: f64,
 }
 
@@ -117,11 +122,15 @@ pub fn exact_fits(table: &Table, r: f64, k: u32, delta_kappas: &[f64]) -> Option
 /// ΔT and Δt read from a simulated orbit, and how well it had settled.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SimulatedPoint {
+    /// Δκ = κ_c − f″(t̂*) of the simulated system.
     pub delta_kappa: f64,
+    /// ΔT read from the orbit.
     pub delta_big_t: f64,
+    /// Δt read from the orbit.
     pub delta_t: f64,
     /// |change of t̂₀ and t̂₁| over the last two-bounce return (a convergence measure).
     pub settled_to: f64,
+    /// Bounces simulated.
     pub bounces: u64,
 }
 
@@ -223,12 +232,15 @@ pub const SIM_BOUNCES: u64 = 5_000_000;
 /// Everything the paper's Fig. 4 and 5 show for one D of F_D.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ScalingRow {
+    /// D of the F_D table.
     pub d: f64,
     /// Exact (2, 2k) solutions over [`EXACT_RANGE`], and their fits (ΔT, Δt).
     pub exact_points: Vec<ExactPoint>,
+    /// Fits of log ΔT and log Δt against log Δκ over the exact solutions.
     pub exact: Option<(Fit, Fit)>,
     /// Simulated orbits over [`SIM_RANGE`], and their fits.
     pub sim_points: Vec<SimulatedPoint>,
+    /// The same fits over the simulated orbits.
     pub sim: Option<(Fit, Fit)>,
     /// The printed Eqs. (bT), (bt).
     pub paper_analytic: (f64, f64),

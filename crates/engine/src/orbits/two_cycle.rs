@@ -37,7 +37,9 @@ use std::fmt;
 /// ΔT = t̂₁* + t̂₀* − 2t̂* and Δt = t̂₁* − t̂₀* of an approximation.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Approximation {
+    /// ΔT = t̂₁* + t̂₀* − 2t̂*.
     pub delta_big_t: f64,
+    /// Δt = t̂₁* − t̂₀*.
     pub delta_t: f64,
 }
 
@@ -89,29 +91,39 @@ pub fn approximation_corrected(
 /// A (2, 2k) solution.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TwoCycle {
+    /// Half the table periods per two-cycle: a (2, 2k) solution.
     pub k: u32,
+    /// The amplitude α.
     pub alpha: f64,
     /// The (1, k) solution it surrounds.
     pub fixed: FixedPoint,
     /// Impact phases (t̂₀* < t̂₁*, wrapped into [0, 1)) and launch velocities.
     pub phase0: f64,
+    /// Phase of the second impact.
     pub phase1: f64,
+    /// Launch velocity after the first impact.
     pub v0: f64,
+    /// Launch velocity after the second impact.
     pub v1: f64,
     /// ΔT = t̂₁* + t̂₀* − 2t̂*, Δt = t̂₁* − t̂₀*, Δκ = κ_c − f''(t̂*).
     pub delta_big_t: f64,
+    /// Δt = t̂₁* − t̂₀*.
     pub delta_t: f64,
+    /// Δκ = κ_c − f″(t̂*).
     pub delta_kappa: f64,
     /// Multipliers of the two-bounce map (eigenvalues of its Jacobian).
     pub multipliers: [Complex; 2],
+    /// Whether both multipliers lie inside the unit circle.
     pub stable: bool,
     /// Both flights land where they should and not earlier.
     pub admissible: bool,
     /// Largest residual of the paper's Eqs. (teq1)–(veq2) at the solution.
     pub residual: f64,
+    /// Newton iterations taken.
     pub newton_iterations: u32,
     /// The paper's printed approximation and the corrected one at this Δκ.
     pub paper: Option<Approximation>,
+    /// The corrected approximation.
     pub corrected: Option<Approximation>,
 }
 
@@ -121,17 +133,28 @@ pub enum NoTwoCycle {
     /// No admissible (1, k) solution with f'' < 0 exists at this α.
     NoFixedPoint,
     /// The (1, k) solution is still stable (Δκ ≤ 0): no branch has been born.
-    BeforePeriodDoubling { delta_kappa: f64 },
+    BeforePeriodDoubling {
+        /// Δκ = κ_c − f″(t̂*) (≤ 0).
+        delta_kappa: f64,
+    },
     /// f''' = 0 on the piece of t̂* (piecewise quadratic): by the paper's proof a
     /// (2, 2k) solution can exist only at Δκ = 0 exactly, so none is born.
-    LocallyQuadratic { delta_kappa: f64 },
+    LocallyQuadratic {
+        /// Δκ = κ_c − f″(t̂*).
+        delta_kappa: f64,
+    },
     /// Newton's method converged onto the (1, k) solution itself (Δt = 0), or to
     /// Δt² < 0: not a two-cycle.
     CollapsedOntoFixedPoint,
     /// Newton's method did not converge.
     NoConvergence,
     /// The solution's phases leave the table piece holding t̂* (past a border collision).
-    LeavesPiece { phase0: f64, phase1: f64 },
+    LeavesPiece {
+        /// Phase of the first impact.
+        phase0: f64,
+        /// Phase of the second impact.
+        phase1: f64,
+    },
 }
 
 impl fmt::Display for NoTwoCycle {
@@ -559,6 +582,7 @@ impl<'a> Branch<'a> {
 /// Where a (2, 2k) branch collides with a breakpoint of the table.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BorderCollision {
+    /// Half the table periods per two-cycle: a (2, 2k) branch.
     pub k: u32,
     /// α at which an impact phase of the branch reaches the breakpoint.
     pub alpha: f64,
@@ -568,8 +592,11 @@ pub struct BorderCollision {
     pub alpha_pd: f64,
     /// The two-cycle's phases and velocities at the collision.
     pub phase0: f64,
+    /// Phase of the second impact.
     pub phase1: f64,
+    /// Launch velocity after the first impact.
     pub v0: f64,
+    /// Launch velocity after the second impact.
     pub v1: f64,
     /// Continuation steps taken.
     pub steps: usize,
@@ -584,7 +611,10 @@ pub enum NoBorderCollision {
     /// not be started (e.g. a piecewise quadratic table).
     NoBranch,
     /// The continuation failed at this α (a fold of the branch or a singularity).
-    BranchLost { alpha: f64 },
+    BranchLost {
+        /// Where.
+        alpha: f64,
+    },
     /// The branch stays inside its piece up to the largest accepted α.
     NotReached,
 }

@@ -19,9 +19,13 @@ pub struct Curves {
     pub alpha_on_x: bool,
     /// The other axis's parameter and its pixel values.
     pub along: SweepParam,
+    /// The pixel values of the other axis.
     pub values: Vec<f64>,
+    /// α_birth of the stable (1, 1) solution at each value (None where none exists).
     pub birth: Vec<Option<f64>>,
+    /// α_PD, its period-doubling point, at each value.
     pub pd: Vec<Option<f64>>,
+    /// α of the (2, 2) branch's border collision at each value.
     pub border: Vec<Option<f64>>,
 }
 

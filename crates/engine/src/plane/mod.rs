@@ -1,6 +1,6 @@
 //! Two-parameter maps: every pixel of a W × H grid over two of α, r and D (D for the
 //! F_D family) is one system, run from its start to the end of the transient (early stop
-//! on cycles, as sweeps do) and summarised by what its orbit does, as a [`Job`].
+//! on cycles, as sweeps do) and summarised by what its orbit does, as a [`Job`](crate::jobs::Job).
 //!
 //! A [`PlaneSpec`] names the table, the two axes ([`Axis`]: the parameter, its window
 //! and its number of pixels), the fixed parameter(s), the start ([`PlaneStart`]), the
@@ -49,6 +49,7 @@ pub const CHUNK: usize = 16;
 pub use crate::picture::STRIDES;
 /// The largest side, and the most pixels.
 pub const MAX_SIDE: usize = 4000;
+/// The most pixels.
 pub const MAX_PIXELS: usize = 1_000_000;
 /// The default size.
 pub const DEFAULT_SIZE: (usize, usize) = (400, 200);
@@ -71,6 +72,7 @@ pub enum PlaneStart {
 }
 
 impl PlaneStart {
+    /// Every start, in output order.
     pub const ALL: [PlaneStart; 2] = [PlaneStart::NearFixedPoint, PlaneStart::Cold];
 
     /// Name in outputs: `near-fixed-point`, `cold`.
@@ -81,6 +83,7 @@ impl PlaneStart {
         }
     }
 
+    /// The start named `name` (as [`Self::as_str`] writes it).
     pub fn from_name(name: &str) -> Option<PlaneStart> {
         PlaneStart::ALL.into_iter().find(|s| s.as_str() == name)
     }
@@ -91,11 +94,15 @@ impl PlaneStart {
 pub struct PlaneSpec {
     /// The table (with a D axis, an F_D table whose D is replaced by each pixel's).
     pub table: Table,
+    /// The horizontal axis.
     pub x: Axis,
+    /// The vertical axis.
     pub y: Axis,
     /// α and r where they are not on an axis.
     pub alpha: f64,
+    /// r where it is not on an axis.
     pub r: f64,
+    /// Where each pixel's orbit starts.
     pub start: PlaneStart,
     /// End of the transient, in table periods.
     pub transient: u64,
@@ -104,7 +111,9 @@ pub struct PlaneSpec {
     /// Measure the largest exponent of every pixel (cycles: exact; otherwise QR over
     /// [`LYAPUNOV_SAMPLE`] impacts).
     pub lyapunov: bool,
+    /// The next-contact solver.
     pub solver: Solver,
+    /// The part of the pixels this plane computes.
     pub shard: Shard,
 }
 

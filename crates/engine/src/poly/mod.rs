@@ -196,11 +196,6 @@ impl Poly {
         p
     }
 
-    /// `p - q`.
-    pub fn sub(&self, q: &Poly) -> Poly {
-        self.add(&q.scale(-1.0))
-    }
-
     /// `p * q`. Panics if the product's degree exceeds the storage.
     pub fn mul(&self, q: &Poly) -> Poly {
         if self.is_zero() || q.is_zero() {

@@ -58,9 +58,13 @@ impl Default for Periodicity {
 /// One event as the detector sees it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Rec {
+    /// Whole table periods of the event time.
     pub period: i64,
+    /// Phase, in [0, 1).
     pub phase: f64,
+    /// Ball velocity after the event.
     pub v: f64,
+    /// Impact, stick or release.
     pub kind: EventKind,
 }
 
@@ -109,6 +113,7 @@ pub struct Detector {
 }
 
 impl Detector {
+    /// A detector with no history.
     pub fn new(cfg: Periodicity) -> Detector {
         let p = cfg.max_period.max(1);
         // Two windows of at most WINDOW + p − 1 events each, plus one cycle.

@@ -42,6 +42,7 @@ pub struct Point {
     pub phase: f64,
     /// Ball velocity after the event.
     pub v: f64,
+    /// Impact, stick or release.
     pub kind: EventKind,
 }
 
@@ -50,21 +51,37 @@ pub struct Point {
 pub enum Outcome {
     /// Provisional (a checkpoint of a resumable run): it has reached this period and
     /// goes on.
-    Running { reached: i64 },
+    Running {
+        /// Period of the latest recorded event.
+        reached: i64,
+    },
     /// Settled on a cycle of `events` events in `periods` table periods; the run
     /// stopped at period `stopped_at` and the cycle was continued to T.
     Periodic {
+        /// Events per cycle (n).
         events: usize,
+        /// Table periods per cycle (k).
         periods: i64,
+        /// Period of the event at which the cycle was accepted.
         stopped_at: i64,
     },
     /// Ran the full transient without settling on a cycle of at most `max_period`
     /// events (chaos, a long or slowly converging cycle, or early stop switched off).
     Unsettled,
     /// The ball rides on the table forever from this time on.
-    Resting { period: i64, phase: f64 },
+    Resting {
+        /// Whole table periods of the time it came to rest.
+        period: i64,
+        /// Its phase.
+        phase: f64,
+    },
     /// The ball did not land within the solver's work bound.
-    NoLanding { period: i64, phase: f64 },
+    NoLanding {
+        /// Whole table periods of the launch that found no landing.
+        period: i64,
+        /// Its phase.
+        phase: f64,
+    },
 }
 
 impl Outcome {
@@ -128,6 +145,8 @@ pub struct OrbitRun {
 }
 
 impl OrbitRun {
+    /// A run of `map` from its current state, keeping `keep` events, stopping early on
+    /// cycles when `periodicity` is given.
     pub fn new(map: ImpactMap, keep: usize, periodicity: Option<Periodicity>) -> OrbitRun {
         OrbitRun {
             map,

@@ -25,6 +25,7 @@ pub struct ValueResult {
     pub complete: bool,
     /// Recorded events, oldest first.
     pub points: Vec<Point>,
+    /// Periodic, unsettled, resting or no landing (of the first start).
     pub outcome: Outcome,
     /// Whether the points include a stick or a release.
     pub sticking: bool,
@@ -45,9 +46,11 @@ pub struct ValueResult {
 /// One attractor found at a value of a sweep with several starts.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ValueAttractor {
+    /// What the attractor is.
     pub kind: Kind,
     /// Events and table periods per cycle, for cycles.
     pub events: Option<usize>,
+    /// Table periods per cycle, for cycles.
     pub periods: Option<i64>,
     /// The largest exponent per impact (−∞ sticking or resting; None where none).
     pub lyapunov: Option<f64>,

@@ -5,12 +5,12 @@
 //! transient (in table periods), how many events to keep, the solver and whether to
 //! continue each value from its neighbour. For each value the ball runs until the end
 //! of the transient T and the last `keep` events before T are recorded (phase, v, event
-//! kind), unless the [periodicity detector](detect) proves earlier that the orbit has
+//! kind), unless the [periodicity detector](crate::run::detect) proves earlier that the orbit has
 //! settled on a cycle of at most `max_period` events to within `tolerance`: then the
-//! remaining events are continued cyclically (see [`run`]), which gives the same points,
+//! remaining events are continued cyclically (see [`crate::run`]), which gives the same points,
 //! within the tolerance, as the full transient. Orbits that stick and are released at
 //! the same phase again repeat exactly, whatever their length in events; they jump ahead
-//! by whole cycles to just before T (see [`run`]). Values that never settle run the full
+//! by whole cycles to just before T (see [`crate::run`]). Values that never settle run the full
 //! transient.
 //!
 //! Outcomes per value ([`Outcome`]): periodic (with its cycle), unsettled (ran to T:
@@ -108,7 +108,7 @@ pub struct InitialSpec {
     /// Initial height above the table.
     pub z0: f64,
     /// Start slightly off the (1, 1) fixed point instead (the paper's procedure):
-    /// phase t̂* + [`FIXED_POINT_OFFSET`], v = ½, where f'(t̂*) = ½(1 − r)/(1 + r) and
+    /// phase t̂* + [`FIXED_POINT_OFFSET`](crate::run::start::FIXED_POINT_OFFSET), v = ½, where f'(t̂*) = ½(1 − r)/(1 + r) and
     /// f''(t̂*) < 0 (the stable one if there is one). Falls back to t0, v0, z0 where
     /// no (1, 1) solution exists.
     pub near_fixed_point: bool,
@@ -138,6 +138,7 @@ pub enum Warm {
 }
 
 impl Warm {
+    /// Every mode, in output order.
     pub const ALL: [Warm; 3] = [Warm::Off, Warm::Forward, Warm::Backward];
 
     /// Name used in outputs: `cold`, `warm`, `warm-backward`.
@@ -169,9 +170,11 @@ pub fn chain_len(warm: Warm) -> usize {
 pub struct SweepSpec {
     /// The table (for a D sweep, an F_D table; its D is replaced by each value).
     pub table: Table,
+    /// The swept parameter.
     pub param: SweepParam,
     /// Window of the swept parameter, inclusive.
     pub lo: f64,
+    /// Last value of the window.
     pub hi: f64,
     /// Number of values, evenly spaced: lo + (hi − lo) i / (steps − 1).
     pub steps: usize,
@@ -179,17 +182,20 @@ pub struct SweepSpec {
     pub alpha: f64,
     /// r when it is not swept.
     pub r: f64,
+    /// Where every cold-started value begins.
     pub initial: InitialSpec,
     /// End of the transient T, in table periods: points are the last `keep` events
     /// before t = T.
     pub transient: u64,
     /// Events recorded per value.
     pub keep: usize,
+    /// The next-contact solver.
     pub solver: Solver,
     /// Start each value from its neighbour's final state (see the module docs).
     pub warm: Warm,
     /// Early stop on detected cycles; None runs every value to T (brute force).
     pub periodicity: Option<Periodicity>,
+    /// The part of the values this sweep computes.
     pub shard: Shard,
     /// Measure each value's largest Lyapunov exponent (see [`ValueResult::lyapunov`]).
     pub lyapunov: bool,

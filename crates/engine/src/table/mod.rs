@@ -40,14 +40,21 @@ pub struct Piece {
     /// Phase where the piece ends (the next piece's start, or 1).
     pub end: f64,
     /// F on the piece as a polynomial in s = t̂ − start.
-    pub f: Poly,
+    pub(crate) f: Poly,
     /// F', F'', F''' in the same variable.
-    pub d1: Poly,
-    pub d2: Poly,
-    pub d3: Poly,
+    pub(crate) d1: Poly,
+    pub(crate) d2: Poly,
+    pub(crate) d3: Poly,
     /// Rigorous bounds of F on the closed piece (padded by a few ulps).
-    pub min: f64,
-    pub max: f64,
+    pub(crate) min: f64,
+    pub(crate) max: f64,
+}
+
+impl Piece {
+    /// The degree of F on the piece.
+    pub fn degree(&self) -> usize {
+        self.f.degree()
+    }
 }
 
 impl Piece {

@@ -22,8 +22,11 @@ pub enum Formula<'a> {
 /// A smooth stretch [start, end] of the table in phase.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Segment<'a> {
+    /// Phase where the segment starts.
     pub start: f64,
+    /// Phase where it ends.
     pub end: f64,
+    /// Its formula.
     pub formula: Formula<'a>,
 }
 

@@ -2,7 +2,6 @@
 //! cascade, checked against the closed forms (`fixed`), the (2, 2k) Newton solutions
 //! (`two_cycle`), the map itself (stepping and finite differences) and simulation.
 
-use bouncemap_engine::impact::Solver;
 use bouncemap_engine::map::{EventKind, ImpactMap, State};
 use bouncemap_engine::orbits::cascade::cascade;
 use bouncemap_engine::orbits::continuation::{branches, point_at, Branch, Kind, Options, Start};
@@ -12,6 +11,7 @@ use bouncemap_engine::run::{Advance, OrbitRun};
 use bouncemap_engine::sweep::{Outcome, Periodicity};
 use bouncemap_engine::system::System;
 use bouncemap_engine::table::Table;
+use bouncemap_engine::Solver;
 
 const R: f64 = 0.8;
 

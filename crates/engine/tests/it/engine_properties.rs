@@ -12,9 +12,35 @@
 //! the Hermite data), plain cubic splines (the solver's fixed-size cubic path), the
 //! paper's F_D with random D, and the sine.
 
-use bouncemap_engine::poly::Poly;
 use bouncemap_engine::{EventKind, Halt, ImpactMap, Solver, State, System, Table};
 use proptest::prelude::*;
+
+/// Polynomials in ascending powers, written out here (not the engine's) so the tables
+/// are built independently of the code under test.
+fn p_mul(a: &[f64], b: &[f64]) -> Vec<f64> {
+    let mut out = vec![0.0; a.len() + b.len() - 1];
+    for (i, x) in a.iter().enumerate() {
+        for (j, y) in b.iter().enumerate() {
+            out[i + j] += x * y;
+        }
+    }
+    out
+}
+
+fn p_add(a: &[f64], b: &[f64]) -> Vec<f64> {
+    (0..a.len().max(b.len()))
+        .map(|i| a.get(i).unwrap_or(&0.0) + b.get(i).unwrap_or(&0.0))
+        .collect()
+}
+
+/// P(x + h), by Horner's scheme on polynomials: ((c_n)(x + h) + c_{n−1})(x + h) + …
+fn p_shift(c: &[f64], h: f64) -> Vec<f64> {
+    let mut out = vec![0.0];
+    for &ci in c.iter().rev() {
+        out = p_add(&p_mul(&out, &[h, 1.0]), &[ci]);
+    }
+    out
+}
 
 /// A random C¹ periodic piecewise polynomial, built through the checked constructor
 /// (so the C¹ check of piecewise tables is exercised too).
@@ -30,20 +56,17 @@ fn random_table(knots: &[f64], values: &[f64], slopes: &[f64], bumps: &[(f64, f6
         // Cubic Hermite in s = t̂ − a on [0, l].
         let c2 = (3.0 * (y1 - y0) / l - 2.0 * m0 - m1) / l;
         let c3 = (2.0 * (y0 - y1) / l + m0 + m1) / (l * l);
-        let hermite = Poly::new(&[y0, m0, c2, c3]);
+        let hermite = [y0, m0, c2, c3];
         // s²(s − l)²(p + q s) leaves values and slopes at both ends unchanged.
         let (p, q) = bumps[i];
-        let s2 = Poly::new(&[0.0, 0.0, 1.0]);
-        let sl2 = Poly::new(&[-l, 1.0]).mul(&Poly::new(&[-l, 1.0]));
-        let bump = s2.mul(&sl2).mul(&Poly::new(&[p, q]));
-        let local = hermite.add(&bump);
+        let sl = [-l, 1.0];
+        let bump = p_mul(&p_mul(&[0.0, 0.0, 1.0], &p_mul(&sl, &sl)), &[p, q]);
+        let local = p_add(&hermite, &bump);
         // Back to ascending powers of the phase: P(t̂ − a).
-        let global = local.shift(-a);
-        let coeffs = if global.coeffs().is_empty() {
-            vec![0.0]
-        } else {
-            global.coeffs().to_vec()
-        };
+        let mut coeffs = p_shift(&local, -a);
+        while coeffs.len() > 1 && *coeffs.last().unwrap() == 0.0 {
+            coeffs.pop();
+        }
         pieces.push((a, coeffs));
     }
     Table::piecewise("random", &pieces).expect("random table is C¹ by construction")
