@@ -228,6 +228,93 @@ impl Detector {
     }
 }
 
+/// The longest cycle, in events, the long-cycle stage looks for.
+pub const LONG_PERIOD: usize = 4096;
+/// Events a run computes before the long-cycle stage starts: the short detector
+/// settles the common short cycles long before, so they never pay for it.
+pub const LONG_START: u64 = 1024;
+/// Distance under which a return to an earlier event makes a long-cycle candidate, to
+/// be confirmed by Newton's method on the exact map (a chaotic orbit comes back this
+/// close about once in 10¹² events).
+pub const LONG_CANDIDATE: f64 = 1e-7;
+
+/// The long-cycle stage: Brent's cycle detection on the events with a tolerance. A
+/// saved event (the tortoise) is compared with every later one; it moves to the latest
+/// event after 128, 256, … [`LONG_PERIOD`] events (and every [`LONG_PERIOD`] after
+/// that), so a cycle of p ≤ [`LONG_PERIOD`] events returns to it within two of its
+/// stretches once the orbit has converged. A return within [`LONG_CANDIDATE`] after
+/// more than `short` events, with only impacts in between (stick–release cycles repeat
+/// exactly and are caught by the run itself), is a candidate (events, table periods),
+/// never a verdict: the run confirms it on the exact map. Constant memory.
+#[derive(Clone, Debug)]
+pub struct LongDetector {
+    short: usize,
+    tortoise: Option<Rec>,
+    power: usize,
+    lam: usize,
+    impacts_only: bool,
+    /// Events pushed so far.
+    count: u64,
+    /// No candidate before this event (after a refuted one).
+    quiet_until: u64,
+}
+
+impl LongDetector {
+    /// A stage that looks for cycles longer than `short` events (the short
+    /// detector's limit), up to [`LONG_PERIOD`].
+    pub fn new(short: usize) -> LongDetector {
+        LongDetector {
+            short,
+            tortoise: None,
+            power: 128,
+            lam: 0,
+            impacts_only: true,
+            count: 0,
+            quiet_until: LONG_START,
+        }
+    }
+
+    /// Add an event; a candidate (events, table periods) when it returns to the
+    /// tortoise.
+    #[inline]
+    pub fn push(&mut self, rec: Rec) -> Option<(usize, i64)> {
+        self.count += 1;
+        if self.count < LONG_START {
+            return None;
+        }
+        let Some(t) = self.tortoise else {
+            self.tortoise = Some(rec);
+            return None;
+        };
+        self.lam += 1;
+        self.impacts_only &= rec.kind == EventKind::Impact;
+        let mut found = None;
+        if self.lam > self.short
+            && self.impacts_only
+            && self.count >= self.quiet_until
+            && rec.distance(&t) <= LONG_CANDIDATE
+        {
+            let span = (rec.period - t.period) as f64 + (rec.phase - t.phase);
+            let periods = span.round() as i64;
+            if periods >= 1 {
+                found = Some((self.lam, periods));
+            }
+        }
+        if self.lam == self.power || found.is_some() {
+            self.tortoise = Some(rec);
+            self.power = (2 * self.power).min(LONG_PERIOD);
+            self.lam = 0;
+            self.impacts_only = true;
+        }
+        found
+    }
+
+    /// A candidate of `events` events was refuted: no new one for a few of its lengths.
+    pub fn refuted(&mut self, events: usize) {
+        self.quiet_until = self.count + 4 * events as u64;
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

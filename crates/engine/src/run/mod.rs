@@ -29,8 +29,12 @@
 pub mod detect;
 pub mod start;
 
+/// How close the latest event of a confirmed long cycle must be to the exact cycle
+/// Newton's method found (the short detector's tolerance, if larger).
+pub const LONG_AGREEMENT: f64 = 1e-9;
+
 use crate::map::{Event, EventKind, Halt, ImpactMap, State};
-use detect::{Cycle, Detector, Periodicity, Rec};
+use detect::{Detector, LongDetector, Periodicity, Rec};
 use std::collections::VecDeque;
 
 use crate::jobs::CANCEL_EVERY;
@@ -131,6 +135,8 @@ pub struct OrbitRun {
     keep: usize,
     ring: VecDeque<Rec>,
     detector: Option<Detector>,
+    /// Cycles longer than the detector's, confirmed on the exact map.
+    long: Option<LongDetector>,
     /// Events computed so far (including one held back at a checkpoint).
     events: u64,
     /// An event computed past a checkpoint, not yet recorded.
@@ -153,6 +159,7 @@ impl OrbitRun {
             keep: keep.max(1),
             ring: VecDeque::with_capacity(keep.max(1)),
             detector: periodicity.map(Detector::new),
+            long: periodicity.map(|p| LongDetector::new(p.max_period)),
             events: 0,
             pending: None,
             reached: 0,
@@ -252,7 +259,8 @@ impl OrbitRun {
             }
             if let Some(det) = self.detector.as_mut() {
                 if let Some(cycle) = det.push(rec) {
-                    let points = self.continue_cycle(cycle, end);
+                    let cyc: Vec<Rec> = (0..cycle.events).rev().map(|b| *det.back(b)).collect();
+                    let points = self.continue_cycle(&cyc, cycle.periods, end);
                     cancelled(since_check);
                     return Advance::Done(
                         Outcome::Periodic {
@@ -262,6 +270,28 @@ impl OrbitRun {
                         },
                         points,
                     );
+                }
+            }
+            let candidate = self.long.as_mut().and_then(|l| l.push(rec));
+            if let Some((p, k)) = candidate {
+                match self.confirm_long(&rec, p, k) {
+                    Some(cyc) => {
+                        let points = self.continue_cycle(&cyc, k, end);
+                        cancelled(since_check);
+                        return Advance::Done(
+                            Outcome::Periodic {
+                                events: p,
+                                periods: k,
+                                stopped_at: e.period,
+                            },
+                            points,
+                        );
+                    }
+                    None => {
+                        if let Some(l) = self.long.as_mut() {
+                            l.refuted(p);
+                        }
+                    }
                 }
             }
         }
@@ -298,15 +328,61 @@ impl OrbitRun {
         }
     }
 
-    /// The last `keep` events before `end`, continuing the detected cycle.
-    fn continue_cycle(&self, cycle: Cycle, end: i64) -> Vec<Point> {
-        let det = self.detector.as_ref().expect("a detector found the cycle");
-        let p = cycle.events as i64;
-        let k = cycle.periods;
+    /// A long-cycle candidate of `p` events in `k` periods ending at `last` (the latest
+    /// event), confirmed on the exact map: Newton's method from `last` converges to a
+    /// (p, k) cycle that returns within
+    /// [`RETURN_TOLERANCE`](crate::orbits::periodic::RETURN_TOLERANCE), is stable, and
+    /// has `last` within [`LONG_AGREEMENT`] of it. Returns the cycle's p events ending
+    /// at the event of `last`, each a whole cycle before its next repetition, or None
+    /// if refuted.
+    fn confirm_long(&self, last: &Rec, p: usize, k: i64) -> Option<Vec<Rec>> {
+        let tol = self.periodicity?.tolerance;
+        let sys = self.map.system();
+        let k32 = u32::try_from(k).ok()?;
+        let cp = crate::orbits::periodic::cycle(sys, p, k32, last.phase, last.v).ok()?;
+        if !cp.stable {
+            return None;
+        }
+        let probe = Rec {
+            period: last.period,
+            phase: cp.phases[0],
+            v: cp.velocities[0],
+            kind: EventKind::Impact,
+        };
+        if last.distance(&probe) > tol.max(LONG_AGREEMENT) {
+            return None;
+        }
+        // Event n + j of the orbit is the cycle's impact j (j = 0 .. p − 1); the cycle's
+        // event n − p + 1 + i is its impact i + 1, one cycle (k periods) earlier. Whole
+        // periods from event n to impact j: the cycle's own time from its launch less
+        // the impact's phase, an integer up to rounding.
+        let mut elapsed = cp.phases[0];
+        let mut cyc = Vec::with_capacity(p);
+        for i in 0..p {
+            elapsed += cp.flights[i];
+            let j = (i + 1) % p;
+            let period = if j == 0 {
+                last.period
+            } else {
+                last.period + (elapsed - cp.phases[j]).round() as i64 - k
+            };
+            cyc.push(Rec {
+                period,
+                phase: cp.phases[j],
+                v: cp.velocities[j],
+                kind: EventKind::Impact,
+            });
+        }
+        Some(cyc)
+    }
+
+    /// The last `keep` events before `end`, continuing the cycle `cyc` (the last p
+    /// events, oldest first, each repeating every `k` periods).
+    fn continue_cycle(&self, cyc: &[Rec], k: i64, end: i64) -> Vec<Point> {
+        let p = cyc.len() as i64;
         // Events are numbered 1..=n; the cycle is events n − p + 1 ..= n.
         let n = self.recorded() as i64;
         let base = n - p + 1;
-        let cyc: Vec<Rec> = (0..p as usize).rev().map(|b| *det.back(b)).collect();
         let last = cyc
             .iter()
             .enumerate()

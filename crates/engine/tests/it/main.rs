@@ -3,6 +3,7 @@
 mod attractors;
 mod continuation;
 mod engine_properties;
+mod long_cycles;
 mod long_runs;
 mod orbits;
 mod plane;
