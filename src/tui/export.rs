@@ -55,14 +55,14 @@ pub fn view_paths(stem: &Path, basins: bool, plane: bool) -> Vec<PathBuf> {
 /// SVG and PNG. Returns every path written.
 pub fn export_view(app: &App, stem: &Path) -> Result<Vec<PathBuf>, String> {
     use crate::output::figure::{self, DiagramAxis, ImageFormat, DEFAULT_DPI};
-    let b = &app.basins;
+    let b = &app.panels.basins;
     let basins = match (b.shown, &b.spec, &b.basins) {
         (true, Some(spec), Some(pic)) if pic.complete() => {
             Some(figure::basins::basins_figure(spec, pic))
         }
         _ => None,
     };
-    let pl = &app.plane;
+    let pl = &app.panels.plane;
     let plane = match (pl.shown, &pl.spec, &pl.plane) {
         (true, Some(spec), Some(pic)) if pic.complete() => Some(figure::plane::plane_figure(
             spec,
@@ -79,9 +79,12 @@ pub fn export_view(app: &App, stem: &Path) -> Result<Vec<PathBuf>, String> {
         ));
     }
     let (csv, txt) = export(app, stem)?;
-    let d = &app.diagram;
-    let spec = d.running.clone().unwrap_or_else(|| d.sweep_spec(app));
-    let p = &app.params;
+    let d = &app.panels.diagram;
+    let spec = d
+        .running
+        .clone()
+        .unwrap_or_else(|| d.sweep_spec(&app.shared));
+    let p = &app.shared.params;
     let n = crate::output::text::shortest;
     let system = format!(
         "{}, α = {}, r = {}, k = {}",
@@ -104,11 +107,11 @@ pub fn export_view(app: &App, stem: &Path) -> Result<Vec<PathBuf>, String> {
     );
     let v0 = p.v0.map_or("f'(t̂0) + 0.5".to_string(), n);
     let phase = figure::phase_view(
-        &app.phase.points,
+        &app.panels.phase.points,
         &format!(
             "{system}: every event of the orbit from t̂0 = {}, v0 = {v0} ({} events)",
             n(p.t0),
-            app.phase.points.len()
+            app.panels.phase.points.len()
         ),
     );
     let mut written = vec![csv, txt];
@@ -134,7 +137,7 @@ pub fn export_view(app: &App, stem: &Path) -> Result<Vec<PathBuf>, String> {
 /// Write `stem.csv` and `stem.txt` (relative to the working directory). Returns the
 /// two paths.
 pub fn export(app: &App, stem: &Path) -> Result<(PathBuf, PathBuf), String> {
-    let d = &app.diagram;
+    let d = &app.panels.diagram;
     if d.plotted == 0 {
         return Err("export: the diagram has no points yet".into());
     }
@@ -151,7 +154,10 @@ pub fn export(app: &App, stem: &Path) -> Result<(PathBuf, PathBuf), String> {
         }
     }
     // The sweep the stored values come from (the screen may have changed since).
-    let spec = d.running.clone().unwrap_or_else(|| d.sweep_spec(app));
+    let spec = d
+        .running
+        .clone()
+        .unwrap_or_else(|| d.sweep_spec(&app.shared));
     let values: Vec<_> = d.slots.iter().flatten().collect();
     let mut f = AtomicFile::create(&csv).map_err(|e| format!("export: {e}"))?;
     let written = (|| -> std::io::Result<()> {

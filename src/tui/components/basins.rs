@@ -6,17 +6,14 @@
 //! column and two per row (each cell is drawn as an upper and a lower half in colour;
 //! without colour each cell shows the texture of its most frequent attractor).
 
-use super::{panel, Component, Target};
+use super::{panel, Component, Effect, JobMsg, Registered, Shared, Workers};
 use crate::output::basin_map::{self, describe, exponent, numbers, texture};
 use crate::output::hitgrid::Range;
 use crate::tui::keymap::Action;
 use crate::tui::params::{ParamId, Touch};
 use crate::tui::plot::draw_axes;
-use crate::tui::shared::{Effect, Shared};
-use crate::tui::workers::{Body, JobDone, Workers};
 use bouncemap_engine::attractors::basins::{BasinChunk, BasinSpec, Basins, BasinsJob};
 use bouncemap_engine::attractors::Kind;
-use bouncemap_engine::jobs::Batch;
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::style::{Color, Style};
@@ -77,19 +74,6 @@ fn plot_rect(pane: Rect) -> Rect {
 }
 
 impl BasinsPanel {
-    /// Size the grid to the pane: one start per column, two per row. A new size
-    /// restarts the picture (if shown).
-    pub fn set_pane(&mut self, pane: Rect, shared: &mut Shared) {
-        let plot = plot_rect(pane);
-        let grid = (plot.width.max(1) as usize, 2 * plot.height.max(1) as usize);
-        if grid != self.grid {
-            self.grid = grid;
-            if self.shown {
-                shared.effect(Effect::Start(Target::Basins));
-            }
-        }
-    }
-
     /// The colour of attractor `id` (resting and escaping starts in grey).
     fn color(&self, shared: &Shared, id: u32) -> Option<Color> {
         let reg = self.basins.as_ref()?.registry();
@@ -119,12 +103,31 @@ impl BasinsPanel {
 }
 
 impl Component for BasinsPanel {
+    type Msg = JobMsg<BasinChunk>;
+
+    fn shown(&self) -> bool {
+        self.shown
+    }
+
+    /// Size the grid to the pane: one start per column, two per row. A new size
+    /// restarts the picture (if shown).
+    fn set_pane(&mut self, pane: Rect, shared: &mut Shared) {
+        let plot = plot_rect(pane);
+        let grid = (plot.width.max(1) as usize, 2 * plot.height.max(1) as usize);
+        if grid != self.grid {
+            self.grid = grid;
+            if self.shown {
+                shared.effect(Effect::Start(Self::TARGET));
+            }
+        }
+    }
+
     fn handle(&mut self, action: Action, shared: &mut Shared) -> bool {
         if action != Action::ToggleBasins {
             return false;
         }
         self.shown = !self.shown;
-        shared.effect(Effect::Start(Target::Basins));
+        shared.effect(Effect::Start(Self::TARGET));
         if self.shown {
             shared.say(
                 "basins: which attractor each start (t̂0, w0) ends on; the key again shows the phase plot",
@@ -136,13 +139,13 @@ impl Component for BasinsPanel {
 
     fn changed(&mut self, id: ParamId, shared: &mut Shared) {
         if self.shown && id.touches() == Touch::System {
-            shared.effect(Effect::Start(Target::Basins));
+            shared.effect(Effect::Start(Self::TARGET));
         }
     }
 
     fn start(&mut self, shared: &mut Shared, workers: &Workers) {
         if !self.shown {
-            workers.cancel(Target::Basins);
+            workers.cancel(Self::TARGET);
             self.done = true;
             return;
         }
@@ -154,7 +157,7 @@ impl Component for BasinsPanel {
         };
         match BasinsJob::new(spec.clone()) {
             Ok(job) => {
-                self.gen = workers.start_job(Target::Basins, job);
+                self.gen = workers.start_job(Self::ADDRESS, job);
                 self.basins = Some(Basins::new(&spec));
                 self.spec = Some(spec);
                 self.error = None;
@@ -163,22 +166,23 @@ impl Component for BasinsPanel {
                 self.elapsed = 0.0;
             }
             Err(e) => {
-                workers.cancel(Target::Basins);
+                workers.cancel(Self::TARGET);
                 self.error = Some(e.to_string());
                 self.done = true;
             }
         }
     }
 
-    fn receive(&mut self, gen: u64, body: Body, shared: &mut Shared) {
+    fn receive(&mut self, gen: u64, msg: Self::Msg, shared: &mut Shared) {
         if gen != self.gen {
             return;
         }
-        if body.is::<JobDone>() {
-            self.done = true;
-        } else if let Ok(b) = body.downcast::<Batch<BasinChunk>>() {
-            if let Some(basins) = self.basins.as_mut() {
-                basins.absorb(b.data);
+        match msg {
+            JobMsg::Done => self.done = true,
+            JobMsg::Batch(b) => {
+                if let Some(basins) = self.basins.as_mut() {
+                    basins.absorb(b.data);
+                }
             }
         }
         if let Some(s) = self.started {

@@ -13,16 +13,14 @@
 //! window when another parameter is swept), D ∈ [0, 1] or r ∈ [0.5, 0.95], with the
 //! diagram's transient, started next to the (1, 1) solution.
 
-use super::{is_focused, panel, Component, Target};
+use super::{is_focused, panel, Component, Effect, JobMsg, Registered, Shared, Target, Workers};
 use crate::output::classes::{of_pixel, Class};
 use crate::output::hitgrid::Range;
 use crate::output::plane_map::{self, glyph, Cell, CURVE_MARKS};
 use crate::tui::keymap::Action;
+use crate::tui::layout::Slot;
 use crate::tui::params::{default_window, ParamId, Params};
 use crate::tui::plot::draw_axes;
-use crate::tui::shared::{Effect, Focus, Shared};
-use crate::tui::workers::{Body, JobDone, Workers};
-use bouncemap_engine::jobs::Batch;
 use bouncemap_engine::plane::{curves, Axis, Curves, Plane, PlaneChunk, PlaneJob, PlaneSpec};
 use bouncemap_engine::sweep::SweepParam;
 use bouncemap_engine::Table;
@@ -95,19 +93,6 @@ pub fn plane_spec(params: &Params, grid: (usize, usize)) -> PlaneSpec {
 }
 
 impl PlanePanel {
-    /// Size the grid to the pane: one pixel per column, two per row. A new size restarts
-    /// the plane (if shown).
-    pub fn set_pane(&mut self, pane: Rect, shared: &mut Shared) {
-        let plot = plot_rect(pane);
-        let grid = (plot.width.max(1) as usize, 2 * plot.height.max(1) as usize);
-        if grid != self.grid {
-            self.grid = grid;
-            if self.shown {
-                shared.effect(Effect::Start(Target::Plane));
-            }
-        }
-    }
-
     /// The plane the current parameters ask for at the pane's size.
     pub fn spec_for(&self, shared: &Shared) -> PlaneSpec {
         plane_spec(&shared.params, self.grid)
@@ -200,12 +185,35 @@ fn curve_style() -> Style {
 }
 
 impl Component for PlanePanel {
+    type Msg = JobMsg<PlaneChunk>;
+
+    fn shown(&self) -> bool {
+        self.shown
+    }
+
+    fn focusable(&self) -> bool {
+        true
+    }
+
+    /// Size the grid to the pane: one pixel per column, two per row. A new size restarts
+    /// the plane (if shown).
+    fn set_pane(&mut self, pane: Rect, shared: &mut Shared) {
+        let plot = plot_rect(pane);
+        let grid = (plot.width.max(1) as usize, 2 * plot.height.max(1) as usize);
+        if grid != self.grid {
+            self.grid = grid;
+            if self.shown {
+                shared.effect(Effect::Start(Self::TARGET));
+            }
+        }
+    }
+
     fn handle(&mut self, action: Action, shared: &mut Shared) -> bool {
         if action == Action::TogglePlane {
             self.shown = !self.shown;
-            shared.effect(Effect::Start(Target::Plane));
+            shared.effect(Effect::Start(Self::TARGET));
             if self.shown {
-                shared.focus = Focus::Diagram;
+                shared.focus = Slot::Diagram;
                 shared.say(
                     "plane: arrows move α and D (or r) for every panel; Enter sweeps α there; the key again shows the diagram",
                     false,
@@ -213,7 +221,7 @@ impl Component for PlanePanel {
             }
             return true;
         }
-        if !self.shown || shared.focus != Focus::Diagram {
+        if !self.shown || shared.focus != Slot::Diagram {
             return false;
         }
         match action {
@@ -233,7 +241,7 @@ impl Component for PlanePanel {
                 };
                 shared.after_change(ParamId::Sweep, r, &before);
                 self.shown = false;
-                shared.effect(Effect::Start(Target::Plane));
+                shared.effect(Effect::Start(Self::TARGET));
                 shared.effect(Effect::Start(Target::Diagram));
                 shared.say("plane: the diagram sweeps α at the point chosen", false);
             }
@@ -256,7 +264,7 @@ impl Component for PlanePanel {
         }
         let next = self.spec_for(shared);
         if self.spec.as_ref() != Some(&next) {
-            shared.effect(Effect::Start(Target::Plane));
+            shared.effect(Effect::Start(Self::TARGET));
         } else {
             self.place_cursor(shared);
         }
@@ -264,7 +272,7 @@ impl Component for PlanePanel {
 
     fn start(&mut self, shared: &mut Shared, workers: &Workers) {
         if !self.shown {
-            workers.cancel(Target::Plane);
+            workers.cancel(Self::TARGET);
             self.done = true;
             return;
         }
@@ -277,7 +285,7 @@ impl Component for PlanePanel {
         }
         match PlaneJob::new(spec.clone()) {
             Ok(job) => {
-                self.gen = workers.start_job(Target::Plane, job);
+                self.gen = workers.start_job(Self::ADDRESS, job);
                 self.plane = Some(Plane::new(&spec));
                 self.curves = curves(&spec);
                 self.spec = Some(spec);
@@ -289,26 +297,27 @@ impl Component for PlanePanel {
                 self.first_picture = None;
             }
             Err(e) => {
-                workers.cancel(Target::Plane);
+                workers.cancel(Self::TARGET);
                 self.error = Some(e.to_string());
                 self.done = true;
             }
         }
     }
 
-    fn receive(&mut self, gen: u64, body: Body, shared: &mut Shared) {
+    fn receive(&mut self, gen: u64, msg: Self::Msg, shared: &mut Shared) {
         if gen != self.gen {
             return;
         }
-        if body.is::<JobDone>() {
-            self.done = true;
-        } else if let Ok(b) = body.downcast::<Batch<PlaneChunk>>() {
-            let first_pass = b.pass == 0;
-            if let Some(p) = self.plane.as_mut() {
-                p.absorb(b.data);
-            }
-            if !first_pass && self.first_picture.is_none() {
-                self.first_picture = self.started.map(|s| s.elapsed().as_secs_f64());
+        match msg {
+            JobMsg::Done => self.done = true,
+            JobMsg::Batch(b) => {
+                let first_pass = b.pass == 0;
+                if let Some(p) = self.plane.as_mut() {
+                    p.absorb(b.data);
+                }
+                if !first_pass && self.first_picture.is_none() {
+                    self.first_picture = self.started.map(|s| s.elapsed().as_secs_f64());
+                }
             }
         }
         if let Some(s) = self.started {
@@ -322,7 +331,7 @@ impl Component for PlanePanel {
     }
 
     fn draw(&self, app: &Shared, area: Rect, buf: &mut Buffer) {
-        let focused = is_focused(app, Focus::Diagram);
+        let focused = is_focused(app, Slot::Diagram);
         let block = panel(app, self.title(app), focused).title_bottom(self.legend(app));
         let inner = block.inner(area);
         block.render(area, buf);
