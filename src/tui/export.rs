@@ -55,15 +55,15 @@ pub fn view_paths(stem: &Path, basins: bool, plane: bool) -> Vec<PathBuf> {
 /// SVG and PNG. Returns every path written.
 pub fn export_view(app: &App, stem: &Path) -> Result<Vec<PathBuf>, String> {
     use crate::output::figure::{self, DiagramAxis, ImageFormat, DEFAULT_DPI};
-    let b = &app.panels.basins;
-    let basins = match (b.shown, &b.spec, &b.basins) {
+    let b = &app.panels.basins.view;
+    let basins = match (b.shown, &b.spec, &b.picture) {
         (true, Some(spec), Some(pic)) if pic.complete() => {
             Some(figure::basins::basins_figure(spec, pic))
         }
         _ => None,
     };
     let pl = &app.panels.plane;
-    let plane = match (pl.shown, &pl.spec, &pl.plane) {
+    let plane = match (pl.view.shown, &pl.view.spec, &pl.view.picture) {
         (true, Some(spec), Some(pic)) if pic.complete() => Some(figure::plane::plane_figure(
             spec,
             pic.pixels(),

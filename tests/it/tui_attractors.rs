@@ -220,7 +220,7 @@ fn all_attractors_key_runs_several_starts_and_colours_by_attractor() {
 fn filled_basins(a: &mut App, w: u16, h: u16) {
     size(a, w, h);
     a.handle(Action::ToggleBasins);
-    assert!(a.panels.basins.shown);
+    assert!(a.panels.basins.view.shown);
     let fx = a.take_effects();
     assert!(fx.contains(&Effect::Start(Target::Basins)), "{fx:?}");
     let spec = BasinSpec {
@@ -228,9 +228,9 @@ fn filled_basins(a: &mut App, w: u16, h: u16) {
         ny: 18,
         ..BasinSpec::new(a.shared.system())
     };
-    a.panels.basins.basins = Some(Basins::new(&spec));
-    a.panels.basins.spec = Some(spec.clone());
-    a.panels.basins.gen = 7;
+    a.panels.basins.view.picture = Some(Basins::new(&spec));
+    a.panels.basins.view.spec = Some(spec.clone());
+    a.panels.basins.view.gen = 7;
     let ex = Executor::new(2).unwrap();
     let mut batches = Vec::new();
     ex.run(BasinsJob::new(spec).unwrap(), &Control::new(), |b| {
@@ -246,7 +246,7 @@ fn filled_basins(a: &mut App, w: u16, h: u16) {
 fn the_basins_panel_shows_both_attractors_with_a_legend() {
     let mut a = cubic_app(ColorMode::None);
     filled_basins(&mut a, 120, 40);
-    let b = a.panels.basins.basins.as_ref().unwrap();
+    let b = a.panels.basins.view.picture.as_ref().unwrap();
     assert!(b.complete());
     let t = crate::tui_common::render(&mut a, 120, 40);
     let s = crate::tui_common::text(&t);
@@ -268,7 +268,7 @@ fn the_basins_panel_shows_both_attractors_with_a_legend() {
     insta::assert_snapshot!(s);
     // B again: the phase plot is back, the basins job is stopped.
     key(&mut a, 'B');
-    assert!(!a.panels.basins.shown);
+    assert!(!a.panels.basins.view.shown);
     let s = crate::tui_common::text(&crate::tui_common::render(&mut a, 120, 40));
     assert!(s.contains("Phase (t̂, v)"));
 }
@@ -338,22 +338,22 @@ fn the_basins_panel_fills_in_and_restarts_with_real_workers() {
         panic!("the basins never got there");
     };
     let done = fill(&mut a, &|a| {
-        a.panels.basins.done && a.panels.basins.basins.as_ref().unwrap().complete()
+        a.panels.basins.view.done && a.panels.basins.view.picture.as_ref().unwrap().complete()
     });
     eprintln!(
         "basins panel complete in {done:?} (grid {:?})",
-        a.panels.basins.basins.as_ref().unwrap().grid()
+        a.panels.basins.view.picture.as_ref().unwrap().grid()
     );
     assert!(t0.elapsed() < Duration::from_secs(2), "{:?}", t0.elapsed());
     // α changes: the old picture is dropped, a new one starts at once.
     a.handle(Action::Right);
     assert!(a.take_effects().contains(&Effect::Start(Target::Basins)));
-    let old = a.panels.basins.gen;
+    let old = a.panels.basins.view.gen;
     let t = Instant::now();
     a.start(Target::Basins, &workers);
-    assert_ne!(a.panels.basins.gen, old);
+    assert_ne!(a.panels.basins.view.gen, old);
     let first = fill(&mut a, &|a| {
-        a.panels.basins.basins.as_ref().unwrap().covered() > 0
+        a.panels.basins.view.picture.as_ref().unwrap().covered() > 0
     });
     eprintln!("first chunk after the change in {:?}", t.elapsed());
     assert!(first < Duration::from_millis(500), "{first:?}");

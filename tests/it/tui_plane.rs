@@ -42,14 +42,14 @@ fn app(mode: ColorMode) -> App {
 fn filled(a: &mut App, w: u16, h: u16) {
     size(a, w, h);
     a.handle(Action::TogglePlane);
-    assert!(a.panels.plane.shown);
+    assert!(a.panels.plane.view.shown);
     let fx = a.take_effects();
     assert!(fx.contains(&Effect::Start(Target::Plane)), "{fx:?}");
     let spec = a.panels.plane.spec_for(&a.shared);
-    a.panels.plane.plane = Some(Plane::new(&spec));
+    a.panels.plane.view.picture = Some(Plane::new(&spec));
     a.panels.plane.curves = curves(&spec);
-    a.panels.plane.spec = Some(spec.clone());
-    a.panels.plane.gen = 7;
+    a.panels.plane.view.spec = Some(spec.clone());
+    a.panels.plane.view.gen = 7;
     a.panels.plane.place_cursor(&a.shared);
     let mut batches = Vec::new();
     Executor::new(2)
@@ -62,15 +62,15 @@ fn filled(a: &mut App, w: u16, h: u16) {
     }
     a.receive(Msg::Plane(7, JobMsg::Done));
     // A fixed clock for the title.
-    a.panels.plane.started = None;
-    a.panels.plane.elapsed = 1.5;
+    a.panels.plane.view.started = None;
+    a.panels.plane.view.elapsed = 1.5;
 }
 
 #[test]
 fn the_plane_view_shows_classes_curves_axes_and_legend() {
     let mut a = app(ColorMode::None);
     filled(&mut a, 120, 40);
-    let p = a.panels.plane.plane.as_ref().unwrap();
+    let p = a.panels.plane.view.picture.as_ref().unwrap();
     assert!(p.complete());
     // The plane's pane alone (the other panels have their own snapshots).
     let pane = bouncemap::tui::layout::layout(Rect::new(0, 0, 120, 40))
@@ -123,7 +123,7 @@ fn with_colour_each_cell_is_two_pixels_coloured_by_class() {
 fn the_cursor_moves_alpha_and_d_and_enter_sweeps_alpha_there() {
     let mut a = app(ColorMode::None);
     filled(&mut a, 120, 40);
-    let spec = a.panels.plane.spec.clone().unwrap();
+    let spec = a.panels.plane.view.spec.clone().unwrap();
     let (i0, j0) = a.panels.plane.cursor;
     assert_eq!(i0, spec.x.pixel_of(a.shared.params.alpha));
     a.handle(Action::FineRight);
@@ -146,10 +146,10 @@ fn the_cursor_moves_alpha_and_d_and_enter_sweeps_alpha_there() {
     assert!(!fx.contains(&Effect::Start(Target::Plane)), "{fx:?}");
     // The diagram's zoom keys do nothing while the plane is shown.
     a.handle(Action::ZoomIn);
-    assert!(a.panels.plane.shown);
+    assert!(a.panels.plane.view.shown);
     // Enter: the diagram comes back and sweeps α at that D.
     a.handle(Action::Enter);
-    assert!(!a.panels.plane.shown);
+    assert!(!a.panels.plane.view.shown);
     assert_eq!(a.shared.params.param, SweepParam::Alpha);
     assert!(a.take_effects().contains(&Effect::Start(Target::Diagram)));
     let t = crate::tui_common::render(&mut a, 120, 40);
@@ -192,15 +192,15 @@ fn the_first_coarse_picture_arrives_within_a_second_with_real_workers() {
     // Every pixel of the view shows something once the first pass is in.
     wait(&mut a, &|a| a.panels.plane.first_picture.is_some());
     let first = t0.elapsed();
-    let (nx, ny) = a.panels.plane.plane.as_ref().unwrap().size();
-    let p = a.panels.plane.plane.as_ref().unwrap();
+    let (nx, ny) = a.panels.plane.view.picture.as_ref().unwrap().size();
+    let p = a.panels.plane.view.picture.as_ref().unwrap();
     assert!((0..nx).all(|i| (0..ny).all(|j| p.preview(i, j).is_some())));
     eprintln!("first coarse picture of {nx}x{ny} in {first:?}");
     if !cfg!(debug_assertions) {
         assert!(first < Duration::from_secs(1), "{first:?}");
     }
-    wait(&mut a, &|a| a.panels.plane.done);
-    assert!(a.panels.plane.plane.as_ref().unwrap().complete());
+    wait(&mut a, &|a| a.panels.plane.view.done);
+    assert!(a.panels.plane.view.picture.as_ref().unwrap().complete());
     eprintln!("complete in {:?}", t0.elapsed());
     workers.cancel_all();
 }

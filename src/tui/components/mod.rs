@@ -19,7 +19,8 @@
 //! Adding a panel: a file here with a type implementing [`Component`] (its `Msg`, its
 //! start and receive through [`Registered::ADDRESS`], `shown` if it replaces another
 //! panel while shown, `focusable` if it takes the arrow keys), its `mod` line and its
-//! line in the registry, and, if a key shows it, an [`crate::tui::keymap::Action`].
+//! line in the registry, and, if a key shows it, an [`crate::tui::keymap::Action`]. A
+//! grid picture filling in coarse to fine is a [`grid_picture::GridPicture`].
 //! Draw-only pieces (the status line, the help, legend, preset and table overlays, the
 //! too-small message) are plain functions.
 
@@ -30,6 +31,7 @@ pub mod basins;
 pub mod bounce;
 pub mod branches;
 pub mod diagram;
+pub mod grid_picture;
 pub mod help;
 pub mod legend;
 pub mod parameters;

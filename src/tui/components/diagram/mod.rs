@@ -19,7 +19,7 @@ pub use navigation::Zoom;
 use super::{compact, is_focused, panel, Component, Effect, JobMsg, Registered, Shared, Workers};
 use crate::output::hitgrid::{HitGrid, Range};
 use crate::tui::keymap::Action;
-use crate::tui::layout::Slot;
+use crate::tui::layout::{plot_area_within, Slot};
 use crate::tui::params::{fmt_num, ParamId, Params, StartMode, Touch};
 use crate::tui::plot::{draw_axes, render};
 use bouncemap_engine::sweep::{
@@ -56,21 +56,19 @@ pub fn split(inner: Rect) -> (Rect, Option<Rect>) {
     (main, Some(strip))
 }
 
-/// The plot rectangle of the diagram pane (as [`draw_axes`] lays it out).
+/// The plot rectangle of the diagram pane (as [`draw_axes`] lays it out above the
+/// strip).
 fn plot_rect(pane: Rect) -> Rect {
-    let inner = Rect {
-        x: pane.x + 1,
-        y: pane.y + 1,
-        width: pane.width.saturating_sub(2),
-        height: pane.height.saturating_sub(2),
+    let inner_h = pane.height.saturating_sub(2);
+    let (main, _) = split(Rect {
+        height: inner_h,
+        ..pane
+    });
+    let above = Rect {
+        height: pane.height - (inner_h - main.height),
+        ..pane
     };
-    let (main, _) = split(inner);
-    Rect {
-        x: main.x + LABEL_W + 1,
-        y: main.y,
-        width: main.width.saturating_sub(LABEL_W + 1),
-        height: main.height.saturating_sub(1),
-    }
+    plot_area_within(above, LABEL_W)
 }
 
 /// What the diagram's vertical axis shows.
