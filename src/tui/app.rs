@@ -11,6 +11,7 @@
 use super::components::presets::PresetPicker;
 use super::components::{help, legend, status, table_view, too_small, Msg, Panels, Workers};
 pub use super::components::{Effect, Overlay, Shared, Target};
+use super::export::free_name;
 use super::keymap::{Action, Keymap};
 use super::layout::{layout, Slot};
 use super::params::{ParamId, Params};
@@ -134,24 +135,8 @@ impl App {
             Action::Presets => self.shared.overlay = Overlay::Presets { selected: 0 },
             Action::Export | Action::ExportView => {
                 let dir = std::env::current_dir().unwrap_or_else(|_| ".".into());
-                let view = action == Action::ExportView;
-                let (prefix, exts): (&str, &[&str]) = if view {
-                    (
-                        "bouncemap-view",
-                        &[
-                            ".csv",
-                            ".txt",
-                            "-diagram.svg",
-                            "-diagram.png",
-                            "-phase.svg",
-                            "-phase.png",
-                        ],
-                    )
-                } else {
-                    ("bouncemap-diagram", &[".csv", ".txt"])
-                };
-                self.export_view = view;
-                self.export_name = Some(crate::output::sink::free_stem(&dir, prefix, exts));
+                self.export_view = action == Action::ExportView;
+                self.export_name = Some(free_name(&dir, self.export_view));
             }
             Action::Suspend => self.shared.effect(Effect::Suspend),
             Action::NextPanel | Action::PrevPanel => {

@@ -175,7 +175,7 @@ fn apply(e: Effect, app: &mut App, workers: &Workers, term: &mut Term) -> anyhow
             let name = app.export_pending.take().unwrap_or_default();
             let stem = std::path::Path::new(name.trim());
             let msg = if app.export_view {
-                match export_view(app, stem) {
+                match export_view(&app.shared, &app.panels, stem) {
                     Ok(_) => (
                         format!(
                             "wrote {n}.csv, {n}.txt, {n}-diagram.svg/.png, {n}-phase.svg/.png",
@@ -186,7 +186,7 @@ fn apply(e: Effect, app: &mut App, workers: &Workers, term: &mut Term) -> anyhow
                     Err(e) => (e, true),
                 }
             } else {
-                match export(app, stem) {
+                match export(&app.shared, &app.panels, stem) {
                     Ok((c, t)) => (
                         format!("exported {} and {}", c.display(), t.display()),
                         false,

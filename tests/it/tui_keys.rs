@@ -307,7 +307,7 @@ fn export_writes_csv_and_braille_text_under_a_typed_name() {
     assert!(a.take_effects().contains(&Effect::Export));
     assert!(!a.editing());
     let stem = std::path::PathBuf::from(a.export_pending.clone().unwrap());
-    let (csv, txt) = bouncemap::tui::export::export(&a, &stem).unwrap();
+    let (csv, txt) = bouncemap::tui::export::export(&a.shared, &a.panels, &stem).unwrap();
     assert_eq!(csv, dir.join("run.csv"));
     let c = std::fs::read_to_string(&csv).unwrap();
     // A sweep file as `bouncemap sweep` writes it: provenance, header row, rows, end.
@@ -336,10 +336,10 @@ fn export_writes_csv_and_braille_text_under_a_typed_name() {
         "{t}"
     );
     // An existing name is refused and the files stay as they were.
-    let e = bouncemap::tui::export::export(&a, &stem).unwrap_err();
+    let e = bouncemap::tui::export::export(&a.shared, &a.panels, &stem).unwrap_err();
     assert!(e.contains("exists"), "{e}");
     assert_eq!(std::fs::read_to_string(&csv).unwrap(), c);
-    let next = bouncemap::tui::export::free_name(&dir);
+    let next = bouncemap::tui::export::free_name(&dir, false);
     assert_eq!(next, "bouncemap-diagram-1");
     std::fs::remove_dir_all(&dir).unwrap();
 }
@@ -362,7 +362,7 @@ fn export_view_writes_the_diagram_and_phase_plot_as_figures() {
     press(&mut a, KeyCode::Enter, KeyModifiers::NONE);
     assert_eq!(a.take_effects(), vec![Effect::Export]);
     let stem = std::path::PathBuf::from(a.export_pending.clone().unwrap());
-    let written = bouncemap::tui::export::export_view(&a, &stem).unwrap();
+    let written = bouncemap::tui::export::export_view(&a.shared, &a.panels, &stem).unwrap();
     let names: Vec<String> = written
         .iter()
         .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
@@ -394,7 +394,7 @@ fn export_view_writes_the_diagram_and_phase_plot_as_figures() {
         }
     }
     // Nothing is replaced: a second export under the same name is refused.
-    let e = bouncemap::tui::export::export_view(&a, &stem).unwrap_err();
+    let e = bouncemap::tui::export::export_view(&a.shared, &a.panels, &stem).unwrap_err();
     assert!(e.contains("exists"), "{e}");
     std::fs::remove_dir_all(&dir).unwrap();
 }

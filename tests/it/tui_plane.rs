@@ -226,7 +226,7 @@ fn export_view_writes_the_plane_when_it_is_shown() {
     let dir = std::env::temp_dir().join(format!("bouncemap-plane-view-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let stem = dir.join("p");
-    let written = bouncemap::tui::export::export_view(&a, &stem).unwrap();
+    let written = bouncemap::tui::export::export_view(&a.shared, &a.panels, &stem).unwrap();
     let names: Vec<String> = written
         .iter()
         .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
