@@ -63,8 +63,10 @@ pub use shared::{Effect, Overlay, Shared};
 use stability::Stability;
 pub use workers::JobMsg;
 
+// The panels in routing order: actions are offered in this order, and a panel listed
+// before another in the same slot takes that slot while it is shown.
 registry! {
-    // Target   => field:      type,         slot the panel takes,    made from `Shared`
+    // Target   => field:      type,         slot it takes,           made from `Shared`
     Parameters  => parameters: Parameters,   slot Some(Slot::Params),    new |_| Parameters::new();
     /// The plane view, in the diagram's place while shown (it takes the diagram's keys).
     Plane       => plane:      PlanePanel,   slot Some(Slot::Diagram),   new |_| PlanePanel::default();
