@@ -1,128 +1,68 @@
-//! The application: what the panels share ([`Shared`]) and one of each panel, with
-//! the routing of actions, changes and worker messages between them. Pure: no terminal, no threads. Handling an action mutates the state and queues
-//! [`Effect`]s (start a panel's background work, pause, export) that the runtime
-//! carries out, so every key's effect can be tested directly.
-//!
-//! `App` dereferences to its [`Shared`] state (`app.params`, `app.focus`, ...).
+//! The application: what the panels share ([`Shared`]) and the panels themselves
+//! ([`Panels`], from the registry in [`crate::tui::components`]), with what is the
+//! application's own: overlays (help, legend, table view, presets), the export prompt,
+//! focus moves, quitting. Actions, parameter changes, starts and worker messages are
+//! routed through the registry; the diagram is named only for its cursor (the branch
+//! under it), the mouse's zoom and the zoom stack a preset clears. Pure: no terminal,
+//! no threads. Handling an action mutates the state and queues [`Effect`]s (start a
+//! panel's background work, pause, export) that the runtime carries out, so every
+//! key's effect can be tested directly.
 
-use super::components::basins::BasinsPanel;
-use super::components::bounce::Bounce;
-use super::components::branches::Branches;
-use super::components::diagram::Diagram;
-use super::components::parameters::Parameters;
-use super::components::phase_plot::PhasePlot;
-use super::components::plane::PlanePanel;
 use super::components::presets::PresetPicker;
-use super::components::stability::Stability;
-use super::components::{help, legend, status, table_view, too_small, Component, Target};
+use super::components::{help, legend, status, table_view, too_small, Msg, Panels, Workers};
+pub use super::components::{Effect, Overlay, Shared, Target};
+use super::export::free_name;
 use super::keymap::{Action, Keymap};
-use super::layout::{layout, Panes};
+use super::layout::{layout, Slot};
 use super::params::{ParamId, Params};
-pub use super::shared::{Effect, Focus, Overlay, Shared};
 use super::theme::Theme;
-use super::workers::{Msg, Workers};
 use crate::output::hitgrid::Marker;
 use ratatui::layout::Rect;
 use ratatui::Frame;
-use std::ops::{Deref, DerefMut};
 
 /// Everything on screen.
 pub struct App {
+    /// What the panels share.
     pub shared: Shared,
-    pub parameters: Parameters,
-    pub diagram: Diagram,
-    pub phase: PhasePlot,
-    pub stability: Stability,
-    pub bounce: Bounce,
-    pub basins: BasinsPanel,
-    pub plane: PlanePanel,
-    pub branches: Branches,
+    /// One of each panel.
+    pub panels: Panels,
+    /// The preset picker's list (the overlay's state is [`Overlay::Presets`]).
     pub presets: PresetPicker,
-}
-
-impl Deref for App {
-    type Target = Shared;
-    fn deref(&self) -> &Shared {
-        &self.shared
-    }
-}
-
-impl DerefMut for App {
-    fn deref_mut(&mut self) -> &mut Shared {
-        &mut self.shared
-    }
+    /// Frames per second at most.
+    pub fps: u32,
+    /// Whether the mouse is captured.
+    pub mouse: bool,
+    pub quit: bool,
+    /// First line shown of the help or legend overlay (when it scrolls).
+    pub help_scroll: usize,
+    /// The file name being typed for an export (None: not typing one).
+    pub export_name: Option<String>,
+    /// The name an export was asked for, until the runtime writes it.
+    pub export_pending: Option<String>,
+    /// Whether the export being named also writes the view as figures (`E`).
+    pub export_view: bool,
 }
 
 impl App {
+    /// The application for `params`; every panel's background work is queued to start.
     pub fn new(params: Params, keymap: Keymap, theme: Theme, marker: Marker, fps: u32) -> App {
-        let shared = Shared::new(params, keymap, theme, marker, fps);
-        let mut app = App {
-            parameters: Parameters::new(),
-            diagram: Diagram::new(&shared),
-            phase: PhasePlot::new(marker),
-            stability: Stability::default(),
-            bounce: Bounce::new(&shared.params),
-            basins: BasinsPanel::default(),
-            plane: PlanePanel::default(),
-            branches: Branches::default(),
-            presets: PresetPicker::new(),
-            shared,
-        };
-        for t in [
-            Target::Orbits,
-            Target::Phase,
-            Target::Diagram,
-            Target::Branches,
-        ] {
-            app.shared.effect(Effect::Start(t));
+        let mut shared = Shared::new(params, keymap, theme, marker);
+        let panels = Panels::new(&shared);
+        for t in Target::ALL {
+            shared.effect(Effect::Start(*t));
         }
-        app
-    }
-
-    /// The shared state and every stateful panel, in routing order.
-    fn parts(&mut self) -> (&mut Shared, [&mut dyn Component; 8]) {
-        let App {
+        App {
             shared,
-            parameters,
-            diagram,
-            phase,
-            stability,
-            bounce,
-            basins,
-            plane,
-            branches,
-            ..
-        } = self;
-        // The plane before the diagram: while shown, it takes the diagram's keys.
-        (
-            shared,
-            [
-                parameters, plane, diagram, bounce, phase, stability, basins, branches,
-            ],
-        )
-    }
-
-    /// The shared state and the panel whose background work `t` is.
-    fn part(&mut self, t: Target) -> (&mut Shared, &mut dyn Component) {
-        let App {
-            shared,
-            diagram,
-            phase,
-            stability,
-            basins,
-            plane,
-            branches,
-            ..
-        } = self;
-        let c: &mut dyn Component = match t {
-            Target::Diagram => diagram,
-            Target::Phase => phase,
-            Target::Orbits => stability,
-            Target::Basins => basins,
-            Target::Plane => plane,
-            Target::Branches => branches,
-        };
-        (shared, c)
+            panels,
+            presets: PresetPicker::new(),
+            fps,
+            mouse: false,
+            quit: false,
+            help_scroll: 0,
+            export_name: None,
+            export_pending: None,
+            export_view: false,
+        }
     }
 
     /// Effects queued since the last call.
@@ -132,7 +72,7 @@ impl App {
 
     /// The selected parameter row.
     pub fn selected_param(&self) -> ParamId {
-        self.parameters.selected_param()
+        self.panels.parameters.selected_param()
     }
 
     // ---------------------------------------------------------------- actions
@@ -141,16 +81,14 @@ impl App {
     pub fn handle(&mut self, action: Action) {
         self.shared.dirty = true;
         if action == Action::Quit {
-            self.shared.quit = true;
+            self.quit = true;
             return;
         }
         match self.shared.overlay {
             Overlay::Help | Overlay::Legend => {
                 match action {
-                    Action::Up => {
-                        self.shared.help_scroll = self.shared.help_scroll.saturating_sub(1)
-                    }
-                    Action::Down => self.shared.help_scroll = (self.shared.help_scroll + 1).min(60),
+                    Action::Up => self.help_scroll = self.help_scroll.saturating_sub(1),
+                    Action::Down => self.help_scroll = (self.help_scroll + 1).min(60),
                     Action::Help | Action::Legend | Action::Cancel | Action::Enter => {
                         self.shared.overlay = Overlay::None
                     }
@@ -187,56 +125,45 @@ impl App {
             }
             Action::Help => {
                 self.shared.overlay = Overlay::Help;
-                self.shared.help_scroll = 0;
+                self.help_scroll = 0;
             }
             Action::Legend => {
                 self.shared.overlay = Overlay::Legend;
-                self.shared.help_scroll = 0;
+                self.help_scroll = 0;
             }
             Action::TableView => self.shared.overlay = Overlay::Table,
             Action::Presets => self.shared.overlay = Overlay::Presets { selected: 0 },
             Action::Export | Action::ExportView => {
                 let dir = std::env::current_dir().unwrap_or_else(|_| ".".into());
-                let view = action == Action::ExportView;
-                let (prefix, exts): (&str, &[&str]) = if view {
-                    (
-                        "bouncemap-view",
-                        &[
-                            ".csv",
-                            ".txt",
-                            "-diagram.svg",
-                            "-diagram.png",
-                            "-phase.svg",
-                            "-phase.png",
-                        ],
-                    )
-                } else {
-                    ("bouncemap-diagram", &[".csv", ".txt"])
-                };
-                self.shared.export_view = view;
-                self.shared.export_name = Some(crate::output::sink::free_stem(&dir, prefix, exts));
+                self.export_view = action == Action::ExportView;
+                self.export_name = Some(free_name(&dir, self.export_view));
             }
             Action::Suspend => self.shared.effect(Effect::Suspend),
             Action::NextPanel | Action::PrevPanel => {
-                self.shared.focus = match self.shared.focus {
-                    Focus::Params => Focus::Diagram,
-                    Focus::Diagram => Focus::Params,
-                };
-                self.diagram.mark = None;
+                self.move_focus(action == Action::NextPanel);
             }
             _ => {
                 if action == Action::Cancel {
                     self.shared.message = None;
                 }
-                let (shared, panels) = self.parts();
-                for c in panels {
-                    if c.handle(action, shared) {
-                        break;
-                    }
-                }
+                self.panels.handle(action, &mut self.shared);
             }
         }
         self.announce();
+    }
+
+    /// Move the focus to the next (or previous) slot of the focus ring.
+    fn move_focus(&mut self, next: bool) {
+        let ring = self.panels.focus_ring();
+        if let Some(&first) = ring.first() {
+            let n = ring.len();
+            self.shared.focus = match ring.iter().position(|s| *s == self.shared.focus) {
+                Some(i) if next => ring[(i + 1) % n],
+                Some(i) => ring[(i + n - 1) % n],
+                None => first,
+            };
+        }
+        self.panels.focus_moved();
     }
 
     /// A typed character while editing a parameter or an export's file name (Enter
@@ -244,28 +171,28 @@ impl App {
     pub fn edit_key(&mut self, key: crossterm::event::KeyCode) {
         use crossterm::event::KeyCode;
         self.shared.dirty = true;
-        if let Some(name) = self.shared.export_name.as_mut() {
+        if let Some(name) = self.export_name.as_mut() {
             match key {
                 KeyCode::Char(c) if name.chars().count() < 200 => name.push(c),
                 KeyCode::Backspace => {
                     name.pop();
                 }
-                KeyCode::Esc => self.shared.export_name = None,
+                KeyCode::Esc => self.export_name = None,
                 KeyCode::Enter => {
-                    self.shared.export_pending = self.shared.export_name.take();
+                    self.export_pending = self.export_name.take();
                     self.shared.effect(Effect::Export);
                 }
                 _ => {}
             }
             return;
         }
-        self.parameters.edit_key(key, &mut self.shared);
+        self.panels.parameters.edit_key(key, &mut self.shared);
         self.announce();
     }
 
     /// Whether a parameter or a file name is being typed.
     pub fn editing(&self) -> bool {
-        self.parameters.editing.is_some() || self.shared.export_name.is_some()
+        self.panels.parameters.editing.is_some() || self.export_name.is_some()
     }
 
     /// Tell every panel about the rows changed by the last action.
@@ -273,10 +200,7 @@ impl App {
         self.refresh_under_cursor();
         let changed = std::mem::take(&mut self.shared.changed);
         for id in changed {
-            let (shared, panels) = self.parts();
-            for c in panels {
-                c.changed(id, shared);
-            }
+            self.panels.changed(id, &mut self.shared);
         }
     }
 
@@ -290,7 +214,7 @@ impl App {
         match self.shared.params.with_preset(&p) {
             Ok(next) => {
                 self.shared.params = next;
-                self.diagram.zoom_stack.clear();
+                self.panels.diagram.zoom_stack.clear();
                 self.shared.after_change(ParamId::Table, Ok(()), &before);
                 self.shared.say(format!("preset: {name}"), false);
             }
@@ -300,64 +224,59 @@ impl App {
 
     /// Zoom the diagram to [lo, hi] (the mouse's drag).
     pub fn zoom_to(&mut self, lo: f64, hi: f64) {
-        self.diagram.zoom_to(lo, hi, &mut self.shared);
+        self.panels.diagram.zoom_to(lo, hi, &mut self.shared);
         self.announce();
     }
 
     /// Set the swept parameter to the diagram's cursor (the mouse's click).
     pub fn set_value_to_cursor(&mut self) {
-        self.diagram.set_value_to_cursor(&mut self.shared);
+        self.panels.diagram.set_value_to_cursor(&mut self.shared);
         self.announce();
     }
 
     // ---------------------------------------------------------------- work
 
-    /// Start a target's background work (the runtime carries out `Effect::Start`).
+    /// Start panel `t`'s background work (the runtime carries out `Effect::Start`).
     pub fn start(&mut self, t: Target, workers: &Workers) {
-        let (shared, c) = self.part(t);
-        c.start(shared, workers);
-        shared.dirty = true;
+        self.panels.start(t, &mut self.shared, workers);
+        self.shared.dirty = true;
     }
 
     /// Take one worker message.
     pub fn receive(&mut self, msg: Msg) {
-        let Msg { to, gen, body } = msg;
-        let (shared, c) = self.part(to);
-        c.receive(gen, body, shared);
+        let to = msg.target();
+        self.panels.receive(msg, &mut self.shared);
         if to == Target::Branches {
             self.refresh_under_cursor();
         }
     }
 
-    /// The diagram's cursor and the continued branch under it (its cycle at the
-    /// cursor's α, by Newton: microseconds), for the stability panel.
+    /// The continued branch under the diagram's cursor (its cycle at the cursor's α, by
+    /// Newton: microseconds), for the stability panel, while the diagram itself (not a
+    /// panel in its place) has the focus.
     fn refresh_under_cursor(&mut self) {
         use super::components::diagram::Axis;
-        // The plane view takes the diagram's place (and its keys): no diagram cursor.
-        let focused = self.shared.focus == Focus::Diagram && !self.plane.shown;
-        self.shared.cursor = focused.then_some((self.diagram.cursor, self.diagram.ycursor));
-        self.shared.under_cursor = match (&self.shared.branches, self.shared.cursor) {
-            (Some(Ok(sk)), Some((a, y))) => sk.under(a, y, self.diagram.axis == Axis::Velocity),
+        let d = &self.panels.diagram;
+        let focused = self.shared.focus == Slot::Diagram
+            && self.panels.in_slot(Slot::Diagram) == Some(Target::Diagram);
+        self.shared.under_cursor = match &self.shared.branches {
+            Some(Ok(sk)) if focused => sk.under(d.cursor, d.ycursor, d.axis == Axis::Velocity),
             _ => None,
         };
     }
 
     /// Whether any worker may still send something (the loop then polls more often).
-    pub fn busy(&mut self) -> bool {
-        let (shared, panels) = self.parts();
-        !shared.paused && panels.iter().any(|c| c.busy())
+    pub fn busy(&self) -> bool {
+        !self.shared.paused && self.panels.busy()
     }
 
     // ---------------------------------------------------------------- layout
 
-    /// Size the plot grids to the layout of a `w × h` screen (before sweeps ask for
-    /// the diagram's width, and before drawing).
+    /// Size the panels to the layout of a `w × h` screen (before sweeps ask for the
+    /// diagram's width, and before drawing).
     pub fn set_size(&mut self, area: Rect) {
         if let Some(p) = layout(area) {
-            self.diagram.set_pane(p.diagram, &mut self.shared);
-            self.phase.set_pane(p.phase, &self.shared);
-            self.basins.set_pane(p.phase, &mut self.shared);
-            self.plane.set_pane(p.diagram, &mut self.shared);
+            self.panels.set_panes(&p, &mut self.shared);
         }
     }
 
@@ -365,28 +284,17 @@ impl App {
     pub fn draw(&self, frame: &mut Frame) {
         let area = frame.area();
         let buf = frame.buffer_mut();
-        let Some(p): Option<Panes> = layout(area) else {
-            too_small::draw(&self.shared, area, buf);
+        let s = &self.shared;
+        let Some(p) = layout(area) else {
+            too_small::draw(s, area, buf);
             return;
         };
-        let s = &self.shared;
-        self.parameters.draw(s, p.params, buf);
-        if self.plane.shown {
-            self.plane.draw(s, p.diagram, buf);
-        } else {
-            self.diagram.draw(s, p.diagram, buf);
-        }
-        if self.basins.shown {
-            self.basins.draw(s, p.phase, buf);
-        } else {
-            self.phase.draw(s, p.phase, buf);
-        }
-        self.stability.draw(s, p.stability, buf);
-        self.bounce.draw(s, p.bounce, buf);
-        status::draw(s, &self.diagram, &self.phase, p.status, buf);
+        self.panels.draw(s, &p, buf);
+        let computing = self.panels.computing(s);
+        status::draw(s, self.export_name.as_deref(), &computing, p.status, buf);
         match s.overlay {
-            Overlay::Help => help::draw(s, area, buf),
-            Overlay::Legend => legend::draw(s, s.help_scroll, area, buf),
+            Overlay::Help => help::draw(s, self.help_scroll, area, buf),
+            Overlay::Legend => legend::draw(s, self.help_scroll, area, buf),
             Overlay::Table => table_view::draw(s, area, buf),
             Overlay::Presets { selected } => self.presets.draw(s, selected, area, buf),
             Overlay::None => {}

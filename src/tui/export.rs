@@ -1,28 +1,40 @@
 //! `e`: write the current diagram under a typed name (default `bouncemap-diagram-N` in
-//! the working directory, the first N free): `NAME.csv`, a sweep file in the format of
-//! `bouncemap sweep` (the run's specification and provenance, the same rows with
-//! period, status and exponent; its values are those the diagram holds so far), and
-//! `NAME.txt`, the diagram as `sweep --format braille` draws it (title with the
-//! window, axes, labels). Both written atomically; an existing file is never replaced.
+//! the working directory, the first N free: [`free_name`]): `NAME.csv`, a sweep file in
+//! the format of `bouncemap sweep` (the run's specification and provenance, the same
+//! rows with period, status and exponent; its values are those the diagram holds so
+//! far), and `NAME.txt`, the diagram as `sweep --format braille` draws it (title with
+//! the window, axes, labels). Both written atomically; an existing file is never
+//! replaced.
 //!
-//! `E` writes the same two files and the current view as figures beside them:
-//! `NAME-diagram.svg/.png` (the diagram over its zoom window, the parameters in the
-//! caption) and `NAME-phase.svg/.png` (the phase plot), and with the basins panel or
-//! the plane view shown and complete `NAME-basins.svg/.png` or `NAME-plane.svg/.png`,
-//! through
-//! [`crate::output::figure`].
+//! `E` writes the same two files and the current view as figures beside them (default
+//! name `bouncemap-view-N`): `NAME-diagram.svg/.png` (the diagram over its zoom window,
+//! the parameters in the caption) and `NAME-phase.svg/.png` (the phase plot), and with
+//! the basins panel or the plane view shown and complete `NAME-basins.svg/.png` or
+//! `NAME-plane.svg/.png`, through [`crate::output::figure`]. The files are named here
+//! once, for the default names and for writing.
 
-use super::app::App;
+use super::components::{Panels, Shared};
 use crate::output::diagram::BrailleDiagram;
 use crate::output::records::SweepHeader;
-use crate::output::sink::AtomicFile;
+use crate::output::sink::{free_stem, AtomicFile};
 use crate::output::sweep_file::{Layout, SweepWriter};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-/// The first `bouncemap-diagram-N` in `dir` with neither file taken.
-pub fn free_name(dir: &Path) -> String {
-    crate::output::sink::free_stem(dir, "bouncemap-diagram", &[".csv", ".txt"])
+/// The ends of the files `e` writes.
+const FILES: [&str; 2] = [".csv", ".txt"];
+/// The ends of the figures `E` writes besides them, always (the diagram, the phase plot).
+const VIEW: [&str; 4] = ["-diagram.svg", "-diagram.png", "-phase.svg", "-phase.png"];
+
+/// The default name of an export in `dir`: the first `bouncemap-diagram-N` (`e`) or,
+/// with `view`, `bouncemap-view-N` (`E`) with none of its files taken.
+pub fn free_name(dir: &Path, view: bool) -> String {
+    if view {
+        let ends: Vec<&str> = FILES.iter().chain(&VIEW).copied().collect();
+        free_stem(dir, "bouncemap-view", &ends)
+    } else {
+        free_stem(dir, "bouncemap-diagram", &FILES)
+    }
 }
 
 /// `stem` with `ext` appended (the stem may hold dots).
@@ -34,14 +46,14 @@ fn with(stem: &Path, ext: &str) -> PathBuf {
 
 /// `stem.csv` and `stem.txt`.
 fn paths(stem: &Path) -> (PathBuf, PathBuf) {
-    (with(stem, ".csv"), with(stem, ".txt"))
+    (with(stem, FILES[0]), with(stem, FILES[1]))
 }
 
 /// The files `E` writes for `stem`, besides the csv and the text: the diagram, the
 /// phase plot, and the basins and the plane when they are shown with a complete
 /// picture.
 pub fn view_paths(stem: &Path, basins: bool, plane: bool) -> Vec<PathBuf> {
-    let mut ends = vec!["-diagram.svg", "-diagram.png", "-phase.svg", "-phase.png"];
+    let mut ends = VIEW.to_vec();
     if basins {
         ends.extend(["-basins.svg", "-basins.png"]);
     }
@@ -53,17 +65,17 @@ pub fn view_paths(stem: &Path, basins: bool, plane: bool) -> Vec<PathBuf> {
 
 /// `E`: the csv and the text of [`export`], and the diagram and the phase plot as
 /// SVG and PNG. Returns every path written.
-pub fn export_view(app: &App, stem: &Path) -> Result<Vec<PathBuf>, String> {
+pub fn export_view(shared: &Shared, panels: &Panels, stem: &Path) -> Result<Vec<PathBuf>, String> {
     use crate::output::figure::{self, DiagramAxis, ImageFormat, DEFAULT_DPI};
-    let b = &app.basins;
-    let basins = match (b.shown, &b.spec, &b.basins) {
+    let b = &panels.basins.view;
+    let basins = match (b.shown, &b.spec, &b.picture) {
         (true, Some(spec), Some(pic)) if pic.complete() => {
             Some(figure::basins::basins_figure(spec, pic))
         }
         _ => None,
     };
-    let pl = &app.plane;
-    let plane = match (pl.shown, &pl.spec, &pl.plane) {
+    let pl = &panels.plane;
+    let plane = match (pl.view.shown, &pl.view.spec, &pl.view.picture) {
         (true, Some(spec), Some(pic)) if pic.complete() => Some(figure::plane::plane_figure(
             spec,
             pic.pixels(),
@@ -78,10 +90,10 @@ pub fn export_view(app: &App, stem: &Path) -> Result<Vec<PathBuf>, String> {
             p.display()
         ));
     }
-    let (csv, txt) = export(app, stem)?;
-    let d = &app.diagram;
-    let spec = d.running.clone().unwrap_or_else(|| d.sweep_spec(app));
-    let p = &app.params;
+    let (csv, txt) = export(shared, panels, stem)?;
+    let d = &panels.diagram;
+    let spec = d.running.clone().unwrap_or_else(|| d.sweep_spec(shared));
+    let p = &shared.params;
     let n = crate::output::text::shortest;
     let system = format!(
         "{}, α = {}, r = {}, k = {}",
@@ -104,11 +116,11 @@ pub fn export_view(app: &App, stem: &Path) -> Result<Vec<PathBuf>, String> {
     );
     let v0 = p.v0.map_or("f'(t̂0) + 0.5".to_string(), n);
     let phase = figure::phase_view(
-        &app.phase.points,
+        &panels.phase.points,
         &format!(
             "{system}: every event of the orbit from t̂0 = {}, v0 = {v0} ({} events)",
             n(p.t0),
-            app.phase.points.len()
+            panels.phase.points.len()
         ),
     );
     let mut written = vec![csv, txt];
@@ -133,8 +145,8 @@ pub fn export_view(app: &App, stem: &Path) -> Result<Vec<PathBuf>, String> {
 
 /// Write `stem.csv` and `stem.txt` (relative to the working directory). Returns the
 /// two paths.
-pub fn export(app: &App, stem: &Path) -> Result<(PathBuf, PathBuf), String> {
-    let d = &app.diagram;
+pub fn export(shared: &Shared, panels: &Panels, stem: &Path) -> Result<(PathBuf, PathBuf), String> {
+    let d = &panels.diagram;
     if d.plotted == 0 {
         return Err("export: the diagram has no points yet".into());
     }
@@ -151,7 +163,7 @@ pub fn export(app: &App, stem: &Path) -> Result<(PathBuf, PathBuf), String> {
         }
     }
     // The sweep the stored values come from (the screen may have changed since).
-    let spec = d.running.clone().unwrap_or_else(|| d.sweep_spec(app));
+    let spec = d.running.clone().unwrap_or_else(|| d.sweep_spec(shared));
     let values: Vec<_> = d.slots.iter().flatten().collect();
     let mut f = AtomicFile::create(&csv).map_err(|e| format!("export: {e}"))?;
     let written = (|| -> std::io::Result<()> {

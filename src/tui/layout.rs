@@ -1,11 +1,23 @@
-//! Where each panel goes: the screen reflows from 120×40 down to 80×24; below that the
-//! too-small message replaces everything.
+//! Where each panel goes: the screen's slots (parameters, diagram, phase plot,
+//! stability, bounce, status line), reflowing from 120×40 down to 80×24; below that the
+//! too-small message replaces everything. Which panel takes which slot is the panel
+//! registry's (`components`).
 
 use ratatui::layout::{Constraint, Layout, Rect};
 
 /// Smallest usable terminal.
 pub const MIN_W: u16 = 80;
 pub const MIN_H: u16 = 24;
+
+/// A place on the screen that one panel at a time takes (the focus is one of them).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Slot {
+    Params,
+    Diagram,
+    Phase,
+    Stability,
+    Bounce,
+}
 
 /// The panels' rectangles.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -16,6 +28,19 @@ pub struct Panes {
     pub stability: Rect,
     pub bounce: Rect,
     pub status: Rect,
+}
+
+impl Panes {
+    /// The rectangle of `slot`.
+    pub fn get(&self, slot: Slot) -> Rect {
+        match slot {
+            Slot::Params => self.params,
+            Slot::Diagram => self.diagram,
+            Slot::Phase => self.phase,
+            Slot::Stability => self.stability,
+            Slot::Bounce => self.bounce,
+        }
+    }
 }
 
 /// Split the screen. None when it is too small.

@@ -1,17 +1,21 @@
 //! The terminal application: `bouncemap` without a subcommand.
 //!
-//! * [`app`]: one of each panel and the routing of actions, changes and worker
-//!   messages between them (pure, tested directly); [`shared`]: what the panels share;
-//!   [`components`]: one file per panel, each owning its state, keys, background work
-//!   and drawing; [`layout`]: where the panels go.
+//! * [`app`]: the shared state and the panels, the application's own overlays and
+//!   prompts, and the routing of actions, changes and worker messages through the panel
+//!   registry (pure, tested directly); [`components`]: the registry (the one list of
+//!   panels, from which targets, messages, routing, focus and drawing come), what the
+//!   panels share, and one file per panel, each owning its state, keys, background
+//!   work and drawing; [`layout`]: the slots the panels take.
 //! * [`params`]: the editable values (checked by the shared rules); [`keymap`]: keys →
 //!   actions, and the help overlay generated from the same table; [`settings`]: the
 //!   config file.
 //! * [`runtime`]: the event loop; [`input`]: keys, mouse and terminal signals, parsed
 //!   here; [`workers`]: background work, latest-wins, on the engine's executor or
-//!   threads of its own; [`analysis`]: the orbit analysis the stability panel shows;
+//!   threads of its own, its results typed; [`analysis`]: the orbit analysis the
+//!   stability panel shows; [`skeleton`]: the continued branches of the α window;
 //!   [`terminal`]: setup and restore on every way out, and around a stop.
-//! * [`plot`]: drawing the shared hit-count grid; [`theme`]: styles; [`export`]: `e`.
+//! * [`plot`]: drawing the shared hit-count grid; [`theme`]: styles; [`export`]: `e`
+//!   and `E`.
 //!
 //! Invariants: the UI thread never waits on a computation (sweeps, the phase plot and
 //! the orbit analysis run on other threads and report over a channel); a parameter
@@ -29,7 +33,6 @@ pub mod params;
 pub mod plot;
 pub mod runtime;
 pub mod settings;
-pub mod shared;
 pub mod skeleton;
 pub mod terminal;
 pub mod theme;
@@ -113,7 +116,7 @@ pub fn run(opts: Options) -> anyhow::Result<()> {
     }
     let stop = terminal::signal_flag()?;
     terminal::spawn_watchdog(stop.clone());
-    let workers = workers::Workers::new(Executor::all_cores()?);
+    let workers = components::Workers::new(Executor::all_cores()?);
     let inputs = input::Inputs::start()?;
     let mut term = terminal::setup(app.mouse)?;
     let result = runtime::run(&mut term, &mut app, &workers, &inputs, &stop);

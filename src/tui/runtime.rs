@@ -4,12 +4,13 @@
 //! changing it blocks on the input channel and writes nothing. Ctrl-C always quits;
 //! a stop (Ctrl-Z, SIGTSTP) restores the terminal first and takes it back on `fg`.
 
-use super::app::{App, Effect, Focus};
+use super::app::{App, Effect};
 use super::components::diagram::alpha_at;
-use super::export::export;
+use super::components::Workers;
+use super::export::{export, export_view};
 use super::input::{Input, Inputs};
+use super::layout::Slot;
 use super::terminal::{self, Term};
-use super::workers::Workers;
 use crossterm::event::{
     KeyCode, KeyEvent, KeyEventKind, KeyModifiers, MouseButton, MouseEvent, MouseEventKind,
 };
@@ -60,12 +61,12 @@ pub fn run(
             frame.max(DATA_FRAME)
         };
         let due = last_draw.map_or(now, |t| t + cap);
-        if app.dirty && now >= due {
+        if app.shared.dirty && now >= due {
             terminal::draw_synced(term, |f| app.draw(f))?;
-            app.dirty = false;
+            app.shared.dirty = false;
             last_draw = Some(now);
         }
-        let timeout = if app.dirty {
+        let timeout = if app.shared.dirty {
             due.saturating_duration_since(Instant::now())
                 .max(Duration::from_millis(1))
         } else if app.busy() {
@@ -85,12 +86,12 @@ pub fn run(
                     last_input = Instant::now();
                     handle_mouse(app, m, &mut drag_from);
                 }
-                Input::Resize => app.dirty = true,
+                Input::Resize => app.shared.dirty = true,
                 Input::Suspend => suspend(app, term)?,
                 // Continued after a stop we did not take (SIGSTOP): redraw everything.
                 Input::Continue => {
                     terminal::redraw_all(term)?;
-                    app.dirty = true;
+                    app.shared.dirty = true;
                 }
                 Input::Hangup => {
                     // The terminal is gone: stop as for SIGHUP.
@@ -110,7 +111,7 @@ pub fn run(
 /// Stop (Ctrl-Z, SIGTSTP) with the terminal restored; take it back when continued.
 fn suspend(app: &mut App, term: &mut Term) -> anyhow::Result<()> {
     terminal::suspend(term, app.mouse)?;
-    app.dirty = true;
+    app.shared.dirty = true;
     Ok(())
 }
 
@@ -125,14 +126,14 @@ fn handle_key(app: &mut App, k: KeyEvent) {
     }
     if app.editing() {
         app.edit_key(k.code);
-    } else if let Some(a) = app.keymap.action(&k) {
+    } else if let Some(a) = app.shared.keymap.action(&k) {
         app.handle(a);
     }
 }
 
 fn handle_mouse(app: &mut App, m: MouseEvent, drag_from: &mut Option<u16>) {
-    let plot = app.diagram.plot_area;
-    let x = app.diagram.grid.x_range();
+    let plot = app.panels.diagram.plot_area;
+    let x = app.panels.diagram.grid.x_range();
     match m.kind {
         MouseEventKind::Down(MouseButton::Left) => {
             *drag_from = alpha_at(x, plot, m.column)
@@ -150,8 +151,8 @@ fn handle_mouse(app: &mut App, m: MouseEvent, drag_from: &mut Option<u16>) {
                 );
                 if let (Some(a), Some(b)) = (a, b) {
                     if from == m.column {
-                        app.diagram.cursor = a;
-                        app.focus = Focus::Diagram;
+                        app.panels.diagram.cursor = a;
+                        app.shared.focus = Slot::Diagram;
                         app.set_value_to_cursor();
                     } else {
                         app.zoom_to(a.min(b), a.max(b));
@@ -161,7 +162,7 @@ fn handle_mouse(app: &mut App, m: MouseEvent, drag_from: &mut Option<u16>) {
         }
         _ => {}
     }
-    app.dirty = true;
+    app.shared.dirty = true;
 }
 
 fn apply(e: Effect, app: &mut App, workers: &Workers, term: &mut Term) -> anyhow::Result<()> {
@@ -174,7 +175,7 @@ fn apply(e: Effect, app: &mut App, workers: &Workers, term: &mut Term) -> anyhow
             let name = app.export_pending.take().unwrap_or_default();
             let stem = std::path::Path::new(name.trim());
             let msg = if app.export_view {
-                match crate::tui::export::export_view(app, stem) {
+                match export_view(&app.shared, &app.panels, stem) {
                     Ok(_) => (
                         format!(
                             "wrote {n}.csv, {n}.txt, {n}-diagram.svg/.png, {n}-phase.svg/.png",
@@ -185,7 +186,7 @@ fn apply(e: Effect, app: &mut App, workers: &Workers, term: &mut Term) -> anyhow
                     Err(e) => (e, true),
                 }
             } else {
-                match export(app, stem) {
+                match export(&app.shared, &app.panels, stem) {
                     Ok((c, t)) => (
                         format!("exported {} and {}", c.display(), t.display()),
                         false,
@@ -193,7 +194,7 @@ fn apply(e: Effect, app: &mut App, workers: &Workers, term: &mut Term) -> anyhow
                     Err(e) => (e, true),
                 }
             };
-            app.message = Some(msg);
+            app.shared.message = Some(msg);
         }
         Effect::Suspend => suspend(app, term)?,
     }

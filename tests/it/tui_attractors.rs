@@ -11,10 +11,10 @@ use bouncemap::tui::app::{App, Effect};
 use bouncemap::tui::components::diagram::colouring::ColorBy;
 use bouncemap::tui::components::diagram::ALL_STARTS;
 use bouncemap::tui::components::{Component, Target};
+use bouncemap::tui::components::{JobMsg, Msg, Workers};
 use bouncemap::tui::keymap::{Action, Key, Keymap};
 use bouncemap::tui::params::{ParamId, Params};
 use bouncemap::tui::theme::Theme;
-use bouncemap::tui::workers::{Msg, Workers};
 use bouncemap_engine::attractors::basins::{BasinSpec, Basins, BasinsJob};
 use bouncemap_engine::jobs::{Control, Executor};
 use bouncemap_engine::sweep::{self, SweepParam, SweepSpec};
@@ -26,6 +26,7 @@ use std::time::{Duration, Instant};
 
 fn key(a: &mut App, c: char) {
     if let Some(act) = a
+        .shared
         .keymap
         .action(&KeyEvent::new(KeyCode::Char(c), KeyModifiers::NONE))
     {
@@ -51,28 +52,24 @@ fn cubic_app(mode: ColorMode) -> App {
 
 /// Feed the diagram the results of a real sweep of the app's table over [lo, hi].
 fn feed_sweep(a: &mut App, lo: f64, hi: f64, steps: usize) {
-    let p = &a.params;
+    let p = &a.shared.params;
     let mut spec = SweepSpec::new(p.table(), p.alpha, p.r, SweepParam::Alpha, lo, hi, steps);
     spec.initial.near_fixed_point = true;
     spec.transient = 200_000;
     spec.keep = 16;
     spec.lyapunov = true;
     let res = sweep::collect(&spec, &Executor::new(2).unwrap()).unwrap();
-    a.params.lo = lo;
-    a.params.hi = hi;
+    a.shared.params.lo = lo;
+    a.shared.params.hi = hi;
     let shared = &a.shared;
-    a.diagram.sweep_started(1, steps, shared);
+    a.panels.diagram.sweep_started(1, steps, shared);
     for r in res {
         a.receive(sweep_msg(1, r));
     }
-    a.receive(Msg::new(
-        Target::Diagram,
-        1,
-        bouncemap::tui::workers::JobDone,
-    ));
+    a.receive(Msg::Diagram(1, JobMsg::Done));
     // A fixed clock for the title.
-    a.diagram.started = None;
-    a.diagram.elapsed = 2.0;
+    a.panels.diagram.started = None;
+    a.panels.diagram.elapsed = 2.0;
 }
 
 #[test]
@@ -83,7 +80,7 @@ fn period_colours_follow_the_class_of_each_value() {
     feed_sweep(&mut a, 0.46, 0.50, 60);
     let area = Rect::new(0, 0, 90, 24);
     let mut buf = Buffer::empty(area);
-    a.diagram.draw(&a.shared, area, &mut buf);
+    a.panels.diagram.draw(&a.shared, area, &mut buf);
     let theme = Theme::new(ColorMode::Ansi256);
     let colour = |c: Class| theme.class(c).fg.unwrap();
     let mut seen = std::collections::BTreeSet::new();
@@ -107,9 +104,9 @@ fn period_colours_follow_the_class_of_each_value() {
     );
     // `c` switches to density colouring: no class colours left on the plot.
     key(&mut a, 'c');
-    assert_eq!(a.diagram.color_by, ColorBy::Density);
+    assert_eq!(a.panels.diagram.color_by, ColorBy::Density);
     let mut buf = Buffer::empty(area);
-    a.diagram.draw(&a.shared, area, &mut buf);
+    a.panels.diagram.draw(&a.shared, area, &mut buf);
     assert!(!buf
         .content()
         .iter()
@@ -124,7 +121,7 @@ fn without_colour_the_classes_differ_by_modifier() {
     feed_sweep(&mut a, 0.46, 0.50, 60);
     let area = Rect::new(0, 0, 90, 24);
     let mut buf = Buffer::empty(area);
-    a.diagram.draw(&a.shared, area, &mut buf);
+    a.panels.diagram.draw(&a.shared, area, &mut buf);
     let theme = Theme::new(ColorMode::None);
     let p1 = theme.class(Class::Period1).add_modifier;
     let p2 = theme.class(Class::Period2).add_modifier;
@@ -154,6 +151,7 @@ fn the_lyapunov_strip_shows_negative_zero_and_positive_exponents() {
     // The end of the cascade: period 8, 16, 32, chaos, then sticking cycles.
     feed_sweep(&mut a, 0.570, 0.576, 49);
     let lyap: Vec<f64> = a
+        .panels
         .diagram
         .slots
         .iter()
@@ -165,7 +163,7 @@ fn the_lyapunov_strip_shows_negative_zero_and_positive_exponents() {
     assert!(lyap.contains(&f64::NEG_INFINITY));
     let area = Rect::new(0, 0, 90, 24);
     let mut buf = Buffer::empty(area);
-    a.diagram.draw(&a.shared, area, &mut buf);
+    a.panels.diagram.draw(&a.shared, area, &mut buf);
     let s = buffer_text(&buf);
     let strip: Vec<&str> = s.lines().rev().skip(1).take(3).collect();
     assert!(strip.iter().any(|l| l.contains('┄')), "zero line:\n{s}");
@@ -177,12 +175,12 @@ fn the_lyapunov_strip_shows_negative_zero_and_positive_exponents() {
 #[test]
 fn all_attractors_key_runs_several_starts_and_colours_by_attractor() {
     let mut a = cubic_app(ColorMode::None);
-    assert!(!a.diagram.all_attractors);
+    assert!(!a.panels.diagram.all_attractors);
     key(&mut a, 'a');
-    assert!(a.diagram.all_attractors);
-    assert_eq!(a.diagram.color_by, ColorBy::Attractor);
+    assert!(a.panels.diagram.all_attractors);
+    assert_eq!(a.panels.diagram.color_by, ColorBy::Attractor);
     assert!(a.take_effects().contains(&Effect::Start(Target::Diagram)));
-    let spec = a.diagram.sweep_spec(&a.shared);
+    let spec = a.panels.diagram.sweep_spec(&a.shared);
     assert_eq!(spec.starts, ALL_STARTS);
     // Two branches between α = 0.45 and 0.50 on the cubic table: the (1,1) solution
     // and a sticking cycle, at every value.
@@ -207,52 +205,48 @@ fn all_attractors_key_runs_several_starts_and_colours_by_attractor() {
     }
     // `c` cycles attractor → density → class → attractor.
     key(&mut a, 'c');
-    assert_eq!(a.diagram.color_by, ColorBy::Density);
+    assert_eq!(a.panels.diagram.color_by, ColorBy::Density);
     key(&mut a, 'c');
-    assert_eq!(a.diagram.color_by, ColorBy::Class);
+    assert_eq!(a.panels.diagram.color_by, ColorBy::Class);
     key(&mut a, 'c');
-    assert_eq!(a.diagram.color_by, ColorBy::Attractor);
+    assert_eq!(a.panels.diagram.color_by, ColorBy::Attractor);
     key(&mut a, 'a');
-    assert!(!a.diagram.all_attractors);
-    assert_eq!(a.diagram.sweep_spec(&a.shared).starts, 1);
-    assert_eq!(a.diagram.color_by, ColorBy::Class);
+    assert!(!a.panels.diagram.all_attractors);
+    assert_eq!(a.panels.diagram.sweep_spec(&a.shared).starts, 1);
+    assert_eq!(a.panels.diagram.color_by, ColorBy::Class);
 }
 
 /// A basins panel filled from the engine's job, as the runtime would feed it.
 fn filled_basins(a: &mut App, w: u16, h: u16) {
     size(a, w, h);
     a.handle(Action::ToggleBasins);
-    assert!(a.basins.shown);
+    assert!(a.panels.basins.view.shown);
     let fx = a.take_effects();
     assert!(fx.contains(&Effect::Start(Target::Basins)), "{fx:?}");
     let spec = BasinSpec {
         nx: 34,
         ny: 18,
-        ..BasinSpec::new(a.system())
+        ..BasinSpec::new(a.shared.system())
     };
-    a.basins.basins = Some(Basins::new(&spec));
-    a.basins.spec = Some(spec.clone());
-    a.basins.gen = 7;
+    a.panels.basins.view.picture = Some(Basins::new(&spec));
+    a.panels.basins.view.spec = Some(spec.clone());
+    a.panels.basins.view.gen = 7;
     let ex = Executor::new(2).unwrap();
     let mut batches = Vec::new();
     ex.run(BasinsJob::new(spec).unwrap(), &Control::new(), |b| {
         batches.push(b)
     });
     for b in batches {
-        a.receive(Msg::new(Target::Basins, 7, b));
+        a.receive(Msg::Basins(7, JobMsg::Batch(b)));
     }
-    a.receive(Msg::new(
-        Target::Basins,
-        7,
-        bouncemap::tui::workers::JobDone,
-    ));
+    a.receive(Msg::Basins(7, JobMsg::Done));
 }
 
 #[test]
 fn the_basins_panel_shows_both_attractors_with_a_legend() {
     let mut a = cubic_app(ColorMode::None);
     filled_basins(&mut a, 120, 40);
-    let b = a.basins.basins.as_ref().unwrap();
+    let b = a.panels.basins.view.picture.as_ref().unwrap();
     assert!(b.complete());
     let t = crate::tui_common::render(&mut a, 120, 40);
     let s = crate::tui_common::text(&t);
@@ -274,7 +268,7 @@ fn the_basins_panel_shows_both_attractors_with_a_legend() {
     insta::assert_snapshot!(s);
     // B again: the phase plot is back, the basins job is stopped.
     key(&mut a, 'B');
-    assert!(!a.basins.shown);
+    assert!(!a.panels.basins.view.shown);
     let s = crate::tui_common::text(&crate::tui_common::render(&mut a, 120, 40));
     assert!(s.contains("Phase (t̂, v)"));
 }
@@ -288,8 +282,8 @@ fn basins_restart_when_alpha_or_r_change_and_not_otherwise() {
     // α nudged: the basins restart; a window edge of the diagram does not touch them.
     a.handle(Action::Right);
     assert!(a.take_effects().contains(&Effect::Start(Target::Basins)));
-    a.params.lo = 0.2;
-    let before = a.params.clone();
+    a.shared.params.lo = 0.2;
+    let before = a.shared.params.clone();
     a.shared.after_change(ParamId::Lo, Ok(()), &before);
     a.handle(Action::Down);
     a.handle(Action::Left);
@@ -344,21 +338,23 @@ fn the_basins_panel_fills_in_and_restarts_with_real_workers() {
         panic!("the basins never got there");
     };
     let done = fill(&mut a, &|a| {
-        a.basins.done && a.basins.basins.as_ref().unwrap().complete()
+        a.panels.basins.view.done && a.panels.basins.view.picture.as_ref().unwrap().complete()
     });
     eprintln!(
         "basins panel complete in {done:?} (grid {:?})",
-        a.basins.basins.as_ref().unwrap().grid()
+        a.panels.basins.view.picture.as_ref().unwrap().grid()
     );
     assert!(t0.elapsed() < Duration::from_secs(2), "{:?}", t0.elapsed());
     // α changes: the old picture is dropped, a new one starts at once.
     a.handle(Action::Right);
     assert!(a.take_effects().contains(&Effect::Start(Target::Basins)));
-    let old = a.basins.gen;
+    let old = a.panels.basins.view.gen;
     let t = Instant::now();
     a.start(Target::Basins, &workers);
-    assert_ne!(a.basins.gen, old);
-    let first = fill(&mut a, &|a| a.basins.basins.as_ref().unwrap().covered() > 0);
+    assert_ne!(a.panels.basins.view.gen, old);
+    let first = fill(&mut a, &|a| {
+        a.panels.basins.view.picture.as_ref().unwrap().covered() > 0
+    });
     eprintln!("first chunk after the change in {:?}", t.elapsed());
     assert!(first < Duration::from_millis(500), "{first:?}");
     workers.cancel_all();
@@ -373,7 +369,7 @@ fn export_view_writes_the_basins_when_they_are_shown() {
     let dir = std::env::temp_dir().join(format!("bouncemap-basins-view-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let stem = dir.join("b");
-    let written = bouncemap::tui::export::export_view(&a, &stem).unwrap();
+    let written = bouncemap::tui::export::export_view(&a.shared, &a.panels, &stem).unwrap();
     let names: Vec<String> = written
         .iter()
         .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())

@@ -5,12 +5,13 @@
 
 use crate::tui_common::{app, fill, render, text};
 use bouncemap::output::hitgrid::Marker;
-use bouncemap::tui::app::{App, Effect, Focus};
+use bouncemap::tui::app::{App, Effect};
+use bouncemap::tui::components::Msg;
 use bouncemap::tui::components::Target;
 use bouncemap::tui::keymap::Action;
+use bouncemap::tui::layout::Slot;
 use bouncemap::tui::params::ParamId;
 use bouncemap::tui::skeleton::compute;
-use bouncemap::tui::workers::Msg;
 use bouncemap_engine::orbits::stability_windows;
 use bouncemap_engine::orbits::two_cycle::{border_collision, two_cycle};
 use bouncemap_engine::{System, Table};
@@ -32,8 +33,8 @@ fn alpha_pd(table: &Table, r: f64) -> f64 {
 fn with_branches(a: &mut App) {
     let p = &a.shared.params;
     let sk = compute(p.table(), p.r, p.k, (p.lo, p.hi));
-    let gen = a.branches.gen;
-    a.receive(Msg::new(Target::Branches, gen, sk));
+    let gen = a.panels.branches.gen;
+    a.receive(Msg::Branches(gen, sk));
 }
 
 #[test]
@@ -104,9 +105,9 @@ fn the_branch_under_the_cursor_is_the_two_cycle_with_its_multipliers() {
     let sys = System::new(table, alpha, 0.8).unwrap();
     let two = two_cycle(&sys, 1).unwrap();
     // Put the diagram's cursor on the 2-cycle's first phase at that α.
-    a.shared.focus = Focus::Diagram;
-    a.diagram.cursor = alpha;
-    a.diagram.ycursor = two.phase0;
+    a.shared.focus = Slot::Diagram;
+    a.panels.diagram.cursor = alpha;
+    a.panels.diagram.ycursor = two.phase0;
     a.handle(Action::Cancel);
     let (i, p) = a
         .shared
@@ -138,7 +139,7 @@ fn the_branch_under_the_cursor_is_the_two_cycle_with_its_multipliers() {
     assert!(s.contains("branch (2, 2) at α"), "{s}");
     assert!(s.contains("stable") && s.contains("μ "), "{s}");
     // Without the focus on the diagram, nothing is listed.
-    a.shared.focus = Focus::Params;
+    a.shared.focus = Slot::Params;
     a.handle(Action::Cancel);
     assert!(a.shared.under_cursor.is_none());
 }

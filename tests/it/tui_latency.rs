@@ -4,8 +4,8 @@
 
 use crate::tui_common::app;
 use bouncemap::output::hitgrid::Marker;
-use bouncemap::tui::components::Target;
-use bouncemap::tui::workers::Workers;
+use bouncemap::tui::components::diagram::Diagram;
+use bouncemap::tui::components::{Registered, Target, Workers};
 use bouncemap_engine::jobs::Executor;
 use bouncemap_engine::sweep::{SweepJob, SweepParam, SweepSpec};
 use bouncemap_engine::Table;
@@ -14,12 +14,12 @@ use std::time::{Duration, Instant};
 /// Start the orbit analysis through the app and time it until its answer arrives.
 fn analysis_time(a: &mut bouncemap::tui::app::App, workers: &Workers) -> Duration {
     let t = Instant::now();
-    a.start(Target::Orbits, workers);
+    a.start(Target::Stability, workers);
     let deadline = t + Duration::from_secs(10);
     while Instant::now() < deadline {
         if let Ok(m) = workers.rx.recv_timeout(Duration::from_millis(5)) {
             a.receive(m);
-            if a.orbits.is_some() {
+            if a.shared.orbits.is_some() {
                 return t.elapsed();
             }
         }
@@ -49,7 +49,7 @@ fn orbit_analysis_answers_within_100_ms_beside_a_running_or_paused_sweep() {
     );
     spec.transient = 1_000_000_000;
     spec.periodicity = None;
-    workers.start_job(Target::Diagram, SweepJob::new(spec).unwrap());
+    workers.start_job(Diagram::ADDRESS, SweepJob::new(spec).unwrap());
     std::thread::sleep(Duration::from_millis(200));
     let running: Vec<Duration> = (0..5).map(|_| analysis_time(&mut a, &workers)).collect();
     workers.pause(true);

@@ -134,7 +134,7 @@ fn before_the_first_step_the_bounce_panel_shows_the_flight_to_come() {
 fn numbers_in_the_bounce_panel_round_trip() {
     let mut a = app(Marker::Braille);
     a.handle(Action::StepOne);
-    let e = *a.bounce.events.last().unwrap();
+    let e = *a.panels.bounce.events.last().unwrap();
     let s = screen(&mut a, 120, 40);
     let value = |name: &str| -> f64 {
         let l = s
@@ -158,7 +158,7 @@ fn the_stepped_state_is_marked_in_the_phase_plot() {
     a.handle(Action::StepOne);
     assert_eq!(
         a.shared.stepped,
-        a.bounce.events.last().map(|e| (e.phase, e.v))
+        a.panels.bounce.events.last().map(|e| (e.phase, e.v))
     );
     let s = screen(&mut a, 120, 40);
     assert!(column(&s, 0, 40).join("\n").contains('▣'), "{s}");

@@ -10,10 +10,10 @@ use bouncemap::output::classes::Class;
 use bouncemap::output::hitgrid::Marker;
 use bouncemap::tui::app::{App, Effect};
 use bouncemap::tui::components::{Component, Target};
+use bouncemap::tui::components::{JobMsg, Msg, Workers};
 use bouncemap::tui::keymap::{Action, Keymap};
 use bouncemap::tui::params::Params;
 use bouncemap::tui::theme::Theme;
-use bouncemap::tui::workers::{JobDone, Msg, Workers};
 use bouncemap_engine::jobs::{Control, Executor};
 use bouncemap_engine::plane::{curves, Plane, PlaneJob};
 use bouncemap_engine::sweep::SweepParam;
@@ -42,15 +42,15 @@ fn app(mode: ColorMode) -> App {
 fn filled(a: &mut App, w: u16, h: u16) {
     size(a, w, h);
     a.handle(Action::TogglePlane);
-    assert!(a.plane.shown);
+    assert!(a.panels.plane.view.shown);
     let fx = a.take_effects();
     assert!(fx.contains(&Effect::Start(Target::Plane)), "{fx:?}");
-    let spec = a.plane.spec_for(&a.shared);
-    a.plane.plane = Some(Plane::new(&spec));
-    a.plane.curves = curves(&spec);
-    a.plane.spec = Some(spec.clone());
-    a.plane.gen = 7;
-    a.plane.place_cursor(&a.shared);
+    let spec = a.panels.plane.spec_for(&a.shared);
+    a.panels.plane.view.picture = Some(Plane::new(&spec));
+    a.panels.plane.curves = curves(&spec);
+    a.panels.plane.view.spec = Some(spec.clone());
+    a.panels.plane.view.gen = 7;
+    a.panels.plane.place_cursor(&a.shared);
     let mut batches = Vec::new();
     Executor::new(2)
         .unwrap()
@@ -58,26 +58,26 @@ fn filled(a: &mut App, w: u16, h: u16) {
             batches.push(b)
         });
     for b in batches {
-        a.receive(Msg::new(Target::Plane, 7, b));
+        a.receive(Msg::Plane(7, JobMsg::Batch(b)));
     }
-    a.receive(Msg::new(Target::Plane, 7, JobDone));
+    a.receive(Msg::Plane(7, JobMsg::Done));
     // A fixed clock for the title.
-    a.plane.started = None;
-    a.plane.elapsed = 1.5;
+    a.panels.plane.view.started = None;
+    a.panels.plane.view.elapsed = 1.5;
 }
 
 #[test]
 fn the_plane_view_shows_classes_curves_axes_and_legend() {
     let mut a = app(ColorMode::None);
     filled(&mut a, 120, 40);
-    let p = a.plane.plane.as_ref().unwrap();
+    let p = a.panels.plane.view.picture.as_ref().unwrap();
     assert!(p.complete());
     // The plane's pane alone (the other panels have their own snapshots).
     let pane = bouncemap::tui::layout::layout(Rect::new(0, 0, 120, 40))
         .unwrap()
         .diagram;
     let mut buf = Buffer::empty(Rect::new(0, 0, pane.right(), pane.bottom()));
-    a.plane.draw(&a.shared, pane, &mut buf);
+    a.panels.plane.draw(&a.shared, pane, &mut buf);
     let s = crate::tui_common::buffer_text(&buf);
     assert!(s.contains("Plane α×D · done 1.5s"), "{s}");
     assert!(s.contains("·1 :2 +4 *8 #n ▒stick █chaos"), "{s}");
@@ -123,34 +123,34 @@ fn with_colour_each_cell_is_two_pixels_coloured_by_class() {
 fn the_cursor_moves_alpha_and_d_and_enter_sweeps_alpha_there() {
     let mut a = app(ColorMode::None);
     filled(&mut a, 120, 40);
-    let spec = a.plane.spec.clone().unwrap();
-    let (i0, j0) = a.plane.cursor;
-    assert_eq!(i0, spec.x.pixel_of(a.params.alpha));
+    let spec = a.panels.plane.view.spec.clone().unwrap();
+    let (i0, j0) = a.panels.plane.cursor;
+    assert_eq!(i0, spec.x.pixel_of(a.shared.params.alpha));
     a.handle(Action::FineRight);
     a.handle(Action::Up);
     a.handle(Action::Up);
-    assert_eq!(a.plane.cursor, (i0 + 1, j0 + 2));
+    assert_eq!(a.panels.plane.cursor, (i0 + 1, j0 + 2));
     let want_alpha = spec.x.value(i0 + 1);
     let want_d = spec.y.value(j0 + 2);
     assert!(
-        (a.params.alpha - want_alpha).abs() < 1e-6,
+        (a.shared.params.alpha - want_alpha).abs() < 1e-6,
         "{}",
-        a.params.alpha
+        a.shared.params.alpha
     );
-    assert!((a.params.table.d().unwrap() - want_d).abs() < 1e-6);
+    assert!((a.shared.params.table.d().unwrap() - want_d).abs() < 1e-6);
     // Every panel follows: the system changed, the plane itself does not restart.
     let fx = a.take_effects();
-    for t in [Target::Diagram, Target::Orbits, Target::Phase] {
+    for t in [Target::Diagram, Target::Stability, Target::Phase] {
         assert!(fx.contains(&Effect::Start(t)), "{t:?}: {fx:?}");
     }
     assert!(!fx.contains(&Effect::Start(Target::Plane)), "{fx:?}");
     // The diagram's zoom keys do nothing while the plane is shown.
     a.handle(Action::ZoomIn);
-    assert!(a.plane.shown);
+    assert!(a.panels.plane.view.shown);
     // Enter: the diagram comes back and sweeps α at that D.
     a.handle(Action::Enter);
-    assert!(!a.plane.shown);
-    assert_eq!(a.params.param, SweepParam::Alpha);
+    assert!(!a.panels.plane.view.shown);
+    assert_eq!(a.shared.params.param, SweepParam::Alpha);
     assert!(a.take_effects().contains(&Effect::Start(Target::Diagram)));
     let t = crate::tui_common::render(&mut a, 120, 40);
     assert!(crate::tui_common::text(&t).contains("Bifurcation diagram"));
@@ -171,7 +171,7 @@ fn the_plane_key_is_listed_and_configurable() {
 fn the_first_coarse_picture_arrives_within_a_second_with_real_workers() {
     let workers = Workers::new(Executor::new(bouncemap_engine::jobs::available_cores()).unwrap());
     let mut a = app(ColorMode::None);
-    a.params.transient = 20_000;
+    a.shared.params.transient = 20_000;
     size(&mut a, 120, 40);
     a.handle(Action::TogglePlane);
     a.take_effects();
@@ -190,17 +190,17 @@ fn the_first_coarse_picture_arrives_within_a_second_with_real_workers() {
         panic!("the plane never got there");
     };
     // Every pixel of the view shows something once the first pass is in.
-    wait(&mut a, &|a| a.plane.first_picture.is_some());
+    wait(&mut a, &|a| a.panels.plane.first_picture.is_some());
     let first = t0.elapsed();
-    let (nx, ny) = a.plane.plane.as_ref().unwrap().size();
-    let p = a.plane.plane.as_ref().unwrap();
+    let (nx, ny) = a.panels.plane.view.picture.as_ref().unwrap().size();
+    let p = a.panels.plane.view.picture.as_ref().unwrap();
     assert!((0..nx).all(|i| (0..ny).all(|j| p.preview(i, j).is_some())));
     eprintln!("first coarse picture of {nx}x{ny} in {first:?}");
     if !cfg!(debug_assertions) {
         assert!(first < Duration::from_secs(1), "{first:?}");
     }
-    wait(&mut a, &|a| a.plane.done);
-    assert!(a.plane.plane.as_ref().unwrap().complete());
+    wait(&mut a, &|a| a.panels.plane.view.done);
+    assert!(a.panels.plane.view.picture.as_ref().unwrap().complete());
     eprintln!("complete in {:?}", t0.elapsed());
     workers.cancel_all();
 }
@@ -226,7 +226,7 @@ fn export_view_writes_the_plane_when_it_is_shown() {
     let dir = std::env::temp_dir().join(format!("bouncemap-plane-view-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let stem = dir.join("p");
-    let written = bouncemap::tui::export::export_view(&a, &stem).unwrap();
+    let written = bouncemap::tui::export::export_view(&a.shared, &a.panels, &stem).unwrap();
     let names: Vec<String> = written
         .iter()
         .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())

@@ -23,15 +23,15 @@ fn every_preset_in_the_picker_runs_the_headless_sweep() {
         let mut a = app(Marker::Braille);
         size(&mut a, 120, 40);
         a.handle(Action::Presets);
-        a.overlay = Overlay::Presets { selected: i };
+        a.shared.overlay = Overlay::Presets { selected: i };
         a.handle(Action::Enter);
         assert_eq!(
-            a.message.as_ref().map(|m| m.1),
+            a.shared.message.as_ref().map(|m| m.1),
             Some(false),
             "{name}: {:?}",
-            a.message
+            a.shared.message
         );
-        let tui = a.diagram.sweep_spec(&a.shared);
+        let tui = a.panels.diagram.sweep_spec(&a.shared);
         // The same sweep, with every value's largest exponent measured for the strip
         // under the diagram (a measurement after the run: the points are the same).
         assert!(tui.lyapunov, "{name}");

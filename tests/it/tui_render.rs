@@ -27,7 +27,7 @@ fn whole_screen_120x40() {
     let t = render(&mut a, 120, 40);
     let s = text(&t);
     assert!(s.contains("κ_c = -1.0123"), "{s}");
-    assert!(a.diagram.grid.lit_cells() > 100);
+    assert!(a.panels.diagram.grid.lit_cells() > 100);
     insta::assert_snapshot!(s);
 }
 
@@ -69,12 +69,12 @@ fn resize_rebins_the_plots() {
     let mut a = app(Marker::Braille);
     size(&mut a, 120, 40);
     fill(&mut a);
-    let big = a.diagram.grid.size();
-    let points = a.diagram.grid.points();
+    let big = a.panels.diagram.grid.size();
+    let points = a.panels.diagram.grid.points();
     size(&mut a, 80, 24);
-    assert_ne!(a.diagram.grid.size(), big);
+    assert_ne!(a.panels.diagram.grid.size(), big);
     assert_eq!(
-        a.diagram.grid.points(),
+        a.panels.diagram.grid.points(),
         points,
         "re-binned from the stored points"
     );
@@ -82,29 +82,41 @@ fn resize_rebins_the_plots() {
 
 #[test]
 fn panel_parameters() {
-    insta::assert_snapshot!(panel(|a, r, b| a.parameters.draw(&a.shared, r, b), 30, 14));
+    insta::assert_snapshot!(panel(
+        |a, r, b| a.panels.parameters.draw(&a.shared, r, b),
+        30,
+        14
+    ));
 }
 
 #[test]
 fn panel_diagram() {
-    insta::assert_snapshot!(panel(|a, r, b| a.diagram.draw(&a.shared, r, b), 90, 22));
+    insta::assert_snapshot!(panel(
+        |a, r, b| a.panels.diagram.draw(&a.shared, r, b),
+        90,
+        22
+    ));
 }
 
 #[test]
 fn panel_phase_plot() {
-    insta::assert_snapshot!(panel(|a, r, b| a.phase.draw(&a.shared, r, b), 40, 17));
+    insta::assert_snapshot!(panel(
+        |a, r, b| a.panels.phase.draw(&a.shared, r, b),
+        40,
+        17
+    ));
 }
 
 #[test]
 fn panel_stability() {
-    let s = panel(|a, r, b| a.stability.draw(&a.shared, r, b), 40, 17);
+    let s = panel(|a, r, b| a.panels.stability.draw(&a.shared, r, b), 40, 17);
     assert!(s.contains("κ_c = -1.0123") && s.contains("stable"), "{s}");
     insta::assert_snapshot!(s);
 }
 
 #[test]
 fn panel_bounce() {
-    let s = panel(|a, r, b| a.bounce.draw(&a.shared, r, b), 40, 17);
+    let s = panel(|a, r, b| a.panels.bounce.draw(&a.shared, r, b), 40, 17);
     assert!(s.contains("Bounce #3"), "{s}");
     insta::assert_snapshot!(s);
 }
@@ -112,7 +124,7 @@ fn panel_bounce() {
 #[test]
 fn panel_status() {
     insta::assert_snapshot!(panel(
-        |a, r, b| status::draw(&a.shared, &a.diagram, &a.phase, r, b),
+        |a, r, b| status::draw(&a.shared, None, &a.panels.computing(&a.shared), r, b),
         120,
         1
     ));
@@ -122,13 +134,13 @@ fn panel_status() {
 fn overlays_help_and_presets() {
     let mut a = app(Marker::Braille);
     fill(&mut a);
-    a.overlay = Overlay::Help;
+    a.shared.overlay = Overlay::Help;
     let help = text(&render(&mut a, 120, 40));
-    for (keys, _) in a.keymap.help() {
+    for (keys, _) in a.shared.keymap.help() {
         assert!(help.contains(&keys), "help lacks {keys}");
     }
     insta::assert_snapshot!("help", help);
-    a.overlay = Overlay::Presets { selected: 1 };
+    a.shared.overlay = Overlay::Presets { selected: 1 };
     insta::assert_snapshot!("presets", text(&render(&mut a, 120, 40)));
 }
 
@@ -138,18 +150,18 @@ fn enlarging_the_terminal_sweeps_again_at_the_new_resolution() {
     // more columns than values, so the app asks for a new sweep.
     let mut a = app(Marker::Braille);
     size(&mut a, 80, 24);
-    let n = a.diagram.sweep_columns();
+    let n = a.panels.diagram.sweep_columns();
     let shared = &a.shared;
-    a.diagram.sweep_started(1, n, shared);
+    a.panels.diagram.sweep_started(1, n, shared);
     a.take_effects();
     size(&mut a, 80, 24);
     assert!(a.take_effects().is_empty(), "same size: nothing to do");
     size(&mut a, 160, 48);
-    assert!(a.diagram.sweep_columns() > n);
+    assert!(a.panels.diagram.sweep_columns() > n);
     assert_eq!(a.take_effects(), vec![Effect::Start(Target::Diagram)]);
     // Shrinking keeps the values it has: more values than columns is fine.
-    let (n, shared) = (a.diagram.sweep_columns(), &a.shared);
-    a.diagram.sweep_started(2, n, shared);
+    let (n, shared) = (a.panels.diagram.sweep_columns(), &a.shared);
+    a.panels.diagram.sweep_started(2, n, shared);
     a.take_effects();
     size(&mut a, 80, 24);
     assert!(a.take_effects().is_empty());

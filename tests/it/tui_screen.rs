@@ -9,11 +9,11 @@ use bouncemap::output::hitgrid::Marker;
 use bouncemap::tui::app::{App, Effect, Overlay};
 use bouncemap::tui::components::legend;
 use bouncemap::tui::components::phase_plot::PhasePoints;
+use bouncemap::tui::components::Msg;
 use bouncemap::tui::components::{Component, Target};
 use bouncemap::tui::keymap::{Action, Keymap};
 use bouncemap::tui::params::{ParamId, Params, StartMode, SINE_WINDOW, START_WINDOW};
 use bouncemap::tui::theme::Theme;
-use bouncemap::tui::workers::Msg;
 use bouncemap_engine::jobs::Executor;
 use bouncemap_engine::orbits::stability_windows;
 use bouncemap_engine::sweep::{self, Outcome};
@@ -34,11 +34,11 @@ fn alpha_pd(p: &Params) -> f64 {
 #[test]
 fn the_first_view_shows_period_one_period_two_and_chaos() {
     let mut a = app(Marker::Braille);
-    assert_eq!((a.params.lo, a.params.hi), START_WINDOW);
-    assert_eq!(a.params.start, StartMode::NearFixedPoint);
-    assert!(a.params.transient >= 20_000);
+    assert_eq!((a.shared.params.lo, a.shared.params.hi), START_WINDOW);
+    assert_eq!(a.shared.params.start, StartMode::NearFixedPoint);
+    assert!(a.shared.params.transient >= 20_000);
     size(&mut a, 120, 40);
-    let spec = a.diagram.sweep_spec(&a.shared);
+    let spec = a.panels.diagram.sweep_spec(&a.shared);
     let t = Instant::now();
     let res = sweep::collect(&spec, &Executor::new(2).unwrap()).unwrap();
     let took = t.elapsed();
@@ -91,9 +91,9 @@ fn the_diagram_sweeps_r_or_d() {
     }
     assert_eq!(a.selected_param(), ParamId::Sweep);
     a.handle(Action::Right);
-    let spec = a.diagram.sweep_spec(&a.shared);
+    let spec = a.panels.diagram.sweep_spec(&a.shared);
     assert_eq!(spec.param, bouncemap_engine::sweep::SweepParam::R);
-    assert_eq!((spec.lo, spec.hi), (a.params.lo, a.params.hi));
+    assert_eq!((spec.lo, spec.hi), (a.shared.params.lo, a.shared.params.hi));
     assert!(a.take_effects().contains(&Effect::Start(Target::Diagram)));
     // Changing r now moves only the line; changing α restarts the sweep.
     for _ in 0..4 {
@@ -125,11 +125,11 @@ fn the_legend_explains_every_mark() {
         assert!(all.contains(mark), "{mark} missing:\n{all}");
     }
     a.handle(Action::Legend);
-    assert_eq!(a.overlay, Overlay::Legend);
+    assert_eq!(a.shared.overlay, Overlay::Legend);
     let s = text(&render(&mut a, 120, 40));
     assert!(s.contains("Legend"), "{s}");
     a.handle(Action::Cancel);
-    assert_eq!(a.overlay, Overlay::None);
+    assert_eq!(a.shared.overlay, Overlay::None);
 }
 
 /// Without colour the current-α line and the cursor stay visible over dense data
@@ -148,10 +148,10 @@ fn without_colour_the_lines_over_data_are_reversed() {
     a.handle(Action::NextPanel);
     let t = render(&mut a, 120, 40);
     let buf = t.backend().buffer();
-    let plot = a.diagram.plot_area;
-    let x = a.diagram.grid.x_range();
+    let plot = a.panels.diagram.plot_area;
+    let x = a.panels.diagram.grid.x_range();
     let mut crossed = 0;
-    for value in [a.params.alpha, a.diagram.cursor] {
+    for value in [a.shared.params.alpha, a.panels.diagram.cursor] {
         let col = bouncemap::tui::components::diagram::column(x, plot, value).unwrap();
         for r in plot.y..plot.y + plot.height {
             let cell = &buf[(col, r)];
@@ -171,9 +171,8 @@ fn the_phase_plots_note_is_not_cut() {
     size(&mut a, 120, 40);
     let note = "the ball rests on the table from t = 12 + 0.250000000000 on: f'' ≥ −1 everywhere, so it is never released";
     let shared = &a.shared;
-    a.phase.started(3, shared);
-    a.receive(Msg::new(
-        Target::Phase,
+    a.panels.phase.started(3, shared);
+    a.receive(Msg::Phase(
         3,
         PhasePoints {
             points: vec![(0.1, 0.2)],
@@ -183,7 +182,7 @@ fn the_phase_plots_note_is_not_cut() {
     ));
     let area = Rect::new(0, 0, 40, 17);
     let mut buf = Buffer::empty(area);
-    a.phase.draw(&a.shared, area, &mut buf);
+    a.panels.phase.draw(&a.shared, area, &mut buf);
     let s = buffer_text(&buf);
     let joined: String = s
         .lines()
@@ -228,7 +227,7 @@ fn a_long_refusal_fits_in_the_status_line() {
         a.edit_key(crossterm::event::KeyCode::Char(c));
     }
     a.edit_key(crossterm::event::KeyCode::Enter);
-    let (msg, err) = a.message.clone().unwrap();
+    let (msg, err) = a.shared.message.clone().unwrap();
     assert!(err && msg.contains("(0, 1000]"), "{msg}");
     let s = text(&render(&mut a, 120, 40));
     let last = s.lines().last().unwrap();
@@ -244,12 +243,15 @@ fn resizing_refines_instead_of_restarting() {
     size(&mut a, 120, 40);
     fill(&mut a);
     a.take_effects();
-    let points = a.diagram.grid.points();
+    let points = a.panels.diagram.grid.points();
     size(&mut a, 80, 24);
     assert!(a.take_effects().is_empty(), "shrinking sweeps nothing");
-    assert_eq!(a.diagram.grid.points(), points);
+    assert_eq!(a.panels.diagram.grid.points(), points);
     size(&mut a, 200, 50);
-    assert!(a.diagram.refine, "growing asks for the values in between");
+    assert!(
+        a.panels.diagram.refine,
+        "growing asks for the values in between"
+    );
     assert!(a.take_effects().contains(&Effect::Start(Target::Diagram)));
 }
 
@@ -265,9 +267,9 @@ fn the_help_scrolls_at_80x24() {
     a.handle(Action::Down);
     a.handle(Action::Down);
     assert_ne!(text(&render(&mut a, 80, 24)), first);
-    assert_eq!(a.overlay, Overlay::Help);
+    assert_eq!(a.shared.overlay, Overlay::Help);
     a.handle(Action::Help);
-    assert_eq!(a.overlay, Overlay::None);
+    assert_eq!(a.shared.overlay, Overlay::None);
 }
 
 /// Labels with a combining accent (t̂0) line their values up with the others.
@@ -306,21 +308,21 @@ fn table_files_load_at_run_time_and_show_their_name() {
         a.edit_key(crossterm::event::KeyCode::Char(c));
     }
     a.edit_key(crossterm::event::KeyCode::Enter);
-    assert_eq!(a.params.table_label(), name);
+    assert_eq!(a.shared.params.table_label(), name);
     assert!(a.take_effects().contains(&Effect::Start(Target::Diagram)));
     let s = text(&render(&mut a, 120, 40));
     assert!(s.contains(&name), "{s}");
     // sine, F_D, the file, sine …
     a.handle(Action::Right);
-    assert_eq!(a.params.table_label(), "sine");
+    assert_eq!(a.shared.params.table_label(), "sine");
     a.handle(Action::Left);
-    assert_eq!(a.params.table_label(), name);
+    assert_eq!(a.shared.params.table_label(), name);
     // A missing file is refused in one line, nothing changes.
     a.handle(Action::Enter);
     for c in "/nonexistent/t.toml".chars() {
         a.edit_key(crossterm::event::KeyCode::Char(c));
     }
     a.edit_key(crossterm::event::KeyCode::Enter);
-    assert!(a.message.as_ref().unwrap().1);
-    assert_eq!(a.params.table_label(), name);
+    assert!(a.shared.message.as_ref().unwrap().1);
+    assert_eq!(a.shared.params.table_label(), name);
 }

@@ -4,49 +4,75 @@
 //! attractor found (kind, period, largest exponent, share of the starts). It takes the
 //! phase plot's place while shown (the basins key switches). The grid has one start per
 //! column and two per row (each cell is drawn as an upper and a lower half in colour;
-//! without colour each cell shows the texture of its most frequent attractor).
+//! without colour each cell shows the texture of its most frequent attractor). The job,
+//! its progress and the halves are [`super::grid_picture`]'s; the spec, the colours,
+//! the textures and the legend are this panel's.
 
-use super::{panel, Component, Target};
+use super::grid_picture::{draw_halves, GridPicture, Picture};
+use super::{panel, Component, Effect, JobMsg, Registered, Shared, Workers};
 use crate::output::basin_map::{self, describe, exponent, numbers, texture};
 use crate::output::hitgrid::Range;
 use crate::tui::keymap::Action;
+use crate::tui::layout::plot_area_within;
 use crate::tui::params::{ParamId, Touch};
 use crate::tui::plot::draw_axes;
-use crate::tui::shared::{Effect, Shared};
-use crate::tui::workers::{Body, JobDone, Workers};
 use bouncemap_engine::attractors::basins::{BasinChunk, BasinSpec, Basins, BasinsJob};
 use bouncemap_engine::attractors::Kind;
-use bouncemap_engine::jobs::Batch;
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::style::{Color, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Paragraph, Widget};
-use std::time::Instant;
 
 const LABEL_W: u16 = 4;
 /// Legend lines at most.
 const LEGEND: u16 = 3;
 
+impl Picture for Basins {
+    type Spec = BasinSpec;
+    type Chunk = BasinChunk;
+    type Job = BasinsJob;
+
+    fn job(spec: &BasinSpec) -> Result<BasinsJob, String> {
+        BasinsJob::new(spec.clone()).map_err(|e| e.to_string())
+    }
+
+    fn empty(spec: &BasinSpec) -> Basins {
+        Basins::new(spec)
+    }
+
+    fn absorb(&mut self, chunk: BasinChunk) {
+        Basins::absorb(self, chunk);
+    }
+
+    fn size(&self) -> (usize, usize) {
+        self.grid()
+    }
+
+    fn covered(&self) -> usize {
+        Basins::covered(self)
+    }
+
+    fn complete(&self) -> bool {
+        Basins::complete(self)
+    }
+}
+
 /// The basins panel.
 #[derive(Default)]
 pub struct BasinsPanel {
-    /// Whether the panel is shown (in place of the phase plot).
-    pub shown: bool,
-    pub gen: u64,
-    pub spec: Option<BasinSpec>,
-    pub basins: Option<Basins>,
-    pub done: bool,
-    pub error: Option<String>,
-    pub started: Option<Instant>,
-    pub elapsed: f64,
-    /// Grid size for the pane at the last layout.
-    grid: (usize, usize),
+    /// The picture, its job and whether it is shown (in place of the phase plot).
+    pub view: GridPicture<Basins>,
+}
+
+/// Legend rows under the picture in a pane whose inner area is `inner_h` rows high.
+fn legend_rows(inner_h: u16) -> u16 {
+    LEGEND.min(inner_h.saturating_sub(6))
 }
 
 /// The inner area of the pane split into the picture (with axes) and the legend.
 fn split(inner: Rect) -> (Rect, Rect) {
-    let legend = LEGEND.min(inner.height.saturating_sub(6));
+    let legend = legend_rows(inner.height);
     let picture = Rect {
         height: inner.height - legend,
         ..inner
@@ -59,40 +85,20 @@ fn split(inner: Rect) -> (Rect, Rect) {
     (picture, rest)
 }
 
-/// The plot rectangle inside `pane` (as [`draw_axes`] lays it out).
+/// The plot rectangle inside `pane` (as [`draw_axes`] lays it out above the legend).
 fn plot_rect(pane: Rect) -> Rect {
-    let inner = Rect {
-        x: pane.x + 1,
-        y: pane.y + 1,
-        width: pane.width.saturating_sub(2),
-        height: pane.height.saturating_sub(2),
+    let legend = legend_rows(pane.height.saturating_sub(2));
+    let above = Rect {
+        height: pane.height - legend,
+        ..pane
     };
-    let (picture, _) = split(inner);
-    Rect {
-        x: picture.x + LABEL_W + 1,
-        y: picture.y,
-        width: picture.width.saturating_sub(LABEL_W + 1),
-        height: picture.height.saturating_sub(1),
-    }
+    plot_area_within(above, LABEL_W)
 }
 
 impl BasinsPanel {
-    /// Size the grid to the pane: one start per column, two per row. A new size
-    /// restarts the picture (if shown).
-    pub fn set_pane(&mut self, pane: Rect, shared: &mut Shared) {
-        let plot = plot_rect(pane);
-        let grid = (plot.width.max(1) as usize, 2 * plot.height.max(1) as usize);
-        if grid != self.grid {
-            self.grid = grid;
-            if self.shown {
-                shared.effect(Effect::Start(Target::Basins));
-            }
-        }
-    }
-
     /// The colour of attractor `id` (resting and escaping starts in grey).
     fn color(&self, shared: &Shared, id: u32) -> Option<Color> {
-        let reg = self.basins.as_ref()?.registry();
+        let reg = self.view.picture.as_ref()?.registry();
         match reg.attractors().get(id as usize)?.kind {
             Kind::Resting | Kind::Escaping => shared.theme.nowhere(),
             _ => shared.theme.attractor_color(id as usize),
@@ -101,31 +107,34 @@ impl BasinsPanel {
 
     fn title(&self, shared: &Shared) -> String {
         let head = " Basins t̂0×w0";
-        let Some(b) = &self.basins else {
+        let Some(b) = &self.view.picture else {
             return format!("{head} ");
         };
-        let (nx, ny) = b.grid();
-        let frac = b.covered() as f64 / (nx * ny).max(1) as f64;
         let n = b.registry().attractors().len();
-        let state = if self.done {
-            format!("done {:.1}s", self.elapsed)
-        } else if shared.paused {
-            "paused".into()
-        } else {
-            format!("{:>3.0}%", 100.0 * frac)
-        };
+        let state = self.view.progress(b, shared);
         format!("{head} · {n} found · {state} ")
     }
 }
 
 impl Component for BasinsPanel {
+    type Msg = JobMsg<BasinChunk>;
+
+    fn shown(&self) -> bool {
+        self.view.shown
+    }
+
+    /// Size the grid to the pane: one start per column, two per row. A new size
+    /// restarts the picture (if shown).
+    fn set_pane(&mut self, pane: Rect, shared: &mut Shared) {
+        self.view.set_plot(plot_rect(pane), Self::TARGET, shared);
+    }
+
     fn handle(&mut self, action: Action, shared: &mut Shared) -> bool {
         if action != Action::ToggleBasins {
             return false;
         }
-        self.shown = !self.shown;
-        shared.effect(Effect::Start(Target::Basins));
-        if self.shown {
+        self.view.toggle(Self::TARGET, shared);
+        if self.view.shown {
             shared.say(
                 "basins: which attractor each start (t̂0, w0) ends on; the key again shows the phase plot",
                 false,
@@ -135,73 +144,40 @@ impl Component for BasinsPanel {
     }
 
     fn changed(&mut self, id: ParamId, shared: &mut Shared) {
-        if self.shown && id.touches() == Touch::System {
-            shared.effect(Effect::Start(Target::Basins));
+        if self.view.shown && id.touches() == Touch::System {
+            shared.effect(Effect::Start(Self::TARGET));
         }
     }
 
     fn start(&mut self, shared: &mut Shared, workers: &Workers) {
-        if !self.shown {
-            workers.cancel(Target::Basins);
-            self.done = true;
+        if self.view.stop_if_hidden(Self::TARGET, workers) {
             return;
         }
-        let sys = shared.system();
+        let (nx, ny) = self.view.grid();
         let spec = BasinSpec {
-            nx: self.grid.0.max(1),
-            ny: self.grid.1.max(1),
-            ..BasinSpec::new(sys)
+            nx: nx.max(1),
+            ny: ny.max(1),
+            ..BasinSpec::new(shared.system())
         };
-        match BasinsJob::new(spec.clone()) {
-            Ok(job) => {
-                self.gen = workers.start_job(Target::Basins, job);
-                self.basins = Some(Basins::new(&spec));
-                self.spec = Some(spec);
-                self.error = None;
-                self.done = false;
-                self.started = Some(Instant::now());
-                self.elapsed = 0.0;
-            }
-            Err(e) => {
-                workers.cancel(Target::Basins);
-                self.error = Some(e.to_string());
-                self.done = true;
-            }
-        }
+        self.view.run(spec, Self::ADDRESS, workers);
     }
 
-    fn receive(&mut self, gen: u64, body: Body, shared: &mut Shared) {
-        if gen != self.gen {
-            return;
-        }
-        if body.is::<JobDone>() {
-            self.done = true;
-        } else if let Ok(b) = body.downcast::<Batch<BasinChunk>>() {
-            if let Some(basins) = self.basins.as_mut() {
-                basins.absorb(b.data);
-            }
-        }
-        if let Some(s) = self.started {
-            self.elapsed = s.elapsed().as_secs_f64();
-        }
-        shared.dirty = true;
+    fn receive(&mut self, gen: u64, msg: Self::Msg, shared: &mut Shared) {
+        self.view.receive(gen, msg, shared);
     }
 
     fn busy(&self) -> bool {
-        self.shown && !self.done
+        self.view.busy()
     }
 
     fn draw(&self, app: &Shared, area: Rect, buf: &mut Buffer) {
         let block = panel(app, self.title(app), false);
         let inner = block.inner(area);
         block.render(area, buf);
-        if let Some(e) = &self.error {
-            Paragraph::new(format!("Basins: {e}"))
-                .style(app.theme.error())
-                .render(inner, buf);
+        if self.view.draw_error("Basins", app, inner, buf) {
             return;
         }
-        let (Some(b), Some(spec)) = (&self.basins, &self.spec) else {
+        let (Some(b), Some(spec)) = (&self.view.picture, &self.view.spec) else {
             return;
         };
         let (picture, legend) = split(inner);
@@ -213,34 +189,14 @@ impl Component for BasinsPanel {
             LABEL_W,
             &app.theme,
         );
-        let (nx, ny) = b.grid();
         let reg = b.registry();
         let number = numbers(reg);
         let colour = app.theme.attractor_color(0).is_some();
-        if colour && nx == plot.width as usize && ny == 2 * plot.height as usize {
-            for r in 0..plot.height {
-                let j_top = ny - 1 - 2 * r as usize;
-                for c in 0..plot.width {
-                    let i = c as usize;
-                    let top = b.preview_label(i, j_top).and_then(|l| self.color(app, l));
-                    let bottom = b
-                        .preview_label(i, j_top - 1)
-                        .and_then(|l| self.color(app, l));
-                    if top.is_none() && bottom.is_none() {
-                        continue;
-                    }
-                    let mut style = Style::new();
-                    if let Some(t) = top {
-                        style = style.fg(t);
-                    }
-                    if let Some(bt) = bottom {
-                        style = style.bg(bt);
-                    }
-                    let glyph = if top.is_some() { "▀" } else { " " };
-                    buf.set_string(plot.x + c, plot.y + r, glyph, style);
-                }
-            }
-        } else {
+        let halves = colour
+            && draw_halves(plot, b.grid(), buf, |i, j| {
+                b.preview_label(i, j).and_then(|l| self.color(app, l))
+            });
+        if !halves {
             let cells = basin_map::cells(b, plot.width as usize, plot.height as usize);
             for (r, line) in cells.iter().enumerate() {
                 for (c, l) in line.iter().enumerate() {

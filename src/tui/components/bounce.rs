@@ -7,12 +7,11 @@
 //! Stepping runs on the UI thread: one step of the map is bounded, microseconds of
 //! work.
 
-use super::{panel, Component};
+use super::{panel, Component, NoWork, Shared};
 use crate::output::hitgrid::Marker;
 use crate::tui::keymap::Action;
 use crate::tui::params::{ParamId, Params, Touch};
 use crate::tui::plot::canvas_marker;
-use crate::tui::shared::Shared;
 use bouncemap_engine::{Event, EventKind, Halt, ImpactMap, Mode, Solver, State, System};
 use ratatui::buffer::Buffer;
 use ratatui::layout::{Constraint, Layout, Rect};
@@ -115,6 +114,8 @@ impl Bounce {
 }
 
 impl Component for Bounce {
+    type Msg = NoWork;
+
     fn handle(&mut self, action: Action, shared: &mut Shared) -> bool {
         match action {
             Action::StepOne => self.step(1),

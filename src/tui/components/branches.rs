@@ -5,11 +5,9 @@
 //! dotted) with their special points on the axis; the stability panel lists the branch
 //! under the diagram's cursor. Draw-only otherwise: it has no panel of its own.
 
-use super::{Component, Target};
+use super::{Component, Effect, Registered, Shared, Workers};
 use crate::tui::params::ParamId;
-use crate::tui::shared::Shared;
 use crate::tui::skeleton::{compute, Skeleton};
-use crate::tui::workers::{Body, Workers};
 use bouncemap_engine::sweep::SweepParam;
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
@@ -22,10 +20,12 @@ pub struct Branches {
 }
 
 impl Component for Branches {
+    type Msg = Result<Skeleton, String>;
+
     fn changed(&mut self, id: ParamId, shared: &mut Shared) {
         use ParamId::*;
         if matches!(id, Table | D | R | K | Sweep | Lo | Hi) {
-            shared.effect(crate::tui::shared::Effect::Start(Target::Branches));
+            shared.effect(Effect::Start(Self::TARGET));
         }
     }
 
@@ -33,13 +33,13 @@ impl Component for Branches {
         let p = &shared.params;
         if p.param != SweepParam::Alpha {
             // Branches are continued in α: other sweeps show none.
-            workers.cancel(Target::Branches);
+            workers.cancel(Self::TARGET);
             self.pending = false;
             shared.branches = None;
             return;
         }
         let (table, r, k, window) = (p.table(), p.r, p.k, (p.lo, p.hi));
-        let gen = workers.spawn(Target::Branches, "branches", move |t| {
+        let gen = workers.spawn(Self::ADDRESS, "branches", move |t| {
             if !t.stale() {
                 t.send(compute(table, r, k, window));
             }
@@ -48,15 +48,13 @@ impl Component for Branches {
         self.pending = true;
     }
 
-    fn receive(&mut self, gen: u64, body: Body, shared: &mut Shared) {
+    fn receive(&mut self, gen: u64, msg: Self::Msg, shared: &mut Shared) {
         if gen != self.gen {
             return;
         }
-        if let Ok(s) = body.downcast::<Result<Skeleton, String>>() {
-            shared.branches = Some(*s);
-            self.pending = false;
-            shared.dirty = true;
-        }
+        shared.branches = Some(msg);
+        self.pending = false;
+        shared.dirty = true;
     }
 
     fn busy(&self) -> bool {

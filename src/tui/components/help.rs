@@ -1,12 +1,13 @@
 //! The `?` overlay, generated from the keymap that dispatches keys; it scrolls where it
 //! does not fit (80×24).
 
-use crate::tui::shared::Shared;
+use super::Shared;
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::text::{Line, Span};
 
-pub fn draw(app: &Shared, area: Rect, buf: &mut Buffer) {
+/// Draw the help overlay, scrolled by `scroll` lines if it does not fit.
+pub fn draw(app: &Shared, scroll: usize, area: Rect, buf: &mut Buffer) {
     let help = app.keymap.help();
     let key_w = help
         .iter()
@@ -27,7 +28,7 @@ pub fn draw(app: &Shared, area: Rect, buf: &mut Buffer) {
         " Enter types a value in the parameters panel; l explains the marks; Esc closes.",
         app.theme.dim(),
     ));
-    scrolled(app, "Keys", lines, app.help_scroll, area, buf);
+    scrolled(app, "Keys", lines, scroll, area, buf);
 }
 
 /// An overlay of `lines`, showing the window starting at `scroll` (clamped) with a

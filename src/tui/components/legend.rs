@@ -2,9 +2,9 @@
 //! panel. One meaning per symbol across the panels; the period colours are drawn in
 //! their own styles so the legend shows them as the diagram does.
 
+use super::Shared;
 use crate::output::basin_map::TEXTURES;
 use crate::output::classes::Class;
-use crate::tui::shared::Shared;
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::text::{Line, Span};

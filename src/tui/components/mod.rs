@@ -1,47 +1,132 @@
-//! The panels. Each stateful panel is a [`Component`]: it owns its state, handles the
-//! actions meant for it, reacts to changes of the shared parameters, starts and
-//! receives its own background work, and draws itself. Panels see each other only
-//! through [`Shared`]; [`crate::tui::app::App`] holds one of each and routes actions,
-//! changes and messages to them.
+//! The panels, and the registry that lists them.
 //!
-//! Adding a panel: a new file here with a type implementing [`Component`], a
-//! [`Target`] variant (in `workers`) if it has background work, and its registration in `App` (a
-//! field, and its place in [`crate::tui::app::App::components_mut`] and the layout).
-//! Draw-only pieces (the status line, the help and preset overlays, the too-small
-//! message) are plain functions.
+//! Each stateful panel is a [`Component`]: it owns its state, handles the actions meant
+//! for it, reacts to changes of the shared parameters, starts and receives its own
+//! background work (its results typed as its [`Component::Msg`]), and draws itself in
+//! its slot of the layout. Panels see each other only through [`Shared`]
+//! ([`shared`]).
+//!
+//! The registry below is the one list of panels. From it (by the `registry!` macro of
+//! `registry.rs`) come the [`Target`]s, the typed message enum [`Msg`], the [`Panels`]
+//! struct that holds one of each, and every routing over them: the order in which
+//! actions are offered, which panel each slot shows (a panel listed before another in
+//! the same slot takes its place while shown: the plane view over the diagram, the
+//! basins over the phase plot), the focus ring (Tab), the starts, the messages and the
+//! drawing. [`crate::tui::app::App`] holds the shared state and the panels and routes
+//! through the registry; it names a panel only for what is that panel's own (the
+//! diagram's cursor and zoom, export).
+//!
+//! Adding a panel: a file here with a type implementing [`Component`] (its `Msg`, its
+//! start and receive through [`Registered::ADDRESS`], `shown` if it replaces another
+//! panel while shown, `focusable` if it takes the arrow keys), its `mod` line and its
+//! line in the registry, and, if a key shows it, an [`crate::tui::keymap::Action`]. A
+//! grid picture filling in coarse to fine is a [`grid_picture::GridPicture`].
+//! Draw-only pieces (the status line, the help, legend, preset and table overlays, the
+//! too-small message) are plain functions.
+
+#[macro_use]
+mod registry;
 
 pub mod basins;
 pub mod bounce;
 pub mod branches;
 pub mod diagram;
+pub mod grid_picture;
 pub mod help;
 pub mod legend;
 pub mod parameters;
 pub mod phase_plot;
 pub mod plane;
 pub mod presets;
+pub mod shared;
 pub mod stability;
 pub mod status;
 pub mod table_view;
 pub mod too_small;
 
 use super::keymap::Action;
+use super::layout::{Panes, Slot};
 use super::params::ParamId;
-use super::shared::{Focus, Overlay, Shared};
-pub use super::workers::Target;
-use super::workers::{Body, Workers};
+use super::workers;
+use basins::BasinsPanel;
+use bounce::Bounce;
+use branches::Branches;
+use diagram::Diagram;
+use parameters::Parameters;
+use phase_plot::PhasePlot;
+use plane::PlanePanel;
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::text::Line;
 use ratatui::widgets::{Block, BorderType, Clear, Paragraph, Widget};
+pub use shared::{Effect, Overlay, Shared};
+use stability::Stability;
+pub use workers::JobMsg;
+
+// The panels in routing order: actions are offered in this order, and a panel listed
+// before another in the same slot takes that slot while it is shown.
+registry! {
+    // Target   => field:      type,         slot it takes,           made from `Shared`
+    Parameters  => parameters: Parameters,   slot Some(Slot::Params),    new |_| Parameters::new();
+    /// The plane view, in the diagram's place while shown (it takes the diagram's keys).
+    Plane       => plane:      PlanePanel,   slot Some(Slot::Diagram),   new |_| PlanePanel::default();
+    Diagram     => diagram:    Diagram,      slot Some(Slot::Diagram),   new Diagram::new;
+    Bounce      => bounce:     Bounce,       slot Some(Slot::Bounce),    new |s: &Shared| Bounce::new(&s.params);
+    /// The basins, in the phase plot's place while shown.
+    Basins      => basins:     BasinsPanel,  slot Some(Slot::Phase),     new |_| BasinsPanel::default();
+    Phase       => phase:      PhasePlot,    slot Some(Slot::Phase),     new |s: &Shared| PhasePlot::new(s.marker);
+    /// Runs the orbit analysis every panel marks ([`Shared::orbits`]).
+    Stability   => stability:  Stability,    slot Some(Slot::Stability), new |_| Stability::default();
+    /// The continued branches ([`Shared::branches`]), drawn by the diagram.
+    Branches    => branches:   Branches,     slot None,                  new |_| Branches::default();
+}
+
+/// The workers of the terminal application: their messages are [`Msg`]s.
+pub type Workers = workers::Workers<Msg>;
+
+/// Where a panel's background work reports, its results being `B`s.
+pub type Address<B> = workers::Address<Msg, B>;
+
+/// What a panel without background work receives: nothing.
+pub enum NoWork {}
+
+/// What the registry knows of each panel listed (implemented by it, never by hand).
+pub trait Registered: Component {
+    /// The panel's own target: where its restarts ([`Effect::Start`]) go.
+    const TARGET: Target;
+    /// Where its background work reports ([`Workers::spawn`], [`Workers::start_job`]).
+    const ADDRESS: Address<Self::Msg>;
+}
 
 /// A stateful panel.
 pub trait Component {
+    /// What its background work sends back ([`NoWork`] if it has none).
+    type Msg: Send + 'static;
+
+    /// Whether it is shown in its slot now (a panel that replaces another while shown
+    /// says when).
+    fn shown(&self) -> bool {
+        true
+    }
+
+    /// Whether it takes the arrow keys when its slot has the focus (Tab goes round the
+    /// slots whose shown panel does).
+    fn focusable(&self) -> bool {
+        false
+    }
+
+    /// Its slot's rectangle at the current layout (before sweeps ask for sizes, and
+    /// before drawing).
+    fn set_pane(&mut self, _pane: Rect, _shared: &mut Shared) {}
+
     /// Handle an action (the panel checks the focus where that matters); true if it
     /// was consumed.
     fn handle(&mut self, _action: Action, _shared: &mut Shared) -> bool {
         false
     }
+
+    /// The focus moved to another slot.
+    fn focus_moved(&mut self) {}
 
     /// The shared parameter `id` changed (the table stands for "everything").
     fn changed(&mut self, _id: ParamId, _shared: &mut Shared) {}
@@ -49,9 +134,9 @@ pub trait Component {
     /// Start (or restart) this panel's background work for the current parameters.
     fn start(&mut self, _shared: &mut Shared, _workers: &Workers) {}
 
-    /// A message from this panel's background work (stale generations are the
-    /// panel's to drop).
-    fn receive(&mut self, _gen: u64, _body: Body, _shared: &mut Shared) {}
+    /// A message from this panel's background work, sent under generation `gen`
+    /// (stale generations are the panel's to drop).
+    fn receive(&mut self, _gen: u64, _msg: Self::Msg, _shared: &mut Shared) {}
 
     /// Whether background work may still send something (the loop then polls more
     /// often).
@@ -59,8 +144,13 @@ pub trait Component {
         false
     }
 
-    /// Draw into `area`; the whole app is readable.
-    fn draw(&self, app: &Shared, area: Rect, buf: &mut Buffer);
+    /// What it is computing, for the status line (None: nothing to say).
+    fn computing(&self, _shared: &Shared) -> Option<String> {
+        None
+    }
+
+    /// Draw into `area`.
+    fn draw(&self, shared: &Shared, area: Rect, buf: &mut Buffer);
 }
 
 /// A panel frame: rounded border, title, brighter when focused.
@@ -76,8 +166,8 @@ pub fn panel<'a>(shared: &Shared, title: String, focused: bool) -> Block<'a> {
         .title(ratatui::text::Span::styled(title, shared.theme.focus()))
 }
 
-/// Whether `f` has the focus (and no overlay hides it).
-pub fn is_focused(shared: &Shared, f: Focus) -> bool {
+/// Whether slot `f` has the focus (and no overlay hides it).
+pub fn is_focused(shared: &Shared, f: Slot) -> bool {
     shared.focus == f && shared.overlay == Overlay::None
 }
 

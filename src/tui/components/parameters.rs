@@ -4,10 +4,10 @@
 //! screen's width. When the rows do not fit (80×24) the panel scrolls with the
 //! selection.
 
-use super::{is_focused, panel, Component};
+use super::{is_focused, panel, Component, NoWork, Shared};
 use crate::tui::keymap::Action;
+use crate::tui::layout::Slot;
 use crate::tui::params::ParamId;
-use crate::tui::shared::{Focus, Shared};
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::text::{Line, Span};
@@ -66,8 +66,14 @@ impl Parameters {
 }
 
 impl Component for Parameters {
+    type Msg = NoWork;
+
+    fn focusable(&self) -> bool {
+        true
+    }
+
     fn handle(&mut self, action: Action, shared: &mut Shared) -> bool {
-        if shared.focus != Focus::Params {
+        if shared.focus != Slot::Params {
             return false;
         }
         let n = ParamId::ALL.len();
@@ -93,7 +99,7 @@ impl Component for Parameters {
     }
 
     fn draw(&self, app: &Shared, area: Rect, buf: &mut Buffer) {
-        let focused = is_focused(app, Focus::Params);
+        let focused = is_focused(app, Slot::Params);
         let block = panel(app, " Parameters ".into(), focused);
         let inner = block.inner(area);
         block.render(area, buf);

@@ -4,13 +4,12 @@
 //! a thread of its own (interactive work) and parks while the application is paused.
 
 use super::diagram::v_range;
-use super::{compact, panel, Component, Target};
+use super::{compact, panel, Component, Effect, Msg, Registered, Shared, Workers};
 use crate::output::hitgrid::{HitGrid, Marker, Range};
 use crate::tui::layout::plot_area_within;
 use crate::tui::params::{ParamId, Touch};
 use crate::tui::plot::{draw_axes, render};
-use crate::tui::shared::{Effect, Shared};
-use crate::tui::workers::{Body, Ticket, Workers};
+use crate::tui::workers::Ticket;
 use bouncemap_engine::{Event, ImpactMap, Solver, State, System};
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
@@ -67,21 +66,6 @@ impl PhasePlot {
         self.rebin(shared);
     }
 
-    /// Resize the grid to the plot area inside `pane`.
-    pub fn set_pane(&mut self, pane: Rect, shared: &Shared) {
-        let plot = plot_area_within(pane, LABEL_W);
-        if self.grid.size() != (plot.width, plot.height) || self.grid.marker() != shared.marker {
-            self.grid = HitGrid::new(
-                plot.width,
-                plot.height,
-                shared.marker,
-                self.grid.x_range(),
-                self.grid.y_range(),
-            );
-            self.rebin(shared);
-        }
-    }
-
     fn rebin(&mut self, shared: &Shared) {
         let y = v_range(self.points.iter().map(|q| q.1), shared.params.k);
         let (w, h) = self.grid.size();
@@ -115,34 +99,53 @@ impl PhasePlot {
 }
 
 impl Component for PhasePlot {
+    type Msg = PhasePoints;
+
+    /// Resize the grid to the plot area inside `pane`.
+    fn set_pane(&mut self, pane: Rect, shared: &mut Shared) {
+        let plot = plot_area_within(pane, LABEL_W);
+        if self.grid.size() != (plot.width, plot.height) || self.grid.marker() != shared.marker {
+            self.grid = HitGrid::new(
+                plot.width,
+                plot.height,
+                shared.marker,
+                self.grid.x_range(),
+                self.grid.y_range(),
+            );
+            self.rebin(shared);
+        }
+    }
+
     fn changed(&mut self, id: ParamId, shared: &mut Shared) {
         if matches!(id.touches(), Touch::System | Touch::Start) {
-            shared.effect(Effect::Start(Target::Phase));
+            shared.effect(Effect::Start(Self::TARGET));
         }
     }
 
     fn start(&mut self, shared: &mut Shared, workers: &Workers) {
         let sys = shared.system();
         if let Ok(st) = shared.params.initial(&sys) {
-            let gen = workers.spawn(Target::Phase, "phase-plot", move |t| {
+            let gen = workers.spawn(Self::ADDRESS, "phase-plot", move |t| {
                 phase_worker(sys, st, &t)
             });
             self.started(gen, shared);
         }
     }
 
-    fn receive(&mut self, gen: u64, body: Body, shared: &mut Shared) {
+    fn receive(&mut self, gen: u64, msg: Self::Msg, shared: &mut Shared) {
         if gen != self.gen {
             return;
         }
-        if let Ok(chunk) = body.downcast::<PhasePoints>() {
-            self.add(*chunk, shared);
-            shared.dirty = true;
-        }
+        self.add(msg, shared);
+        shared.dirty = true;
     }
 
     fn busy(&self) -> bool {
         !self.done
+    }
+
+    fn computing(&self, _shared: &Shared) -> Option<String> {
+        (!self.done).then(|| "phase plot".to_string())
     }
 
     fn draw(&self, app: &Shared, area: Rect, buf: &mut Buffer) {
@@ -225,7 +228,7 @@ impl Component for PhasePlot {
 
 /// Iterate the map from `state`, sending (phase, v) after every event, in paced
 /// chunks up to [`PHASE_CAP`] points; parks while paused, stops when stale.
-pub fn phase_worker(sys: System, state: State, ticket: &Ticket) {
+pub fn phase_worker(sys: System, state: State, ticket: &Ticket<Msg, PhasePoints>) {
     let mut map = ImpactMap::new(sys, Solver::Exact, state);
     let mut sent = 0usize;
     while sent < PHASE_CAP {

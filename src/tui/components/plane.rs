@@ -11,18 +11,19 @@
 //! lower half, without colour each cell shows its class's glyph (sparse to dense, as
 //! `plane --format braille`). The plane runs at the diagram's α window (α's default
 //! window when another parameter is swept), D ∈ [0, 1] or r ∈ [0.5, 0.95], with the
-//! diagram's transient, started next to the (1, 1) solution.
+//! diagram's transient, started next to the (1, 1) solution. The job, its progress and
+//! the halves are [`super::grid_picture`]'s; the spec, the classes' colours and glyphs,
+//! the curves, the legend and the cursor are this panel's.
 
-use super::{is_focused, panel, Component, Target};
+use super::grid_picture::{draw_halves, GridPicture, Picture};
+use super::{is_focused, panel, Component, Effect, JobMsg, Registered, Shared, Target, Workers};
 use crate::output::classes::{of_pixel, Class};
 use crate::output::hitgrid::Range;
 use crate::output::plane_map::{self, glyph, Cell, CURVE_MARKS};
 use crate::tui::keymap::Action;
+use crate::tui::layout::{plot_area_within, Slot};
 use crate::tui::params::{default_window, ParamId, Params};
 use crate::tui::plot::draw_axes;
-use crate::tui::shared::{Effect, Focus, Shared};
-use crate::tui::workers::{Body, JobDone, Workers};
-use bouncemap_engine::jobs::Batch;
 use bouncemap_engine::plane::{curves, Axis, Curves, Plane, PlaneChunk, PlaneJob, PlaneSpec};
 use bouncemap_engine::sweep::SweepParam;
 use bouncemap_engine::Table;
@@ -30,35 +31,51 @@ use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::style::{Modifier, Style};
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Paragraph, Widget};
-use std::time::Instant;
+use ratatui::widgets::Widget;
 
 const LABEL_W: u16 = 6;
+
+impl Picture for Plane {
+    type Spec = PlaneSpec;
+    type Chunk = PlaneChunk;
+    type Job = PlaneJob;
+
+    fn job(spec: &PlaneSpec) -> Result<PlaneJob, String> {
+        PlaneJob::new(spec.clone()).map_err(|e| e.to_string())
+    }
+
+    fn empty(spec: &PlaneSpec) -> Plane {
+        Plane::new(spec)
+    }
+
+    fn absorb(&mut self, chunk: PlaneChunk) {
+        Plane::absorb(self, chunk);
+    }
+
+    fn size(&self) -> (usize, usize) {
+        Plane::size(self)
+    }
+
+    fn covered(&self) -> usize {
+        Plane::covered(self)
+    }
+
+    fn complete(&self) -> bool {
+        Plane::complete(self)
+    }
+}
 
 /// The plane view.
 #[derive(Default)]
 pub struct PlanePanel {
-    /// Whether the view is shown (in place of the diagram).
-    pub shown: bool,
-    pub gen: u64,
-    pub spec: Option<PlaneSpec>,
-    pub plane: Option<Plane>,
+    /// The picture, its job and whether it is shown (in place of the diagram).
+    pub view: GridPicture<Plane>,
+    /// The analytic curves of the plane shown.
     pub curves: Option<Curves>,
-    pub done: bool,
-    pub error: Option<String>,
-    pub started: Option<Instant>,
-    pub elapsed: f64,
     /// Seconds from the start to the first complete coarse picture.
     pub first_picture: Option<f64>,
-    /// Pixels along α and along the other axis for the pane at the last layout.
-    grid: (usize, usize),
     /// The cursor's pixel (i, j), j = 0 at the bottom.
     pub cursor: (usize, usize),
-}
-
-/// The plot rectangle inside `pane`.
-fn plot_rect(pane: Rect) -> Rect {
-    crate::tui::layout::plot_area_within(pane, LABEL_W)
 }
 
 /// The plane the current parameters ask for on a `grid`: α over the diagram's α window,
@@ -95,27 +112,14 @@ pub fn plane_spec(params: &Params, grid: (usize, usize)) -> PlaneSpec {
 }
 
 impl PlanePanel {
-    /// Size the grid to the pane: one pixel per column, two per row. A new size restarts
-    /// the plane (if shown).
-    pub fn set_pane(&mut self, pane: Rect, shared: &mut Shared) {
-        let plot = plot_rect(pane);
-        let grid = (plot.width.max(1) as usize, 2 * plot.height.max(1) as usize);
-        if grid != self.grid {
-            self.grid = grid;
-            if self.shown {
-                shared.effect(Effect::Start(Target::Plane));
-            }
-        }
-    }
-
     /// The plane the current parameters ask for at the pane's size.
     pub fn spec_for(&self, shared: &Shared) -> PlaneSpec {
-        plane_spec(&shared.params, self.grid)
+        plane_spec(&shared.params, self.view.grid())
     }
 
     /// The cursor at the application's current α and D (or r).
     pub fn place_cursor(&mut self, shared: &Shared) {
-        if let Some(s) = &self.spec {
+        if let Some(s) = &self.view.spec {
             let y = shared.params.value(s.y.param).unwrap_or(s.y.lo);
             self.cursor = (s.x.pixel_of(shared.params.alpha), s.y.pixel_of(y));
         }
@@ -123,7 +127,7 @@ impl PlanePanel {
 
     /// Move the cursor by (di, dj) pixels and the application's α and D (or r) with it.
     fn move_cursor(&mut self, di: i64, dj: i64, shared: &mut Shared) {
-        let Some(s) = &self.spec else { return };
+        let Some(s) = &self.view.spec else { return };
         let i = (self.cursor.0 as i64 + di).clamp(0, s.x.n as i64 - 1) as usize;
         let j = (self.cursor.1 as i64 + dj).clamp(0, s.y.n as i64 - 1) as usize;
         self.cursor = (i, j);
@@ -151,21 +155,14 @@ impl PlanePanel {
     }
 
     fn title(&self, shared: &Shared) -> String {
-        let Some(s) = &self.spec else {
+        let Some(s) = &self.view.spec else {
             return " Plane ".into();
         };
         let head = format!(" Plane α×{}", Params::symbol(s.y.param));
-        let Some(p) = &self.plane else {
+        let Some(p) = &self.view.picture else {
             return format!("{head} ");
         };
-        let frac = p.covered() as f64 / s.len().max(1) as f64;
-        let state = if self.done {
-            format!("done {:.1}s", self.elapsed)
-        } else if shared.paused {
-            "paused".into()
-        } else {
-            format!("{:>3.0}%", 100.0 * frac)
-        };
+        let state = self.view.progress(p, shared);
         let (i, j) = self.cursor;
         let here = match p.preview(i, j) {
             Some(px) => of_pixel(px).map_or("no landing", Class::describe),
@@ -200,12 +197,28 @@ fn curve_style() -> Style {
 }
 
 impl Component for PlanePanel {
+    type Msg = JobMsg<PlaneChunk>;
+
+    fn shown(&self) -> bool {
+        self.view.shown
+    }
+
+    fn focusable(&self) -> bool {
+        true
+    }
+
+    /// Size the grid to the pane: one pixel per column, two per row. A new size restarts
+    /// the plane (if shown).
+    fn set_pane(&mut self, pane: Rect, shared: &mut Shared) {
+        self.view
+            .set_plot(plot_area_within(pane, LABEL_W), Self::TARGET, shared);
+    }
+
     fn handle(&mut self, action: Action, shared: &mut Shared) -> bool {
         if action == Action::TogglePlane {
-            self.shown = !self.shown;
-            shared.effect(Effect::Start(Target::Plane));
-            if self.shown {
-                shared.focus = Focus::Diagram;
+            self.view.toggle(Self::TARGET, shared);
+            if self.view.shown {
+                shared.focus = Slot::Diagram;
                 shared.say(
                     "plane: arrows move α and D (or r) for every panel; Enter sweeps α there; the key again shows the diagram",
                     false,
@@ -213,7 +226,7 @@ impl Component for PlanePanel {
             }
             return true;
         }
-        if !self.shown || shared.focus != Focus::Diagram {
+        if !self.view.shown || shared.focus != Slot::Diagram {
             return false;
         }
         match action {
@@ -232,8 +245,8 @@ impl Component for PlanePanel {
                     shared.params.set_param(SweepParam::Alpha)
                 };
                 shared.after_change(ParamId::Sweep, r, &before);
-                self.shown = false;
-                shared.effect(Effect::Start(Target::Plane));
+                self.view.shown = false;
+                shared.effect(Effect::Start(Self::TARGET));
                 shared.effect(Effect::Start(Target::Diagram));
                 shared.say("plane: the diagram sweeps α at the point chosen", false);
             }
@@ -251,88 +264,56 @@ impl Component for PlanePanel {
     }
 
     fn changed(&mut self, _id: ParamId, shared: &mut Shared) {
-        if !self.shown {
+        if !self.view.shown {
             return;
         }
         let next = self.spec_for(shared);
-        if self.spec.as_ref() != Some(&next) {
-            shared.effect(Effect::Start(Target::Plane));
+        if self.view.spec.as_ref() != Some(&next) {
+            shared.effect(Effect::Start(Self::TARGET));
         } else {
             self.place_cursor(shared);
         }
     }
 
     fn start(&mut self, shared: &mut Shared, workers: &Workers) {
-        if !self.shown {
-            workers.cancel(Target::Plane);
-            self.done = true;
+        if self.view.stop_if_hidden(Self::TARGET, workers) {
             return;
         }
         let spec = self.spec_for(shared);
-        let complete = self.plane.as_ref().is_some_and(Plane::complete);
-        if self.spec.as_ref() == Some(&spec) && (complete || !self.done) {
+        let complete = self.view.picture.as_ref().is_some_and(Plane::complete);
+        if self.view.spec.as_ref() == Some(&spec) && (complete || !self.view.done) {
             // The same plane, complete or still filling in: keep it.
             self.place_cursor(shared);
             return;
         }
-        match PlaneJob::new(spec.clone()) {
-            Ok(job) => {
-                self.gen = workers.start_job(Target::Plane, job);
-                self.plane = Some(Plane::new(&spec));
-                self.curves = curves(&spec);
-                self.spec = Some(spec);
-                self.place_cursor(shared);
-                self.error = None;
-                self.done = false;
-                self.started = Some(Instant::now());
-                self.elapsed = 0.0;
-                self.first_picture = None;
-            }
-            Err(e) => {
-                workers.cancel(Target::Plane);
-                self.error = Some(e.to_string());
-                self.done = true;
-            }
+        if self.view.run(spec, Self::ADDRESS, workers) {
+            self.curves = self.view.spec.as_ref().and_then(curves);
+            self.place_cursor(shared);
+            self.first_picture = None;
         }
     }
 
-    fn receive(&mut self, gen: u64, body: Body, shared: &mut Shared) {
-        if gen != self.gen {
-            return;
+    fn receive(&mut self, gen: u64, msg: Self::Msg, shared: &mut Shared) {
+        let pass = self.view.receive(gen, msg, shared);
+        // The first pass done: every pixel shows its coarse block.
+        if pass.is_some_and(|p| p > 0) && self.first_picture.is_none() {
+            self.first_picture = self.view.started.map(|s| s.elapsed().as_secs_f64());
         }
-        if body.is::<JobDone>() {
-            self.done = true;
-        } else if let Ok(b) = body.downcast::<Batch<PlaneChunk>>() {
-            let first_pass = b.pass == 0;
-            if let Some(p) = self.plane.as_mut() {
-                p.absorb(b.data);
-            }
-            if !first_pass && self.first_picture.is_none() {
-                self.first_picture = self.started.map(|s| s.elapsed().as_secs_f64());
-            }
-        }
-        if let Some(s) = self.started {
-            self.elapsed = s.elapsed().as_secs_f64();
-        }
-        shared.dirty = true;
     }
 
     fn busy(&self) -> bool {
-        self.shown && !self.done
+        self.view.busy()
     }
 
     fn draw(&self, app: &Shared, area: Rect, buf: &mut Buffer) {
-        let focused = is_focused(app, Focus::Diagram);
+        let focused = is_focused(app, Slot::Diagram);
         let block = panel(app, self.title(app), focused).title_bottom(self.legend(app));
         let inner = block.inner(area);
         block.render(area, buf);
-        if let Some(e) = &self.error {
-            Paragraph::new(format!("Plane: {e}"))
-                .style(app.theme.error())
-                .render(inner, buf);
+        if self.view.draw_error("Plane", app, inner, buf) {
             return;
         }
-        let (Some(p), Some(spec)) = (&self.plane, &self.spec) else {
+        let (Some(p), Some(spec)) = (&self.view.picture, &self.view.spec) else {
             return;
         };
         let plot = draw_axes(
@@ -345,28 +326,12 @@ impl Component for PlanePanel {
         );
         let (nx, ny) = p.size();
         let colour = app.theme.class(Class::Period1).fg.is_some();
-        if colour && nx == plot.width as usize && ny == 2 * plot.height as usize {
-            let fg = |c: Option<Class>| c.and_then(|c| app.theme.class(c).fg);
-            for r in 0..plot.height {
-                let j_top = ny - 1 - 2 * r as usize;
-                for c in 0..plot.width {
-                    let i = c as usize;
-                    let top = p.preview(i, j_top).map(of_pixel).and_then(fg);
-                    let bottom = p.preview(i, j_top - 1).map(of_pixel).and_then(fg);
-                    let mut style = Style::new();
-                    if let Some(t) = top {
-                        style = style.fg(t);
-                    }
-                    if let Some(b) = bottom {
-                        style = style.bg(b);
-                    }
-                    if top.is_some() || bottom.is_some() {
-                        let g = if top.is_some() { "▀" } else { " " };
-                        buf.set_string(plot.x + c, plot.y + r, g, style);
-                    }
-                }
-            }
-        } else {
+        let fg = |c: Option<Class>| c.and_then(|c| app.theme.class(c).fg);
+        let halves = colour
+            && draw_halves(plot, (nx, ny), buf, |i, j| {
+                p.preview(i, j).map(of_pixel).and_then(fg)
+            });
+        if !halves {
             let cells = plane_map::cells(spec, p, None, plot.width as usize, plot.height as usize);
             for (r, line) in cells.iter().enumerate() {
                 for (c, cell) in line.iter().enumerate() {

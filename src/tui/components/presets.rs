@@ -2,10 +2,10 @@
 //! ↑/↓ to choose, Enter to load, Esc to close; the chosen one's description in full
 //! and its settings below the list.
 
+use super::{Overlay, Shared};
 use crate::config::presets::{self, Preset};
 use crate::tui::keymap::Action;
 use crate::tui::params::fmt_num;
-use crate::tui::shared::{Overlay, Shared};
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::text::Line;

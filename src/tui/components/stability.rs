@@ -6,12 +6,10 @@
 //! It owns the orbit analysis (which the diagram and the phase plot also mark), run on
 //! a thread of its own so it answers within milliseconds whatever a sweep is doing.
 
-use super::{panel, Component, Target};
+use super::{panel, Component, Effect, Registered, Shared, Workers};
 use crate::tui::analysis::{orbit_info, FixedPoint, OrbitInfo};
 use crate::tui::params::{fmt_num, ParamId, Touch};
 use crate::tui::plot::canvas_marker;
-use crate::tui::shared::{Effect, Shared};
-use crate::tui::workers::{Body, Workers};
 use bouncemap_engine::kappa_c;
 use ratatui::buffer::Buffer;
 use ratatui::layout::{Constraint, Layout, Rect};
@@ -38,16 +36,18 @@ impl Stability {
 }
 
 impl Component for Stability {
+    type Msg = Result<OrbitInfo, String>;
+
     fn changed(&mut self, id: ParamId, shared: &mut Shared) {
         if id.touches() == Touch::System {
-            shared.effect(Effect::Start(Target::Orbits));
+            shared.effect(Effect::Start(Self::TARGET));
         }
     }
 
     fn start(&mut self, shared: &mut Shared, workers: &Workers) {
         let (sys, k) = (shared.system(), shared.params.k);
         // Not paused with the rest: a few milliseconds, and the panels need it.
-        let gen = workers.spawn(Target::Orbits, "orbit-analysis", move |t| {
+        let gen = workers.spawn(Self::ADDRESS, "orbit-analysis", move |t| {
             if !t.stale() {
                 t.send(orbit_info(&sys, k));
             }
@@ -55,19 +55,21 @@ impl Component for Stability {
         self.started(gen, shared);
     }
 
-    fn receive(&mut self, gen: u64, body: Body, shared: &mut Shared) {
+    fn receive(&mut self, gen: u64, msg: Self::Msg, shared: &mut Shared) {
         if gen != self.gen {
             return;
         }
-        if let Ok(info) = body.downcast::<Result<OrbitInfo, String>>() {
-            shared.orbits = Some(*info);
-            self.pending = false;
-            shared.dirty = true;
-        }
+        shared.orbits = Some(msg);
+        self.pending = false;
+        shared.dirty = true;
     }
 
     fn busy(&self) -> bool {
         self.pending
+    }
+
+    fn computing(&self, shared: &Shared) -> Option<String> {
+        shared.orbits.is_none().then(|| "orbits".to_string())
     }
 
     fn draw(&self, app: &Shared, area: Rect, buf: &mut Buffer) {

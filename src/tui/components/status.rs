@@ -1,18 +1,25 @@
-//! The status line: current parameters, then the latest message (a refusal naming the
-//! valid range, a note) if there is one, else what is computing and key hints taken
-//! from the keymap (shortened to fit at 80 columns).
+//! The status line: the export prompt while a file name is typed; else the current
+//! parameters, then the latest message (a refusal naming the valid range, a note) if
+//! there is one, else what the panels are computing and key hints taken from the keymap
+//! (shortened to fit at 80 columns).
 
-use super::diagram::{Diagram, SweepStatus};
-use super::phase_plot::PhasePlot;
+use super::Shared;
 use crate::tui::keymap::Action;
 use crate::tui::params::fmt_num;
-use crate::tui::shared::Shared;
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Paragraph, Widget};
 
-pub fn draw(app: &Shared, diagram: &Diagram, phase: &PhasePlot, area: Rect, buf: &mut Buffer) {
+/// Draw the status line: `prompt` is the export's file name being typed, `computing`
+/// what the panels are computing (in the registry's order).
+pub fn draw(
+    app: &Shared,
+    prompt: Option<&str>,
+    computing: &[String],
+    area: Rect,
+    buf: &mut Buffer,
+) {
     let p = &app.params;
     let params = format!(
         " {} α={} r={} k={} ",
@@ -21,7 +28,7 @@ pub fn draw(app: &Shared, diagram: &Diagram, phase: &PhasePlot, area: Rect, buf:
         fmt_num(p.r),
         p.k
     );
-    if let Some(name) = &app.export_name {
+    if let Some(name) = prompt {
         let line = Line::from(vec![
             Span::styled(" export to: ", app.theme.focus()),
             Span::styled(format!("{name}▏"), app.theme.selected()),
@@ -56,23 +63,10 @@ pub fn draw(app: &Shared, diagram: &Diagram, phase: &PhasePlot, area: Rect, buf:
     let work = if app.paused {
         "PAUSED".to_string()
     } else {
-        let mut w = Vec::new();
-        if diagram.status == SweepStatus::Running {
-            w.push(format!(
-                "sweep {}%",
-                (100 * diagram.values_done / diagram.values_total.max(1)).min(100)
-            ));
-        }
-        if !phase.done {
-            w.push("phase plot".into());
-        }
-        if app.orbits.is_none() {
-            w.push("orbits".into());
-        }
-        if w.is_empty() {
+        if computing.is_empty() {
             "idle".into()
         } else {
-            format!("computing: {}", w.join(", "))
+            format!("computing: {}", computing.join(", "))
         }
     };
     let k = |a| app.keymap.hint(a);

@@ -3,9 +3,9 @@
 //! solutions (◆ stable, ◇ unstable), the sticking threshold F″ = −1/α (dashed) and the
 //! release phases (R), where a ball riding on the table leaves it. Draw-only.
 
+use super::Shared;
 use crate::tui::params::fmt_num;
 use crate::tui::plot::canvas_marker;
-use crate::tui::shared::Shared;
 use bouncemap_engine::System;
 use ratatui::buffer::Buffer;
 use ratatui::layout::{Constraint, Layout, Rect};

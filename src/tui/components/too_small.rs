@@ -1,7 +1,7 @@
 //! The message shown instead of a broken layout when the terminal is too small.
 
+use super::Shared;
 use crate::tui::layout::{MIN_H, MIN_W};
-use crate::tui::shared::Shared;
 use ratatui::buffer::Buffer;
 use ratatui::layout::{Alignment, Rect};
 use ratatui::text::Line;

@@ -7,11 +7,10 @@ use bouncemap::output::hitgrid::Marker;
 use bouncemap::tui::analysis::orbit_info;
 use bouncemap::tui::app::App;
 use bouncemap::tui::components::phase_plot::PhasePoints;
-use bouncemap::tui::components::Target;
+use bouncemap::tui::components::{JobMsg, Msg};
 use bouncemap::tui::keymap::Keymap;
 use bouncemap::tui::params::Params;
 use bouncemap::tui::theme::Theme;
-use bouncemap::tui::workers::{JobDone, Msg};
 use bouncemap_engine::jobs::Batch;
 use bouncemap_engine::sweep::{Outcome, SweepPoint, ValueResult};
 use bouncemap_engine::EventKind;
@@ -39,14 +38,13 @@ pub fn size(app: &mut App, w: u16, h: u16) {
 
 /// A sweep batch as the executor streams it.
 pub fn sweep_msg(gen: u64, data: ValueResult) -> Msg {
-    Msg::new(
-        Target::Diagram,
+    Msg::Diagram(
         gen,
-        Batch {
+        JobMsg::Batch(Batch {
             generation: gen,
             pass: 1,
             data,
-        },
+        }),
     )
 }
 
@@ -55,8 +53,8 @@ pub fn sweep_msg(gen: u64, data: ValueResult) -> Msg {
 pub fn fill(app: &mut App) {
     let n = 120;
     let shared = &app.shared;
-    app.diagram.sweep_started(1, n, shared);
-    let (lo, hi) = (app.params.lo, app.params.hi);
+    app.panels.diagram.sweep_started(1, n, shared);
+    let (lo, hi) = (app.shared.params.lo, app.shared.params.hi);
     for i in 0..n {
         let a = lo + (hi - lo) * i as f64 / (n - 1) as f64;
         let x = (a - lo) / (hi - lo);
@@ -92,20 +90,19 @@ pub fn fill(app: &mut App) {
             },
         ));
     }
-    app.receive(Msg::new(Target::Diagram, 1, JobDone));
-    app.diagram.started = None;
-    app.diagram.elapsed = 2.0;
-    let sys = app.system();
-    let st = app.params.initial(&sys).unwrap();
+    app.receive(Msg::Diagram(1, JobMsg::Done));
+    app.panels.diagram.started = None;
+    app.panels.diagram.elapsed = 2.0;
+    let sys = app.shared.system();
+    let st = app.shared.params.initial(&sys).unwrap();
     let mut map =
         bouncemap_engine::ImpactMap::new(sys.clone(), bouncemap_engine::Solver::Exact, st);
     let pts: Vec<(f64, f64)> = (0..400)
         .map(|_| map.step().map(|e| (e.phase, e.v)).unwrap())
         .collect();
     let shared = &app.shared;
-    app.phase.started(1, shared);
-    app.receive(Msg::new(
-        Target::Phase,
+    app.panels.phase.started(1, shared);
+    app.receive(Msg::Phase(
         1,
         PhasePoints {
             points: pts,
@@ -113,10 +110,10 @@ pub fn fill(app: &mut App) {
             note: None,
         },
     ));
-    app.stability.started(1, &mut app.shared);
-    let info = orbit_info(&sys, app.params.k);
-    app.receive(Msg::new(Target::Orbits, 1, info));
-    app.bounce.step(3);
+    app.panels.stability.started(1, &mut app.shared);
+    let info = orbit_info(&sys, app.shared.params.k);
+    app.receive(Msg::Stability(1, info));
+    app.panels.bounce.step(3);
 }
 
 /// Render the whole screen into a test backend.

@@ -16,13 +16,12 @@ pub mod strip;
 
 pub use navigation::Zoom;
 
-use super::{compact, is_focused, panel, Component, Target};
+use super::{compact, is_focused, panel, Component, Effect, JobMsg, Registered, Shared, Workers};
 use crate::output::hitgrid::{HitGrid, Range};
 use crate::tui::keymap::Action;
+use crate::tui::layout::{plot_area_within, Slot};
 use crate::tui::params::{fmt_num, ParamId, Params, StartMode, Touch};
 use crate::tui::plot::{draw_axes, render};
-use crate::tui::shared::{Effect, Focus, Shared};
-use crate::tui::workers::{Body, JobDone, Workers};
 use bouncemap_engine::sweep::{
     InitialSpec, SweepBatch, SweepJob, SweepParam, SweepSpec, ValueResult,
 };
@@ -57,21 +56,19 @@ pub fn split(inner: Rect) -> (Rect, Option<Rect>) {
     (main, Some(strip))
 }
 
-/// The plot rectangle of the diagram pane (as [`draw_axes`] lays it out).
+/// The plot rectangle of the diagram pane (as [`draw_axes`] lays it out above the
+/// strip).
 fn plot_rect(pane: Rect) -> Rect {
-    let inner = Rect {
-        x: pane.x + 1,
-        y: pane.y + 1,
-        width: pane.width.saturating_sub(2),
-        height: pane.height.saturating_sub(2),
+    let inner_h = pane.height.saturating_sub(2);
+    let (main, _) = split(Rect {
+        height: inner_h,
+        ..pane
+    });
+    let above = Rect {
+        height: pane.height - (inner_h - main.height),
+        ..pane
     };
-    let (main, _) = split(inner);
-    Rect {
-        x: main.x + LABEL_W + 1,
-        y: main.y,
-        width: main.width.saturating_sub(LABEL_W + 1),
-        height: main.height.saturating_sub(1),
-    }
+    plot_area_within(above, LABEL_W)
 }
 
 /// What the diagram's vertical axis shows.
@@ -285,32 +282,6 @@ impl Diagram {
         }
     }
 
-    /// Resize the grid to the plot area inside `pane` (re-binning from the stored
-    /// points when the size changed); sweep again if it grew wider than the sweep has
-    /// values.
-    pub fn set_pane(&mut self, pane: Rect, shared: &mut Shared) {
-        let plot = plot_rect(pane);
-        self.plot_area = plot;
-        if self.grid.size() != (plot.width, plot.height) || self.grid.marker() != shared.marker {
-            self.grid = HitGrid::new(
-                plot.width,
-                plot.height,
-                shared.marker,
-                self.grid.x_range(),
-                self.grid.y_range(),
-            );
-            self.rebin(shared);
-            // Grown wider than the sweep has values (a terminal enlarged, or one too
-            // small at start): add the values between the stored ones, or every other
-            // column would stay empty. Shrinking only re-bins.
-            let values = self.values_total;
-            if shared.params.steps.is_none() && values > 1 && self.sweep_columns() > values {
-                self.refine = true;
-                shared.effect(Effect::Start(Target::Diagram));
-            }
-        }
-    }
-
     /// Re-bin from the stored points (window, axis or size changed).
     pub fn rebin(&mut self, shared: &Shared) {
         let x = Range::new(shared.params.lo, shared.params.hi);
@@ -340,8 +311,40 @@ impl Diagram {
 }
 
 impl Component for Diagram {
+    type Msg = JobMsg<ValueResult>;
+
+    fn focusable(&self) -> bool {
+        true
+    }
+
+    /// Resize the grid to the plot area inside `pane` (re-binning from the stored
+    /// points when the size changed); sweep again if it grew wider than the sweep has
+    /// values.
+    fn set_pane(&mut self, pane: Rect, shared: &mut Shared) {
+        let plot = plot_rect(pane);
+        self.plot_area = plot;
+        if self.grid.size() != (plot.width, plot.height) || self.grid.marker() != shared.marker {
+            self.grid = HitGrid::new(
+                plot.width,
+                plot.height,
+                shared.marker,
+                self.grid.x_range(),
+                self.grid.y_range(),
+            );
+            self.rebin(shared);
+            // Grown wider than the sweep has values (a terminal enlarged, or one too
+            // small at start): add the values between the stored ones, or every other
+            // column would stay empty. Shrinking only re-bins.
+            let values = self.values_total;
+            if shared.params.steps.is_none() && values > 1 && self.sweep_columns() > values {
+                self.refine = true;
+                shared.effect(Effect::Start(Self::TARGET));
+            }
+        }
+    }
+
     fn handle(&mut self, action: Action, shared: &mut Shared) -> bool {
-        let focused = shared.focus == Focus::Diagram;
+        let focused = shared.focus == Slot::Diagram;
         match action {
             Action::Left | Action::Right | Action::FineLeft | Action::FineRight if focused => {
                 let dir = if matches!(action, Action::Left | Action::FineLeft) {
@@ -393,7 +396,7 @@ impl Component for Diagram {
                     }
                     shared.say("one start per value", false);
                 }
-                shared.effect(Effect::Start(Target::Diagram));
+                shared.effect(Effect::Start(Self::TARGET));
             }
             Action::MarkWindow => self.mark_corner(shared),
             Action::ZoomIn | Action::ZoomOut => {
@@ -408,6 +411,11 @@ impl Component for Diagram {
         true
     }
 
+    /// A window being marked is dropped.
+    fn focus_moved(&mut self) {
+        self.mark = None;
+    }
+
     fn changed(&mut self, id: ParamId, shared: &mut Shared) {
         let p = &shared.params;
         let swept = Params::row_of(p.param);
@@ -416,13 +424,13 @@ impl Component for Diagram {
                 self.cursor = Diagram::current(shared);
                 // A sweep does not depend on the value it sweeps: only its line moves.
                 if id != swept {
-                    shared.effect(Effect::Start(Target::Diagram));
+                    shared.effect(Effect::Start(Self::TARGET));
                 }
             }
             Touch::Start => {
                 // A cold sweep starts from t̂0, v0.
                 if p.start == StartMode::Cold {
-                    shared.effect(Effect::Start(Target::Diagram));
+                    shared.effect(Effect::Start(Self::TARGET));
                 }
             }
             Touch::Sweep => {
@@ -442,7 +450,7 @@ impl Component for Diagram {
                     ),
                     false,
                 );
-                shared.effect(Effect::Start(Target::Diagram));
+                shared.effect(Effect::Start(Self::TARGET));
             }
         }
     }
@@ -456,28 +464,29 @@ impl Component for Diagram {
         let preview = Self::preview(spec.transient);
         match SweepJob::new(spec.clone()) {
             Ok(job) => {
-                let gen = workers.start_job(Target::Diagram, job.preview(preview));
+                let gen = workers.start_job(Self::ADDRESS, job.preview(preview));
                 self.sweep_started(gen, steps, shared);
                 self.running = Some(spec);
             }
             Err(e) => {
-                workers.cancel(Target::Diagram);
+                workers.cancel(Self::TARGET);
                 self.sweep_started(0, 0, shared);
                 self.status = SweepStatus::Unavailable(e.to_string());
             }
         }
     }
 
-    fn receive(&mut self, gen: u64, body: Body, shared: &mut Shared) {
+    fn receive(&mut self, gen: u64, msg: Self::Msg, shared: &mut Shared) {
         if gen != self.gen {
             return;
         }
-        if let Some(b) = body.downcast_ref::<SweepBatch>() {
-            self.add_batch(b, shared);
-        } else if body.is::<JobDone>() {
-            self.status = SweepStatus::Done;
-            if let Some(s) = self.started {
-                self.elapsed = s.elapsed().as_secs_f64();
+        match msg {
+            JobMsg::Batch(b) => self.add_batch(&b, shared),
+            JobMsg::Done => {
+                self.status = SweepStatus::Done;
+                if let Some(s) = self.started {
+                    self.elapsed = s.elapsed().as_secs_f64();
+                }
             }
         }
         shared.dirty = true;
@@ -487,8 +496,17 @@ impl Component for Diagram {
         self.status == SweepStatus::Running
     }
 
+    fn computing(&self, _shared: &Shared) -> Option<String> {
+        (self.status == SweepStatus::Running).then(|| {
+            format!(
+                "sweep {}%",
+                (100 * self.values_done / self.values_total.max(1)).min(100)
+            )
+        })
+    }
+
     fn draw(&self, app: &Shared, area: Rect, buf: &mut Buffer) {
-        let focused = is_focused(app, Focus::Diagram);
+        let focused = is_focused(app, Slot::Diagram);
         let mut block = panel(app, title(self, app), focused)
             .title_bottom(colouring::legend(self.color_by, &app.theme));
         if focused || self.mark.is_some() {

@@ -4,9 +4,8 @@
 //! the zoom stack, and refining the sweep when the plot grows wider.
 
 use super::{Diagram, SweepStatus};
+use crate::tui::components::{Registered, Shared, Workers};
 use crate::tui::params::{ParamId, Params};
-use crate::tui::shared::Shared;
-use crate::tui::workers::{Target, Workers};
 use bouncemap_engine::sweep::{Shard, SweepJob, SweepSpec, ValueResult, Warm};
 
 /// A window to go back to.
@@ -167,7 +166,7 @@ impl Diagram {
         let Ok(job) = SweepJob::new(part) else {
             return false;
         };
-        let gen = workers.start_job(Target::Diagram, job);
+        let gen = workers.start_job(Self::ADDRESS, job);
         let old_slots = std::mem::take(&mut self.slots);
         self.sweep_started(gen, steps, shared);
         for (i, s) in old_slots.into_iter().enumerate() {

@@ -5,8 +5,8 @@
 
 use super::{Axis, Diagram};
 use crate::output::classes::{self, Class};
+use crate::tui::components::Shared;
 use crate::tui::params::{fmt_num, Params};
-use crate::tui::shared::Shared;
 use bouncemap_engine::sweep::{Outcome, ValueResult};
 
 /// What a value's orbit does, in words.
