@@ -275,12 +275,12 @@ impl OrbitRun {
             let candidate = self.long.as_mut().and_then(|l| l.push(rec));
             if let Some((p, k)) = candidate {
                 match self.confirm_long(&rec, p, k) {
-                    Some(cyc) => {
+                    Some((cyc, k)) => {
                         let points = self.continue_cycle(&cyc, k, end);
                         cancelled(since_check);
                         return Advance::Done(
                             Outcome::Periodic {
-                                events: p,
+                                events: cyc.len(),
                                 periods: k,
                                 stopped_at: e.period,
                             },
@@ -332,10 +332,10 @@ impl OrbitRun {
     /// event), confirmed on the exact map: Newton's method from `last` converges to a
     /// (p, k) cycle that returns within
     /// [`RETURN_TOLERANCE`](crate::orbits::periodic::RETURN_TOLERANCE), is stable, and
-    /// has `last` within [`LONG_AGREEMENT`] of it. Returns the cycle's p events ending
-    /// at the event of `last`, each a whole cycle before its next repetition, or None
-    /// if refuted.
-    fn confirm_long(&self, last: &Rec, p: usize, k: i64) -> Option<Vec<Rec>> {
+    /// has `last` within [`LONG_AGREEMENT`] of it. Returns the cycle's events ending at
+    /// the event of `last`, each a whole cycle before its next repetition, and its table
+    /// periods (of its own period, a divisor of `p`), or None if refuted.
+    fn confirm_long(&self, last: &Rec, p: usize, k: i64) -> Option<(Vec<Rec>, i64)> {
         let tol = self.periodicity?.tolerance;
         let sys = self.map.system();
         let k32 = u32::try_from(k).ok()?;
@@ -352,6 +352,17 @@ impl OrbitRun {
         if last.distance(&probe) > tol.max(LONG_AGREEMENT) {
             return None;
         }
+        // A candidate can be a multiple of a shorter cycle met before the short
+        // detector accepted it (a slow approach): report the cycle's own period.
+        let same = |i: usize, j: usize| {
+            crate::time::phase_distance(cp.phases[i], cp.phases[j]) <= LONG_AGREEMENT
+                && (cp.velocities[i] - cp.velocities[j]).abs() <= LONG_AGREEMENT
+        };
+        let q = (1..p)
+            .filter(|q| p % q == 0)
+            .find(|&q| (0..p - q).all(|i| same(i, i + q)))
+            .unwrap_or(p);
+        let (p, k) = (q, k * q as i64 / p as i64);
         // Event n + j of the orbit is the cycle's impact j (j = 0 .. p − 1); the cycle's
         // event n − p + 1 + i is its impact i + 1, one cycle (k periods) earlier. Whole
         // periods from event n to impact j: the cycle's own time from its launch less
@@ -373,7 +384,7 @@ impl OrbitRun {
                 kind: EventKind::Impact,
             });
         }
-        Some(cyc)
+        Some((cyc, k))
     }
 
     /// The last `keep` events before `end`, continuing the cycle `cyc` (the last p

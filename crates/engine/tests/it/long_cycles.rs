@@ -16,9 +16,16 @@ fn run_near_cascade_cycle(n: usize, alpha: f64) -> (Outcome, f64) {
         ..Options::default()
     };
     let bs = branches(&table, 0.8, (0.48, 0.5724), Start::Fixed { k: 1 }, opts).unwrap();
-    let b = bs.iter().find(|b| b.n == n).expect("the cascade reaches the branch");
+    let b = bs
+        .iter()
+        .find(|b| b.n == n)
+        .expect("the cascade reaches the branch");
     let cp = point_at(&table, 0.8, b, alpha).expect("a point of the branch at alpha");
-    assert!(cp.stable, "the ({n}, {n}) cycle at {alpha} is stable: {:?}", cp.multipliers);
+    assert!(
+        cp.stable,
+        "the ({n}, {n}) cycle at {alpha} is stable: {:?}",
+        cp.multipliers
+    );
     let sys = System::new(table, alpha, 0.8).unwrap();
     let start = State::launch(&sys, 0, cp.phases[0] + 1e-6, cp.velocities[0], 0.0).unwrap();
     let map = ImpactMap::new(sys, Solver::Exact, start);
@@ -46,7 +53,14 @@ fn a_stable_128_cycle_of_the_cascade_is_found_with_its_n_and_k() {
     // (128, 128) is stable between its birth at α₇ ≈ 0.5723269 and α₈ ≈ 0.5723305.
     let (outcome, d) = run_near_cascade_cycle(128, 0.5723287);
     assert!(
-        matches!(outcome, Outcome::Periodic { events: 128, periods: 128, .. }),
+        matches!(
+            outcome,
+            Outcome::Periodic {
+                events: 128,
+                periods: 128,
+                ..
+            }
+        ),
         "{outcome:?}"
     );
     assert!(d < 1e-9, "recorded point {d} off the cycle");
@@ -56,7 +70,14 @@ fn a_stable_128_cycle_of_the_cascade_is_found_with_its_n_and_k() {
 fn a_stable_256_cycle_of_the_cascade_is_found_with_its_n_and_k() {
     let (outcome, d) = run_near_cascade_cycle(256, 0.5723309);
     assert!(
-        matches!(outcome, Outcome::Periodic { events: 256, periods: 256, .. }),
+        matches!(
+            outcome,
+            Outcome::Periodic {
+                events: 256,
+                periods: 256,
+                ..
+            }
+        ),
         "{outcome:?}"
     );
     assert!(d < 1e-9, "recorded point {d} off the cycle");
