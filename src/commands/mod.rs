@@ -45,9 +45,9 @@ pub fn run(cmd: Command) -> anyhow::Result<()> {
 /// `--resume` needs `--out` and a verifiable format (csv or json; `layout` None for
 /// braille).
 fn resume_target(
-    layout: Option<crate::output::sweep_file::Layout>,
+    layout: Option<crate::output::part_file::Layout>,
     out: Option<&str>,
-) -> Result<(&str, crate::output::sweep_file::Layout), crate::config::InputError> {
+) -> Result<(&str, crate::output::part_file::Layout), crate::config::InputError> {
     use crate::config::InputError;
     let layout = layout.ok_or_else(|| {
         InputError(

@@ -10,11 +10,12 @@ use super::progress::Progress;
 use crate::config::files::{read_text, LARGE_FILE};
 use crate::config::flags::{PlaneArgs, PlaneFormat};
 use crate::config::{self, rules, InputError};
-use crate::output::plane_file::{self, CurvesRecord, PlaneHeader};
+use crate::output::part_file::{
+    differing_setting, read_part, shard_name, Layout, PartWriter, TOOL,
+};
+use crate::output::plane_file::{self, CurvesRecord, PlaneFile, PlaneHeader};
 use crate::output::plane_map;
 use crate::output::sink::Sink;
-use crate::output::sweep_file::TOOL;
-use crate::output::sweep_file::{shard_name, Layout};
 use crate::output::text::shortest;
 use bouncemap_engine::jobs::{Control, Executor};
 use bouncemap_engine::plane::{curves, Plane, PlaneJob, PlaneSpec};
@@ -55,15 +56,18 @@ pub fn run(args: &PlaneArgs) -> anyhow::Result<()> {
                     Some(c) => serde_json::to_string(&CurvesRecord::from(c))?,
                     None => "null".to_string(),
                 };
-                plane_file::write(
+                let mut w = PartWriter::<_, PlaneFile>::begin(
                     &mut *sink,
                     layout,
                     &PlaneHeader::from(&spec),
                     &shard_name(spec.shard),
-                    &curves_text,
                     spec.shard_len(),
-                    plane_file::rows(&spec, plane.pixels()),
+                    &[&curves_text],
                 )?;
+                for row in plane_file::rows(&spec, plane.pixels()) {
+                    w.value(&row)?;
+                }
+                w.end()?;
             }
             PlaneFormat::Braille => {
                 let term = crossterm::terminal::size().ok();
@@ -109,7 +113,7 @@ fn already_done(path: &Path, layout: Layout, spec: &PlaneSpec) -> Result<String,
         return Err(format!("no {shown} yet"));
     }
     let text = read_text(path, "the existing file", LARGE_FILE).map_err(|e| e.0)?;
-    let part = plane_file::read_part(&shown, &text)?;
+    let part = read_part::<PlaneFile>(&shown, &text)?;
     if part.layout != layout {
         return Err(format!("{shown} is a plane file of the other format"));
     }
@@ -123,7 +127,7 @@ fn already_done(path: &Path, layout: Layout, spec: &PlaneSpec) -> Result<String,
     if part.header != header {
         return Err(format!(
             "{shown} holds another plane ({} differs from this run's)",
-            plane_file::differing_setting(&part.header, &header)
+            differing_setting(&part.header, &header)
         ));
     }
     let shard = shard_name(spec.shard);
@@ -135,7 +139,7 @@ fn already_done(path: &Path, layout: Layout, spec: &PlaneSpec) -> Result<String,
     }
     Ok(format!(
         "{shown} already holds shard {shard} of this plane, complete and verified ({} pixels)",
-        part.rows.len()
+        part.values.len()
     ))
 }
 

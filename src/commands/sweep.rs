@@ -13,11 +13,10 @@ use crate::config::files::{read_text, LARGE_FILE};
 use crate::config::flags::{SweepArgs, SweepFormat};
 use crate::config::{self, check_memory, rules, InputError};
 use crate::output::diagram::BrailleDiagram;
+use crate::output::part_file::{differing_setting, read_part, shard_name, spec_text, Layout, TOOL};
 use crate::output::records::SweepHeader;
 use crate::output::sink::Sink;
-use crate::output::sweep_file::{
-    differing_setting, read_part, shard_name, spec_text, Layout, SweepWriter, TOOL,
-};
+use crate::output::sweep_file::{SweepFile, SweepWriter};
 use bouncemap_engine::jobs::{Control, Executor};
 use bouncemap_engine::sweep::{chain_len, SweepJob, SweepSpec, ValueResult};
 use std::collections::BTreeMap;
@@ -84,7 +83,7 @@ fn already_done(path: &Path, layout: Layout, spec: &SweepSpec) -> Result<String,
         return Err(format!("no {shown} yet"));
     }
     let text = read_text(path, "the existing file", LARGE_FILE).map_err(|e| e.0)?;
-    let part = read_part(&shown, &text)?;
+    let part = read_part::<SweepFile>(&shown, &text)?;
     let name = |l: Layout| match l {
         Layout::Csv => "csv",
         Layout::Json => "json",
@@ -137,7 +136,7 @@ fn in_order(
     let handle = executor.start_windowed(job, &Control::new(), window);
     let spec_line = format!(
         "{} shard {}",
-        crate::output::sweep_file::spec_text(&SweepHeader::from(spec)),
+        spec_text(&SweepHeader::from(spec)),
         shard_name(spec.shard)
     );
     let mut progress = Progress::start("sweep", values, &spec_line);

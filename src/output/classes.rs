@@ -13,6 +13,9 @@ use bouncemap_engine::attractors::{Kind, CHAOS_FLOOR};
 use bouncemap_engine::plane::Pixel;
 use bouncemap_engine::sweep::{Outcome, ValueAttractor, ValueResult};
 
+/// The class name of a pixel where the ball never lands (or rests): no class.
+pub const NO_LANDING: &str = "no-landing";
+
 /// The class of a value's orbit.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Class {

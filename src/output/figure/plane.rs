@@ -7,8 +7,8 @@
 use super::diagram::{param_label, table_title};
 use super::svg::LEGEND_FONT;
 use super::{fmt_count, text, Axis, Color, Corner, Dash, Figure, Layer, Legend, Panel, Swatch};
-use crate::output::classes::Class;
-use crate::output::plane_file::{rows, NO_LANDING};
+use crate::output::classes::{Class, NO_LANDING};
+use crate::output::plane_file::rows;
 use crate::output::text::shortest;
 use bouncemap_engine::plane::{Curves, Pixel, PlaneSpec};
 use bouncemap_engine::sweep::SweepParam;
