@@ -6,6 +6,7 @@
 //! fractions; braille: the picture with one texture per attractor and a legend.
 //! Attractors are numbered 1, 2, … from the largest basin down.
 
+use super::drive::drive_job;
 use super::progress::Progress;
 use crate::config::flags::{BasinsArgs, BasinsFormat};
 use crate::config::{self, rules, InputError};
@@ -16,7 +17,6 @@ use crate::output::text::shortest;
 use bouncemap_engine::attractors::basins::{BasinSpec, Basins, BasinsJob};
 use bouncemap_engine::jobs::{Control, Executor};
 use std::io::Write;
-use std::time::Duration;
 
 pub fn run(args: &BasinsArgs) -> anyhow::Result<()> {
     let spec = config::basin_spec(&args.spec)?;
@@ -29,22 +29,13 @@ pub fn run(args: &BasinsArgs) -> anyhow::Result<()> {
 
 /// Run the picture to the end with progress on stderr.
 pub fn compute(spec: &BasinSpec, executor: &Executor) -> anyhow::Result<Basins> {
-    let job = BasinsJob::new(spec.clone())?;
-    let handle = executor.start(job, &Control::new());
+    let handle = executor.start(BasinsJob::new(spec.clone())?, &Control::new());
     let mut basins = Basins::new(spec);
-    let mut progress = Progress::start_units("basins", "starts", spec.len(), &title(spec));
-    loop {
-        match handle.receiver().recv_timeout(Duration::from_millis(200)) {
-            Ok(b) => {
-                basins.absorb(b.data);
-            }
-            Err(std::sync::mpsc::RecvTimeoutError::Timeout) => {}
-            Err(std::sync::mpsc::RecvTimeoutError::Disconnected) => break,
-        }
-        progress.update(&handle.progress());
-    }
-    let summary = handle.wait();
-    progress.finish(&summary.progress);
+    let progress = Progress::start_units("basins", "starts", spec.len(), &title(spec));
+    drive_job(handle, progress, |_, b| {
+        basins.absorb(b.data);
+        Ok(())
+    })?;
     if !basins.complete() {
         anyhow::bail!(
             "the basin picture stopped after {} of {} starts",

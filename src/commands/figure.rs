@@ -6,6 +6,7 @@
 //! of Fig. 4 and 5 on threads of their own) with a progress bar on a terminal, the
 //! figure is drawn by [`crate::output::figure`], and the file is written atomically.
 
+use super::drive::drive_job;
 use super::progress::Progress;
 use crate::config::flags::{FigureArgs, FigureName};
 use crate::config::presets::preset;
@@ -152,18 +153,13 @@ fn run_sweep(
     what: &str,
 ) -> anyhow::Result<Vec<ValueResult>> {
     let handle = sweep::start(spec.clone(), executor, &Control::new())?;
-    let mut progress = Progress::bar(what);
     let mut values = Vec::with_capacity(spec.steps);
-    loop {
-        match handle.receiver().recv_timeout(Duration::from_millis(200)) {
-            Ok(b) if handle.is_current(&b) && b.complete => values.push(b.data),
-            Ok(_) | Err(std::sync::mpsc::RecvTimeoutError::Timeout) => {}
-            Err(std::sync::mpsc::RecvTimeoutError::Disconnected) => break,
+    drive_job(handle, Progress::bar(what), |_, b| {
+        if b.complete {
+            values.push(b.data);
         }
-        progress.update(&handle.progress());
-    }
-    let summary = handle.wait();
-    progress.finish(&summary.progress);
+        Ok(())
+    })?;
     if values.len() != spec.shard_values() {
         anyhow::bail!(
             "{what}: the sweep stopped after {} of {} values",

@@ -1,0 +1,34 @@
+//! One engine job driven to its end on the calling thread, with progress on stderr:
+//! the loop every headless computation runs (sweeps, basin pictures, planes, the
+//! figures' sweeps), whatever its job and the batches it streams.
+
+use super::progress::Progress;
+use bouncemap_engine::jobs::{Batch, Handle, Summary};
+use std::sync::mpsc::RecvTimeoutError;
+use std::time::Duration;
+
+/// How long the loop waits for a batch before it redraws the progress anyway.
+const TICK: Duration = Duration::from_millis(200);
+
+/// Drive the job behind `handle` to its end: every batch of the current generation goes
+/// to `each` as it arrives (with the handle, to acknowledge what was used), and
+/// `progress` is brought up to date between batches, at least every [`TICK`]. An error
+/// from `each` ends the drive at once (dropping the handle stops the job). Returns the
+/// job's summary; whether the results are complete is the caller's to check.
+pub fn drive_job<T>(
+    handle: Handle<T>,
+    mut progress: Progress,
+    mut each: impl FnMut(&Handle<T>, Batch<T>) -> anyhow::Result<()>,
+) -> anyhow::Result<Summary> {
+    loop {
+        match handle.receiver().recv_timeout(TICK) {
+            Ok(b) if handle.is_current(&b) => each(&handle, b)?,
+            Ok(_) | Err(RecvTimeoutError::Timeout) => {}
+            Err(RecvTimeoutError::Disconnected) => break,
+        }
+        progress.update(&handle.progress());
+    }
+    let summary = handle.wait();
+    progress.finish(&summary.progress);
+    Ok(summary)
+}
