@@ -9,7 +9,7 @@
 use super::drive::drive_job;
 use super::progress::Progress;
 use crate::config::flags::{BasinsArgs, BasinsFormat};
-use crate::config::{self, rules, InputError};
+use crate::config::{self, InputError};
 use crate::output::basin_map;
 use crate::output::records::{csv_writer, AttractorRecord, BasinRow, BasinsDoc, Exponent};
 use crate::output::sink::Sink;
@@ -20,8 +20,8 @@ use std::io::Write;
 
 pub fn run(args: &BasinsArgs) -> anyhow::Result<()> {
     let spec = config::basin_spec(&args.spec)?;
-    let threads = config::threads(args.threads)?;
-    let mut sink = Sink::open(args.out.as_deref()).map_err(InputError)?;
+    let threads = config::threads(args.workers.threads)?;
+    let mut sink = Sink::open(args.output.out.as_deref()).map_err(InputError)?;
     let basins = compute(&spec, &Executor::new(threads)?)?;
     write(&spec, &basins, args, &mut sink).map_err(|e| sink.describe(e))?;
     sink.finish()
@@ -111,15 +111,7 @@ fn write(
             writeln!(out)?;
         }
         BasinsFormat::Braille => {
-            let term = crossterm::terminal::size().ok();
-            let w = args
-                .width
-                .or(term.map(|t| t.0))
-                .unwrap_or(rules::CELLS.default as u16);
-            let h = args
-                .height
-                .or(term.map(|t| t.1.saturating_sub(2)))
-                .unwrap_or(30);
+            let (w, h) = config::text_size(&args.text, || None);
             for line in basin_map::lines(basins, &title(spec), spec.w_max, w as usize, h as usize) {
                 writeln!(out, "{line}")?;
             }

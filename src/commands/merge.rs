@@ -21,7 +21,7 @@ use crate::output::sweep_file::SweepFile;
 use std::path::Path;
 
 pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
-    let sink = Sink::open(args.out.as_deref()).map_err(InputError)?;
+    let sink = Sink::open(args.output.out.as_deref()).map_err(InputError)?;
     let mut texts = Vec::new();
     for f in &args.files {
         texts.push(read_text(Path::new(f), "merge: part", LARGE_FILE)?);

@@ -10,7 +10,7 @@ use super::drive::drive_job;
 use super::progress::Progress;
 use super::resume;
 use crate::config::flags::PlaneArgs;
-use crate::config::{self, rules, InputError};
+use crate::config::{self, InputError};
 use crate::output::part_file::{shard_name, PartWriter};
 use crate::output::plane_file::{self, CurvesRecord, PlaneFile, PlaneHeader};
 use crate::output::plane_map;
@@ -22,19 +22,12 @@ use std::io::Write;
 
 pub fn run(args: &PlaneArgs) -> anyhow::Result<()> {
     let spec = config::plane::plane_spec(args)?;
-    let threads = config::threads(args.threads)?;
-    if args.resume {
-        let header = PlaneHeader::from(&spec);
-        if resume::already_written::<PlaneFile>(
-            args.format,
-            args.out.as_deref(),
-            &header,
-            spec.shard,
-        )? {
-            return Ok(());
-        }
+    let threads = config::threads(args.workers.threads)?;
+    let header = PlaneHeader::from(&spec);
+    if resume::already_written::<PlaneFile>(&args.part, args.format, &header, spec.shard)? {
+        return Ok(());
     }
-    let mut sink = Sink::open(args.out.as_deref()).map_err(InputError)?;
+    let mut sink = Sink::open(args.part.output.out.as_deref()).map_err(InputError)?;
     let plane = compute(&spec, &Executor::new(threads)?)?;
     let curves = curves(&spec);
     let write = |sink: &mut Sink| -> anyhow::Result<()> {
@@ -58,18 +51,10 @@ pub fn run(args: &PlaneArgs) -> anyhow::Result<()> {
                 w.end()?;
             }
             None => {
-                let term = crossterm::terminal::size().ok();
-                let w = args
-                    .width
-                    .or(term.map(|t| t.0))
-                    .unwrap_or(rules::CELLS.default as u16);
-                let h = args
-                    .height
-                    .or(term.map(|t| t.1.saturating_sub(2)))
-                    .unwrap_or(30);
+                let (w, h) = config::text_size(&args.text, || None);
                 // Colour on a terminal unless NO_COLOR is set; glyphs in files and pipes.
                 use std::io::IsTerminal;
-                let colour = args.out.is_none()
+                let colour = args.part.output.out.is_none()
                     && std::io::stdout().is_terminal()
                     && std::env::var_os("NO_COLOR").is_none_or(|v| v.is_empty());
                 let lines = plane_map::lines(

@@ -4,6 +4,7 @@
 //! anything else is computed, and stderr says why.
 
 use crate::config::files::{read_text, LARGE_FILE};
+use crate::config::flags::PartArgs;
 use crate::config::InputError;
 use crate::output::part_file::{
     differing_setting, read_part, shard_name, spec_text, FileKind, Layout, TOOL,
@@ -22,22 +23,25 @@ pub fn part_layout(format: impl ValueEnum) -> Option<Layout> {
     }
 }
 
-/// With `--resume`: whether `out` already holds this run's part (kind `K`, settings
-/// `header`, shard `shard`, written as `format` writes), so the run can end at once.
-/// Says on stderr what it found. `--resume` needs `--out` and a format whose files can be
-/// verified (csv or json).
+/// With `--resume` (in `args`): whether `--out` already holds this run's part (kind
+/// `K`, settings `header`, shard `shard`, written as `format` writes), so the run can end
+/// at once. Says on stderr what it found. `--resume` needs `--out` and a format whose
+/// files can be verified (csv or json).
 pub fn already_written<K: FileKind>(
+    args: &PartArgs,
     format: impl ValueEnum,
-    out: Option<&str>,
     header: &K::Header,
     shard: Shard,
 ) -> Result<bool, InputError> {
+    if !args.resume {
+        return Ok(false);
+    }
     let layout = part_layout(format).ok_or_else(|| {
         InputError(
             "--resume with --format braille: valid with --format csv or json, whose files can be verified".into(),
         )
     })?;
-    let out = out.ok_or_else(|| {
+    let out = args.output.out.as_deref().ok_or_else(|| {
         InputError(
             "--resume without --out: valid with --out FILE, the file to check and write".into(),
         )

@@ -12,7 +12,7 @@ use super::drive::drive_job;
 use super::progress::Progress;
 use super::resume;
 use crate::config::flags::SweepArgs;
-use crate::config::{self, check_memory, rules, InputError};
+use crate::config::{self, check_memory, InputError};
 use crate::output::diagram::BrailleDiagram;
 use crate::output::part_file::{shard_name, spec_text, Layout};
 use crate::output::records::SweepHeader;
@@ -33,17 +33,10 @@ fn value_bytes(keep: usize) -> u64 {
 
 pub fn run(args: &SweepArgs) -> anyhow::Result<()> {
     let spec = config::sweep::sweep_spec(args)?;
-    let threads = config::threads(args.threads)?;
-    if args.resume {
-        let header = SweepHeader::from(&spec);
-        if resume::already_written::<SweepFile>(
-            args.format,
-            args.out.as_deref(),
-            &header,
-            spec.shard,
-        )? {
-            return Ok(());
-        }
+    let threads = config::threads(args.workers.threads)?;
+    let header = SweepHeader::from(&spec);
+    if resume::already_written::<SweepFile>(&args.part, args.format, &header, spec.shard)? {
+        return Ok(());
     }
     // Values in flight: as many as the budget holds, at least two per worker.
     let per_value = value_bytes(spec.keep);
@@ -56,7 +49,7 @@ pub fn run(args: &SweepArgs) -> anyhow::Result<()> {
         window as u64 * per_value + threads as u64 * per_worker,
         "this sweep",
     )?;
-    let mut sink = Sink::open(args.out.as_deref()).map_err(InputError)?;
+    let mut sink = Sink::open(args.part.output.out.as_deref()).map_err(InputError)?;
     let executor = Executor::new(threads)?;
     let result = match resume::part_layout(args.format) {
         Some(layout) => stream(&spec, &executor, window, &mut sink, layout),
@@ -152,17 +145,12 @@ fn braille(
     Ok(())
 }
 
+/// The diagram's size: the text picture's, COLUMNS wide if the terminal's is unknown, at
+/// least 20 × 6.
 fn braille_size(args: &SweepArgs) -> (u16, u16) {
-    let term = crossterm::terminal::size().ok();
-    let w = args
-        .width
-        .or(term.map(|t| t.0))
-        .or_else(|| std::env::var("COLUMNS").ok().and_then(|c| c.parse().ok()))
-        .unwrap_or(rules::CELLS.default as u16);
-    let h = args
-        .height
-        .or(term.map(|t| t.1.saturating_sub(2)))
-        .unwrap_or(30);
+    let (w, h) = config::text_size(&args.text, || {
+        std::env::var("COLUMNS").ok().and_then(|c| c.parse().ok())
+    });
     (w.max(20), h.max(6))
 }
 
