@@ -11,19 +11,20 @@
 //! * [`sink`]: standard output, or a file written atomically (temporary, then rename).
 //! * [`hitgrid`]: the one hit-count grid behind every text picture; [`diagram`]: its
 //!   text form with axes and labels (`sweep --format braille`).
-//! * [`basin_map`]: a basin picture on character cells, and each attractor's number,
-//!   texture and legend line (`basins --format braille`, the basins panel).
+//! * [`basin_map`]: a basin picture on character cells, and each attractor's texture
+//!   and legend line (`basins --format braille`, the basins panel).
 //! * [`plane_map`]: a two-parameter map on character cells (glyphs per class, curve
 //!   marks, axes, legend).
 //! * [`classes`]: what a value's orbit is (period 1, 2, 4, 8, other, sticking, chaotic),
-//!   as the diagram colours it.
+//!   as the pictures colour it; it is the figures crate's, re-exported here for the text
+//!   pictures and the terminal application.
 //! * [`text`]: number formatting for aligned text columns.
-//! * [`figure`]: publication figures (SVG, and PNG rendered with the fonts compiled in).
+//! * [`figure_file`]: a figure (drawn by the `bouncemap_figures` crate: SVG, and PNG
+//!   rendered with the fonts compiled in) written to a file atomically.
 
 pub mod basin_map;
-pub mod classes;
 pub mod diagram;
-pub mod figure;
+pub mod figure_file;
 pub mod hitgrid;
 pub mod part_file;
 pub mod plane_file;
@@ -33,6 +34,7 @@ pub mod sink;
 pub mod sweep_file;
 pub mod text;
 
+pub use bouncemap_figures::classes;
 use clap::ValueEnum;
 
 /// Output format of a headless command.

@@ -9,8 +9,7 @@
 //! `NAME-diagram.svg/.png` (the diagram over its zoom window, the parameters in the
 //! caption) and `NAME-phase.svg/.png` (the phase plot), and with the basins panel or
 //! the plane view shown and complete `NAME-basins.svg/.png` or `NAME-plane.svg/.png`,
-//! through
-//! [`crate::output::figure`].
+//! drawn by [`bouncemap_figures`] and written by [`crate::output::figure_file`].
 
 use super::app::App;
 use crate::output::diagram::BrailleDiagram;
@@ -54,7 +53,8 @@ pub fn view_paths(stem: &Path, basins: bool, plane: bool) -> Vec<PathBuf> {
 /// `E`: the csv and the text of [`export`], and the diagram and the phase plot as
 /// SVG and PNG. Returns every path written.
 pub fn export_view(app: &App, stem: &Path) -> Result<Vec<PathBuf>, String> {
-    use crate::output::figure::{self, DiagramAxis, ImageFormat, DEFAULT_DPI};
+    use crate::output::figure_file;
+    use bouncemap_figures::{self as figure, DiagramAxis, ImageFormat, DEFAULT_DPI};
     let b = &app.basins;
     let basins = match (b.shown, &b.spec, &b.basins) {
         (true, Some(spec), Some(pic)) if pic.complete() => {
@@ -122,8 +122,8 @@ pub fn export_view(app: &App, stem: &Path) -> Result<Vec<PathBuf>, String> {
         next += 2;
     }
     for (fig, svg, png) in figures {
-        figure::write(fig, svg, ImageFormat::Svg, None, DEFAULT_DPI)
-            .and_then(|_| figure::write(fig, png, ImageFormat::Png, None, DEFAULT_DPI))
+        figure_file::write(fig, svg, ImageFormat::Svg, None, DEFAULT_DPI)
+            .and_then(|_| figure_file::write(fig, png, ImageFormat::Png, None, DEFAULT_DPI))
             .map_err(|e| format!("export: {e}"))?;
         written.push(svg.clone());
         written.push(png.clone());

@@ -8,7 +8,6 @@ use super::presets::Param;
 use super::rules;
 use super::table_spec::TableSpec;
 use super::windows::{parse_alpha_window, parse_d_family, DFamily};
-use crate::output::figure::ImageFormat;
 use crate::output::hitgrid::Marker;
 use crate::output::Format;
 use bouncemap_engine::sweep::Shard;
