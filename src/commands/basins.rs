@@ -6,7 +6,7 @@
 //! fractions; braille: the picture with one texture per attractor and a legend.
 //! Attractors are numbered 1, 2, … from the largest basin down.
 
-use super::drive::drive_job;
+use super::drive::fill;
 use super::progress::Progress;
 use crate::config::flags::{BasinsArgs, BasinsFormat};
 use crate::config::{self, InputError};
@@ -30,20 +30,8 @@ pub fn run(args: &BasinsArgs) -> anyhow::Result<()> {
 /// Run the picture to the end with progress on stderr.
 pub fn compute(spec: &BasinSpec, executor: &Executor) -> anyhow::Result<Basins> {
     let handle = executor.start(BasinsJob::new(spec.clone())?, &Control::new());
-    let mut basins = Basins::new(spec);
     let progress = Progress::start_units("basins", "starts", spec.len(), &title(spec));
-    drive_job(handle, progress, |_, b| {
-        basins.absorb(b.data);
-        Ok(())
-    })?;
-    if !basins.complete() {
-        anyhow::bail!(
-            "the basin picture stopped after {} of {} starts",
-            basins.covered(),
-            spec.len()
-        );
-    }
-    Ok(basins)
+    fill(handle, progress, Basins::new(spec), "the basin picture")
 }
 
 fn title(spec: &BasinSpec) -> String {

@@ -6,7 +6,7 @@
 //! line ([`crate::output::plane_file`]), so shards join with `merge`; json: the same plus
 //! the curves; braille: the picture with axes, curves and legend.
 
-use super::drive::drive_job;
+use super::drive::fill;
 use super::progress::Progress;
 use super::resume;
 use crate::config::flags::PlaneArgs;
@@ -80,20 +80,8 @@ pub fn run(args: &PlaneArgs) -> anyhow::Result<()> {
 /// Run the plane to the end with progress on stderr.
 pub fn compute(spec: &PlaneSpec, executor: &Executor) -> anyhow::Result<Plane> {
     let handle = executor.start(PlaneJob::new(spec.clone())?, &Control::new());
-    let mut plane = Plane::new(spec);
     let progress = Progress::start_units("plane", "pixels", spec.shard_len(), &title(spec));
-    drive_job(handle, progress, |_, b| {
-        plane.absorb(b.data);
-        Ok(())
-    })?;
-    if !plane.complete() {
-        anyhow::bail!(
-            "the plane stopped after {} of {} pixels",
-            plane.covered(),
-            spec.shard_len()
-        );
-    }
-    Ok(plane)
+    fill(handle, progress, Plane::new(spec), "the plane")
 }
 
 fn title(spec: &PlaneSpec) -> String {
