@@ -6,9 +6,10 @@
 //! fractions; braille: the picture with one texture per attractor and a legend.
 //! Attractors are numbered 1, 2, … from the largest basin down.
 
+use super::drive::fill;
 use super::progress::Progress;
 use crate::config::flags::{BasinsArgs, BasinsFormat};
-use crate::config::{self, rules, InputError};
+use crate::config::{self, InputError};
 use crate::output::basin_map;
 use crate::output::records::{csv_writer, AttractorRecord, BasinRow, BasinsDoc, Exponent};
 use crate::output::sink::Sink;
@@ -16,12 +17,11 @@ use crate::output::text::shortest;
 use bouncemap_engine::attractors::basins::{BasinSpec, Basins, BasinsJob};
 use bouncemap_engine::jobs::{Control, Executor};
 use std::io::Write;
-use std::time::Duration;
 
 pub fn run(args: &BasinsArgs) -> anyhow::Result<()> {
     let spec = config::basin_spec(&args.spec)?;
-    let threads = config::threads(args.threads)?;
-    let mut sink = Sink::open(args.out.as_deref()).map_err(InputError)?;
+    let threads = config::threads(args.workers.threads)?;
+    let mut sink = Sink::open(args.output.out.as_deref()).map_err(InputError)?;
     let basins = compute(&spec, &Executor::new(threads)?)?;
     write(&spec, &basins, args, &mut sink).map_err(|e| sink.describe(e))?;
     sink.finish()
@@ -29,30 +29,9 @@ pub fn run(args: &BasinsArgs) -> anyhow::Result<()> {
 
 /// Run the picture to the end with progress on stderr.
 pub fn compute(spec: &BasinSpec, executor: &Executor) -> anyhow::Result<Basins> {
-    let job = BasinsJob::new(spec.clone())?;
-    let handle = executor.start(job, &Control::new());
-    let mut basins = Basins::new(spec);
-    let mut progress = Progress::start_units("basins", "starts", spec.len(), &title(spec));
-    loop {
-        match handle.receiver().recv_timeout(Duration::from_millis(200)) {
-            Ok(b) => {
-                basins.absorb(b.data);
-            }
-            Err(std::sync::mpsc::RecvTimeoutError::Timeout) => {}
-            Err(std::sync::mpsc::RecvTimeoutError::Disconnected) => break,
-        }
-        progress.update(&handle.progress());
-    }
-    let summary = handle.wait();
-    progress.finish(&summary.progress);
-    if !basins.complete() {
-        anyhow::bail!(
-            "the basin picture stopped after {} of {} starts",
-            basins.covered(),
-            spec.len()
-        );
-    }
-    Ok(basins)
+    let handle = executor.start(BasinsJob::new(spec.clone())?, &Control::new());
+    let progress = Progress::start_units("basins", "starts", spec.len(), &title(spec));
+    fill(handle, progress, Basins::new(spec), "the basin picture")
 }
 
 fn title(spec: &BasinSpec) -> String {
@@ -120,15 +99,7 @@ fn write(
             writeln!(out)?;
         }
         BasinsFormat::Braille => {
-            let term = crossterm::terminal::size().ok();
-            let w = args
-                .width
-                .or(term.map(|t| t.0))
-                .unwrap_or(rules::CELLS.default as u16);
-            let h = args
-                .height
-                .or(term.map(|t| t.1.saturating_sub(2)))
-                .unwrap_or(30);
+            let (w, h) = config::text_size(&args.text, || None);
             for line in basin_map::lines(basins, &title(spec), spec.w_max, w as usize, h as usize) {
                 writeln!(out, "{line}")?;
             }

@@ -4,22 +4,23 @@
 //! by clap, the sweep of `diagram`, the output's format and path). Then the figure's
 //! data are computed on all cores (sweeps on the engine's executor, the scaling rows
 //! of Fig. 4 and 5 on threads of their own) with a progress bar on a terminal, the
-//! figure is drawn by [`crate::output::figure`], and the file is written atomically.
+//! figure is drawn by [`bouncemap_figures`], and the file is written atomically.
 
+use super::drive::drive_job;
 use super::progress::Progress;
 use crate::config::flags::{FigureArgs, FigureName};
 use crate::config::presets::preset;
 use crate::config::{self, InputError};
-use crate::output::figure::diagram::{self, diagram_panel, DiagramAxis};
-use crate::output::figure::scaling::{self as scaling_fig, FIG5_D};
-use crate::output::figure::text::plain;
-use crate::output::figure::{self, shapes, Figure, ImageFormat, Layer, DEFAULT_DPI};
 use crate::output::sink::AtomicFile;
 use bouncemap_engine::attractors::basins::BasinSpec;
 use bouncemap_engine::jobs::{Control, Executor, Progress as JobProgress};
 use bouncemap_engine::orbits::scaling::{log_spaced, scaling_row, ScalingRow};
 use bouncemap_engine::plane::PlaneSpec;
 use bouncemap_engine::sweep::{self, Shard, SweepSpec, ValueResult};
+use bouncemap_figures::diagram::{self, diagram_panel, DiagramAxis};
+use bouncemap_figures::scaling::{self as scaling_fig, FIG5_D};
+use bouncemap_figures::text::plain;
+use bouncemap_figures::{self as figure, shapes, Figure, ImageFormat, Layer, DEFAULT_DPI};
 use std::io::Write;
 use std::path::Path;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -46,6 +47,7 @@ pub fn run(args: &FigureArgs) -> anyhow::Result<()> {
     let path = Path::new(&out);
     let format = args
         .format
+        .map(ImageFormat::from)
         .or_else(|| ImageFormat::from_path(path))
         .ok_or_else(|| {
             InputError(format!(
@@ -152,18 +154,13 @@ fn run_sweep(
     what: &str,
 ) -> anyhow::Result<Vec<ValueResult>> {
     let handle = sweep::start(spec.clone(), executor, &Control::new())?;
-    let mut progress = Progress::bar(what);
     let mut values = Vec::with_capacity(spec.steps);
-    loop {
-        match handle.receiver().recv_timeout(Duration::from_millis(200)) {
-            Ok(b) if handle.is_current(&b) && b.complete => values.push(b.data),
-            Ok(_) | Err(std::sync::mpsc::RecvTimeoutError::Timeout) => {}
-            Err(std::sync::mpsc::RecvTimeoutError::Disconnected) => break,
+    drive_job(handle, Progress::bar(what), |_, b| {
+        if b.complete {
+            values.push(b.data);
         }
-        progress.update(&handle.progress());
-    }
-    let summary = handle.wait();
-    progress.finish(&summary.progress);
+        Ok(())
+    })?;
     if values.len() != spec.shard_values() {
         anyhow::bail!(
             "{what}: the sweep stopped after {} of {} values",
@@ -237,7 +234,7 @@ fn build(
     let (diagram_spec, basin_spec, plane_spec) = specs;
     let panel_name = |n: &FigureName| n.as_str().to_string();
     match name {
-        FigureName::Fig2 => shapes::fig2(),
+        FigureName::Fig2 => Ok(shapes::fig2()?),
         FigureName::Fig3 => {
             let mut panels = Vec::new();
             for letter in ['a', 'b', 'c', 'd', 'e', 'f'] {
@@ -290,7 +287,7 @@ fn build(
         }
         FigureName::Fig5 => {
             let rows = scaling_rows(&fig5_d(), threads, "fig5")?;
-            scaling_fig::fig5(&rows, PAPER_R, PAPER_K)
+            Ok(scaling_fig::fig5(&rows, PAPER_R, PAPER_K)?)
         }
         FigureName::Lyapunov(_) => {
             let spec = diagram_spec.expect("the diagram's sweep was checked first");

@@ -1,12 +1,15 @@
 //! The headless subcommands, one file each. Each takes its parsed arguments, builds its
 //! validated specification through [`crate::config`], calls the engine and writes
 //! through [`crate::output`]. Input problems are [`crate::config::InputError`]s, which
-//! the binary reports with status 2.
+//! the binary reports with status 2. What they share: [`drive`] (an engine job run to
+//! its end with [`progress`] on stderr) and [`resume`] (`--resume` for the commands that
+//! write part files).
 
 pub mod basins;
 pub mod bench;
 pub mod cascade;
 pub mod continuation;
+pub mod drive;
 pub mod figure;
 pub mod fixed;
 pub mod lyapunov;
@@ -14,6 +17,7 @@ pub mod merge;
 pub mod orbit;
 pub mod plane;
 pub mod progress;
+pub mod resume;
 pub mod scaling;
 pub mod sweep;
 pub mod two_cycle;
@@ -38,26 +42,5 @@ pub fn run(cmd: Command) -> anyhow::Result<()> {
         Command::Merge(a) => merge::run(&a),
         Command::Bench(a) => bench::run(&a),
         Command::Figure(a) => figure::run(&a),
-    }
-}
-
-/// The file `--resume` checks and the layout the run writes (`sweep`, `plane`):
-/// `--resume` needs `--out` and a verifiable format (csv or json; `layout` None for
-/// braille).
-fn resume_target(
-    layout: Option<crate::output::sweep_file::Layout>,
-    out: Option<&str>,
-) -> Result<(&str, crate::output::sweep_file::Layout), crate::config::InputError> {
-    use crate::config::InputError;
-    let layout = layout.ok_or_else(|| {
-        InputError(
-            "--resume with --format braille: valid with --format csv or json, whose files can be verified".into(),
-        )
-    })?;
-    match out {
-        Some(out) => Ok((out, layout)),
-        None => Err(InputError(
-            "--resume without --out: valid with --out FILE, the file to check and write".into(),
-        )),
     }
 }

@@ -73,6 +73,11 @@ impl Progress {
         }
     }
 
+    /// What the units are called (`values`, `starts`, `pixels`).
+    pub fn unit(&self) -> &'static str {
+        self.unit
+    }
+
     /// Report `p` if it is time to.
     pub fn update(&mut self, p: &JobProgress) {
         let now = Instant::now();

@@ -8,22 +8,20 @@
 //! that keeps at most [`WINDOW_BYTES`] of results in flight: memory does not grow with
 //! the number of values.
 
+use super::drive::drive_job;
 use super::progress::Progress;
-use crate::config::files::{read_text, LARGE_FILE};
-use crate::config::flags::{SweepArgs, SweepFormat};
-use crate::config::{self, check_memory, rules, InputError};
+use super::resume;
+use crate::config::flags::SweepArgs;
+use crate::config::{self, check_memory, InputError};
 use crate::output::diagram::BrailleDiagram;
+use crate::output::part_file::{shard_name, spec_text, Layout};
 use crate::output::records::SweepHeader;
 use crate::output::sink::Sink;
-use crate::output::sweep_file::{
-    differing_setting, read_part, shard_name, spec_text, Layout, SweepWriter, TOOL,
-};
+use crate::output::sweep_file::{SweepFile, SweepWriter};
 use bouncemap_engine::jobs::{Control, Executor};
 use bouncemap_engine::sweep::{chain_len, SweepJob, SweepSpec, ValueResult};
 use std::collections::BTreeMap;
 use std::io::Write;
-use std::path::Path;
-use std::time::Duration;
 
 /// Results held in flight at most, in bytes (the window of values ahead of the writer).
 pub const WINDOW_BYTES: u64 = 64 << 20;
@@ -35,21 +33,10 @@ fn value_bytes(keep: usize) -> u64 {
 
 pub fn run(args: &SweepArgs) -> anyhow::Result<()> {
     let spec = config::sweep::sweep_spec(args)?;
-    let threads = config::threads(args.threads)?;
-    if args.resume {
-        let layout = match args.format {
-            SweepFormat::Csv => Some(Layout::Csv),
-            SweepFormat::Json => Some(Layout::Json),
-            SweepFormat::Braille => None,
-        };
-        let (out, layout) = super::resume_target(layout, args.out.as_deref())?;
-        match already_done(Path::new(out), layout, &spec) {
-            Ok(done) => {
-                eprintln!("bouncemap: --resume: {done}: nothing to compute");
-                return Ok(());
-            }
-            Err(why) => eprintln!("bouncemap: --resume: {why}; computing it"),
-        }
+    let threads = config::threads(args.workers.threads)?;
+    let header = SweepHeader::from(&spec);
+    if resume::already_written::<SweepFile>(&args.part, args.format, &header, spec.shard)? {
+        return Ok(());
     }
     // Values in flight: as many as the budget holds, at least two per worker.
     let per_value = value_bytes(spec.keep);
@@ -62,64 +49,25 @@ pub fn run(args: &SweepArgs) -> anyhow::Result<()> {
         window as u64 * per_value + threads as u64 * per_worker,
         "this sweep",
     )?;
-    let mut sink = Sink::open(args.out.as_deref()).map_err(InputError)?;
+    let mut sink = Sink::open(args.part.output.out.as_deref()).map_err(InputError)?;
     let executor = Executor::new(threads)?;
-    let result = match args.format {
-        SweepFormat::Csv => stream(&spec, &executor, window, &mut sink, Layout::Csv),
-        SweepFormat::Json => stream(&spec, &executor, window, &mut sink, Layout::Json),
-        SweepFormat::Braille => braille(&spec, &executor, window, &mut sink, braille_size(args)),
+    let result = match resume::part_layout(args.format) {
+        Some(layout) => stream(&spec, &executor, window, &mut sink, layout),
+        None => braille(&spec, &executor, window, &mut sink, braille_size(args)),
     };
     result.map_err(|e| sink.describe(e))?;
     sink.finish()
 }
 
+// The tests below read back the parts a sweep writes, as `--resume` does.
+#[cfg(test)]
+use {crate::output::part_file::TOOL, std::path::Path};
+
 /// Whether `path` already holds the part of `spec` this run would write, complete and
-/// verified: read and checked as `merge` checks a part (provenance, specification
-/// against its hash, every value inside the shard, end line, counts, checksum), then
-/// compared with this run (layout, tool, specification, shard). `Ok` says what is
-/// there; `Err` says why it must be computed.
+/// verified (see [`resume::check`]).
+#[cfg(test)]
 fn already_done(path: &Path, layout: Layout, spec: &SweepSpec) -> Result<String, String> {
-    let shown = path.display().to_string();
-    if std::fs::symlink_metadata(path).is_err_and(|e| e.kind() == std::io::ErrorKind::NotFound) {
-        return Err(format!("no {shown} yet"));
-    }
-    let text = read_text(path, "the existing file", LARGE_FILE).map_err(|e| e.0)?;
-    let part = read_part(&shown, &text)?;
-    let name = |l: Layout| match l {
-        Layout::Csv => "csv",
-        Layout::Json => "json",
-    };
-    if part.layout != layout {
-        return Err(format!(
-            "{shown} is a {} sweep file and this run writes {}",
-            name(part.layout),
-            name(layout)
-        ));
-    }
-    if part.provenance.tool != TOOL {
-        return Err(format!(
-            "{shown} was written by {}, not by this {TOOL}",
-            part.provenance.tool
-        ));
-    }
-    let header = SweepHeader::from(spec);
-    if spec_text(&part.header) != spec_text(&header) {
-        return Err(format!(
-            "{shown} holds another sweep ({} differs from this run's)",
-            differing_setting(&part.header, &header)
-        ));
-    }
-    let shard = shard_name(spec.shard);
-    if part.provenance.shard != shard {
-        return Err(format!(
-            "{shown} holds shard {} of this sweep, not shard {shard}",
-            part.provenance.shard
-        ));
-    }
-    Ok(format!(
-        "{shown} already holds shard {shard} of this sweep, complete and verified ({} values)",
-        part.values.len()
-    ))
+    resume::check::<SweepFile>(path, layout, &SweepHeader::from(spec), spec.shard)
 }
 
 /// Run the sweep, handing each value to `each` in index order as soon as it and every
@@ -137,32 +85,27 @@ fn in_order(
     let handle = executor.start_windowed(job, &Control::new(), window);
     let spec_line = format!(
         "{} shard {}",
-        crate::output::sweep_file::spec_text(&SweepHeader::from(spec)),
+        spec_text(&SweepHeader::from(spec)),
         shard_name(spec.shard)
     );
-    let mut progress = Progress::start("sweep", values, &spec_line);
+    let progress = Progress::start("sweep", values, &spec_line);
     let mut pending: BTreeMap<usize, ValueResult> = BTreeMap::new();
     let mut next = 0usize;
-    loop {
-        match handle.receiver().recv_timeout(Duration::from_millis(200)) {
-            Ok(b) if b.complete => {
-                pending.insert(b.index, b.data);
-                while next < values {
-                    let Some(r) = pending.remove(&positions.value_index(next)) else {
-                        break;
-                    };
-                    each(&r)?;
-                    next += 1;
-                    handle.ack(next / per_item);
-                }
-            }
-            Ok(_) | Err(std::sync::mpsc::RecvTimeoutError::Timeout) => {}
-            Err(std::sync::mpsc::RecvTimeoutError::Disconnected) => break,
+    drive_job(handle, progress, |handle, b| {
+        if !b.complete {
+            return Ok(());
         }
-        progress.update(&handle.progress());
-    }
-    let summary = handle.wait();
-    progress.finish(&summary.progress);
+        pending.insert(b.index, b.data);
+        while next < values {
+            let Some(r) = pending.remove(&positions.value_index(next)) else {
+                break;
+            };
+            each(&r)?;
+            next += 1;
+            handle.ack(next / per_item);
+        }
+        Ok(())
+    })?;
     if next != values {
         anyhow::bail!("the sweep stopped after {next} of {values} values");
     }
@@ -202,17 +145,12 @@ fn braille(
     Ok(())
 }
 
+/// The diagram's size: the text picture's, COLUMNS wide if the terminal's is unknown, at
+/// least 20 × 6.
 fn braille_size(args: &SweepArgs) -> (u16, u16) {
-    let term = crossterm::terminal::size().ok();
-    let w = args
-        .width
-        .or(term.map(|t| t.0))
-        .or_else(|| std::env::var("COLUMNS").ok().and_then(|c| c.parse().ok()))
-        .unwrap_or(rules::CELLS.default as u16);
-    let h = args
-        .height
-        .or(term.map(|t| t.1.saturating_sub(2)))
-        .unwrap_or(30);
+    let (w, h) = config::text_size(&args.text, || {
+        std::env::var("COLUMNS").ok().and_then(|c| c.parse().ok())
+    });
     (w.max(20), h.max(6))
 }
 

@@ -84,6 +84,23 @@ pub fn basin_spec(
     Ok(spec)
 }
 
+/// Width and height in characters of a text picture (`--width`, `--height`): as given,
+/// else the terminal's (less two lines, for the prompt), else `columns` wide (the
+/// caller's guess: `sweep` reads COLUMNS) or the default width, and 30 lines.
+pub fn text_size(args: &flags::TextSizeArgs, columns: impl FnOnce() -> Option<u16>) -> (u16, u16) {
+    let term = crossterm::terminal::size().ok();
+    let w = args
+        .width
+        .or(term.map(|t| t.0))
+        .or_else(columns)
+        .unwrap_or(rules::CELLS.default as u16);
+    let h = args
+        .height
+        .or(term.map(|t| t.1.saturating_sub(2)))
+        .unwrap_or(30);
+    (w, h)
+}
+
 /// Worker threads: `requested` (`--threads`), else `SLURM_CPUS_PER_TASK` (the CPUs
 /// Slurm gave this task) when set, else one per core; at most 4 × the cores (more only
 /// thrash).

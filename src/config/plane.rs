@@ -54,7 +54,7 @@ pub fn plane_spec(args: &PlaneArgs) -> Result<PlaneSpec, InputError> {
     plane_spec_from(
         &args.spec,
         args.size,
-        shard(args.shard, |name| std::env::var(name).ok())?,
+        shard(args.part.shard, |name| std::env::var(name).ok())?,
     )
 }
 

@@ -51,7 +51,7 @@ fn parse_setting(p: Param, s: &str) -> Result<Setting, InputError> {
 pub fn sweep_spec(args: &SweepArgs) -> Result<SweepSpec, InputError> {
     sweep_spec_from(
         &args.spec,
-        shard(args.shard, |name| std::env::var(name).ok())?,
+        shard(args.part.shard, |name| std::env::var(name).ok())?,
     )
 }
 

@@ -1,7 +1,8 @@
-//! A basin picture on a grid of character cells, and what each attractor is called in
-//! it: the one place for an attractor's number, its texture (a braille pattern that
-//! tells attractors apart without colour), its legend line and its colour slot. Used by
-//! `basins --format braille` and by the terminal application's basins panel.
+//! A basin picture on a grid of character cells, and what each attractor looks like in
+//! it: its texture (a braille pattern that tells attractors apart without colour) and
+//! its legend line; its number and name are the figures' ([`numbers`], [`describe`],
+//! [`exponent`] from `bouncemap_figures::basins`, re-exported here). Used by `basins
+//! --format braille` and by the terminal application's basins panel.
 //!
 //! Each character cell shows the attractor most of the grid points under it went to
 //! (while the picture fills in, a point not yet computed takes the label of the coarser
@@ -9,7 +10,8 @@
 
 use super::text::significant;
 use bouncemap_engine::attractors::basins::Basins;
-use bouncemap_engine::attractors::{Attractor, Kind, Registry};
+use bouncemap_engine::attractors::Registry;
+pub use bouncemap_figures::basins::{describe, exponent, numbers};
 
 /// Textures for attractor numbers 1, 2, … (the last repeats beyond).
 pub const TEXTURES: [char; 8] = ['⣿', '⠶', '⢕', '⡇', '⠉', '⣀', '⠑', '⠂'];
@@ -17,33 +19,6 @@ pub const TEXTURES: [char; 8] = ['⣿', '⠶', '⢕', '⡇', '⠉', '⣀', '⠑'
 /// The texture of the attractor shown as number `number` (1-based).
 pub fn texture(number: usize) -> char {
     TEXTURES[number.saturating_sub(1).min(TEXTURES.len() - 1)]
-}
-
-/// The numbering of a registry's attractors: `number[id]` (1-based, largest basin
-/// first, see [`Registry::ranked`]).
-pub fn numbers(reg: &Registry) -> Vec<usize> {
-    let mut number = vec![0; reg.attractors().len()];
-    for (rank, id) in reg.ranked().into_iter().enumerate() {
-        number[id] = rank + 1;
-    }
-    number
-}
-
-/// "periodic (1, 1)", "sticking (3, 2)", "chaotic".
-pub fn describe(a: &Attractor) -> String {
-    match a.period_label() {
-        Some(p) => format!("{} {p}", a.kind.as_str()),
-        None => a.kind.as_str().to_string(),
-    }
-}
-
-/// A largest exponent for people: `-inf` (superstable), `—` where none.
-pub fn exponent(l: Option<f64>) -> String {
-    match l {
-        Some(x) if x == f64::NEG_INFINITY => "-inf".into(),
-        Some(x) => significant(x, 4),
-        None => "—".into(),
-    }
 }
 
 /// One legend line: texture, number, kind and period, exponent, basin share.
@@ -60,12 +35,6 @@ pub fn legend_line(reg: &Registry, id: usize, number: usize) -> String {
         exponent(a.lyapunov),
         100.0 * reg.fraction(id),
     )
-}
-
-/// Whether attractors of this kind are drawn in a colour of their own (resting and
-/// escaping are drawn dim).
-pub fn is_attractor(kind: Kind) -> bool {
-    !matches!(kind, Kind::Resting | Kind::Escaping)
 }
 
 /// The attractor id shown in each of `cols` × `rows` character cells, top row (largest

@@ -4,26 +4,29 @@
 //!   the terminal application's export, written through the `csv` crate (quoting done
 //!   right) and `serde_json`. Numbers are the shortest strings that read back to the
 //!   same f64 (exponent form where shorter).
-//! * [`sweep_file`]: the sweep file (csv or json) with its provenance: the streaming
-//!   writer, and the reader that checks parts for `merge`.
+//! * [`part_file`]: the one format of the files `sweep` and `plane` write and `merge`
+//!   joins: provenance, hashes, shards, csv and json layouts, the streaming writer, the
+//!   reader that checks a part and the join; [`sweep_file`] and [`plane_file`] are its
+//!   two kinds (their rows, and where a row belongs).
 //! * [`sink`]: standard output, or a file written atomically (temporary, then rename).
 //! * [`hitgrid`]: the one hit-count grid behind every text picture; [`diagram`]: its
 //!   text form with axes and labels (`sweep --format braille`).
-//! * [`basin_map`]: a basin picture on character cells, and each attractor's number,
-//!   texture and legend line (`basins --format braille`, the basins panel).
-//! * [`plane_file`]: the plane file (csv or json) with its provenance, writer and the
-//!   reader that checks parts for `merge`; [`plane_map`]: a two-parameter map on
-//!   character cells (glyphs per class, curve marks, axes, legend).
+//! * [`basin_map`]: a basin picture on character cells, and each attractor's texture
+//!   and legend line (`basins --format braille`, the basins panel).
+//! * [`plane_map`]: a two-parameter map on character cells (glyphs per class, curve
+//!   marks, axes, legend).
 //! * [`classes`]: what a value's orbit is (period 1, 2, 4, 8, other, sticking, chaotic),
-//!   as the diagram colours it.
+//!   as the pictures colour it; it is the figures crate's, re-exported here for the text
+//!   pictures and the terminal application.
 //! * [`text`]: number formatting for aligned text columns.
-//! * [`figure`]: publication figures (SVG, and PNG rendered with the fonts compiled in).
+//! * [`figure_file`]: a figure (drawn by the `bouncemap_figures` crate: SVG, and PNG
+//!   rendered with the fonts compiled in) written to a file atomically.
 
 pub mod basin_map;
-pub mod classes;
 pub mod diagram;
-pub mod figure;
+pub mod figure_file;
 pub mod hitgrid;
+pub mod part_file;
 pub mod plane_file;
 pub mod plane_map;
 pub mod records;
@@ -31,6 +34,7 @@ pub mod sink;
 pub mod sweep_file;
 pub mod text;
 
+pub use bouncemap_figures::classes;
 use clap::ValueEnum;
 
 /// Output format of a headless command.

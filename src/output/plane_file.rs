@@ -1,7 +1,7 @@
 //! The plane file: what `plane` writes (csv or json), what `merge` reads back, checks
-//! and joins, in the sweep file's form (see [`super::sweep_file`]): provenance lines,
-//! the specification and its hash, the shard, one row per pixel, an end line with a
-//! checksum.
+//! and joins, in the part-file format of [`super::part_file`] (provenance, shard, end
+//! line and checksum are there). Here: the plane's settings and rows, and what is
+//! particular to a plane: one row per pixel, and where each row belongs.
 //!
 //! ```text
 //! # bouncemap 0.1.0 plane
@@ -20,10 +20,9 @@
 //! provenance (with `"file": "plane"`), the settings, `curves` (the analytic curves,
 //! null without an α axis), `pixels` and the checksum of the curves' and pixels' bytes.
 
-use super::classes::{of_pixel, Class};
+use super::classes::{of_pixel, Class, NO_LANDING};
+use super::part_file::{clip, FileKind, Layout, Part, PartWriter};
 use super::records::{solver_name, EarlyStop, Exponent};
-use super::sweep_file::{clip, fnv1a, one_line, parse_shard, shard_name, Hashing, FNV_START, TOOL};
-use super::sweep_file::{csv_rows, spec_hash, split_csv_part, Layout};
 use bouncemap_engine::plane::{Curves, Pixel, PlaneSpec};
 use bouncemap_engine::sweep::{grid_value, Outcome, Shard};
 use serde::{Deserialize, Serialize};
@@ -122,20 +121,6 @@ impl PlaneHeader {
     }
 }
 
-/// Where a plane file comes from.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct PlaneProvenance {
-    /// Always `plane`.
-    pub file: String,
-    pub tool: String,
-    pub spec_hash: String,
-    /// `I/N`, or `merged N/N`.
-    pub shard: String,
-    /// Pixels the file holds.
-    pub pixels: usize,
-}
-
 /// One pixel as files state it (csv: the columns are named after the axes' parameters).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -151,8 +136,6 @@ pub struct PixelRow {
     pub status: String,
 }
 
-/// The class name of a pixel where the ball never lands.
-pub const NO_LANDING: &str = "no-landing";
 const STATUSES: [&str; 4] = ["periodic", "unsettled", "resting", "no-landing"];
 
 impl PixelRow {
@@ -221,81 +204,79 @@ impl<'a> From<&'a Curves> for CurvesRecord<'a> {
     }
 }
 
-/// Write one plane file: `rows` are the file's `count` pixels in index order, made as
-/// they are written (a plane's rows are never all held at once); `curves` the json
-/// text of the curves (`null` without them; ignored for csv).
-pub fn write<W: Write>(
-    mut out: W,
-    layout: Layout,
-    header: &PlaneHeader,
-    shard: &str,
-    curves: &str,
-    count: usize,
-    rows: impl Iterator<Item = PixelRow>,
-) -> io::Result<W> {
-    let spec = spec_text(header);
-    let prov = PlaneProvenance {
-        file: "plane".into(),
-        tool: TOOL.into(),
-        spec_hash: spec_hash(&spec),
-        shard: shard.into(),
-        pixels: count,
-    };
-    match layout {
-        Layout::Csv => {
-            writeln!(out, "# {TOOL} plane")?;
-            writeln!(out, "# spec {spec}")?;
-            writeln!(out, "# spec-hash {}", prov.spec_hash)?;
-            writeln!(out, "# shard {}", prov.shard)?;
-            writeln!(out, "# pixels {}", prov.pixels)?;
-            writeln!(out, "{}", header.header_row())?;
-            let hashing = Hashing {
-                inner: out,
-                hash: FNV_START,
-            };
-            let mut w = csv::WriterBuilder::new()
-                .has_headers(false)
-                .from_writer(hashing);
-            let mut written = 0;
-            for r in rows {
-                w.serialize(r)?;
-                written += 1;
-            }
-            let Hashing { mut inner, hash } = w.into_inner().map_err(|e| e.into_error())?;
-            writeln!(inner, "# end {written} pixels, checksum {hash:016x}")?;
-            Ok(inner)
-        }
-        Layout::Json => {
-            write!(
-                out,
-                "{{\"provenance\":{},{},\"curves\":",
-                serde_json::to_string(&prov)?,
-                &spec[1..spec.len() - 1]
-            )?;
-            let mut h = Hashing {
-                inner: out,
-                hash: FNV_START,
-            };
-            h.write_all(curves.as_bytes())?;
-            h.inner.write_all(b",\"pixels\":")?;
-            h.write_all(b"[")?;
-            for (k, r) in rows.enumerate() {
-                if k > 0 {
-                    h.write_all(b",")?;
-                }
-                serde_json::to_writer(&mut h, &r)?;
-            }
-            h.write_all(b"]")?;
-            let Hashing { mut inner, hash } = h;
-            writeln!(inner, ",\"checksum\":\"{hash:016x}\"}}")?;
-            Ok(inner)
+/// The plane file as a kind of part file.
+#[derive(Clone, Copy, Debug)]
+pub struct PlaneFile;
+
+impl FileKind for PlaneFile {
+    const KIND: &'static str = "plane";
+    const UNIT: &'static str = "pixels";
+    const PROVENANCE: &'static [&'static str] = &["file", "tool", "spec_hash", "shard", "pixels"];
+    const SECTIONS: &'static [&'static str] = &["curves", "pixels"];
+    type Header = PlaneHeader;
+    type Row = PixelRow;
+    type Item = PixelRow;
+    type Value = PixelRow;
+
+    fn header_row(h: &PlaneHeader) -> String {
+        h.header_row()
+    }
+
+    /// The columns named after the axes' parameters are read as `x` and `y`.
+    fn field_names(_: &PlaneHeader) -> Vec<&'static str> {
+        vec![
+            "x",
+            "y",
+            "class",
+            "period",
+            "table_periods",
+            "lyapunov",
+            "status",
+        ]
+    }
+
+    fn add_row(rows: &mut Vec<PixelRow>, row: PixelRow) -> Result<(), String> {
+        row.check()?;
+        rows.push(row);
+        Ok(())
+    }
+
+    fn from_item(row: PixelRow) -> PixelRow {
+        row
+    }
+
+    fn write_value<W: Write>(w: &mut PartWriter<W, PlaneFile>, row: &PixelRow) -> io::Result<()> {
+        match w.layout() {
+            Layout::Csv => w.csv(std::slice::from_ref(row)),
+            Layout::Json => w.json(row),
         }
     }
-}
 
-/// The canonical text of a specification: its compact json.
-pub fn spec_text(header: &PlaneHeader) -> String {
-    serde_json::to_string(header).expect("a plane header serializes")
+    fn end_counts(pixels: usize, _rows: usize) -> String {
+        format!("{pixels} pixels")
+    }
+
+    fn check(part: &Part<PlaneFile>) -> Result<usize, String> {
+        check_rows(part)
+    }
+
+    /// Shard I/N holds the pixels I − 1 modulo N: pixel p is the next row of shard
+    /// p mod N.
+    fn combine(h: &PlaneHeader, shards: Vec<Vec<PixelRow>>) -> Result<Vec<PixelRow>, String> {
+        let count = shards.len().max(1);
+        let mut iters: Vec<_> = shards.into_iter().map(Vec::into_iter).collect();
+        let rows: Vec<PixelRow> = (0..h.len())
+            .filter_map(|p| iters.get_mut(p % count).and_then(Iterator::next))
+            .collect();
+        if rows.len() != h.len() {
+            return Err(format!(
+                "the parts hold {} of the plane's {} pixels",
+                rows.len(),
+                h.len()
+            ));
+        }
+        Ok(rows)
+    }
 }
 
 /// Whether `text` is a plane file (rather than a sweep file).
@@ -306,143 +287,6 @@ pub fn is_plane(text: &str) -> bool {
         || (head.trim_start().starts_with('{') && head.contains("\"file\":\"plane\""))
 }
 
-// ------------------------------------------------------------------ reading
-
-/// A plane part file, read and checked on its own.
-#[derive(Clone, Debug)]
-pub struct PlanePart {
-    pub name: String,
-    pub layout: Layout,
-    pub provenance: PlaneProvenance,
-    pub header: PlaneHeader,
-    /// None for a merged (or whole) file.
-    pub shard: Option<Shard>,
-    /// The curves' json text (json files).
-    pub curves: String,
-    pub rows: Vec<PixelRow>,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct JsonPart<'a> {
-    provenance: PlaneProvenance,
-    #[serde(flatten)]
-    header: PlaneHeader,
-    #[serde(borrow)]
-    curves: &'a serde_json::value::RawValue,
-    #[serde(borrow)]
-    pixels: &'a serde_json::value::RawValue,
-    checksum: String,
-}
-
-/// Read and check plane part `name`: provenance, specification against its hash,
-/// every row (well-formed, at the pixel its position in its shard means), the end line
-/// and the count. Refusals are one line naming the file (and the line).
-pub fn read_part(name: &str, text: &str) -> Result<PlanePart, String> {
-    let bad = |msg: String| format!("{name}: {msg}");
-    let part = if text.trim_start().starts_with('{') {
-        let p: JsonPart = serde_json::from_str(text).map_err(|e| {
-            bad(format!(
-                "not a complete plane json file ({})",
-                one_line(&e.to_string())
-            ))
-        })?;
-        let h = fnv1a(FNV_START, p.curves.get().as_bytes());
-        let sum = format!("{:016x}", fnv1a(h, p.pixels.get().as_bytes()));
-        if sum != p.checksum {
-            return Err(bad(format!(
-                "its pixels do not match their checksum {} (damaged?)",
-                clip(&p.checksum)
-            )));
-        }
-        let rows: Vec<PixelRow> = serde_json::from_str(p.pixels.get())
-            .map_err(|e| bad(format!("malformed pixels ({})", one_line(&e.to_string()))))?;
-        PlanePart {
-            name: name.to_string(),
-            layout: Layout::Json,
-            shard: parse_shard(&p.provenance.shard).map_err(&bad)?,
-            provenance: p.provenance,
-            header: p.header,
-            curves: p.curves.get().to_string(),
-            rows,
-        }
-    } else {
-        read_csv(name, text)?
-    };
-    if part.provenance.file != "plane" {
-        return Err(bad("not a plane file".into()));
-    }
-    if spec_hash(&spec_text(&part.header)) != part.provenance.spec_hash {
-        return Err(bad(format!(
-            "its specification does not match its hash {} (edited?)",
-            part.provenance.spec_hash
-        )));
-    }
-    check_rows(&part).map_err(&bad)?;
-    Ok(part)
-}
-
-fn read_csv(name: &str, text: &str) -> Result<PlanePart, String> {
-    let p = split_csv_part(name, text, "plane", "pixels")?;
-    let (tool, hash, shard_text, body, end) = (p.tool, p.hash, p.shard_text, p.body, p.end);
-    let header: PlaneHeader = serde_json::from_str(&p.spec).map_err(|e| {
-        format!(
-            "{name}: line 2: not a plane specification ({})",
-            one_line(&e.to_string())
-        )
-    })?;
-    let pixels: usize = p
-        .count_text
-        .parse()
-        .map_err(|_| format!("{name}: line 5: '{}' is not a count", clip(&p.count_text)))?;
-    let shard = parse_shard(&shard_text).map_err(|e| format!("{name}: line 4: {e}"))?;
-    if p.head != header.header_row() {
-        return Err(format!(
-            "{name}: line 6: header '{}' is not '{}'",
-            clip(&p.head),
-            header.header_row()
-        ));
-    }
-    let names = csv::StringRecord::from(vec![
-        "x",
-        "y",
-        "class",
-        "period",
-        "table_periods",
-        "lyapunov",
-        "status",
-    ]);
-    let mut rows = Vec::new();
-    csv_rows(name, &body, &names, |row: PixelRow| {
-        row.check()?;
-        rows.push(row);
-        Ok(())
-    })?;
-    let sum = fnv1a(FNV_START, body.as_bytes());
-    let want_end = format!("# end {} pixels, checksum {sum:016x}", rows.len());
-    if end != want_end {
-        return Err(format!(
-            "{name}: truncated or damaged: its last line is '{}', expected '{want_end}'",
-            clip(&end)
-        ));
-    }
-    Ok(PlanePart {
-        name: name.to_string(),
-        layout: Layout::Csv,
-        provenance: PlaneProvenance {
-            file: "plane".into(),
-            tool,
-            spec_hash: hash,
-            shard: shard_text,
-            pixels,
-        },
-        header,
-        shard,
-        curves: "null".into(),
-        rows,
-    })
-}
-
 /// The pixel index of row `k` of a file holding `shard` (None: every pixel).
 fn row_pixel(shard: Option<Shard>, k: usize) -> usize {
     match shard {
@@ -451,14 +295,16 @@ fn row_pixel(shard: Option<Shard>, k: usize) -> usize {
     }
 }
 
-fn check_rows(part: &PlanePart) -> Result<(), String> {
+/// The checks on a part's rows: each well-formed and at the pixel its place in the
+/// shard means. Returns how many pixels its shard has.
+fn check_rows(part: &Part<PlaneFile>) -> Result<usize, String> {
     let h = &part.header;
     let total = h.len();
     let expected = match part.shard {
         Some(s) => total / s.count + usize::from(s.index < total % s.count),
         None => total,
     };
-    for (k, r) in part.rows.iter().enumerate() {
+    for (k, r) in part.values.iter().enumerate() {
         r.check().map_err(|e| format!("pixel row {}: {e}", k + 1))?;
         let p = row_pixel(part.shard, k);
         if p >= total {
@@ -474,119 +320,7 @@ fn check_rows(part: &PlanePart) -> Result<(), String> {
             ));
         }
     }
-    if part.rows.len() != part.provenance.pixels || part.rows.len() != expected {
-        return Err(format!(
-            "holds {} pixels; its provenance says {} and its shard has {expected}",
-            part.rows.len(),
-            part.provenance.pixels
-        ));
-    }
-    Ok(())
-}
-
-/// Join checked parts of one plane: the same tool, specification, layout and curves,
-/// every shard of 1..N exactly once. Returns the layout, header, curves and every pixel
-/// in index order.
-pub fn join(parts: Vec<PlanePart>) -> Result<(Layout, PlaneHeader, String, Vec<PixelRow>), String> {
-    let first = parts.first().ok_or("no parts given")?;
-    let (layout, header, curves) = (first.layout, first.header.clone(), first.curves.clone());
-    let count = first.shard.map_or(1, |s| s.count);
-    let mut slots: Vec<Option<usize>> = vec![None; count];
-    for (n, p) in parts.iter().enumerate() {
-        if p.layout != layout {
-            return Err(format!("{}: mixes csv and json parts", p.name));
-        }
-        if p.provenance.tool != first.provenance.tool {
-            return Err(format!(
-                "{}: written by {}, {} by {}: valid parts of one run",
-                p.name, p.provenance.tool, first.name, first.provenance.tool
-            ));
-        }
-        if p.provenance.spec_hash != first.provenance.spec_hash {
-            return Err(format!(
-                "{}: a part of another plane ({} differs from {}'s): valid parts of one plane",
-                p.name,
-                differing_setting(&p.header, &header),
-                first.name
-            ));
-        }
-        if p.curves != curves {
-            return Err(format!(
-                "{}: its curves differ from {}'s",
-                p.name, first.name
-            ));
-        }
-        let Some(s) = p.shard else {
-            return Err(format!("{}: already a merged file", p.name));
-        };
-        if s.count != count {
-            return Err(format!(
-                "{}: shard {} of a {}-part run, {} is of a {count}-part run",
-                p.name,
-                shard_name(s),
-                s.count,
-                first.name
-            ));
-        }
-        if let Some(other) = slots[s.index] {
-            return Err(format!(
-                "{}: shard {} is also in {}: valid each shard once",
-                p.name,
-                shard_name(s),
-                parts[other].name
-            ));
-        }
-        slots[s.index] = Some(n);
-    }
-    let missing: Vec<String> = slots
-        .iter()
-        .enumerate()
-        .filter(|(_, s)| s.is_none())
-        .map(|(i, _)| format!("{}/{count}", i + 1))
-        .collect();
-    if !missing.is_empty() {
-        return Err(format!(
-            "missing shard{} {}: valid every shard 1/{count} … {count}/{count} once",
-            if missing.len() > 1 { "s" } else { "" },
-            missing.join(", ")
-        ));
-    }
-    let mut iters: Vec<_> = Vec::with_capacity(count);
-    let mut parts = parts;
-    let order: Vec<usize> = slots.into_iter().map(|s| s.unwrap_or(0)).collect();
-    let mut taken: Vec<Option<Vec<PixelRow>>> = parts
-        .iter_mut()
-        .map(|p| Some(std::mem::take(&mut p.rows)))
-        .collect();
-    for n in order {
-        iters.push(taken[n].take().unwrap_or_default().into_iter());
-    }
-    let rows: Vec<PixelRow> = (0..header.len())
-        .filter_map(|p| iters[p % count].next())
-        .collect();
-    if rows.len() != header.len() {
-        return Err(format!(
-            "the parts hold {} of the plane's {} pixels",
-            rows.len(),
-            header.len()
-        ));
-    }
-    Ok((layout, header, curves, rows))
-}
-
-pub fn differing_setting(a: &PlaneHeader, b: &PlaneHeader) -> String {
-    let (va, vb) = (
-        serde_json::to_value(a).unwrap_or_default(),
-        serde_json::to_value(b).unwrap_or_default(),
-    );
-    if let (Some(ma), Some(mb)) = (va.as_object(), vb.as_object()) {
-        for (k, x) in ma {
-            if mb.get(k) != Some(x) {
-                return format!("its {k} {x}");
-            }
-        }
-    }
-    "its specification".into()
+    Ok(expected)
 }
 
 /// The rows of a computed plane's shard, in index order, made one by one.

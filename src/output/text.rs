@@ -1,19 +1,9 @@
 //! Numbers in aligned text columns: fixed digits for people, never more digits than an
 //! f64 holds.
 
-/// `x` with `digits` significant digits in fixed notation (scientific beyond 1e15 or
-/// below 1e-6), for aligned text columns that show no digits beyond f64 precision.
-pub fn significant(x: f64, digits: usize) -> String {
-    if x == 0.0 || !x.is_finite() {
-        return format!("{x:.prec$}", prec = digits.saturating_sub(1));
-    }
-    let mag = x.abs().log10().floor() as i64;
-    if mag >= digits as i64 || mag < -6 {
-        return format!("{x:.prec$e}", prec = digits.saturating_sub(1));
-    }
-    let decimals = (digits as i64 - 1 - mag).max(0) as usize;
-    format!("{x:.decimals$}")
-}
+/// `x` with `digits` significant digits in fixed notation (the figures' legends use it
+/// too, so it lives in their crate).
+pub use bouncemap_figures::significant;
 
 /// A complex number with 12 decimals: `re` or `re±imi`.
 pub fn complex(z: bouncemap_engine::orbits::Complex) -> String {

@@ -10,8 +10,9 @@
 //! name `bouncemap-view-N`): `NAME-diagram.svg/.png` (the diagram over its zoom window,
 //! the parameters in the caption) and `NAME-phase.svg/.png` (the phase plot), and with
 //! the basins panel or the plane view shown and complete `NAME-basins.svg/.png` or
-//! `NAME-plane.svg/.png`, through [`crate::output::figure`]. The files are named here
-//! once, for the default names and for writing.
+//! `NAME-plane.svg/.png`, drawn by [`bouncemap_figures`] and written by
+//! [`crate::output::figure_file`]. The files are named here once, for the default names
+//! and for writing.
 
 use super::components::{Panels, Shared};
 use crate::output::diagram::BrailleDiagram;
@@ -66,7 +67,8 @@ pub fn view_paths(stem: &Path, basins: bool, plane: bool) -> Vec<PathBuf> {
 /// `E`: the csv and the text of [`export`], and the diagram and the phase plot as
 /// SVG and PNG. Returns every path written.
 pub fn export_view(shared: &Shared, panels: &Panels, stem: &Path) -> Result<Vec<PathBuf>, String> {
-    use crate::output::figure::{self, DiagramAxis, ImageFormat, DEFAULT_DPI};
+    use crate::output::figure_file;
+    use bouncemap_figures::{self as figure, DiagramAxis, ImageFormat, DEFAULT_DPI};
     let b = &panels.basins.view;
     let basins = match (b.shown, &b.spec, &b.picture) {
         (true, Some(spec), Some(pic)) if pic.complete() => {
@@ -134,8 +136,8 @@ pub fn export_view(shared: &Shared, panels: &Panels, stem: &Path) -> Result<Vec<
         next += 2;
     }
     for (fig, svg, png) in figures {
-        figure::write(fig, svg, ImageFormat::Svg, None, DEFAULT_DPI)
-            .and_then(|_| figure::write(fig, png, ImageFormat::Png, None, DEFAULT_DPI))
+        figure_file::write(fig, svg, ImageFormat::Svg, None, DEFAULT_DPI)
+            .and_then(|_| figure_file::write(fig, png, ImageFormat::Png, None, DEFAULT_DPI))
             .map_err(|e| format!("export: {e}"))?;
         written.push(svg.clone());
         written.push(png.clone());

@@ -347,3 +347,55 @@ fn a_resumed_part_that_is_complete_is_left_alone_and_any_other_is_computed() {
     }
     std::fs::remove_dir_all(&d).unwrap();
 }
+
+/// A json part that does not parse (a key holding a newline, a shard 0/1) is reported in
+/// one line by `--resume` and refused in one line by `merge`, for a sweep and a plane
+/// alike: both are read by the one part-file reader.
+#[test]
+fn a_malformed_json_part_is_reported_in_one_line_for_sweeps_and_planes() {
+    let d = dir("malformed");
+    let plane = [
+        "plane",
+        "--x",
+        "alpha:0.4..0.5",
+        "--y",
+        "r:0.6..0.9",
+        "--size",
+        "6x3",
+        "--transient",
+        "500",
+    ];
+    for (kind, args) in [("sweep", &SMALL[..]), ("plane", &plane[..])] {
+        let f = d.join(format!("{kind}.json"));
+        let mut a: Vec<&str> = args.to_vec();
+        a.extend(["--format", "json", "--shard", "1/2", "--out", s(&f)]);
+        ok(&run(&[], &a));
+        let text = read(&f);
+        let cases = [
+            (
+                text.replacen("\"table\":", "\"ta\\nble\":0,\"table\":", 1),
+                format!("not a complete {kind} json file (unknown field `ta ble`"),
+            ),
+            (
+                text.replacen("\"shard\":\"1/2\"", "\"shard\":\"0/1\"", 1),
+                "shard '0/1' is not I/N with 1 ≤ I ≤ N".to_string(),
+            ),
+        ];
+        for (damaged, why) in cases {
+            assert_ne!(damaged, text, "{kind}: {why}");
+            std::fs::write(&f, &damaged).unwrap();
+            refused(&run(&[], &["merge", s(&f)]), &format!("{}: {why}", s(&f)));
+            let mut resume = a.clone();
+            resume.push("--resume");
+            let o = run(&[], &resume);
+            ok(&o);
+            let err = String::from_utf8_lossy(&o.stderr);
+            let line = err.lines().next().unwrap_or_default();
+            assert!(
+                line.starts_with("bouncemap: --resume: ") && line.ends_with("; computing it"),
+                "{kind}: {err}"
+            );
+        }
+    }
+    std::fs::remove_dir_all(&d).unwrap();
+}

@@ -147,7 +147,7 @@ fn text_is_drawn_without_any_system_font() {
 
 #[test]
 fn a_figure_of_one_label_has_ink_where_the_label_is_and_nowhere_else() {
-    use bouncemap::output::figure::{render, Figure, ImageFormat};
+    use bouncemap_figures::{render, Figure, ImageFormat};
     let fig = Figure {
         name: "label".into(),
         panels: Vec::new(),

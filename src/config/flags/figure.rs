@@ -1,6 +1,7 @@
 //! `figure`'s flags: the options every figure shares and the figure names.
 
 use super::*;
+use bouncemap_figures::ImageFormat;
 
 /// `bouncemap figure NAME`: options shared by every figure.
 #[derive(Args, Debug, Clone)]
@@ -18,7 +19,7 @@ pub struct FigureArgs {
     pub out: Option<String>,
     /// Output format when the file name does not say (e.g. a device) [default: from --out].
     #[arg(long, global = true, value_enum)]
-    pub format: Option<ImageFormat>,
+    pub format: Option<ImageFormatArg>,
     /// Size WxH in inches, each side in [1, 12] [default: the figure's own, one column
     /// (3.4 in) or the page width (7 in) of a two-column paper].
     #[arg(long, global = true, value_parser = parse_size, value_name = "WxH")]
@@ -35,6 +36,24 @@ pub struct FigureArgs {
     /// Worker threads [default: all cores].
     #[arg(long, global = true, value_parser = rules::THREADS.whole::<usize>(), value_name = "N")]
     pub threads: Option<usize>,
+}
+
+/// `--format` of a figure: [`ImageFormat`] on the command line.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum ImageFormatArg {
+    /// Vector graphics, text as text.
+    Svg,
+    /// A bitmap at the given dpi.
+    Png,
+}
+
+impl From<ImageFormatArg> for ImageFormat {
+    fn from(f: ImageFormatArg) -> ImageFormat {
+        match f {
+            ImageFormatArg::Svg => ImageFormat::Svg,
+            ImageFormatArg::Png => ImageFormat::Png,
+        }
+    }
 }
 
 /// The figures `bouncemap figure` draws.

@@ -8,7 +8,6 @@ use super::presets::Param;
 use super::rules;
 use super::table_spec::TableSpec;
 use super::windows::{parse_alpha_window, parse_d_family, DFamily};
-use crate::output::figure::ImageFormat;
 use crate::output::hitgrid::Marker;
 use crate::output::Format;
 use bouncemap_engine::sweep::Shard;
@@ -313,6 +312,63 @@ pub fn parse_d_list(s: &str) -> Result<DList, String> {
     Ok(DList(v))
 }
 
+/// `--out`: where a command writes (`sweep`, `plane`, `basins`, `merge`).
+#[derive(Args, Debug, Clone, Default)]
+pub struct OutArgs {
+    /// Write to FILE instead of stdout.
+    #[arg(long, value_name = "FILE")]
+    pub out: Option<String>,
+}
+
+/// `--out`, `--shard` and `--resume`: the file of a part of a run, to be joined by
+/// `merge`, and left alone if it is already there (`sweep`, `plane`; the help is the
+/// sweep's, `plane` words its own).
+#[derive(Args, Debug, Clone, Default)]
+pub struct PartArgs {
+    #[command(flatten)]
+    pub output: OutArgs,
+    /// Compute only the I-th of N interleaved parts (1 ≤ I ≤ N), or `auto`: the part of
+    /// this Slurm array task (the default in a job array); join the parts with `merge`.
+    ///
+    /// `auto` reads SLURM_ARRAY_TASK_ID, SLURM_ARRAY_TASK_MIN and SLURM_ARRAY_TASK_MAX:
+    /// N = MAX − MIN + 1 and I = ID − MIN + 1, so arrays numbered from 0 or from 1 both
+    /// work (task 3 of --array=0-7 computes 4/8). The array must be a whole range
+    /// (SLURM_ARRAY_TASK_COUNT = N). Without --shard, a task of a job array (where
+    /// SLURM_ARRAY_TASK_ID is set) computes its `auto` part; elsewhere the whole sweep.
+    #[arg(long, value_parser = parse_shard_arg, value_name = "I/N|auto")]
+    pub shard: Option<ShardArg>,
+    /// Do nothing if --out FILE already holds this part of this sweep, complete and
+    /// verified.
+    ///
+    /// FILE is checked as `merge` checks a part (provenance, specification hash, values,
+    /// end line, checksum) and must be of this sweep, shard, format and version: then the
+    /// run exits 0 at once and leaves it untouched. Otherwise (missing, damaged, another
+    /// sweep or shard) it is computed, and stderr says why. Re-running every shard of a
+    /// run with --resume recomputes only the missing ones.
+    #[arg(long)]
+    pub resume: bool,
+}
+
+/// `--width` and `--height`: the size of a text picture (`sweep`, `plane`, `basins`).
+#[derive(Args, Debug, Clone, Default)]
+pub struct TextSizeArgs {
+    /// Braille width in characters [default: the terminal's].
+    #[arg(long, value_parser = rules::CELLS.whole::<u16>(), value_name = "COLS")]
+    pub width: Option<u16>,
+    /// Braille height in lines [default: the terminal's].
+    #[arg(long, value_parser = rules::CELLS.whole::<u16>(), value_name = "LINES")]
+    pub height: Option<u16>,
+}
+
+/// `--threads`: the worker threads of a computation (`sweep`, `plane`, `basins`).
+#[derive(Args, Debug, Clone, Default)]
+pub struct ThreadsArgs {
+    /// Worker threads, at most 4 × the cores [default: SLURM_CPUS_PER_TASK when set
+    /// (the CPUs Slurm gave the task), else one per core].
+    #[arg(long, value_parser = rules::THREADS.whole::<usize>(), value_name = "N")]
+    pub threads: Option<usize>,
+}
+
 /// Output format of `sweep`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, Default)]
 pub enum SweepFormat {
@@ -401,39 +457,12 @@ pub struct SweepArgs {
     /// Output format.
     #[arg(long, value_enum, default_value_t = SweepFormat::Csv)]
     pub format: SweepFormat,
-    /// Write to FILE instead of stdout.
-    #[arg(long, value_name = "FILE")]
-    pub out: Option<String>,
-    /// Compute only the I-th of N interleaved parts (1 ≤ I ≤ N), or `auto`: the part of
-    /// this Slurm array task (the default in a job array); join the parts with `merge`.
-    ///
-    /// `auto` reads SLURM_ARRAY_TASK_ID, SLURM_ARRAY_TASK_MIN and SLURM_ARRAY_TASK_MAX:
-    /// N = MAX − MIN + 1 and I = ID − MIN + 1, so arrays numbered from 0 or from 1 both
-    /// work (task 3 of --array=0-7 computes 4/8). The array must be a whole range
-    /// (SLURM_ARRAY_TASK_COUNT = N). Without --shard, a task of a job array (where
-    /// SLURM_ARRAY_TASK_ID is set) computes its `auto` part; elsewhere the whole sweep.
-    #[arg(long, value_parser = parse_shard_arg, value_name = "I/N|auto")]
-    pub shard: Option<ShardArg>,
-    /// Do nothing if --out FILE already holds this part of this sweep, complete and
-    /// verified.
-    ///
-    /// FILE is checked as `merge` checks a part (provenance, specification hash, values,
-    /// end line, checksum) and must be of this sweep, shard, format and version: then the
-    /// run exits 0 at once and leaves it untouched. Otherwise (missing, damaged, another
-    /// sweep or shard) it is computed, and stderr says why. Re-running every shard of a
-    /// run with --resume recomputes only the missing ones.
-    #[arg(long)]
-    pub resume: bool,
-    /// Braille width in characters [default: the terminal's].
-    #[arg(long, value_parser = rules::CELLS.whole::<u16>(), value_name = "COLS")]
-    pub width: Option<u16>,
-    /// Braille height in lines [default: the terminal's].
-    #[arg(long, value_parser = rules::CELLS.whole::<u16>(), value_name = "LINES")]
-    pub height: Option<u16>,
-    /// Worker threads, at most 4 × the cores [default: SLURM_CPUS_PER_TASK when set
-    /// (the CPUs Slurm gave the task), else one per core].
-    #[arg(long, value_parser = rules::THREADS.whole::<usize>(), value_name = "N")]
-    pub threads: Option<usize>,
+    #[command(flatten)]
+    pub part: PartArgs,
+    #[command(flatten)]
+    pub text: TextSizeArgs,
+    #[command(flatten)]
+    pub workers: ThreadsArgs,
 }
 
 /// `bouncemap lyapunov`.
@@ -493,24 +522,19 @@ pub struct BasinsSpecArgs {
 
 /// `bouncemap basins`.
 #[derive(Args, Debug, Clone)]
+#[command(mut_arg("threads", |a| a.help("Worker threads [default: all cores]")))]
 pub struct BasinsArgs {
     #[command(flatten)]
     pub spec: BasinsSpecArgs,
     /// Output format.
     #[arg(long, value_enum, default_value_t = BasinsFormat::Csv)]
     pub format: BasinsFormat,
-    /// Write to FILE instead of stdout.
-    #[arg(long, value_name = "FILE")]
-    pub out: Option<String>,
-    /// Braille width in characters [default: the terminal's].
-    #[arg(long, value_parser = rules::CELLS.whole::<u16>(), value_name = "COLS")]
-    pub width: Option<u16>,
-    /// Braille height in lines [default: the terminal's].
-    #[arg(long, value_parser = rules::CELLS.whole::<u16>(), value_name = "LINES")]
-    pub height: Option<u16>,
-    /// Worker threads [default: all cores].
-    #[arg(long, value_parser = rules::THREADS.whole::<usize>(), value_name = "N")]
-    pub threads: Option<usize>,
+    #[command(flatten)]
+    pub output: OutArgs,
+    #[command(flatten)]
+    pub text: TextSizeArgs,
+    #[command(flatten)]
+    pub workers: ThreadsArgs,
 }
 
 /// `NXxNY`: grid sides, each in 1..=4000, at most 10⁶ points.
@@ -567,9 +591,8 @@ pub struct MergeArgs {
     /// FILE` (all csv or all json, all of one run).
     #[arg(required = true, value_name = "FILE")]
     pub files: Vec<String>,
-    /// Write to FILE instead of stdout.
-    #[arg(long, value_name = "FILE")]
-    pub out: Option<String>,
+    #[command(flatten)]
+    pub output: OutArgs,
 }
 
 /// Output of `bench`.

@@ -67,6 +67,17 @@ pub struct FigurePlaneArgs {
 
 /// `bouncemap plane`.
 #[derive(Args, Debug, Clone)]
+#[command(
+    mut_arg("shard", |a| a
+        .help("Compute only the I-th of N interleaved parts (pixels whose index is I − 1 modulo N), or `auto` (the Slurm array task's part); join the parts with `merge`")
+        .long_help(None)),
+    mut_arg("resume", |a| a
+        .help("Do nothing if --out FILE already holds this part of this plane, complete and verified (checked as `merge` checks a part); otherwise compute it")
+        .long_help(None)),
+    mut_arg("width", |a| a.help("Picture width in characters [default: the terminal's]")),
+    mut_arg("height", |a| a.help("Picture height in lines [default: the terminal's]")),
+    mut_arg("threads", |a| a.help("Worker threads [default: SLURM_CPUS_PER_TASK when set, else one per core]")),
+)]
 pub struct PlaneArgs {
     #[command(flatten)]
     pub spec: PlaneSpecArgs,
@@ -76,26 +87,12 @@ pub struct PlaneArgs {
     /// Output format.
     #[arg(long, value_enum, default_value_t = PlaneFormat::Csv)]
     pub format: PlaneFormat,
-    /// Write to FILE instead of stdout.
-    #[arg(long, value_name = "FILE")]
-    pub out: Option<String>,
-    /// Compute only the I-th of N interleaved parts (pixels whose index is I − 1 modulo
-    /// N), or `auto` (the Slurm array task's part); join the parts with `merge`.
-    #[arg(long, value_parser = parse_shard_arg, value_name = "I/N|auto")]
-    pub shard: Option<ShardArg>,
-    /// Do nothing if --out FILE already holds this part of this plane, complete and
-    /// verified (checked as `merge` checks a part); otherwise compute it.
-    #[arg(long)]
-    pub resume: bool,
-    /// Picture width in characters [default: the terminal's].
-    #[arg(long, value_parser = rules::CELLS.whole::<u16>(), value_name = "COLS")]
-    pub width: Option<u16>,
-    /// Picture height in lines [default: the terminal's].
-    #[arg(long, value_parser = rules::CELLS.whole::<u16>(), value_name = "LINES")]
-    pub height: Option<u16>,
-    /// Worker threads [default: SLURM_CPUS_PER_TASK when set, else one per core].
-    #[arg(long, value_parser = rules::THREADS.whole::<usize>(), value_name = "N")]
-    pub threads: Option<usize>,
+    #[command(flatten)]
+    pub part: PartArgs,
+    #[command(flatten)]
+    pub text: TextSizeArgs,
+    #[command(flatten)]
+    pub workers: ThreadsArgs,
 }
 
 /// `WxH`: plane sides, each in 1..=4000, at most 10⁶ pixels.

@@ -359,7 +359,7 @@ impl OrbitRun {
                 && (cp.velocities[i] - cp.velocities[j]).abs() <= LONG_AGREEMENT
         };
         let q = (1..p)
-            .filter(|q| p % q == 0)
+            .filter(|&q| p.is_multiple_of(q))
             .find(|&q| (0..p - q).all(|i| same(i, i + q)))
             .unwrap_or(p);
         let (p, k) = (q, k * q as i64 / p as i64);

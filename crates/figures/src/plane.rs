@@ -4,12 +4,11 @@
 //! each class's share of the pixels. The legends sit in the plot's corners where they
 //! hide least: the fewest pixels unlike the rest beneath them, no curve if avoidable.
 
+use super::classes::{of_pixel, Class, NO_LANDING};
 use super::diagram::{param_label, table_title};
 use super::svg::LEGEND_FONT;
 use super::{fmt_count, text, Axis, Color, Corner, Dash, Figure, Layer, Legend, Panel, Swatch};
-use crate::output::classes::Class;
-use crate::output::plane_file::{rows, NO_LANDING};
-use crate::output::text::shortest;
+use bouncemap_engine::error::fmt_value as shortest;
 use bouncemap_engine::plane::{Curves, Pixel, PlaneSpec};
 use bouncemap_engine::sweep::SweepParam;
 
@@ -46,11 +45,15 @@ pub fn plane_figure(spec: &PlaneSpec, pixels: &[Option<Pixel>], curves: Option<&
         .map(|c| (c.name().to_string(), Vec::new()))
         .chain([(NO_LANDING.to_string(), Vec::new())])
         .collect();
+    // The pixels of the plane's shard, each at its place under its class's name.
     let mut total = 0usize;
-    for row in rows(spec, pixels) {
+    for p in (0..spec.len()).filter(|&p| spec.holds(p)) {
         total += 1;
-        if let Some(slot) = by_class.iter_mut().find(|(n, _)| *n == row.class) {
-            slot.1.push([row.x, row.y]);
+        let class = pixels[p].as_ref().and_then(of_pixel);
+        let name = class.map_or(NO_LANDING, Class::name);
+        if let Some(slot) = by_class.iter_mut().find(|(n, _)| n == name) {
+            let (x, y) = spec.values(p);
+            slot.1.push([x, y]);
         }
     }
     // What the corners' legends would hide: each pixel's class (its index in

@@ -1,12 +1,16 @@
 //! `figure basins`: the basins of attraction of one system, each start (t̂0, w0) a
 //! cell coloured by the attractor it ends on (1 = the largest basin), with a legend
 //! naming each attractor's kind, period, largest exponent and share of the starts, and
-//! each periodic attractor's point (t̂, w) marked on the picture.
+//! each periodic attractor's point (t̂, w) marked on the picture. Also the one place for
+//! how pictures number and name attractors ([`numbers`], [`describe`], [`exponent`]),
+//! which the text pictures and the terminal application share.
 
-use super::{Axis, Color, Corner, Figure, Layer, Legend, Marker, Panel, Swatch, COLUMN};
-use crate::output::basin_map::{describe, exponent, is_attractor, numbers};
-use crate::output::text::shortest;
+use super::{
+    significant, Axis, Color, Corner, Figure, Layer, Legend, Marker, Panel, Swatch, COLUMN,
+};
 use bouncemap_engine::attractors::basins::{BasinSpec, Basins};
+use bouncemap_engine::attractors::{Attractor, Kind, Registry};
+use bouncemap_engine::error::fmt_value as shortest;
 
 /// Colours of attractors 1, 2, … (repeated beyond the list), chosen to stay apart in
 /// print and for the common colour-vision deficiencies.
@@ -27,6 +31,39 @@ pub const REST: Color = Color(200, 200, 200);
 /// The colour of attractor number `n` (1-based).
 pub fn colour(n: usize) -> Color {
     PALETTE[(n.max(1) - 1) % PALETTE.len()]
+}
+
+/// The numbering of a registry's attractors: `number[id]` (1-based, largest basin
+/// first, see [`Registry::ranked`]).
+pub fn numbers(reg: &Registry) -> Vec<usize> {
+    let mut number = vec![0; reg.attractors().len()];
+    for (rank, id) in reg.ranked().into_iter().enumerate() {
+        number[id] = rank + 1;
+    }
+    number
+}
+
+/// "periodic (1, 1)", "sticking (3, 2)", "chaotic".
+pub fn describe(a: &Attractor) -> String {
+    match a.period_label() {
+        Some(p) => format!("{} {p}", a.kind.as_str()),
+        None => a.kind.as_str().to_string(),
+    }
+}
+
+/// A largest exponent for people: `-inf` (superstable), `—` where none.
+pub fn exponent(l: Option<f64>) -> String {
+    match l {
+        Some(x) if x == f64::NEG_INFINITY => "-inf".into(),
+        Some(x) => significant(x, 4),
+        None => "—".into(),
+    }
+}
+
+/// Whether attractors of this kind are drawn in a colour of their own (resting and
+/// escaping are drawn dim).
+pub fn is_attractor(kind: Kind) -> bool {
+    !matches!(kind, Kind::Resting | Kind::Escaping)
 }
 
 /// The figure of a complete basin picture.

@@ -3,7 +3,7 @@
 //! t̂ = 0 and ½ shows as a jump, not as a steep line.
 
 use super::{Axis, Color, Corner, Dash, Figure, Layer, Legend, Panel, Swatch, FULL_WIDTH};
-use bouncemap_engine::Table;
+use bouncemap_engine::{EngineError, Table};
 
 /// The values of D shown.
 pub const FIG2_D: [f64; 4] = [0.0, 0.1, 0.5, 1.0];
@@ -31,7 +31,7 @@ pub fn derivative_lines(table: &Table, order: usize) -> Vec<Vec<[f64; 2]>> {
 }
 
 /// Fig. 2.
-pub fn fig2() -> anyhow::Result<Figure> {
+pub fn fig2() -> Result<Figure, EngineError> {
     let names = ["$F_D$", "$\u{1e1e}_D$", "$F\u{308}_D$"];
     let tables: Vec<Table> = FIG2_D
         .iter()

@@ -1,4 +1,4 @@
-//! Labels: a small markup for the paper's symbols, the fonts compiled into the binary,
+//! Labels: a small markup for the paper's symbols, the fonts compiled into the crate,
 //! and text widths measured with them (for the layout).
 //!
 //! Markup: `$…$` is math, where Latin letters and lower-case Greek are italic (as in
@@ -11,9 +11,9 @@
 use std::sync::OnceLock;
 
 /// DejaVu Sans (Book), for all upright text.
-pub const FONT_REGULAR: &[u8] = include_bytes!("../../../assets/fonts/DejaVuSans.ttf");
+pub const FONT_REGULAR: &[u8] = include_bytes!("../fonts/DejaVuSans.ttf");
 /// DejaVu Sans Oblique, for the italic symbols of math.
-pub const FONT_OBLIQUE: &[u8] = include_bytes!("../../../assets/fonts/DejaVuSans-Oblique.ttf");
+pub const FONT_OBLIQUE: &[u8] = include_bytes!("../fonts/DejaVuSans-Oblique.ttf");
 /// The family both fonts belong to, as the SVG names it.
 pub const FAMILY: &str = "DejaVu Sans";
 

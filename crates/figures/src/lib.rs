@@ -1,24 +1,48 @@
-//! Publication figures: the paper's Fig. 2–5, any sweep as a bifurcation diagram, and
-//! the terminal application's views, as SVG (vector, text as text) and PNG.
+//! Publication figures of the bouncing ball impact map: the paper's Fig. 2–5, any sweep
+//! as a bifurcation diagram, basins of attraction, two-parameter maps and the terminal
+//! application's views, as SVG (vector, text as text) and PNG. The crate draws; it
+//! writes no file (the caller puts the bytes where they belong) and reads none: its text
+//! is set in the fonts compiled into it ([`text`]), never in a system font.
 //!
 //! A figure is first described as data ([`Figure`]: panels with axes, layers of points
 //! and lines, legends, a caption), then laid out and written as SVG by [`svg`]; the PNG
-//! is that SVG rendered by resvg ([`raster`]) with the fonts compiled into the binary
-//! ([`text`]), so both formats show the same picture and no system font is needed.
+//! is that SVG rendered by resvg ([`raster`]), so both formats show the same picture.
 //! [`Figure::data`] gives the numbers behind every layer (`figure --data`).
 //!
-//! One file per family of figures builds its [`Figure`]s from engine results:
-//! [`shapes`] (Fig. 2), [`diagram`] (Fig. 3, Fig. 4's upper row, `diagram` and the
+//! One module per family of figures builds its [`Figure`]s from engine results:
+//! [`shapes`] (Fig. 2), [`diagram`] (Fig. 3, Fig. 4's upper row, any sweep and the
 //! terminal's diagram view), [`scaling`] (Fig. 4's lower row, Fig. 5), [`phase`] (the
 //! terminal's phase plot), [`lyapunov`] (a diagram over its largest exponent),
-//! [`basins`] (basins of attraction), [`plane`] (two-parameter maps). A new kind of picture is one more function returning a
-//! [`Figure`] (and one more [`FigureName`](crate::config::flags::FigureName) for the
-//! command).
+//! [`basins`] (basins of attraction; how attractors are numbered and named in pictures),
+//! [`plane`] (two-parameter maps). [`classes`] says what an orbit is as the pictures
+//! colour it (period 1, 2, 4, 8, sticking, chaotic …). A new kind of picture is one more
+//! function returning a [`Figure`].
 //!
-//! For the terminal application: [`diagram::diagram_view`], [`phase::phase_view`],
-//! and [`write`] / [`export`] to put them in files.
+//! # Drawing a figure as a library user
+//!
+//! ```
+//! use bouncemap_engine::jobs::Executor;
+//! use bouncemap_engine::sweep::{collect, SweepParam, SweepSpec};
+//! use bouncemap_engine::Table;
+//! use bouncemap_figures::{diagram, render, ImageFormat, DEFAULT_DPI};
+//!
+//! // A small bifurcation diagram of F_0.1 at r = 0.8, α from 0.45 to 0.6.
+//! let mut spec = SweepSpec::new(Table::fd(0.1)?, 0.45, 0.8, SweepParam::Alpha, 0.45, 0.6, 40);
+//! spec.transient = 2000;
+//! spec.keep = 20;
+//! let values = collect(&spec, &Executor::new(1)?)?;
+//! let figure = diagram::diagram_figure("diagram", &spec, &values);
+//!
+//! // The SVG as text, at the figure's own size; the PNG as bytes, 5 × 3.5 inches.
+//! let svg = bouncemap_figures::svg::to_svg(&figure, figure.size);
+//! assert!(svg.contains("<svg"));
+//! let png = render(&figure, ImageFormat::Png, Some((5.0, 3.5)), DEFAULT_DPI)?;
+//! assert_eq!(&png[..4], b"\x89PNG");
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
 
 pub mod basins;
+pub mod classes;
 pub mod diagram;
 pub mod lyapunov;
 pub mod phase;
@@ -32,10 +56,8 @@ pub mod text;
 pub use diagram::{diagram_view, DiagramAxis};
 pub use phase::phase_view;
 
-use crate::output::sink::AtomicFile;
 use serde::Serialize;
-use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// A colour, sRGB.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -301,7 +323,7 @@ pub const COLUMN: f64 = 3.4;
 pub const FULL_WIDTH: f64 = 7.0;
 
 /// Output format of a figure file.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ImageFormat {
     /// Vector graphics, text as text.
     Svg,
@@ -331,6 +353,18 @@ impl ImageFormat {
 /// Pixels per inch when none is asked for.
 pub const DEFAULT_DPI: u32 = 300;
 
+/// Why a figure could not be drawn: one line.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct FigureError(pub String);
+
+impl std::fmt::Display for FigureError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for FigureError {}
+
 /// The file's bytes: `figure` at `size` inches (its own size if None), as SVG or as
 /// PNG at `dpi`.
 pub fn render(
@@ -338,39 +372,13 @@ pub fn render(
     format: ImageFormat,
     size: Option<(f64, f64)>,
     dpi: u32,
-) -> anyhow::Result<Vec<u8>> {
+) -> Result<Vec<u8>, FigureError> {
     let size = size.unwrap_or(figure.size);
     let svg = svg::to_svg(figure, size);
     match format {
         ImageFormat::Svg => Ok(svg.into_bytes()),
         ImageFormat::Png => raster::png(&svg, size, dpi),
     }
-}
-
-/// Write `figure` to `path` (atomically: a temporary beside it, renamed into place when
-/// complete). Errors name the file.
-pub fn write(
-    figure: &Figure,
-    path: &Path,
-    format: ImageFormat,
-    size: Option<(f64, f64)>,
-    dpi: u32,
-) -> anyhow::Result<()> {
-    let bytes = render(figure, format, size, dpi)?;
-    let mut f = AtomicFile::create(path).map_err(anyhow::Error::msg)?;
-    f.write_all(&bytes)
-        .map_err(|e| anyhow::anyhow!("cannot write {}: {e}", path.display()))?;
-    f.commit()
-}
-
-/// Write `figure` as `stem.svg` and `stem.png` (at its own size, [`DEFAULT_DPI`]):
-/// the terminal application's export. Returns the two paths.
-pub fn export(figure: &Figure, stem: &Path) -> anyhow::Result<(PathBuf, PathBuf)> {
-    let svg = stem.with_extension("svg");
-    let png = stem.with_extension("png");
-    write(figure, &svg, ImageFormat::Svg, None, DEFAULT_DPI)?;
-    write(figure, &png, ImageFormat::Png, None, DEFAULT_DPI)?;
-    Ok((svg, png))
 }
 
 /// The numbers behind a figure, for `figure --data`.
@@ -466,6 +474,21 @@ impl Figure {
     }
 }
 
+/// `x` with `digits` significant digits in fixed notation (scientific beyond 1e15 or
+/// below 1e-6), for aligned text columns and legends that show no digits beyond f64
+/// precision.
+pub fn significant(x: f64, digits: usize) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return format!("{x:.prec$}", prec = digits.saturating_sub(1));
+    }
+    let mag = x.abs().log10().floor() as i64;
+    if mag >= digits as i64 || mag < -6 {
+        return format!("{x:.prec$e}", prec = digits.saturating_sub(1));
+    }
+    let decimals = (digits as i64 - 1 - mag).max(0) as usize;
+    format!("{x:.decimals$}")
+}
+
 /// A number with `digits` decimals, with a true minus sign.
 pub fn fmt_fixed(v: f64, digits: usize) -> String {
     let s = format!("{v:.digits$}");
@@ -520,70 +543,6 @@ mod tests {
         assert_eq!(fmt_fixed(-0.5, 1), "\u{2212}0.5");
         assert_eq!(fmt_fixed(-0.0001, 2), "0.00");
         assert_eq!(fmt_fixed(2.5, 0), "2");
-    }
-
-    #[test]
-    fn the_terminal_views_export_as_svg_and_png() {
-        use bouncemap_engine::map::EventKind;
-        use bouncemap_engine::sweep::{Outcome, SweepParam, SweepPoint, SweepSpec, ValueResult};
-        let spec = SweepSpec::new(
-            bouncemap_engine::Table::fd(0.1).unwrap(),
-            0.45,
-            0.8,
-            SweepParam::Alpha,
-            0.45,
-            0.6,
-            3,
-        );
-        let values: Vec<ValueResult> = (0..3)
-            .map(|i| ValueResult {
-                index: i,
-                value: spec.value(i),
-                complete: true,
-                points: vec![SweepPoint {
-                    phase: 0.2,
-                    v: 0.5,
-                    kind: EventKind::Impact,
-                }],
-                outcome: Outcome::Unsettled,
-                sticking: i == 2,
-                events: 1,
-                lyapunov: None,
-                attractors: Vec::new(),
-            })
-            .collect();
-        let dir = std::env::temp_dir().join(format!("bouncemap-export-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
-        let fig = diagram_view(
-            &spec,
-            &values,
-            Some((0.5, 0.6)),
-            DiagramAxis::Velocity,
-            "fd:0.1  r = 0.8  zoom 0.5..0.6",
-        );
-        assert_eq!(fig.panels[0].x.lo, 0.5);
-        let (svg, png) = export(&fig, &dir.join("bouncemap-diagram-1")).unwrap();
-        assert_eq!(svg, dir.join("bouncemap-diagram-1.svg"));
-        assert!(std::fs::read_to_string(&svg)
-            .unwrap()
-            .contains("zoom 0.5..0.6"));
-        assert_eq!(&std::fs::read(&png).unwrap()[..4], b"\x89PNG");
-        let phase = phase_view(&[(0.1, 0.4), (0.7, -0.2)], "orbit");
-        write(
-            &phase,
-            &dir.join("p.svg"),
-            ImageFormat::Svg,
-            Some((4.0, 3.0)),
-            100,
-        )
-        .unwrap();
-        let text = std::fs::read_to_string(dir.join("p.svg")).unwrap();
-        assert!(
-            text.contains("width=\"288pt\" height=\"216pt\""),
-            "4 × 3 inches"
-        );
-        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]

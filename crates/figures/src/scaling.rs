@@ -12,7 +12,7 @@ use bouncemap_engine::orbits::scaling::{
     analytic_intercepts_corrected, analytic_intercepts_paper, log_spaced, Fit, ScalingRow,
     EXACT_RANGE, SIM_RANGE,
 };
-use bouncemap_engine::Table;
+use bouncemap_engine::{EngineError, Table};
 
 /// The D values of Fig. 5: 13 log-spaced from 0.001 to 1 (`scaling --d 0.001..1:13`).
 pub const FIG5_D: (f64, f64, usize) = (0.001, 1.0, 13);
@@ -186,7 +186,7 @@ pub fn fig4(upper: Vec<Panel>, rows: &[ScalingRow], upper_caption: Vec<String>) 
 /// Fig. 5: b_T (blue) and b_t (red) against D: fits to exact solutions (discs) and to
 /// simulated orbits (circles), the paper's Eqs. (bT), (bt) as printed (dashed) and
 /// corrected (solid).
-pub fn fig5(rows: &[ScalingRow], r: f64, k: u32) -> anyhow::Result<Figure> {
+pub fn fig5(rows: &[ScalingRow], r: f64, k: u32) -> Result<Figure, EngineError> {
     let ds: Vec<f64> = rows.iter().map(|row| row.d).collect();
     let dmin = ds.iter().copied().fold(f64::INFINITY, f64::min).min(1.0);
     let dmax = ds.iter().copied().fold(0.0, f64::max).max(dmin);

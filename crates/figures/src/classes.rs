@@ -1,7 +1,7 @@
-//! What a value's orbit is, as the diagram colours it: period 1, 2, 4, 8, another
+//! What a value's orbit is, as the pictures colour it: period 1, 2, 4, 8, another
 //! cycle, sticking, chaotic, or unresolved. The one place for the classes, their order,
-//! their legend labels and how a sweep result is classified (the terminal
-//! application's period colours and any figure that colours a diagram use these).
+//! their names and legend labels and how a sweep result or a pixel is classified (the
+//! figures, the text pictures and the terminal application's period colours use these).
 //!
 //! A value is *sticking* when its points include a stick or a release, or its exponent
 //! is −∞ (a stick–release cycle, a ball at rest); *chaotic* when it did not settle and
@@ -12,6 +12,9 @@
 use bouncemap_engine::attractors::{Kind, CHAOS_FLOOR};
 use bouncemap_engine::plane::Pixel;
 use bouncemap_engine::sweep::{Outcome, ValueAttractor, ValueResult};
+
+/// The class name of a pixel where the ball never lands (or rests): no class.
+pub const NO_LANDING: &str = "no-landing";
 
 /// The class of a value's orbit.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]

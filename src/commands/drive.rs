@@ -1,0 +1,87 @@
+//! One engine job driven to its end on the calling thread, with progress on stderr:
+//! the loop every headless computation runs (sweeps, basin pictures, planes, the
+//! figures' sweeps), whatever its job and the batches it streams; and [`fill`], that
+//! loop for a picture the job fills in chunk by chunk.
+
+use super::progress::Progress;
+use bouncemap_engine::attractors::basins::{BasinChunk, Basins};
+use bouncemap_engine::jobs::{Batch, Handle, Summary};
+use bouncemap_engine::plane::{Plane, PlaneChunk};
+use std::sync::mpsc::RecvTimeoutError;
+use std::time::Duration;
+
+/// How long the loop waits for a batch before it redraws the progress anyway.
+const TICK: Duration = Duration::from_millis(200);
+
+/// Drive the job behind `handle` to its end: every batch of the current generation goes
+/// to `each` as it arrives (with the handle, to acknowledge what was used), and
+/// `progress` is brought up to date between batches, at least every [`TICK`]. An error
+/// from `each` ends the drive at once (dropping the handle stops the job). Returns the
+/// job's summary; whether the results are complete is the caller's to check.
+pub fn drive_job<T>(
+    handle: Handle<T>,
+    mut progress: Progress,
+    mut each: impl FnMut(&Handle<T>, Batch<T>) -> anyhow::Result<()>,
+) -> anyhow::Result<Summary> {
+    loop {
+        match handle.receiver().recv_timeout(TICK) {
+            Ok(b) if handle.is_current(&b) => each(&handle, b)?,
+            Ok(_) | Err(RecvTimeoutError::Timeout) => {}
+            Err(RecvTimeoutError::Disconnected) => break,
+        }
+        progress.update(&handle.progress());
+    }
+    let summary = handle.wait();
+    progress.finish(&summary.progress);
+    Ok(summary)
+}
+
+/// A picture over a grid that a job fills in, chunk by chunk (a basin picture, a plane):
+/// complete when it covers every unit of its job.
+pub trait Picture {
+    type Chunk;
+    fn absorb(&mut self, chunk: Self::Chunk);
+    /// Grid points it holds.
+    fn covered(&self) -> usize;
+}
+
+/// The engine's pictures, each filled by the chunks of its job.
+macro_rules! picture {
+    ($($picture:ty: $chunk:ty),*) => {$(
+        impl Picture for $picture {
+            type Chunk = $chunk;
+            fn absorb(&mut self, chunk: $chunk) {
+                <$picture>::absorb(self, chunk);
+            }
+            fn covered(&self) -> usize {
+                <$picture>::covered(self)
+            }
+        }
+    )*};
+}
+
+picture!(Basins: BasinChunk, Plane: PlaneChunk);
+
+/// Drive the job behind `handle` to its end ([`drive_job`]), filling `picture` with its
+/// chunks. A picture left incomplete is an error: "`what` stopped after N of M
+/// (units)".
+pub fn fill<P: Picture>(
+    handle: Handle<P::Chunk>,
+    progress: Progress,
+    mut picture: P,
+    what: &str,
+) -> anyhow::Result<P> {
+    let unit = progress.unit();
+    let summary = drive_job(handle, progress, |_, b| {
+        picture.absorb(b.data);
+        Ok(())
+    })?;
+    let total = summary.progress.total;
+    if picture.covered() < total {
+        anyhow::bail!(
+            "{what} stopped after {} of {total} {unit}",
+            picture.covered()
+        );
+    }
+    Ok(picture)
+}

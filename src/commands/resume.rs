@@ -1,0 +1,110 @@
+//! `--resume` for the commands that write part files (`sweep`, `plane`): a part that is
+//! already there, complete and verified (checked as `merge` checks a part), of this run's
+//! layout, tool, specification and shard, is left as it is and nothing is computed;
+//! anything else is computed, and stderr says why.
+
+use crate::config::files::{read_text, LARGE_FILE};
+use crate::config::flags::PartArgs;
+use crate::config::InputError;
+use crate::output::part_file::{
+    differing_setting, read_part, shard_name, spec_text, FileKind, Layout, TOOL,
+};
+use bouncemap_engine::sweep::Shard;
+use clap::ValueEnum;
+use std::path::Path;
+
+/// The layout an output format writes: csv or json (a part file), None for any other
+/// (braille text).
+pub fn part_layout(format: impl ValueEnum) -> Option<Layout> {
+    match format.to_possible_value()?.get_name() {
+        "csv" => Some(Layout::Csv),
+        "json" => Some(Layout::Json),
+        _ => None,
+    }
+}
+
+/// With `--resume` (in `args`): whether `--out` already holds this run's part (kind
+/// `K`, settings `header`, shard `shard`, written as `format` writes), so the run can end
+/// at once. Says on stderr what it found. `--resume` needs `--out` and a format whose
+/// files can be verified (csv or json).
+pub fn already_written<K: FileKind>(
+    args: &PartArgs,
+    format: impl ValueEnum,
+    header: &K::Header,
+    shard: Shard,
+) -> Result<bool, InputError> {
+    if !args.resume {
+        return Ok(false);
+    }
+    let layout = part_layout(format).ok_or_else(|| {
+        InputError(
+            "--resume with --format braille: valid with --format csv or json, whose files can be verified".into(),
+        )
+    })?;
+    let out = args.output.out.as_deref().ok_or_else(|| {
+        InputError(
+            "--resume without --out: valid with --out FILE, the file to check and write".into(),
+        )
+    })?;
+    match check::<K>(Path::new(out), layout, header, shard) {
+        Ok(done) => {
+            eprintln!("bouncemap: --resume: {done}: nothing to compute");
+            Ok(true)
+        }
+        Err(why) => {
+            eprintln!("bouncemap: --resume: {why}; computing it");
+            Ok(false)
+        }
+    }
+}
+
+/// Whether `path` already holds the part of kind `K` with settings `header` and shard
+/// `shard` that this run would write, complete and verified: read and checked as `merge`
+/// checks a part (provenance, specification against its hash, every value inside the
+/// shard, end line, counts, checksum), then compared with this run (layout, tool,
+/// specification, shard). `Ok` says what is there; `Err` says why it must be computed.
+pub fn check<K: FileKind>(
+    path: &Path,
+    layout: Layout,
+    header: &K::Header,
+    shard: Shard,
+) -> Result<String, String> {
+    let shown = path.display().to_string();
+    if std::fs::symlink_metadata(path).is_err_and(|e| e.kind() == std::io::ErrorKind::NotFound) {
+        return Err(format!("no {shown} yet"));
+    }
+    let text = read_text(path, "the existing file", LARGE_FILE).map_err(|e| e.0)?;
+    let part = read_part::<K>(&shown, &text)?;
+    let kind = K::KIND;
+    if part.layout != layout {
+        return Err(format!(
+            "{shown} is a {} {kind} file and this run writes {}",
+            part.layout.name(),
+            layout.name()
+        ));
+    }
+    if part.provenance.tool != TOOL {
+        return Err(format!(
+            "{shown} was written by {}, not by this {TOOL}",
+            part.provenance.tool
+        ));
+    }
+    if spec_text(&part.header) != spec_text(header) {
+        return Err(format!(
+            "{shown} holds another {kind} ({} differs from this run's)",
+            differing_setting(&part.header, header)
+        ));
+    }
+    let shard = shard_name(shard);
+    if part.provenance.shard != shard {
+        return Err(format!(
+            "{shown} holds shard {} of this {kind}, not shard {shard}",
+            part.provenance.shard
+        ));
+    }
+    Ok(format!(
+        "{shown} already holds shard {shard} of this {kind}, complete and verified ({} {})",
+        part.values.len(),
+        K::UNIT
+    ))
+}
