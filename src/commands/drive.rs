@@ -4,9 +4,8 @@
 //! loop for a picture the job fills in chunk by chunk.
 
 use super::progress::Progress;
-use bouncemap_engine::attractors::basins::{BasinChunk, Basins};
 use bouncemap_engine::jobs::{Batch, Handle, Summary};
-use bouncemap_engine::plane::{Plane, PlaneChunk};
+use bouncemap_engine::picture::{Cells, Chunk, Filled};
 use std::sync::mpsc::RecvTimeoutError;
 use std::time::Duration;
 
@@ -36,37 +35,11 @@ pub fn drive_job<T>(
     Ok(summary)
 }
 
-/// A picture over a grid that a job fills in, chunk by chunk (a basin picture, a plane):
-/// complete when it covers every unit of its job.
-pub trait Picture {
-    type Chunk;
-    fn absorb(&mut self, chunk: Self::Chunk);
-    /// Grid points it holds.
-    fn covered(&self) -> usize;
-}
-
-/// The engine's pictures, each filled by the chunks of its job.
-macro_rules! picture {
-    ($($picture:ty: $chunk:ty),*) => {$(
-        impl Picture for $picture {
-            type Chunk = $chunk;
-            fn absorb(&mut self, chunk: $chunk) {
-                <$picture>::absorb(self, chunk);
-            }
-            fn covered(&self) -> usize {
-                <$picture>::covered(self)
-            }
-        }
-    )*};
-}
-
-picture!(Basins: BasinChunk, Plane: PlaneChunk);
-
 /// Drive the job behind `handle` to its end ([`drive_job`]), filling `picture` with its
 /// chunks. A picture left incomplete is an error: "`what` stopped after N of M
 /// (units)".
-pub fn fill<P: Picture>(
-    handle: Handle<P::Chunk>,
+pub fn fill<P: Filled>(
+    handle: Handle<Chunk<<P::Cells as Cells>::Cell>>,
     progress: Progress,
     mut picture: P,
     what: &str,

@@ -250,6 +250,28 @@ impl<T> Picture<T> {
     }
 }
 
+/// A picture over a grid as its job fills it in: what every front end that starts,
+/// fills and draws one (the basins, the plane) needs, whatever the picture.
+pub trait Filled: Sized {
+    /// What is computed (the grid's size is part of it).
+    type Spec: Clone + PartialEq;
+    /// What one cell computes.
+    type Cells: Cells;
+
+    /// The job for `spec`, validated.
+    fn job(spec: &Self::Spec) -> Result<PictureJob<Self::Cells>, crate::error::EngineError>;
+    /// An empty picture of `spec`.
+    fn empty(spec: &Self::Spec) -> Self;
+    /// Take a chunk of the job.
+    fn absorb(&mut self, chunk: Chunk<<Self::Cells as Cells>::Cell>);
+    /// Cells across and up.
+    fn size(&self) -> (usize, usize);
+    /// Cells done (computed or left out).
+    fn covered(&self) -> usize;
+    /// Whether every cell of the job is done.
+    fn complete(&self) -> bool;
+}
+
 /// Puts chunks back in the job's order, whatever order they arrive in.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Sequencer<T> {

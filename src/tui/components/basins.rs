@@ -8,7 +8,7 @@
 //! its progress and the halves are [`super::grid_picture`]'s; the spec, the colours,
 //! the textures and the legend are this panel's.
 
-use super::grid_picture::{draw_halves, GridPicture, Picture};
+use super::grid_picture::{draw_halves, GridPicture};
 use super::{panel, Component, Effect, JobMsg, Registered, Shared, Workers};
 use crate::output::basin_map::{self, describe, exponent, numbers, texture};
 use crate::output::hitgrid::Range;
@@ -16,7 +16,7 @@ use crate::tui::keymap::Action;
 use crate::tui::layout::plot_area_within;
 use crate::tui::params::{ParamId, Touch};
 use crate::tui::plot::draw_axes;
-use bouncemap_engine::attractors::basins::{BasinChunk, BasinSpec, Basins, BasinsJob};
+use bouncemap_engine::attractors::basins::{BasinChunk, BasinSpec, Basins};
 use bouncemap_engine::attractors::Kind;
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
@@ -27,36 +27,6 @@ use ratatui::widgets::{Paragraph, Widget};
 const LABEL_W: u16 = 4;
 /// Legend lines at most.
 const LEGEND: u16 = 3;
-
-impl Picture for Basins {
-    type Spec = BasinSpec;
-    type Chunk = BasinChunk;
-    type Job = BasinsJob;
-
-    fn job(spec: &BasinSpec) -> Result<BasinsJob, String> {
-        BasinsJob::new(spec.clone()).map_err(|e| e.to_string())
-    }
-
-    fn empty(spec: &BasinSpec) -> Basins {
-        Basins::new(spec)
-    }
-
-    fn absorb(&mut self, chunk: BasinChunk) {
-        Basins::absorb(self, chunk);
-    }
-
-    fn size(&self) -> (usize, usize) {
-        self.grid()
-    }
-
-    fn covered(&self) -> usize {
-        Basins::covered(self)
-    }
-
-    fn complete(&self) -> bool {
-        Basins::complete(self)
-    }
-}
 
 /// The basins panel.
 #[derive(Default)]

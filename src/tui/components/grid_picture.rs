@@ -5,43 +5,23 @@
 //! for the title, the refusal shown in place of the picture, and the cells drawn as an
 //! upper and a lower half in colour.
 //!
-//! [`GridPicture`] is generic over the [`Picture`] (what a cell holds, what a chunk
-//! brings, which job computes it), so a panel keeps only what is its own: the spec it
+//! [`GridPicture`] is generic over the engine's [`Filled`] picture (what a cell holds,
+//! what a chunk brings, which job computes it), so a panel keeps only what is its own: the spec it
 //! asks for, its colours and text fallback, its legend and extras.
 
 use super::{Address, Effect, JobMsg, Shared, Target, Workers};
-use bouncemap_engine::jobs::Job;
+use bouncemap_engine::picture::{Cells, Chunk, Filled};
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::style::{Color, Style};
 use ratatui::widgets::{Paragraph, Widget};
 use std::time::Instant;
 
-/// A picture over a grid that an engine job fills in chunk by chunk.
-pub trait Picture: Sized {
-    /// What is computed (the grid's size is part of it).
-    type Spec: Clone + PartialEq;
-    /// What the job streams.
-    type Chunk: Send + 'static;
-    /// The job that computes it.
-    type Job: Job<Output = Self::Chunk>;
-
-    /// The job for `spec`, or why there is none.
-    fn job(spec: &Self::Spec) -> Result<Self::Job, String>;
-    /// An empty picture of `spec`.
-    fn empty(spec: &Self::Spec) -> Self;
-    /// Take a chunk.
-    fn absorb(&mut self, chunk: Self::Chunk);
-    /// Cells across and up.
-    fn size(&self) -> (usize, usize);
-    /// Cells done.
-    fn covered(&self) -> usize;
-    /// Whether every cell is done.
-    fn complete(&self) -> bool;
-}
+/// The chunks a picture's job streams.
+pub type ChunkOf<P> = Chunk<<<P as Filled>::Cells as Cells>::Cell>;
 
 /// A grid picture in a panel: shown or not, its job, its progress.
-pub struct GridPicture<P: Picture> {
+pub struct GridPicture<P: Filled> {
     /// Whether the panel is shown (in the place of another).
     pub shown: bool,
     /// The generation of the running job.
@@ -60,7 +40,7 @@ pub struct GridPicture<P: Picture> {
     grid: (usize, usize),
 }
 
-impl<P: Picture> Default for GridPicture<P> {
+impl<P: Filled> Default for GridPicture<P> {
     fn default() -> Self {
         GridPicture {
             shown: false,
@@ -76,7 +56,7 @@ impl<P: Picture> Default for GridPicture<P> {
     }
 }
 
-impl<P: Picture> GridPicture<P> {
+impl<P: Filled> GridPicture<P> {
     /// Cells across and up for the plot at the last layout.
     pub fn grid(&self) -> (usize, usize) {
         self.grid
@@ -112,7 +92,12 @@ impl<P: Picture> GridPicture<P> {
 
     /// Start the job for `spec` with an empty picture; if it is refused, stop the
     /// previous one and keep the reason. True if it started.
-    pub fn run(&mut self, spec: P::Spec, at: Address<JobMsg<P::Chunk>>, workers: &Workers) -> bool {
+    pub fn run(
+        &mut self,
+        spec: P::Spec,
+        at: Address<JobMsg<ChunkOf<P>>>,
+        workers: &Workers,
+    ) -> bool {
         match P::job(&spec) {
             Ok(job) => {
                 self.gen = workers.start_job(at, job);
@@ -126,7 +111,7 @@ impl<P: Picture> GridPicture<P> {
             }
             Err(e) => {
                 workers.cancel(at.to);
-                self.error = Some(e);
+                self.error = Some(e.to_string());
                 self.done = true;
                 false
             }
@@ -135,7 +120,12 @@ impl<P: Picture> GridPicture<P> {
 
     /// A message of the job started under `gen`: a chunk is absorbed (its pass is
     /// returned), the end noted; messages of older jobs are dropped.
-    pub fn receive(&mut self, gen: u64, msg: JobMsg<P::Chunk>, shared: &mut Shared) -> Option<u32> {
+    pub fn receive(
+        &mut self,
+        gen: u64,
+        msg: JobMsg<ChunkOf<P>>,
+        shared: &mut Shared,
+    ) -> Option<u32> {
         if gen != self.gen {
             return None;
         }

@@ -15,7 +15,7 @@
 //! the halves are [`super::grid_picture`]'s; the spec, the classes' colours and glyphs,
 //! the curves, the legend and the cursor are this panel's.
 
-use super::grid_picture::{draw_halves, GridPicture, Picture};
+use super::grid_picture::{draw_halves, GridPicture};
 use super::{is_focused, panel, Component, Effect, JobMsg, Registered, Shared, Target, Workers};
 use crate::output::classes::{of_pixel, Class};
 use crate::output::hitgrid::Range;
@@ -24,7 +24,7 @@ use crate::tui::keymap::Action;
 use crate::tui::layout::{plot_area_within, Slot};
 use crate::tui::params::{default_window, ParamId, Params};
 use crate::tui::plot::draw_axes;
-use bouncemap_engine::plane::{curves, Axis, Curves, Plane, PlaneChunk, PlaneJob, PlaneSpec};
+use bouncemap_engine::plane::{curves, Axis, Curves, Plane, PlaneChunk, PlaneSpec};
 use bouncemap_engine::sweep::SweepParam;
 use bouncemap_engine::Table;
 use ratatui::buffer::Buffer;
@@ -34,36 +34,6 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::Widget;
 
 const LABEL_W: u16 = 6;
-
-impl Picture for Plane {
-    type Spec = PlaneSpec;
-    type Chunk = PlaneChunk;
-    type Job = PlaneJob;
-
-    fn job(spec: &PlaneSpec) -> Result<PlaneJob, String> {
-        PlaneJob::new(spec.clone()).map_err(|e| e.to_string())
-    }
-
-    fn empty(spec: &PlaneSpec) -> Plane {
-        Plane::new(spec)
-    }
-
-    fn absorb(&mut self, chunk: PlaneChunk) {
-        Plane::absorb(self, chunk);
-    }
-
-    fn size(&self) -> (usize, usize) {
-        Plane::size(self)
-    }
-
-    fn covered(&self) -> usize {
-        Plane::covered(self)
-    }
-
-    fn complete(&self) -> bool {
-        Plane::complete(self)
-    }
-}
 
 /// The plane view.
 #[derive(Default)]

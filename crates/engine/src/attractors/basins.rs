@@ -12,7 +12,7 @@
 use super::{settle, Found, Registry, Settle};
 use crate::error::EngineError;
 use crate::limits;
-use crate::picture::{Cells, Chunk, Picture, PictureJob, Sequencer};
+use crate::picture::{Cells, Chunk, Filled, Picture, PictureJob, Sequencer};
 use crate::run::start::launch;
 use crate::system::System;
 
@@ -223,6 +223,35 @@ impl Basins {
     /// that of the nearest coarser grid point already assigned (the block it lies in).
     pub fn preview_label(&self, i: usize, j: usize) -> Option<u32> {
         self.labels.preview(i, j).copied()
+    }
+}
+
+impl Filled for Basins {
+    type Spec = BasinSpec;
+    type Cells = BasinCells;
+
+    fn job(spec: &BasinSpec) -> Result<BasinsJob, EngineError> {
+        BasinsJob::new(spec.clone())
+    }
+
+    fn empty(spec: &BasinSpec) -> Basins {
+        Basins::new(spec)
+    }
+
+    fn absorb(&mut self, chunk: BasinChunk) {
+        Basins::absorb(self, chunk);
+    }
+
+    fn size(&self) -> (usize, usize) {
+        self.grid()
+    }
+
+    fn covered(&self) -> usize {
+        Basins::covered(self)
+    }
+
+    fn complete(&self) -> bool {
+        Basins::complete(self)
     }
 }
 

@@ -7,7 +7,7 @@ use crate::error::EngineError;
 use crate::grid::Shard;
 use crate::jobs::{Control, Executor};
 use crate::map::ImpactMap;
-use crate::picture::{Cells, Chunk, Picture, PictureJob};
+use crate::picture::{Cells, Chunk, Filled, Picture, PictureJob};
 use crate::run::{has_sticking, Advance, OrbitRun};
 
 /// One work item's results: (pixel index, result); a pixel whose system or start is
@@ -102,6 +102,35 @@ impl Plane {
     /// Every pixel, index j·W + i.
     pub fn pixels(&self) -> &[Option<Pixel>] {
         self.cells()
+    }
+}
+
+impl Filled for Plane {
+    type Spec = PlaneSpec;
+    type Cells = PlaneCells;
+
+    fn job(spec: &PlaneSpec) -> Result<PlaneJob, EngineError> {
+        PlaneJob::new(spec.clone())
+    }
+
+    fn empty(spec: &PlaneSpec) -> Plane {
+        Plane::new(spec)
+    }
+
+    fn absorb(&mut self, chunk: PlaneChunk) {
+        Picture::absorb(self, chunk);
+    }
+
+    fn size(&self) -> (usize, usize) {
+        Picture::size(self)
+    }
+
+    fn covered(&self) -> usize {
+        Picture::covered(self)
+    }
+
+    fn complete(&self) -> bool {
+        Picture::complete(self)
     }
 }
 
