@@ -5,7 +5,7 @@
 //! * [`config`]: the configuration stage: the flags (clap definitions), the one table
 //!   of parameter rules, the one table-spec parser, typed presets, and the conversion of
 //!   all of them into validated engine values.
-//! * [`commands`]: one file per headless subcommand.
+//! * `commands`: one file per headless subcommand.
 //! * [`output`]: typed records written as csv and json, the hit-count grid and its text
 //!   form.
 //! * [`tui`]: the terminal application.

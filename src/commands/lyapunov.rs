@@ -14,7 +14,8 @@ use crate::output::text::significant;
 use crate::output::Format;
 use bouncemap_engine::attractors::lyapunov::{Method, Spectrum};
 use bouncemap_engine::attractors::{self, Found, Settle};
-use bouncemap_engine::sweep::{near_fixed_point, Periodicity};
+use bouncemap_engine::run::detect::Periodicity;
+use bouncemap_engine::run::start::near_fixed_point;
 use std::io::{self, BufWriter, Write};
 
 pub fn run(args: &LyapunovArgs) -> anyhow::Result<()> {

@@ -85,7 +85,7 @@ pub fn compute(spec: &PlaneSpec, executor: &Executor) -> anyhow::Result<Plane> {
 }
 
 fn title(spec: &PlaneSpec) -> String {
-    let axis = |a: &bouncemap_engine::plane::Axis| {
+    let axis = |a: &bouncemap_engine::grid::Axis| {
         format!(
             "{} ∈ [{}, {}] ({})",
             a.param.as_str(),

@@ -9,7 +9,7 @@ use crate::config::InputError;
 use crate::output::part_file::{
     differing_setting, read_part, shard_name, spec_text, FileKind, Layout, TOOL,
 };
-use bouncemap_engine::sweep::Shard;
+use bouncemap_engine::grid::Shard;
 use clap::ValueEnum;
 use std::path::Path;
 

@@ -157,7 +157,9 @@ fn braille_size(args: &SweepArgs) -> (u16, u16) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use bouncemap_engine::sweep::{Shard, SweepParam, Warm};
+    use bouncemap_engine::grid::Shard;
+    use bouncemap_engine::grid::SweepParam;
+    use bouncemap_engine::sweep::Warm;
     use bouncemap_engine::Table;
 
     fn small(keep: usize, shard: Shard) -> SweepSpec {

@@ -6,8 +6,10 @@ use super::rules::{self, Rule};
 use super::sweep::shard;
 use super::table_spec::TableSpec;
 use super::InputError;
-use bouncemap_engine::plane::{Axis, PlaneSpec, PlaneStart};
-use bouncemap_engine::sweep::{Shard, SweepParam};
+use bouncemap_engine::grid::Axis;
+use bouncemap_engine::grid::Shard;
+use bouncemap_engine::grid::SweepParam;
+use bouncemap_engine::plane::{PlaneSpec, PlaneStart};
 
 /// The rule of an axis parameter.
 fn rule_of(p: SweepParam) -> Rule {

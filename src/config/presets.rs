@@ -6,7 +6,8 @@
 use super::rules;
 use super::table_spec::TableSpec;
 use super::InputError;
-use bouncemap_engine::sweep::{InitialSpec, SweepParam, SweepSpec};
+use bouncemap_engine::grid::SweepParam;
+use bouncemap_engine::sweep::{InitialSpec, SweepSpec};
 use serde::Deserialize;
 
 /// The swept parameter, as flags and preset files name it.

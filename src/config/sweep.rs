@@ -7,7 +7,9 @@ use super::rules::{self, Rule};
 use super::table_spec::TableSpec;
 use super::InputError;
 use crate::config::flags::{ShardArg, SweepArgs, SweepSpecArgs};
-use bouncemap_engine::sweep::{InitialSpec, Periodicity, Shard, SweepSpec, Warm};
+use bouncemap_engine::grid::Shard;
+use bouncemap_engine::run::detect::Periodicity;
+use bouncemap_engine::sweep::{InitialSpec, SweepSpec, Warm};
 use bouncemap_engine::Table;
 
 /// A number or a window LO..HI.

@@ -4,7 +4,9 @@
 
 use super::hitgrid::{HitGrid, Marker, Range};
 use super::text::shortest;
-use bouncemap_engine::sweep::{Outcome, SweepParam, SweepSpec, ValueResult};
+use bouncemap_engine::grid::SweepParam;
+use bouncemap_engine::run::Outcome;
+use bouncemap_engine::sweep::{SweepSpec, ValueResult};
 
 /// Width of the phase labels left of the plot.
 const GUTTER: usize = 6;
@@ -123,7 +125,7 @@ fn fixed_params(spec: &SweepSpec) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use bouncemap_engine::sweep::SweepPoint;
+    use bouncemap_engine::run::Point as SweepPoint;
     use bouncemap_engine::{EventKind, Table};
 
     #[test]

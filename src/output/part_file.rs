@@ -29,7 +29,7 @@
 //! rows' (the sections') bytes: it catches damage, not forgery. Every refusal is one
 //! line naming the file (and the line).
 
-use bouncemap_engine::sweep::Shard;
+use bouncemap_engine::grid::Shard;
 use serde::de::{self, DeserializeOwned, DeserializeSeed, MapAccess, Visitor};
 use serde::ser::SerializeStruct;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};

@@ -6,7 +6,7 @@
 pub use bouncemap_figures::significant;
 
 /// A complex number with 12 decimals: `re` or `re±imi`.
-pub fn complex(z: bouncemap_engine::orbits::Complex) -> String {
+pub fn complex(z: bouncemap_engine::linalg::Complex) -> String {
     if z.im == 0.0 {
         format!("{:.12}", z.re)
     } else {

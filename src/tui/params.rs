@@ -13,8 +13,9 @@ use crate::config::presets::Preset;
 use crate::config::rules::{self, Rule};
 use crate::config::table_spec::{TableSpec, TABLE_RANGE};
 use crate::output::text::shortest;
+use bouncemap_engine::grid::SweepParam;
 use bouncemap_engine::orbits::stability_windows;
-use bouncemap_engine::sweep::{SweepParam, Warm};
+use bouncemap_engine::sweep::Warm;
 use bouncemap_engine::{State, System, Table, DEFAULT_HOP};
 
 /// How every value of the diagram's sweep starts.

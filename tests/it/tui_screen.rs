@@ -16,7 +16,8 @@ use bouncemap::tui::params::{ParamId, Params, StartMode, SINE_WINDOW, START_WIND
 use bouncemap::tui::theme::Theme;
 use bouncemap_engine::jobs::Executor;
 use bouncemap_engine::orbits::stability_windows;
-use bouncemap_engine::sweep::{self, Outcome};
+use bouncemap_engine::run::Outcome;
+use bouncemap_engine::sweep::{self};
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::style::Modifier;
@@ -92,7 +93,7 @@ fn the_diagram_sweeps_r_or_d() {
     assert_eq!(a.selected_param(), ParamId::Sweep);
     a.handle(Action::Right);
     let spec = a.panels.diagram.sweep_spec(&a.shared);
-    assert_eq!(spec.param, bouncemap_engine::sweep::SweepParam::R);
+    assert_eq!(spec.param, bouncemap_engine::grid::SweepParam::R);
     assert_eq!((spec.lo, spec.hi), (a.shared.params.lo, a.shared.params.hi));
     assert!(a.take_effects().contains(&Effect::Start(Target::Diagram)));
     // Changing r now moves only the line; changing α restarts the sweep.

@@ -11,7 +11,8 @@
 
 use bouncemap_engine::attractors::{Kind, CHAOS_FLOOR};
 use bouncemap_engine::plane::Pixel;
-use bouncemap_engine::sweep::{Outcome, ValueAttractor, ValueResult};
+use bouncemap_engine::run::Outcome;
+use bouncemap_engine::sweep::{ValueAttractor, ValueResult};
 
 /// The class name of a pixel where the ball never lands (or rests): no class.
 pub const NO_LANDING: &str = "no-landing";

@@ -10,7 +10,9 @@
 
 use super::text::plain;
 use super::{fmt_count, Axis, Color, Dash, Figure, Layer, Panel, COLUMN, FULL_WIDTH};
-use bouncemap_engine::sweep::{Outcome, SweepParam, SweepSpec, ValueResult};
+use bouncemap_engine::grid::SweepParam;
+use bouncemap_engine::run::Outcome;
+use bouncemap_engine::sweep::{SweepSpec, ValueResult};
 use bouncemap_engine::Table;
 
 /// What the diagram's vertical axis shows.
@@ -254,7 +256,7 @@ pub fn fig3(panels: &[(SweepSpec, Vec<ValueResult>)]) -> Figure {
 mod tests {
     use super::*;
     use bouncemap_engine::map::EventKind;
-    use bouncemap_engine::sweep::SweepPoint;
+    use bouncemap_engine::run::Point as SweepPoint;
 
     fn value(index: usize, value: f64, sticking: bool) -> ValueResult {
         ValueResult {

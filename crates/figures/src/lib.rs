@@ -22,7 +22,8 @@
 //!
 //! ```
 //! use bouncemap_engine::jobs::Executor;
-//! use bouncemap_engine::sweep::{collect, SweepParam, SweepSpec};
+//! use bouncemap_engine::grid::SweepParam;
+//! use bouncemap_engine::sweep::{collect, SweepSpec};
 //! use bouncemap_engine::Table;
 //! use bouncemap_figures::{diagram, render, ImageFormat, DEFAULT_DPI};
 //!

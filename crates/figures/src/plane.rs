@@ -9,8 +9,8 @@ use super::diagram::{param_label, table_title};
 use super::svg::LEGEND_FONT;
 use super::{fmt_count, text, Axis, Color, Corner, Dash, Figure, Layer, Legend, Panel, Swatch};
 use bouncemap_engine::error::fmt_value as shortest;
+use bouncemap_engine::grid::SweepParam;
 use bouncemap_engine::plane::{Curves, Pixel, PlaneSpec};
-use bouncemap_engine::sweep::SweepParam;
 
 /// The colour of a class in print (period 1 to 8 in hues that stay apart, sticking
 /// the paper's light blue, chaos dark).
@@ -32,7 +32,7 @@ const NO_LANDING_COLOUR: Color = Color(235, 235, 235);
 
 /// The figure of a complete plane.
 pub fn plane_figure(spec: &PlaneSpec, pixels: &[Option<Pixel>], curves: Option<&Curves>) -> Figure {
-    let step = |a: &bouncemap_engine::plane::Axis| {
+    let step = |a: &bouncemap_engine::grid::Axis| {
         if a.n > 1 {
             (a.hi - a.lo) / (a.n - 1) as f64
         } else {

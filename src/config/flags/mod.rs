@@ -10,7 +10,7 @@ use super::table_spec::TableSpec;
 use super::windows::{parse_alpha_window, parse_d_family, DFamily};
 use crate::output::hitgrid::Marker;
 use crate::output::Format;
-use bouncemap_engine::sweep::Shard;
+use bouncemap_engine::grid::Shard;
 use bouncemap_engine::Solver;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
@@ -262,9 +262,13 @@ pub struct CascadeArgs {
 /// `bouncemap scaling`.
 #[derive(Args, Debug, Clone)]
 pub struct ScalingArgs {
-    /// Values of D for F_D: a list (0.001,0.01,0.1) or a log-spaced range LO..HI[:N]
-    /// (default N = 13); each in (0, 1].
-    #[arg(long, default_value = "0.001,0.01,0.1", value_parser = parse_d_list, value_name = "D")]
+    #[arg(
+        long,
+        default_value = "0.001,0.01,0.1",
+        value_parser = parse_d_list,
+        value_name = "D",
+        help = "Values of D for F_D: a list (0.001,0.01,0.1) or a log-spaced range LO..HI[:N] (default N = 13); each in (0, 1]"
+    )]
     pub d: DList,
     /// Coefficient of restitution r; valid (0, 1).
     #[arg(long, default_value_t = rules::R.default, value_parser = rules::R.real(), value_name = "R")]
@@ -281,7 +285,7 @@ pub struct ScalingArgs {
 #[derive(Clone, Debug, PartialEq)]
 pub struct DList(pub Vec<f64>);
 
-/// `--d`: D1,D2,... or LO..HI[:N], every D in (0, 1].
+/// `--d`: `D1,D2,...` or `LO..HI[:N]`, every D in (0, 1].
 pub fn parse_d_list(s: &str) -> Result<DList, String> {
     let one = |t: &str| rules::SCALING_D.parse(t).map_err(|e| format!("D: {e}"));
     let s = s.trim();

@@ -4,8 +4,12 @@
 //! would be `null` in json). Records that `merge` reads back also derive `Deserialize`,
 //! and their enums refuse anything but the documented names.
 
-use bouncemap_engine::orbits::{Complex, FixedPoint, StabilityWindow};
-use bouncemap_engine::sweep::{Outcome, SweepParam, SweepPoint, SweepSpec, ValueResult, Warm};
+use bouncemap_engine::grid::SweepParam;
+use bouncemap_engine::linalg::Complex;
+use bouncemap_engine::orbits::{FixedPoint, StabilityWindow};
+use bouncemap_engine::run::Outcome;
+use bouncemap_engine::run::Point as SweepPoint;
+use bouncemap_engine::sweep::{SweepSpec, ValueResult, Warm};
 use bouncemap_engine::{Event, EventKind, Solver};
 use serde::{Deserialize, Serialize};
 use std::io::Write;

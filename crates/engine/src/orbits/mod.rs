@@ -39,6 +39,3 @@ pub use two_cycle::{
     approximation_corrected, approximation_paper, border_collision, map_check, two_cycle,
     two_cycle_at, Approximation, BorderCollision, NoBorderCollision, NoTwoCycle, TwoCycle,
 };
-
-// Until the binary imports them from `linalg`.
-pub use crate::linalg::{eigenvalues_2x2, Complex};

@@ -7,9 +7,9 @@
 //! not end by period doubling, no branch, a smooth table).
 
 use super::PlaneSpec;
+use crate::grid::SweepParam;
 use crate::orbits::fixed::stability_window;
 use crate::orbits::two_cycle::border_collision;
-use crate::sweep::SweepParam;
 
 /// The curves along the non-α axis.
 #[derive(Clone, Debug, PartialEq)]

@@ -32,6 +32,7 @@ pub use curves::{curves, Curves};
 pub use job::{collect, Plane, PlaneCells, PlaneChunk, PlaneJob};
 
 use crate::error::EngineError;
+use crate::grid::Axis;
 use crate::grid::{Shard, SweepParam};
 use crate::impact::Solver;
 use crate::limits;
@@ -39,8 +40,6 @@ use crate::map::State;
 use crate::run::detect::Periodicity;
 use crate::run::start::near_fixed_point;
 use crate::run::Outcome;
-// Until the binary imports it from `grid`.
-pub use crate::grid::Axis;
 use crate::system::System;
 use crate::table::Table;
 

@@ -13,7 +13,7 @@
 //! by whole cycles to just before T (see [`crate::run`]). Values that never settle run the full
 //! transient.
 //!
-//! Outcomes per value ([`Outcome`]): periodic (with its cycle), unsettled (ran to T:
+//! Outcomes per value ([`Outcome`](crate::run::Outcome)): periodic (with its cycle), unsettled (ran to T:
 //! chaotic, quasi-periodic or a cycle longer than `max_period`), resting (the ball
 //! rides on the table forever, [`Halt::Resting`](crate::Halt::Resting)), or
 //! no-landing. Stick and release events are recorded like impacts; a value whose points
@@ -44,7 +44,9 @@
 //!
 //! ```
 //! use bouncemap_engine::jobs::{Control, Executor};
-//! use bouncemap_engine::sweep::{self, Outcome, SweepParam, SweepSpec};
+//! use bouncemap_engine::grid::SweepParam;
+//! use bouncemap_engine::run::Outcome;
+//! use bouncemap_engine::sweep::{self, SweepSpec};
 //! use bouncemap_engine::Table;
 //!
 //! let table = Table::fd(0.1).unwrap();
@@ -66,17 +68,15 @@
 mod job;
 
 pub use job::{SweepJob, ValueAttractor, ValueResult};
-// Until the binary imports them from where they live.
-pub use crate::grid::{grid_value, Shard, SweepParam};
-pub use crate::run::detect::Periodicity;
-pub use crate::run::start::near_fixed_point;
-pub use crate::run::{Outcome, Point as SweepPoint};
 
 use crate::error::EngineError;
+use crate::grid::{grid_value, Shard, SweepParam};
 use crate::impact::Solver;
 use crate::jobs::{Batch, Control, Executor, Handle};
 use crate::limits;
 use crate::map::State;
+use crate::run::detect::Periodicity;
+use crate::run::start::near_fixed_point;
 use crate::system::System;
 use crate::table::Table;
 

@@ -7,9 +7,12 @@
 use bouncemap_engine::attractors::basins::{self, BasinSpec};
 use bouncemap_engine::attractors::lyapunov::{log_moduli, Method, Spectrum};
 use bouncemap_engine::attractors::{settle, Kind, Settle};
+use bouncemap_engine::grid::SweepParam;
 use bouncemap_engine::jobs::Executor;
 use bouncemap_engine::orbits::fixed::fixed_points;
-use bouncemap_engine::sweep::{self, near_fixed_point, Outcome, SweepParam, SweepSpec};
+use bouncemap_engine::run::start::near_fixed_point;
+use bouncemap_engine::run::Outcome;
+use bouncemap_engine::sweep::{self, SweepSpec};
 use bouncemap_engine::{ImpactMap, Solver, State, System, Table};
 
 fn never(_: u64) -> bool {

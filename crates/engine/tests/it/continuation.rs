@@ -2,13 +2,15 @@
 //! cascade, checked against the closed forms (`fixed`), the (2, 2k) Newton solutions
 //! (`two_cycle`), the map itself (stepping and finite differences) and simulation.
 
+use bouncemap_engine::linalg::eigenvalues_2x2;
 use bouncemap_engine::map::{EventKind, ImpactMap, State};
 use bouncemap_engine::orbits::cascade::cascade;
 use bouncemap_engine::orbits::continuation::{branches, point_at, Branch, Kind, Options, Start};
 use bouncemap_engine::orbits::periodic::{cycle, CyclePoint};
-use bouncemap_engine::orbits::{border_collision, eigenvalues_2x2, stability_window, two_cycle};
+use bouncemap_engine::orbits::{border_collision, stability_window, two_cycle};
+use bouncemap_engine::run::detect::Periodicity;
+use bouncemap_engine::run::Outcome;
 use bouncemap_engine::run::{Advance, OrbitRun};
-use bouncemap_engine::sweep::{Outcome, Periodicity};
 use bouncemap_engine::system::System;
 use bouncemap_engine::table::Table;
 use bouncemap_engine::Solver;

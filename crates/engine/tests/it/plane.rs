@@ -3,9 +3,13 @@
 //! unsharded result, the first pass is a complete coarse picture, and a cancelled plane
 //! stops.
 
+use bouncemap_engine::grid::Axis;
+use bouncemap_engine::grid::Shard;
+use bouncemap_engine::grid::SweepParam;
 use bouncemap_engine::jobs::{Control, Executor};
-use bouncemap_engine::plane::{self, Axis, Plane, PlaneJob, PlaneSpec, STRIDES};
-use bouncemap_engine::sweep::{self, Shard, SweepParam, SweepSpec};
+use bouncemap_engine::picture::STRIDES;
+use bouncemap_engine::plane::{self, Plane, PlaneJob, PlaneSpec};
+use bouncemap_engine::sweep::{self, SweepSpec};
 use bouncemap_engine::Table;
 
 fn spec(nx: usize, ny: usize, transient: u64) -> PlaneSpec {

@@ -2,10 +2,12 @@
 //! full transient, closed-form (1, 1) fixed points, and the cancellation and pause
 //! contracts.
 
+use bouncemap_engine::grid::Shard;
+use bouncemap_engine::grid::SweepParam;
 use bouncemap_engine::jobs::{Control, Executor};
-use bouncemap_engine::sweep::{
-    self, Outcome, Periodicity, Shard, SweepJob, SweepParam, SweepSpec, ValueResult, Warm,
-};
+use bouncemap_engine::run::detect::Periodicity;
+use bouncemap_engine::run::Outcome;
+use bouncemap_engine::sweep::{self, SweepJob, SweepSpec, ValueResult, Warm};
 use bouncemap_engine::{EventKind, ImpactMap, Solver, State, System, Table};
 use std::time::{Duration, Instant};
 

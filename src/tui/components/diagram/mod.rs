@@ -22,9 +22,8 @@ use crate::tui::keymap::Action;
 use crate::tui::layout::{plot_area_within, Slot};
 use crate::tui::params::{fmt_num, ParamId, Params, StartMode, Touch};
 use crate::tui::plot::{draw_axes, render};
-use bouncemap_engine::sweep::{
-    InitialSpec, SweepBatch, SweepJob, SweepParam, SweepSpec, ValueResult,
-};
+use bouncemap_engine::grid::SweepParam;
+use bouncemap_engine::sweep::{InitialSpec, SweepBatch, SweepJob, SweepSpec, ValueResult};
 use colouring::{point_labels, ColorBy, LabelGrid};
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;

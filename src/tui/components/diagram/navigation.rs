@@ -6,7 +6,8 @@
 use super::{Diagram, SweepStatus};
 use crate::tui::components::{Registered, Shared, Workers};
 use crate::tui::params::{ParamId, Params};
-use bouncemap_engine::sweep::{Shard, SweepJob, SweepSpec, ValueResult, Warm};
+use bouncemap_engine::grid::Shard;
+use bouncemap_engine::sweep::{SweepJob, SweepSpec, ValueResult, Warm};
 
 /// A window to go back to.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -7,7 +7,8 @@ use super::{Axis, Diagram};
 use crate::output::classes::{self, Class};
 use crate::tui::components::Shared;
 use crate::tui::params::{fmt_num, Params};
-use bouncemap_engine::sweep::{Outcome, ValueResult};
+use bouncemap_engine::run::Outcome;
+use bouncemap_engine::sweep::ValueResult;
 
 /// What a value's orbit does, in words.
 pub fn status(r: &ValueResult) -> String {
