@@ -70,10 +70,10 @@ pub fn plane_spec_from(
     let y = parse_axis("y", &args.y, ny)?;
     let has_d = x.param == SweepParam::D || y.param == SweepParam::D;
     let table = match args.table.trim() {
-        "fd" => TableSpec::Fd(rules::D.default),
+        "fd" => TableSpec::fd(rules::D.default),
         t => TableSpec::parse(t).map_err(|e| InputError(format!("--table: {e}")))?,
     };
-    if has_d && !matches!(table, TableSpec::Fd(_)) {
+    if has_d && table.d().is_none() {
         return Err(InputError(format!(
             "--table {}: a d axis needs the F_D family: valid --table fd",
             crate::output::text::escape(args.table.trim())

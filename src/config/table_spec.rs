@@ -16,7 +16,8 @@
 use super::files::{read_text, SMALL_FILE};
 use super::InputError;
 pub use crate::output::text::escape;
-use bouncemap_engine::{limits, Table};
+use bouncemap_engine::table::builtin::{self, Builtin};
+use bouncemap_engine::Table;
 use serde::Deserialize;
 use std::fmt;
 use std::path::Path;
@@ -24,51 +25,43 @@ use std::path::Path;
 /// What a `--table` argument names, before any file is read.
 #[derive(Clone, Debug, PartialEq)]
 pub enum TableSpec {
-    /// F = sin 2πt.
-    Sine,
-    /// The paper's F_D (quad = fd:0, cubic = fd:1).
-    Fd(f64),
+    /// A built-in table (the engine's list: sine, F_D, ...).
+    Builtin(Builtin),
     /// A table file.
     File(String),
 }
 
 /// The valid table names, as refusals state them.
-pub const TABLE_RANGE: &str = "sine, quad, cubic, fd:D with D in [0, 1], or a file PATH.toml";
+pub fn table_range() -> String {
+    format!("{}, or a file PATH.toml", builtin::NAMES)
+}
 
 impl TableSpec {
-    /// Parse `sine | quad | cubic | fd:D | PATH.toml`.
+    /// Parse a built-in name (`sine | quad | cubic | fd:D`) or `PATH.toml`.
     pub fn parse(text: &str) -> Result<TableSpec, String> {
         let s = text.trim();
-        match s {
-            "sine" => return Ok(TableSpec::Sine),
-            "quad" => return Ok(TableSpec::Fd(0.0)),
-            "cubic" => return Ok(TableSpec::Fd(1.0)),
-            _ => {}
-        }
-        if let Some(d) = s.strip_prefix("fd:") {
-            let x: f64 = d.trim().parse().map_err(|_| {
-                format!(
-                    "'{s}': D is not a number: valid fd:D with D in {}",
-                    limits::D.text
-                )
-            })?;
-            limits::D.check(x).map_err(|e| e.to_string())?;
-            return Ok(TableSpec::Fd(x));
+        if let Some(b) = Builtin::parse(s) {
+            return b.map(TableSpec::Builtin);
         }
         if s.ends_with(".toml") {
             return Ok(TableSpec::File(s.to_string()));
         }
         Err(format!(
-            "unknown table '{}': valid {TABLE_RANGE}",
-            escape(s)
+            "unknown table '{}': valid {}",
+            escape(s),
+            table_range()
         ))
+    }
+
+    /// F_D with this D.
+    pub fn fd(d: f64) -> TableSpec {
+        TableSpec::Builtin(Builtin::fd(d))
     }
 
     /// The table, reading the file if one is named.
     pub fn load(&self) -> Result<Table, InputError> {
         match self {
-            TableSpec::Sine => Ok(Table::sine()),
-            TableSpec::Fd(d) => Ok(Table::fd(*d)?),
+            TableSpec::Builtin(b) => Ok(b.table()?),
             TableSpec::File(path) => {
                 let text = read_text(Path::new(path), "table file", SMALL_FILE)
                     .map_err(|e| InputError(format!("--table: {e}")))?;
@@ -80,8 +73,18 @@ impl TableSpec {
     /// D, if this is an F_D table.
     pub fn d(&self) -> Option<f64> {
         match self {
-            TableSpec::Fd(d) => Some(*d),
-            _ => None,
+            TableSpec::Builtin(b) => b.d(),
+            TableSpec::File(_) => None,
+        }
+    }
+
+    /// The α window where the table's (1, 1) orbit and what follows it lie (a built-in
+    /// family's own; for a file, F_D's).
+    pub fn alpha_window(&self) -> (f64, f64) {
+        match self {
+            TableSpec::Builtin(b) => b.family().alpha_window,
+            // A file opens where the paper's tables do.
+            TableSpec::File(_) => Builtin::fd(0.0).family().alpha_window,
         }
     }
 }
@@ -89,8 +92,7 @@ impl TableSpec {
 impl fmt::Display for TableSpec {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            TableSpec::Sine => f.write_str("sine"),
-            TableSpec::Fd(d) => write!(f, "fd:{}", bouncemap_engine::error::fmt_value(*d)),
+            TableSpec::Builtin(b) => write!(f, "{b}"),
             TableSpec::File(p) => f.write_str(p),
         }
     }
@@ -133,10 +135,13 @@ mod tests {
 
     #[test]
     fn names_parse_to_one_spec_each() {
-        assert_eq!(TableSpec::parse("sine"), Ok(TableSpec::Sine));
-        assert_eq!(TableSpec::parse("quad"), Ok(TableSpec::Fd(0.0)));
-        assert_eq!(TableSpec::parse(" cubic "), Ok(TableSpec::Fd(1.0)));
-        assert_eq!(TableSpec::parse("fd:0.25"), Ok(TableSpec::Fd(0.25)));
+        assert_eq!(
+            TableSpec::parse("sine"),
+            Ok(TableSpec::Builtin(Builtin::of("sine", None)))
+        );
+        assert_eq!(TableSpec::parse("quad"), Ok(TableSpec::fd(0.0)));
+        assert_eq!(TableSpec::parse(" cubic "), Ok(TableSpec::fd(1.0)));
+        assert_eq!(TableSpec::parse("fd:0.25"), Ok(TableSpec::fd(0.25)));
         assert!(TableSpec::parse("fd:1.5").unwrap_err().contains("[0, 1]"));
         assert!(TableSpec::parse("fd:x")
             .unwrap_err()
@@ -148,7 +153,7 @@ mod tests {
             TableSpec::parse("a/b.toml"),
             Ok(TableSpec::File("a/b.toml".into()))
         );
-        assert_eq!(TableSpec::Fd(0.1).to_string(), "fd:0.1");
+        assert_eq!(TableSpec::fd(0.1).to_string(), "fd:0.1");
     }
 
     #[test]

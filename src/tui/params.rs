@@ -11,11 +11,12 @@
 
 use crate::config::presets::Preset;
 use crate::config::rules::{self, Rule};
-use crate::config::table_spec::{TableSpec, TABLE_RANGE};
+use crate::config::table_spec::{table_range, TableSpec};
 use crate::output::text::shortest;
 use bouncemap_engine::grid::SweepParam;
 use bouncemap_engine::orbits::stability_windows;
 use bouncemap_engine::sweep::Warm;
+use bouncemap_engine::table::builtin::{Builtin, FAMILIES};
 use bouncemap_engine::{State, System, Table, DEFAULT_HOP};
 
 /// How every value of the diagram's sweep starts.
@@ -113,12 +114,10 @@ pub struct Params {
     pub start: StartMode,
 }
 
-/// The window and transient the application opens with: fd:0.1's (1, 1) branch,
-/// its period doubling at α_PD = 0.50997, the narrow (2, 2) window up to 0.51184 and
-/// the chaos after it, with the paper's start (values next to the (1, 1) solution).
-pub const START_WINDOW: (f64, f64) = (0.45, 0.60);
-/// The sine's window (the paper's Fig. 3(f): its α is about 20 times smaller).
-pub const SINE_WINDOW: (f64, f64) = (0.02, 0.04);
+/// The transient the application opens with; its window is the default table's (fd:0.1:
+/// the (1, 1) branch, its period doubling at α_PD = 0.50997, the narrow (2, 2) window
+/// up to 0.51184 and the chaos after it), with the paper's start (values next to the
+/// (1, 1) solution).
 /// Windows of r and D sweeps.
 pub const R_WINDOW: (f64, f64) = (0.5, 0.95);
 pub const D_WINDOW: (f64, f64) = (0.0, 1.0);
@@ -127,8 +126,7 @@ pub const START_TRANSIENT: u64 = 20_000;
 /// The window a sweep of `param` opens with on `table`.
 pub fn default_window(param: SweepParam, table: &TableSpec) -> (f64, f64) {
     match (param, table) {
-        (SweepParam::Alpha, TableSpec::Sine) => SINE_WINDOW,
-        (SweepParam::Alpha, _) => START_WINDOW,
+        (SweepParam::Alpha, t) => t.alpha_window(),
         (SweepParam::R, _) => R_WINDOW,
         (SweepParam::D, _) => D_WINDOW,
     }
@@ -136,7 +134,8 @@ pub fn default_window(param: SweepParam, table: &TableSpec) -> (f64, f64) {
 
 impl Default for Params {
     fn default() -> Self {
-        let table = TableSpec::Fd(rules::D.default);
+        let table = TableSpec::fd(rules::D.default);
+        let (lo, hi) = table.alpha_window();
         Params {
             loaded: table.load().expect("the default table is built in"),
             table,
@@ -146,8 +145,8 @@ impl Default for Params {
             k: rules::K.default as u32,
             t0: rules::T0.default,
             v0: None,
-            lo: START_WINDOW.0,
-            hi: START_WINDOW.1,
+            lo,
+            hi,
             transient: START_TRANSIENT,
             keep: rules::KEEP.default as usize,
             steps: None,
@@ -247,7 +246,7 @@ impl ParamId {
     /// The valid range, as shown in refusals.
     pub fn range(self) -> String {
         match self {
-            ParamId::Table => format!("{TABLE_RANGE} (a file is read when typed)"),
+            ParamId::Table => format!("{} (a file is read when typed)", table_range()),
             ParamId::V0 => "auto, or a number ≥ f'(t̂0) with |v0 − f'(t̂0)| ≤ 1000".into(),
             ParamId::Sweep => "alpha, r, or d (for an fd:D table)".into(),
             ParamId::Start => START_RANGE.into(),
@@ -555,7 +554,7 @@ impl Params {
                 unreachable!("the table, sweep and start rows are not numeric")
             }
             ParamId::D => {
-                let spec = TableSpec::Fd(x);
+                let spec = TableSpec::fd(x);
                 let table = spec.load().map_err(|e| e.0)?;
                 next.set_table(spec, table);
             }
@@ -636,11 +635,14 @@ impl Params {
     /// The tables the table row cycles through: sine, F_D (at the current D), a file.
     fn table_order(&self) -> Vec<(TableSpec, Table)> {
         let d = self.table.d().unwrap_or(rules::D.default);
-        let fd = TableSpec::Fd(d);
-        let mut v = vec![
-            (TableSpec::Sine, Table::sine()),
-            (fd.clone(), fd.load().expect("D is in range")),
-        ];
+        // Every built-in family (F_D at the current D), then the file.
+        let mut v: Vec<(TableSpec, Table)> = FAMILIES
+            .iter()
+            .map(|f| {
+                let b = Builtin::of(f.name, f.param.map(|_| d));
+                (TableSpec::Builtin(b), b.table().expect("D is in range"))
+            })
+            .collect();
         if let Some(f) = &self.file {
             v.push(f.clone());
         }
@@ -649,7 +651,11 @@ impl Params {
 }
 
 fn same_kind(a: &TableSpec, b: &TableSpec) -> bool {
-    std::mem::discriminant(a) == std::mem::discriminant(b)
+    match (a, b) {
+        (TableSpec::Builtin(x), TableSpec::Builtin(y)) => x.family() == y.family(),
+        (TableSpec::File(_), TableSpec::File(_)) => true,
+        _ => false,
+    }
 }
 
 fn round_to(x: f64, q: f64) -> f64 {

@@ -5,6 +5,7 @@
 
 use crate::tui_common::{app, buffer_text, fill, render, size, text};
 use bouncemap::config::display::ColorMode;
+use bouncemap::config::table_spec::TableSpec;
 use bouncemap::output::hitgrid::Marker;
 use bouncemap::tui::app::{App, Effect, Overlay};
 use bouncemap::tui::components::legend;
@@ -12,7 +13,12 @@ use bouncemap::tui::components::phase_plot::PhasePoints;
 use bouncemap::tui::components::Msg;
 use bouncemap::tui::components::{Component, Target};
 use bouncemap::tui::keymap::{Action, Keymap};
-use bouncemap::tui::params::{ParamId, Params, StartMode, SINE_WINDOW, START_WINDOW};
+use bouncemap::tui::params::{ParamId, Params, StartMode};
+
+/// The α windows the application opens F_D and the sine with.
+fn window(table: &str) -> (f64, f64) {
+    TableSpec::parse(table).unwrap().alpha_window()
+}
 use bouncemap::tui::theme::Theme;
 use bouncemap_engine::jobs::Executor;
 use bouncemap_engine::orbits::stability_windows;
@@ -35,7 +41,7 @@ fn alpha_pd(p: &Params) -> f64 {
 #[test]
 fn the_first_view_shows_period_one_period_two_and_chaos() {
     let mut a = app(Marker::Braille);
-    assert_eq!((a.shared.params.lo, a.shared.params.hi), START_WINDOW);
+    assert_eq!((a.shared.params.lo, a.shared.params.hi), window("fd:0.1"));
     assert_eq!(a.shared.params.start, StartMode::NearFixedPoint);
     assert!(a.shared.params.transient >= 20_000);
     size(&mut a, 120, 40);
@@ -68,12 +74,12 @@ fn the_first_view_shows_period_one_period_two_and_chaos() {
 fn a_table_of_another_kind_brings_its_window_and_alpha() {
     let mut p = Params::default();
     p.set_text(ParamId::Table, "sine").unwrap();
-    assert_eq!((p.lo, p.hi), SINE_WINDOW);
+    assert_eq!((p.lo, p.hi), window("sine"));
     let pd = alpha_pd(&p);
     assert!(p.alpha < pd && p.alpha > p.lo, "α {} α_PD {pd}", p.alpha);
     p.nudge(ParamId::Table, 1, false).unwrap();
     assert_eq!(p.table_label(), "fd:0.1");
-    assert_eq!((p.lo, p.hi), START_WINDOW);
+    assert_eq!((p.lo, p.hi), window("fd:0.1"));
     assert!(p.alpha < alpha_pd(&p) && p.alpha > p.lo);
     // A D of the same kind keeps the window the user chose.
     p.lo = 0.5;

@@ -197,11 +197,6 @@ impl SweepRow {
         h
     }
 
-    /// The csv header of the sweep `spec`.
-    pub fn header_of(spec: &SweepSpec) -> Vec<&'static str> {
-        SweepRow::header(spec.param, spec.lyapunov, spec.starts > 1)
-    }
-
     /// The rows of one value, with a `lyapunov` column and with an `attractor` column
     /// (for `several` starts) as asked.
     pub fn rows(r: &ValueResult, lyapunov: bool, several: bool) -> Vec<SweepRow> {

@@ -14,6 +14,8 @@
 
 mod segment;
 
+pub mod builtin;
+
 pub use segment::{Formula, Segment, TAYLOR_TERMS};
 
 use crate::error::EngineError;
