@@ -20,6 +20,10 @@ use std::collections::BTreeMap;
 
 /// Strides of the passes, coarse to fine.
 pub const STRIDES: [usize; 4] = [8, 4, 2, 1];
+/// The largest side of a picture.
+pub const MAX_SIDE: usize = 4000;
+/// The most cells of a picture.
+pub const MAX_CELLS: usize = 1_000_000;
 
 /// What a picture computes at each of its cells.
 pub trait Cells: Send + Sync + 'static {

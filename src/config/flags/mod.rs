@@ -541,19 +541,49 @@ pub struct BasinsArgs {
     pub workers: ThreadsArgs,
 }
 
-/// `NXxNY`: grid sides, each in 1..=4000, at most 10⁶ points.
-pub fn parse_grid(s: &str) -> Result<(usize, usize), String> {
-    use bouncemap_engine::attractors::basins::{MAX_POINTS, MAX_SIDE};
+/// How a refusal of [`parse_sides`] names what was asked for.
+pub struct SidesText<'a> {
+    /// The value ("a grid").
+    pub what: &'a str,
+    /// Its form ("NXxNY").
+    pub form: &'a str,
+    /// Its cells ("points").
+    pub cells: &'a str,
+    /// An example ("200x100").
+    pub example: &'a str,
+}
+
+/// `WxH`: the sides of a picture, each in 1..=`MAX_SIDE`, at most `MAX_CELLS`
+/// cells; `text` names them in the refusal.
+pub fn parse_sides(s: &str, text: SidesText<'_>) -> Result<(usize, usize), String> {
+    use bouncemap_engine::picture::{MAX_CELLS, MAX_SIDE};
+    let SidesText {
+        what,
+        form,
+        cells,
+        example,
+    } = text;
     let bad = || {
-        format!("'{s}' is not a grid: valid NXxNY with each side in 1..={MAX_SIDE} and at most {MAX_POINTS} points, e.g. 200x100")
+        format!("'{s}' is not {what}: valid {form} with each side in 1..={MAX_SIDE} and at most {MAX_CELLS} {cells}, e.g. {example}")
     };
     let (a, b) = s.trim().split_once(['x', 'X']).ok_or_else(bad)?;
     let nx: usize = a.trim().parse().map_err(|_| bad())?;
     let ny: usize = b.trim().parse().map_err(|_| bad())?;
-    if nx == 0 || ny == 0 || nx > MAX_SIDE || ny > MAX_SIDE || nx * ny > MAX_POINTS {
+    if nx == 0 || ny == 0 || nx > MAX_SIDE || ny > MAX_SIDE || nx * ny > MAX_CELLS {
         return Err(bad());
     }
     Ok((nx, ny))
+}
+
+/// `NXxNY`: grid sides, each in 1..=4000, at most 10⁶ points.
+pub fn parse_grid(s: &str) -> Result<(usize, usize), String> {
+    let text = SidesText {
+        what: "a grid",
+        form: "NXxNY",
+        cells: "points",
+        example: "200x100",
+    };
+    parse_sides(s, text)
 }
 
 /// `sweep --shard`: a part given as I/N, or `auto` (from the Slurm job array).

@@ -97,15 +97,12 @@ pub struct PlaneArgs {
 
 /// `WxH`: plane sides, each in 1..=4000, at most 10⁶ pixels.
 pub fn parse_plane_size(s: &str) -> Result<(usize, usize), String> {
-    use bouncemap_engine::plane::{MAX_PIXELS, MAX_SIDE};
-    let bad = || {
-        format!("'{s}' is not a size: valid WxH with each side in 1..={MAX_SIDE} and at most {MAX_PIXELS} pixels, e.g. 400x200")
+    use super::{parse_sides, SidesText};
+    let text = SidesText {
+        what: "a size",
+        form: "WxH",
+        cells: "pixels",
+        example: "400x200",
     };
-    let (a, b) = s.trim().split_once(['x', 'X']).ok_or_else(bad)?;
-    let nx: usize = a.trim().parse().map_err(|_| bad())?;
-    let ny: usize = b.trim().parse().map_err(|_| bad())?;
-    if nx == 0 || ny == 0 || nx > MAX_SIDE || ny > MAX_SIDE || nx * ny > MAX_PIXELS {
-        return Err(bad());
-    }
-    Ok((nx, ny))
+    parse_sides(s, text)
 }

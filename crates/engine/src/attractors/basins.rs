@@ -12,16 +12,12 @@
 use super::{settle, Found, Registry, Settle};
 use crate::error::EngineError;
 use crate::limits;
-use crate::picture::{Cells, Chunk, Filled, Picture, PictureJob, Sequencer};
+use crate::picture::{Cells, Chunk, Filled, Picture, PictureJob, Sequencer, MAX_CELLS, MAX_SIDE};
 use crate::run::start::launch;
 use crate::system::System;
 
 /// Points per work item.
 pub const CHUNK: usize = 32;
-/// The largest grid side, and the most grid points.
-pub const MAX_SIDE: usize = 4000;
-/// The most grid points.
-pub const MAX_POINTS: usize = 1_000_000;
 /// The default grid.
 pub const DEFAULT_GRID: (usize, usize) = (200, 100);
 
@@ -65,7 +61,7 @@ impl BasinSpec {
                 });
             }
         }
-        if self.nx * self.ny > MAX_POINTS {
+        if self.nx * self.ny > MAX_CELLS {
             return Err(EngineError::InvalidParameter {
                 name: "grid",
                 value: format!("{}x{}", self.nx, self.ny),

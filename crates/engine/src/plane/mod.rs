@@ -46,10 +46,7 @@ use crate::table::Table;
 /// Pixels per work item.
 pub const CHUNK: usize = 16;
 pub use crate::picture::STRIDES;
-/// The largest side, and the most pixels.
-pub const MAX_SIDE: usize = 4000;
-/// The most pixels.
-pub const MAX_PIXELS: usize = 1_000_000;
+use crate::picture::{MAX_CELLS, MAX_SIDE};
 /// The default size.
 pub const DEFAULT_SIZE: (usize, usize) = (400, 200);
 /// Default end of the transient, in table periods.
@@ -208,7 +205,7 @@ impl PlaneSpec {
                 self.x.param.as_str()
             )));
         }
-        if self.len() > MAX_PIXELS {
+        if self.len() > MAX_CELLS {
             return Err(EngineError::InvalidParameter {
                 name: "size",
                 value: format!("{}x{}", self.x.n, self.y.n),
