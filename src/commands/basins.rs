@@ -20,7 +20,7 @@ use std::io::Write;
 
 pub fn run(args: &BasinsArgs) -> anyhow::Result<()> {
     let spec = config::basin_spec(&args.spec)?;
-    let threads = config::threads(args.workers.threads)?;
+    let threads = config::threads(args.run.workers.threads)?;
     let mut sink = Sink::open(args.output.out.as_deref()).map_err(InputError)?;
     let basins = compute(&spec, &Executor::new(threads)?)?;
     write(&spec, &basins, args, &mut sink).map_err(|e| sink.describe(e))?;
@@ -99,7 +99,7 @@ fn write(
             writeln!(out)?;
         }
         BasinsFormat::Braille => {
-            let (w, h) = config::text_size(&args.text, || None);
+            let (w, h) = config::text_size(&args.run.text, || None);
             for line in basin_map::lines(basins, &title(spec), spec.w_max, w as usize, h as usize) {
                 writeln!(out, "{line}")?;
             }

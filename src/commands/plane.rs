@@ -22,7 +22,7 @@ use std::io::Write;
 
 pub fn run(args: &PlaneArgs) -> anyhow::Result<()> {
     let spec = config::plane::plane_spec(args)?;
-    let threads = config::threads(args.workers.threads)?;
+    let threads = config::threads(args.run.workers.threads)?;
     let header = PlaneHeader::from(&spec);
     if resume::already_written::<PlaneFile>(&args.part, args.format, &header, spec.shard)? {
         return Ok(());
@@ -51,7 +51,7 @@ pub fn run(args: &PlaneArgs) -> anyhow::Result<()> {
                 w.end()?;
             }
             None => {
-                let (w, h) = config::text_size(&args.text, || None);
+                let (w, h) = config::text_size(&args.run.text, || None);
                 // Colour on a terminal unless NO_COLOR is set; glyphs in files and pipes.
                 use std::io::IsTerminal;
                 let colour = args.part.output.out.is_none()

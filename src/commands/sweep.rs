@@ -33,7 +33,7 @@ fn value_bytes(keep: usize) -> u64 {
 
 pub fn run(args: &SweepArgs) -> anyhow::Result<()> {
     let spec = config::sweep::sweep_spec(args)?;
-    let threads = config::threads(args.workers.threads)?;
+    let threads = config::threads(args.run.workers.threads)?;
     let header = SweepHeader::from(&spec);
     if resume::already_written::<SweepFile>(&args.part, args.format, &header, spec.shard)? {
         return Ok(());
@@ -148,7 +148,7 @@ fn braille(
 /// The diagram's size: the text picture's, COLUMNS wide if the terminal's is unknown, at
 /// least 20 × 6.
 fn braille_size(args: &SweepArgs) -> (u16, u16) {
-    let (w, h) = config::text_size(&args.text, || {
+    let (w, h) = config::text_size(&args.run.text, || {
         std::env::var("COLUMNS").ok().and_then(|c| c.parse().ok())
     });
     (w.max(20), h.max(6))

@@ -364,6 +364,16 @@ pub struct TextSizeArgs {
     pub height: Option<u16>,
 }
 
+/// How a computation over a grid runs and draws: its threads and the size of its text
+/// picture (`sweep`, `plane`, `basins`).
+#[derive(Args, Debug, Clone, Default)]
+pub struct RunArgs {
+    #[command(flatten)]
+    pub text: TextSizeArgs,
+    #[command(flatten)]
+    pub workers: ThreadsArgs,
+}
+
 /// `--threads`: the worker threads of a computation (`sweep`, `plane`, `basins`).
 #[derive(Args, Debug, Clone, Default)]
 pub struct ThreadsArgs {
@@ -464,9 +474,7 @@ pub struct SweepArgs {
     #[command(flatten)]
     pub part: PartArgs,
     #[command(flatten)]
-    pub text: TextSizeArgs,
-    #[command(flatten)]
-    pub workers: ThreadsArgs,
+    pub run: RunArgs,
 }
 
 /// `bouncemap lyapunov`.
@@ -536,9 +544,7 @@ pub struct BasinsArgs {
     #[command(flatten)]
     pub output: OutArgs,
     #[command(flatten)]
-    pub text: TextSizeArgs,
-    #[command(flatten)]
-    pub workers: ThreadsArgs,
+    pub run: RunArgs,
 }
 
 /// How a refusal of [`parse_sides`] names what was asked for.

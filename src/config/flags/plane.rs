@@ -90,9 +90,7 @@ pub struct PlaneArgs {
     #[command(flatten)]
     pub part: PartArgs,
     #[command(flatten)]
-    pub text: TextSizeArgs,
-    #[command(flatten)]
-    pub workers: ThreadsArgs,
+    pub run: RunArgs,
 }
 
 /// `WxH`: plane sides, each in 1..=4000, at most 10⁶ pixels.
