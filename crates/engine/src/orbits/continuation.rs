@@ -435,6 +435,23 @@ impl Family {
                     Err(PassError::NoConvergence)
                 }
             });
+            // A corrected point must be the continuation of the last one: all its impacts
+            // and velocities move continuously (see [`Family::continuous`]). A step that
+            // jumped is a failed step; a branch that jumps at every step down to the
+            // smallest is lost.
+            let step = match step {
+                Ok((p, _)) if !self.continuous(&pt, &p, x0, tau, h) => {
+                    if h > H_MIN {
+                        h *= 0.5;
+                        continue;
+                    }
+                    let mut sp = special(Kind::Lost, &pt, pt.phases[0], 0);
+                    sp.last_step = Some(h);
+                    run.end = sp;
+                    return run;
+                }
+                other => other,
+            };
             let (next, t1) = match step {
                 Ok(s) => s,
                 Err(e) => {
@@ -483,12 +500,17 @@ impl Family {
                     let birth = self.is_birth(&at, if impact == BIRTH { 1e-6 } else { 1e-4 });
                     if birth && impact == BIRTH {
                         run.points.push(at.clone());
-                        let mut sp = special(Kind::PeriodDoubling, &at, f64::NAN, 0);
                         // The pitchfork of the doubled map is singular: its α is
-                        // accurate to √ε only, the parent's period doubling to ε.
-                        if let Some(a) = self.parent_pd(&at) {
-                            sp.alpha = a;
-                        }
+                        // accurate to √ε only, the parent's period doubling to ε; the
+                        // point reported is the parent's there (its multiplier −1).
+                        let sp = match self.parent_pd(&at) {
+                            Some(parent) => special(Kind::PeriodDoubling, &parent, f64::NAN, 0),
+                            None => {
+                                let mut sp = special(Kind::Lost, &at, f64::NAN, 0);
+                                sp.last_step = Some(hs);
+                                sp
+                            }
+                        };
                         run.end = sp;
                         return run;
                     }
@@ -509,6 +531,19 @@ impl Family {
                     _ => (kind, impact, phase),
                 };
                 let mut sp = special(kind, &at, phase, impact);
+                if !holds(&sp) {
+                    // The test function changed sign without its condition being met at
+                    // the located point (a jump the continuity test did not see): a
+                    // failed step.
+                    if h > H_MIN {
+                        h *= 0.5;
+                        continue;
+                    }
+                    sp.kind = Kind::Lost;
+                    sp.last_step = Some(h);
+                    run.end = sp;
+                    return run;
+                }
                 let ends = match kind {
                     Kind::PeriodDoubling => self.opts.stop_at_pd,
                     Kind::Fold => false,
@@ -554,6 +589,62 @@ impl Family {
         }
         run.end = special(Kind::StepLimit, &pt, pt.phases[0], 0);
         run
+    }
+
+    /// Whether `b`, corrected from `a` with the arclength step `h` from `x0` along
+    /// `tau`, continues `a`: the point corrected at half the step lies near the middle of
+    /// the chord from `a` to `b` in every impact phase and velocity and in α (within a
+    /// quarter of the chord; a smooth branch deviates by its curvature times the step
+    /// squared, a jump to another cycle by half the jump), and the multipliers did not
+    /// pass from one real sign to the other without going through the complex pair
+    /// (their product is r²ⁿ on every cycle: a jump of the trace between values beyond
+    /// ±2 is a jump of cycle).
+    /// A step across a breakpoint of the table, where the branch turns by a kink, is
+    /// left to the border collision's location.
+    fn continuous(
+        &mut self,
+        a: &CyclePoint,
+        b: &CyclePoint,
+        x0: [f64; 3],
+        tau: [f64; 3],
+        h: f64,
+    ) -> bool {
+        let crosses = a.phases.iter().zip(&b.phases).any(|(&pa, &pb)| {
+            self.jumps.iter().any(|&bp| {
+                let (da, db) = (signed_distance(pa, bp), signed_distance(pb, bp));
+                (da < 0.0) != (db < 0.0) && da.abs() < 0.25 && db.abs() < 0.25
+            })
+        });
+        if crosses {
+            return true;
+        }
+        let trace = |p: &CyclePoint| p.monodromy[0][0] + p.monodromy[1][1];
+        let real = |p: &CyclePoint| p.multipliers[0].im == 0.0;
+        let (ta, tb) = (trace(a), trace(b));
+        if real(a) && real(b) && ta * tb < 0.0 && ta.abs().min(tb.abs()) > 2.0 {
+            return false;
+        }
+        let Ok((m, _)) = correct(&mut self.map, a.n, a.k, x0, tau, 0.5 * h) else {
+            return false;
+        };
+        let wrap = |d: f64| d - d.round();
+        let mut dev = (m.alpha - 0.5 * (a.alpha + b.alpha)).abs();
+        let mut chord = (b.alpha - a.alpha).abs();
+        for i in 0..a.n {
+            let (dab, dam) = (
+                wrap(b.phases[i] - a.phases[i]),
+                wrap(m.phases[i] - a.phases[i]),
+            );
+            let (vab, vam) = (
+                b.velocities[i] - a.velocities[i],
+                m.velocities[i] - a.velocities[i],
+            );
+            dev = dev
+                .max((dam - 0.5 * dab).abs())
+                .max((vam - 0.5 * vab).abs());
+            chord = chord.max(dab.abs()).max(vab.abs());
+        }
+        dev <= 0.25 * chord + SAME_POINT
     }
 
     /// The impact and breakpoint the point sits at (within 1e-8 in phase), if any.
@@ -603,20 +694,22 @@ impl Family {
         None
     }
 
-    /// α of the period doubling of the half cycle of `p` (a doubled branch at its
-    /// birth): a secant on (1 + λ₁)(1 + λ₂) of the parent, solved at fixed α.
-    fn parent_pd(&mut self, p: &CyclePoint) -> Option<f64> {
+    /// The period doubling of the half cycle of `p` (a doubled branch at its birth): a
+    /// secant on (1 + λ₁)(1 + λ₂) of the parent, solved at fixed α; the parent's cycle
+    /// there, if its multiplier is −1 to [`CONDITION`].
+    fn parent_pd(&mut self, p: &CyclePoint) -> Option<CyclePoint> {
         let (n, k) = (p.n / 2, p.k / 2);
         let (mut t0, mut v0) = (p.t0, p.velocities[0]);
-        let test = |map: &mut ImpactMap, a: f64, t0: &mut f64, v0: &mut f64| {
+        let solve = |map: &mut ImpactMap, a: f64, t0: &mut f64, v0: &mut f64| {
             map.set_alpha(a).ok()?;
             let q = super::periodic::solve_at(map, n, k, *t0, *v0).ok()?;
             (*t0, *v0) = (q.t0, q.velocities[0]);
-            Some(q.pd_test())
+            Some(q)
         };
         let (mut a0, mut a1) = (p.alpha, p.alpha + 1e-7);
-        let mut g0 = test(&mut self.map, a0, &mut t0, &mut v0)?;
-        let mut g1 = test(&mut self.map, a1, &mut t0, &mut v0)?;
+        let mut g0 = solve(&mut self.map, a0, &mut t0, &mut v0)?.pd_test();
+        let mut q = solve(&mut self.map, a1, &mut t0, &mut v0)?;
+        let mut g1 = q.pd_test();
         for _ in 0..30 {
             if g1 == g0 {
                 break;
@@ -624,12 +717,14 @@ impl Family {
             let a2 = a1 - g1 * (a1 - a0) / (g1 - g0);
             (a0, g0) = (a1, g1);
             a1 = a2;
-            g1 = test(&mut self.map, a1, &mut t0, &mut v0)?;
+            q = solve(&mut self.map, a1, &mut t0, &mut v0)?;
+            g1 = q.pd_test();
             if (a1 - a0).abs() < 1e-15 {
                 break;
             }
         }
-        ((a1 - p.alpha).abs() < 1e-6).then_some(a1)
+        let sp = special(Kind::PeriodDoubling, &q, f64::NAN, 0);
+        ((a1 - p.alpha).abs() < 1e-6 && holds(&sp)).then_some(q)
     }
 
     /// A doubled branch meeting its parent: the half-period map returns.
@@ -762,6 +857,38 @@ impl Family {
         best
     }
 }
+
+/// How closely a special point's defining condition must hold at the located point: a
+/// multiplier within this of −1 (period doubling) or +1 (fold).
+pub const CONDITION: f64 = 1e-8;
+/// How closely a border collision's impact phase must lie on its breakpoint.
+pub const ON_BORDER: f64 = 1e-8;
+
+/// Whether a special point's defining condition holds at its point: a multiplier −1 at
+/// a period doubling, +1 at a fold (to [`CONDITION`]), the impact on the breakpoint at
+/// a border collision (to [`ON_BORDER`]); other kinds have none.
+pub fn holds(sp: &Special) -> bool {
+    let near = |target: f64| {
+        sp.point
+            .multipliers
+            .iter()
+            .any(|m| m.im == 0.0 && (m.re - target).abs() <= CONDITION)
+    };
+    match sp.kind {
+        Kind::PeriodDoubling => near(-1.0),
+        Kind::Fold => near(1.0),
+        Kind::BorderCollision => sp
+            .point
+            .phases
+            .get(sp.impact)
+            .is_some_and(|&ph| signed_distance(ph, sp.phase).abs() <= ON_BORDER),
+        _ => true,
+    }
+}
+
+/// Cycle points closer than this are one (the accuracy of a long cycle's impacts,
+/// below which the continuity test reads nothing).
+pub const SAME_POINT: f64 = 1e-8;
 
 /// The `impact` of the test function for a doubled branch's birth.
 const BIRTH: usize = usize::MAX;

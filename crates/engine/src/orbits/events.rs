@@ -23,6 +23,10 @@ pub enum Kind {
     WindowExit,
     /// The corrector failed with no sign of the above.
     NoConvergence,
+    /// Every corrected step down to the smallest one left the branch (its cycle's
+    /// points jumped instead of moving continuously): the branch could not be followed
+    /// further, and no special point is claimed there.
+    Lost,
     /// The step bound of [`Options::max_steps`](super::continuation::Options::max_steps) was reached.
     StepLimit,
 }
@@ -38,6 +42,7 @@ impl Kind {
             Kind::StickingOnset => "sticking_onset",
             Kind::WindowExit => "window_exit",
             Kind::NoConvergence => "no_convergence",
+            Kind::Lost => "lost",
             Kind::StepLimit => "step_limit",
         }
     }
@@ -52,6 +57,7 @@ impl Kind {
             Kind::StickingOnset => "S",
             Kind::WindowExit => "W",
             Kind::NoConvergence => "NC",
+            Kind::Lost => "?",
             Kind::StepLimit => "L",
         }
     }
@@ -74,6 +80,8 @@ pub struct Special {
     /// At a border collision: Some(stable) if the cycle goes on beyond the breakpoint
     /// (with that stability), None if it ceases to exist there. None elsewhere.
     pub persists: Option<bool>,
+    /// Where the branch was lost ([`Kind::Lost`]): the last arclength step tried.
+    pub last_step: Option<f64>,
 }
 
 /// Phases in [0, 1) at which f'' jumps (the table's piece starts whose one-sided
@@ -110,5 +118,6 @@ pub(crate) fn special(kind: Kind, p: &CyclePoint, phase: f64, impact: usize) -> 
         impact,
         point: p.clone(),
         persists: None,
+        last_step: None,
     }
 }
