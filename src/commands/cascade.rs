@@ -95,7 +95,13 @@ fn single(
                 }
             };
             for (i, a) in c.alphas.iter().enumerate() {
-                writeln!(out, "alpha_{} = {a:.15}", i + 1)?;
+                // αₙ is where level n − 1 ends: by a smooth period doubling or through
+                // a border collision.
+                let via = match c.levels.get(i).map(|l| l.end.kind.as_str()) {
+                    Some("border_collision") => "  (period doubling through a border collision)",
+                    _ => "",
+                };
+                writeln!(out, "alpha_{} = {a:.15}{via}", i + 1)?;
             }
             for (i, d) in c.deltas.iter().enumerate() {
                 writeln!(
@@ -109,11 +115,15 @@ fn single(
                 writeln!(out, "{why}")?;
             }
             for l in &c.levels {
-                let persists = match l.end.persists {
-                    Some(true) => ", goes on beyond stable",
-                    Some(false) => ", goes on beyond unstable",
-                    None if l.end.kind.as_str() == "border_collision" => ", ceases to exist",
-                    None => "",
+                let persists = match l.end.collision {
+                    Some(col) => format!(
+                        ", {}",
+                        col.crossing.describe(l.period, l.period as u32 * args.k)
+                    ),
+                    None if l.end.kind.as_str() == "border_collision" => {
+                        ", ceases to exist".to_string()
+                    }
+                    None => String::new(),
                 };
                 writeln!(
                     out,

@@ -94,22 +94,37 @@ pub fn run(args: &ContinueArgs) -> anyhow::Result<()> {
 }
 
 fn text_special(out: &mut impl Write, what: &str, s: &Special) -> io::Result<()> {
-    let persists = match (s.kind.as_str(), s.persists) {
-        ("border_collision", Some(true)) => "  (goes on beyond, stable)",
-        ("border_collision", Some(false)) => "  (goes on beyond, unstable)",
-        ("border_collision", None) => "  (ceases to exist)",
-        _ => "",
+    let multipliers = match s.collision {
+        // At a border collision the multipliers jump with f'': both sides, labelled.
+        Some(c) => format!(
+            "multipliers near side {}, {}; far side {}, {}  ({})",
+            complex(c.near[0]),
+            complex(c.near[1]),
+            complex(c.far[0]),
+            complex(c.far[1]),
+            c.crossing.describe(s.point.n, s.point.k)
+        ),
+        None => format!(
+            "multipliers {}, {}",
+            complex(s.point.multipliers[0]),
+            complex(s.point.multipliers[1])
+        ),
+    };
+    let evidence = match (s.condition_error(), s.last_step) {
+        (Some(e), _) => format!("  [condition to {e:.1e}]"),
+        (None, Some(h)) => {
+            format!("  [the corrector jumped off the cycle at every step down to {h:.1e}]")
+        }
+        _ => String::new(),
     };
     writeln!(
         out,
-        "  {what:<7} {:<3} {:<16} alpha {:.12}  phase {:.12}  impact {}  multipliers {}, {}{persists}",
+        "  {what:<7} {:<3} {:<16} alpha {:.12}  phase {:.12}  impact {}  {multipliers}{evidence}",
         s.kind.label(),
         s.kind.as_str(),
         s.alpha,
         s.phase,
         s.impact,
-        complex(s.point.multipliers[0]),
-        complex(s.point.multipliers[1])
     )
 }
 

@@ -49,6 +49,17 @@ pub fn wrap_phase(t: f64) -> f64 {
     }
 }
 
+/// The phase difference `phase` − `from` wrapped to [−½, ½): which side of `from`
+/// (e.g. a breakpoint) `phase` lies on, and how far.
+pub fn signed_distance(phase: f64, from: f64) -> f64 {
+    let d = (phase - from).rem_euclid(1.0);
+    if d >= 0.5 {
+        d - 1.0
+    } else {
+        d
+    }
+}
+
 /// Circular distance of two phases (at most ½).
 pub fn phase_distance(a: f64, b: f64) -> f64 {
     let d = (a - b).abs();

@@ -27,6 +27,19 @@ pub struct SpecialRecord {
     /// At a border collision: whether the cycle goes on beyond it stable (true),
     /// unstable (false), or ceases to exist (null).
     pub persists: Option<bool>,
+    /// At a border collision: what happens (`persists_stable`, `persists_unstable`,
+    /// `border_fold`, `doubling_stable`, `doubling_unstable`).
+    pub crossing: Option<&'static str>,
+    /// At a border collision: the multipliers with f'' of the side the branch came
+    /// from, and of the other side.
+    pub multipliers_near: Option<[ComplexRecord; 2]>,
+    pub multipliers_far: Option<[ComplexRecord; 2]>,
+    /// How far the point's defining condition is from holding there: |μ + 1| at a
+    /// period doubling, |μ − 1| at a fold, the impact's phase distance from the
+    /// breakpoint at a border collision.
+    pub condition_error: Option<f64>,
+    /// Where the branch was lost: the last arclength step tried.
+    pub last_step: Option<f64>,
     pub stable: bool,
     pub multipliers: [ComplexRecord; 2],
 }
@@ -39,7 +52,12 @@ impl From<&Special> for SpecialRecord {
             alpha: s.alpha,
             phase: s.phase,
             impact: s.impact,
-            persists: s.persists,
+            persists: s.persists(),
+            crossing: s.collision.map(|c| c.crossing.as_str()),
+            multipliers_near: s.collision.map(|c| c.near.map(ComplexRecord::from)),
+            multipliers_far: s.collision.map(|c| c.far.map(ComplexRecord::from)),
+            condition_error: s.condition_error(),
+            last_step: s.last_step,
             stable: s.point.stable,
             multipliers: s.point.multipliers.map(ComplexRecord::from),
         }
@@ -124,6 +142,8 @@ pub struct ContinueRow {
     pub phase: Option<f64>,
     pub impact: Option<usize>,
     pub persists: Option<bool>,
+    pub crossing: Option<&'static str>,
+    pub condition_error: Option<f64>,
     pub stable: bool,
     pub lambda1_re: f64,
     pub lambda1_im: f64,
@@ -135,7 +155,7 @@ pub struct ContinueRow {
 }
 
 impl ContinueRow {
-    pub const HEADER: [&'static str; 17] = [
+    pub const HEADER: [&'static str; 19] = [
         "branch",
         "n",
         "k",
@@ -145,6 +165,8 @@ impl ContinueRow {
         "phase",
         "impact",
         "persists",
+        "crossing",
+        "condition_error",
         "stable",
         "lambda1_re",
         "lambda1_im",
@@ -167,6 +189,8 @@ impl ContinueRow {
             phase: None,
             impact: None,
             persists: None,
+            crossing: None,
+            condition_error: None,
             stable: p.stable,
             lambda1_re: l1.re,
             lambda1_im: l1.im,
@@ -184,7 +208,9 @@ impl ContinueRow {
             alpha: s.alpha,
             phase: Some(s.phase),
             impact: Some(s.impact),
-            persists: s.persists,
+            persists: s.persists(),
+            crossing: s.collision.map(|c| c.crossing.as_str()),
+            condition_error: s.condition_error(),
             ..ContinueRow::point(branch, b, &s.point)
         }
     }
@@ -200,6 +226,8 @@ pub struct LevelRecord {
     pub phase: f64,
     pub impact: usize,
     pub persists: Option<bool>,
+    /// At a border collision: what happens there (see `SpecialRecord::crossing`).
+    pub crossing: Option<&'static str>,
 }
 
 impl From<&Level> for LevelRecord {
@@ -211,7 +239,8 @@ impl From<&Level> for LevelRecord {
             alpha_end: l.end.alpha,
             phase: l.end.phase,
             impact: l.end.impact,
-            persists: l.end.persists,
+            persists: l.end.persists(),
+            crossing: l.end.collision.map(|c| c.crossing.as_str()),
         }
     }
 }
@@ -244,11 +273,12 @@ pub struct LevelRow {
     pub phase: f64,
     pub impact: usize,
     pub persists: Option<bool>,
+    pub crossing: Option<&'static str>,
     pub delta: Option<f64>,
 }
 
 impl LevelRow {
-    pub const HEADER: [&'static str; 8] = [
+    pub const HEADER: [&'static str; 9] = [
         "period",
         "alpha_start",
         "end",
@@ -256,6 +286,7 @@ impl LevelRow {
         "phase",
         "impact",
         "persists",
+        "crossing",
         "delta",
     ];
 
@@ -270,6 +301,7 @@ impl LevelRow {
             phase: l.phase,
             impact: l.impact,
             persists: l.persists,
+            crossing: l.crossing,
             delta: i.checked_sub(1).and_then(|j| c.deltas.get(j)).copied(),
         }
     }
@@ -337,7 +369,7 @@ impl FamilyRecord {
                     alpha_end: i.map(|l| l.end.alpha).or(unborn.and_then(|u| u.2)),
                     phase: i.map(|l| l.end.phase),
                     impact: i.map(|l| l.end.impact),
-                    persists: i.and_then(|l| l.end.persists),
+                    persists: i.and_then(|l| l.end.persists()),
                     alphas: c.alphas.clone(),
                     deltas: c.deltas.clone(),
                     ..empty

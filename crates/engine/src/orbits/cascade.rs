@@ -2,16 +2,20 @@
 //!
 //! From the stable (1, k) solution the branch is continued in α up to its period
 //! doubling α₁; there the continuation switches onto the (2, 2k) branch and follows it
-//! to its own end, and so on: each 2ⁿ branch ends either by period doubling (αₙ₊₁, and
-//! the cascade goes on) or otherwise, e.g. by border collision (an impact phase reaches
-//! a breakpoint of the table where f'' jumps: t̂ = 0 or ½ for F_D), and then the cascade
-//! stops there. The Feigenbaum ratios are δₙ = (αₙ − αₙ₋₁)/(αₙ₊₁ − αₙ).
+//! to its own end, and so on: each 2ⁿ branch ends where it loses stability. That is a
+//! period doubling (αₙ₊₁, and the cascade goes on), or a border collision (an impact
+//! phase reaches a breakpoint of the table where f'' jumps: t̂ = 0 or ½ for F_D). A
+//! border collision at which a far-side multiplier is below −1 gives birth to a cycle
+//! of twice the period ([`super::border`]): if that cycle is stable, αₙ₊₁ is the
+//! collision and the cascade goes on along it; otherwise the cascade stops there. The
+//! Feigenbaum ratios are δₙ = (αₙ − αₙ₋₁)/(αₙ₊₁ − αₙ).
 //!
 //! How deep this goes is bounded by `depth` (the number of period doublings looked for)
 //! and by the numbers themselves: αₙ₊₁ − αₙ shrinks like δ⁻ⁿ while each αₙ is located
 //! to about 1e-13, and long cycles amplify rounding through the multiplier product, so
 //! δₙ loses about one digit per level from n ≈ 6 on.
 
+use super::border::Crossing;
 use super::continuation::{Family, Kind, NoStart, Options, Special, Start};
 use super::fixed::stability_window;
 use crate::limits;
@@ -47,11 +51,16 @@ pub struct Cascade {
 }
 
 impl Cascade {
-    /// The first branch that ends otherwise than by period doubling.
+    /// The first branch that ends otherwise than by period doubling (smooth or through
+    /// a border collision).
     pub fn interrupted(&self) -> Option<&Level> {
-        self.levels
-            .iter()
-            .find(|l| l.end.kind != Kind::PeriodDoubling)
+        self.levels.iter().find(|l| {
+            l.end.kind != Kind::PeriodDoubling
+                && !matches!(
+                    l.end.collision.map(|c| c.crossing),
+                    Some(Crossing::Doubling { stable: true })
+                )
+        })
     }
 }
 
@@ -92,7 +101,13 @@ pub fn cascade(table: &Table, r: f64, k: u32, depth: usize) -> Result<Cascade, N
     let mut unborn = None;
     while alphas.len() < depth {
         let last = levels.last().expect("one level at least");
-        if last.end.kind != Kind::PeriodDoubling {
+        // A stable cycle of twice the period born at the border collision the branch
+        // ends at continues the cascade.
+        let through_border = matches!(
+            last.end.collision.map(|c| c.crossing),
+            Some(Crossing::Doubling { stable: true })
+        );
+        if last.end.kind != Kind::PeriodDoubling && !through_border {
             break;
         }
         // The cascade moves one way in α; a period doubling behind the previous one means
@@ -112,12 +127,25 @@ pub fn cascade(table: &Table, r: f64, k: u32, depth: usize) -> Result<Cascade, N
         }
         let pd = last.end.clone();
         let period = 2 * last.period;
-        match fam.doubled(&pd) {
+        let born = if through_border {
+            fam.doubled_at_border(&pd)
+        } else {
+            fam.doubled(&pd)
+        };
+        match born {
             Some(b) => levels.push(Level {
                 period,
                 alpha_start: pd.alpha,
                 end: b.end,
             }),
+            None if through_border => {
+                unborn = Some(format!(
+                    "the ({period}, {}) cycle born at the border collision at alpha = {} could not be found by Newton's method next to it",
+                    period as u32 * k,
+                    pd.alpha
+                ));
+                break;
+            }
             None => {
                 unborn = Some(format!(
                     "no ({period}, {}) branch is born at alpha = {}: a degenerate period doubling (f''' = 0 there, so doubled cycles exist at that alpha alone)",

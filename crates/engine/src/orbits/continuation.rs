@@ -53,8 +53,9 @@
 //! assert_eq!((bs[1].n, bs[1].parent), (2, Some(0)));
 //! ```
 
+use super::border;
+use super::events::special;
 pub use super::events::{jump_phases, Kind, Special};
-use super::events::{signed_distance, special};
 use super::fixed::{fixed_points, stability_window};
 use super::periodic::{correct, map_for, pass, CyclePoint, PassError};
 use super::roots::bracketed_root_nan;
@@ -63,6 +64,7 @@ use crate::error::EngineError;
 use crate::map::ImpactMap;
 use crate::system::System;
 use crate::table::Table;
+use crate::time::signed_distance;
 
 /// The smallest arclength step before a branch is declared ended.
 pub const H_MIN: f64 = 1e-11;
@@ -185,17 +187,26 @@ pub fn branches(
     // Breadth first over period doublings.
     let mut next = 0;
     while next < out.len() && out.len() < opts.max_branches {
-        let pds: Vec<Special> = out[next]
+        // Period doublings passed, and border collisions (passed or ending the branch)
+        // at which a cycle of twice the period is born.
+        let b = &out[next];
+        let births: Vec<Special> = b
             .specials
             .iter()
-            .filter(|s| s.kind == Kind::PeriodDoubling)
+            .filter(|s| s.kind == Kind::PeriodDoubling || doubles_at_border(s))
+            .chain(std::iter::once(&b.end).filter(|s| doubles_at_border(s)))
             .cloned()
             .collect();
-        for pd in pds {
+        for pd in births {
             if pd.point.n * 2 > opts.max_period || out.len() >= opts.max_branches {
                 break;
             }
-            if let Some(mut b) = fam.doubled(&pd) {
+            let born = if pd.kind == Kind::PeriodDoubling {
+                fam.doubled(&pd)
+            } else {
+                fam.doubled_at_border(&pd)
+            };
+            if let Some(mut b) = born {
                 b.parent = Some(next);
                 out.push(b);
             }
@@ -399,6 +410,49 @@ impl Family {
     }
 }
 
+/// Whether `s` is a border collision at which a cycle of twice the period is born.
+pub fn doubles_at_border(s: &Special) -> bool {
+    s.kind == Kind::BorderCollision
+        && matches!(
+            s.collision.map(|c| c.crossing),
+            Some(border::Crossing::Doubling { .. })
+        )
+}
+
+impl Family {
+    /// The doubled branch born at the border collision `bc` (one that
+    /// [`doubles_at_border`]), followed away from the collision.
+    pub(crate) fn doubled_at_border(&mut self, bc: &Special) -> Option<Branch> {
+        let p = &bc.point;
+        // The side the cycle came from is the one its impact is not on past the
+        // collision: try the doubled cycle on either side of α.
+        for (side, dir) in [(-1.0, 1.0), (1.0, 1.0), (-1.0, -1.0), (1.0, -1.0)] {
+            let Some(q) =
+                border::doubled_at_border(&mut self.map, p, bc.impact, bc.phase, side, dir)
+            else {
+                continue;
+            };
+            let xq = Family::x(&q);
+            let xp = Family::x(p);
+            let away = [xq[0] - xp[0], xq[1] - xp[1], xq[2] - xp[2]];
+            let t = self.tangent(&q, away)?;
+            let run = self.follow_from(q.clone(), t, self.opts.h_init.min(1e-4));
+            let mut points = vec![q];
+            points.extend(run.points);
+            return Some(Branch {
+                n: 2 * p.n,
+                k: 2 * p.k,
+                parent: None,
+                points,
+                specials: run.specials,
+                begin: bc.clone(),
+                end: run.end,
+            });
+        }
+        None
+    }
+}
+
 /// One direction of a branch.
 pub(crate) struct Run {
     pub points: Vec<CyclePoint>,
@@ -468,23 +522,17 @@ impl Family {
                         self.at_breakpoint(&pt),
                         run.specials.last().is_some_and(recent),
                     ) {
-                        let mut sp = special(Kind::BorderCollision, &pt, bp, i);
+                        let sp = special(Kind::BorderCollision, &pt, bp, i);
                         let side = signed_distance(pt.phases[i], bp);
-                        let Some((q, tq)) = self.cross_kink(&pt, i, bp, side) else {
-                            run.end = sp; // persists: None, the cycle ceases
-                            return run;
-                        };
-                        sp.persists = Some(q.stable);
-                        if self.opts.stop_at_pd && pt.stable && !q.stable {
-                            run.end = sp;
-                            return run;
+                        match self.cross_border(sp, &pt, side, pt.stable, &mut run) {
+                            Some((q, tq)) => {
+                                pt = q;
+                                tau = tq;
+                                h = self.opts.h_init;
+                                continue;
+                            }
+                            None => return run,
                         }
-                        run.specials.push(sp);
-                        run.points.push(q.clone());
-                        pt = q;
-                        tau = tq;
-                        h = self.opts.h_init;
-                        continue;
                     }
                     run.end = self.failure_end(&pt, e);
                     return run;
@@ -548,25 +596,20 @@ impl Family {
                     Kind::PeriodDoubling => self.opts.stop_at_pd,
                     Kind::Fold => false,
                     // The map is continuous: the cycle goes on beyond the breakpoint
-                    // (with f'' of the other side; `at` lies just past it); a cascade
-                    // ends where the cycle loses stability there.
+                    // (with f'' of the other side; `at` lies just past it) unless it
+                    // meets a partner there; a cascade ends where the cycle loses
+                    // stability there.
                     Kind::BorderCollision => {
                         let side = signed_distance(pt.phases[impact], phase);
-                        match self.cross_kink(&at, impact, phase, side) {
+                        run.points.push(at.clone());
+                        match self.cross_border(sp, &at, side, pt.stable, &mut run) {
                             Some((q, tq)) => {
-                                sp.persists = Some(q.stable);
-                                if !(self.opts.stop_at_pd && pt.stable && !q.stable) {
-                                    run.points.push(at.clone());
-                                    run.specials.push(sp);
-                                    run.points.push(q.clone());
-                                    pt = q;
-                                    tau = tq;
-                                    h = self.opts.h_init;
-                                    continue;
-                                }
-                                true
+                                pt = q;
+                                tau = tq;
+                                h = self.opts.h_init;
+                                continue;
                             }
-                            None => true,
+                            None => return run,
                         }
                     }
                     _ => true,
@@ -589,6 +632,32 @@ impl Family {
         }
         run.end = special(Kind::StepLimit, &pt, pt.phases[0], 0);
         run
+    }
+
+    /// A border collision `sp` of the cycle at `at` (its impact on the breakpoint),
+    /// reached from `side` by a cycle that was stable or not (`was_stable`): classified
+    /// ([`border::collision`]), recorded, and the cycle just beyond (or its partner at a
+    /// border-collision fold) found, with its tangent. None when the branch ends here
+    /// (`run.end` is set): no cycle beyond, or, in a cascade, the cycle loses stability.
+    fn cross_border(
+        &mut self,
+        mut sp: Special,
+        at: &CyclePoint,
+        side: f64,
+        was_stable: bool,
+        run: &mut Run,
+    ) -> Option<(CyclePoint, [f64; 3])> {
+        let (impact, bp) = (sp.impact, sp.phase);
+        sp.collision = border::collision(&mut self.map, at, impact, bp, side);
+        let beyond = self.cross_kink(at, impact, bp, side);
+        let loses = was_stable && sp.persists() != Some(true);
+        let Some((q, tq)) = beyond.filter(|_| !(self.opts.stop_at_pd && loses)) else {
+            run.end = sp;
+            return None;
+        };
+        run.specials.push(sp);
+        run.points.push(q.clone());
+        Some((q, tq))
     }
 
     /// Whether `b`, corrected from `a` with the arclength step `h` from `x0` along
@@ -868,22 +937,12 @@ pub const ON_BORDER: f64 = 1e-8;
 /// a period doubling, +1 at a fold (to [`CONDITION`]), the impact on the breakpoint at
 /// a border collision (to [`ON_BORDER`]); other kinds have none.
 pub fn holds(sp: &Special) -> bool {
-    let near = |target: f64| {
-        sp.point
-            .multipliers
-            .iter()
-            .any(|m| m.im == 0.0 && (m.re - target).abs() <= CONDITION)
+    let bound = match sp.kind {
+        Kind::PeriodDoubling | Kind::Fold => CONDITION,
+        Kind::BorderCollision => ON_BORDER,
+        _ => return true,
     };
-    match sp.kind {
-        Kind::PeriodDoubling => near(-1.0),
-        Kind::Fold => near(1.0),
-        Kind::BorderCollision => sp
-            .point
-            .phases
-            .get(sp.impact)
-            .is_some_and(|&ph| signed_distance(ph, sp.phase).abs() <= ON_BORDER),
-        _ => true,
-    }
+    sp.condition_error().is_some_and(|e| e <= bound)
 }
 
 /// Cycle points closer than this are one (the accuracy of a long cycle's impacts,

@@ -3,8 +3,10 @@
 //! collisions), the signed phase distance to one, and a bracketed root that tolerates
 //! failed evaluations.
 
+use super::border::{Collision, Crossing};
 use super::periodic::CyclePoint;
 use crate::table::Table;
+use crate::time::signed_distance;
 
 /// What happens at a special point.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -77,11 +79,49 @@ pub struct Special {
     pub impact: usize,
     /// The cycle at the point (the last good one where the branch could not go on).
     pub point: CyclePoint,
-    /// At a border collision: Some(stable) if the cycle goes on beyond the breakpoint
-    /// (with that stability), None if it ceases to exist there. None elsewhere.
-    pub persists: Option<bool>,
+    /// At a border collision: the multipliers on both sides and what happens
+    /// ([`Collision`]); None elsewhere, or where the two sides could not be computed.
+    pub collision: Option<Collision>,
     /// Where the branch was lost ([`Kind::Lost`]): the last arclength step tried.
     pub last_step: Option<f64>,
+}
+
+impl Special {
+    /// How far its defining condition is from holding at its point, the evidence it
+    /// is what it says: the distance of the nearest real multiplier from −1 (period
+    /// doubling) or +1 (fold), of the impact's phase from the breakpoint (border
+    /// collision); None for kinds without one.
+    pub fn condition_error(&self) -> Option<f64> {
+        let nearest = |target: f64| {
+            self.point
+                .multipliers
+                .iter()
+                .filter(|m| m.im == 0.0)
+                .map(|m| (m.re - target).abs())
+                .min_by(f64::total_cmp)
+        };
+        match self.kind {
+            Kind::PeriodDoubling => nearest(-1.0),
+            Kind::Fold => nearest(1.0),
+            Kind::BorderCollision => self
+                .point
+                .phases
+                .get(self.impact)
+                .map(|&ph| signed_distance(ph, self.phase).abs()),
+            _ => None,
+        }
+    }
+
+    /// At a border collision: Some(stable) if the cycle goes on beyond the breakpoint
+    /// (with that stability), None if it ceases there (a border-collision fold) or
+    /// elsewhere.
+    pub fn persists(&self) -> Option<bool> {
+        match self.collision?.crossing {
+            Crossing::Persists { stable } => Some(stable),
+            Crossing::Doubling { .. } => Some(false),
+            Crossing::Fold => None,
+        }
+    }
 }
 
 /// Phases in [0, 1) at which f'' jumps (the table's piece starts whose one-sided
@@ -100,16 +140,6 @@ pub fn jump_phases(table: &Table) -> Vec<f64> {
     out
 }
 
-/// Phase difference wrapped to [−½, ½).
-pub(crate) fn signed_distance(phase: f64, bp: f64) -> f64 {
-    let d = (phase - bp).rem_euclid(1.0);
-    if d >= 0.5 {
-        d - 1.0
-    } else {
-        d
-    }
-}
-
 pub(crate) fn special(kind: Kind, p: &CyclePoint, phase: f64, impact: usize) -> Special {
     Special {
         kind,
@@ -117,7 +147,7 @@ pub(crate) fn special(kind: Kind, p: &CyclePoint, phase: f64, impact: usize) -> 
         phase: if phase.is_nan() { p.phases[0] } else { phase },
         impact,
         point: p.clone(),
-        persists: None,
+        collision: None,
         last_step: None,
     }
 }

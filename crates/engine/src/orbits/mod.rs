@@ -22,6 +22,7 @@
 //! the terminal application calls per frame (e.g. [`fixed::stability_window`]) do
 //! bounded work and never panic.
 
+pub mod border;
 pub mod cascade;
 pub mod continuation;
 pub mod events;
