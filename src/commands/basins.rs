@@ -11,7 +11,7 @@ use super::progress::Progress;
 use crate::config::flags::{BasinsArgs, BasinsFormat};
 use crate::config::{self, InputError};
 use crate::output::basin_map;
-use crate::output::records::{csv_writer, AttractorRecord, BasinRow, BasinsDoc, Exponent};
+use crate::output::records::{csv_writer, AttractorRecord, BasinRow, BasinsDoc};
 use crate::output::sink::Sink;
 use crate::output::text::shortest;
 use bouncemap_engine::attractors::basins::{BasinSpec, Basins, BasinsJob};
@@ -82,16 +82,15 @@ fn write(
                     .into_iter()
                     .map(|id| {
                         let a = &reg.attractors()[id];
-                        AttractorRecord {
-                            id: number[id],
-                            kind: a.kind.into(),
-                            events: a.events,
-                            periods: a.periods,
-                            phase: a.point.map(|p| p.0),
-                            v: a.point.map(|p| p.1),
-                            lyapunov: Exponent(a.lyapunov),
-                            fraction: reg.fraction(id),
-                        }
+                        AttractorRecord::new(
+                            number[id],
+                            a.kind,
+                            (a.events, a.periods),
+                            a.point,
+                            a.lyapunov,
+                            reg.fraction(id),
+                            a.precision,
+                        )
                     })
                     .collect(),
             };

@@ -88,7 +88,10 @@ fn text(
         sys.r(),
         args.transient
     )?;
+    let unresolved = found.precision.is_some_and(|p| !p.resolved);
     let period = match (found.events, found.periods) {
+        // No cycle length is claimed where rounding decides it.
+        _ if unresolved => String::new(),
         (Some(n), Some(k)) => format!(
             " ({n}, {k}): {n} event{} every {k} table period{}",
             if n == 1 { "" } else { "s" },
@@ -96,7 +99,16 @@ fn text(
         ),
         _ => String::new(),
     };
-    writeln!(out, "orbit: {}{period}", found.kind.as_str())?;
+    let kind = match found.kind {
+        attractors::Kind::Converging => {
+            "converging: periodic, period > 4096 events or transient too short (negative exponent, no cycle found)"
+        }
+        k => k.as_str(),
+    };
+    writeln!(out, "orbit: {kind}{period}")?;
+    if let Some(p) = found.precision {
+        writeln!(out, "cycle: {}", p.describe())?;
+    }
     let two_ln_r = 2.0 * sys.r().ln();
     match found.spectrum {
         Some(Spectrum::Finite(e)) => {

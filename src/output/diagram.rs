@@ -155,6 +155,7 @@ mod tests {
             events: 1,
             lyapunov: None,
             attractors: Vec::new(),
+            precision: None,
         };
         let mut d = BrailleDiagram::new(&spec, 30, 10);
         d.add(&r);

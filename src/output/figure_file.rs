@@ -59,6 +59,7 @@ mod tests {
                 events: 1,
                 lyapunov: None,
                 attractors: Vec::new(),
+                precision: None,
             })
             .collect();
         let dir = std::env::temp_dir().join(format!("bouncemap-export-{}", std::process::id()));

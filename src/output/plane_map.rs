@@ -20,6 +20,7 @@ pub fn glyph(c: Class) -> char {
         Class::Period8 => '*',
         Class::Periodic => '#',
         Class::Sticking => '▒',
+        Class::StickingUnresolved => '░',
         Class::Chaotic => '█',
         Class::Unresolved => '?',
     }

@@ -129,9 +129,12 @@ impl Theme {
         self.fg(Color::Yellow, 179, (215, 175, 95))
     }
 
-    /// A class of orbit in the diagram (period colours). Without colour the classes
-    /// differ by modifiers: period 1 bold, 2 plain, 4 underlined, 8 underlined bold,
-    /// other cycles italic, sticking reversed, chaos dim, unresolved dim italic.
+    /// A class of orbit in the diagram: the one palette of figures and screen
+    /// ([`Class::rgb_on_dark`] in truecolour, [`Class::ansi256`] in 256 colours; the
+    /// nearest of the 16 system colours otherwise). Without colour the classes differ by
+    /// modifiers: period 1 bold, 2 plain, 4 underlined, 8 underlined bold, other cycles
+    /// italic, sticking bold italic (dim where its length is beyond double precision),
+    /// chaos dim, unresolved dim italic.
     pub fn class(&self, c: Class) -> Style {
         if self.mode == ColorMode::None {
             let m = match c {
@@ -140,22 +143,25 @@ impl Theme {
                 Class::Period4 => Modifier::UNDERLINED,
                 Class::Period8 => Modifier::UNDERLINED | Modifier::BOLD,
                 Class::Periodic => Modifier::ITALIC,
-                Class::Sticking => Modifier::REVERSED,
+                Class::Sticking => Modifier::BOLD | Modifier::ITALIC,
+                Class::StickingUnresolved => Modifier::BOLD | Modifier::ITALIC | Modifier::DIM,
                 Class::Chaotic => Modifier::DIM,
                 Class::Unresolved => Modifier::DIM | Modifier::ITALIC,
             };
             return Style::new().add_modifier(m);
         }
-        match c {
-            Class::Period1 => self.fg(Color::LightCyan, 51, (80, 220, 255)),
-            Class::Period2 => self.fg(Color::LightGreen, 84, (90, 230, 120)),
-            Class::Period4 => self.fg(Color::Yellow, 226, (250, 230, 60)),
-            Class::Period8 => self.fg(Color::LightRed, 209, (255, 140, 80)),
-            Class::Periodic => self.fg(Color::LightBlue, 111, (130, 170, 255)),
-            Class::Sticking => self.fg(Color::Gray, 246, (150, 150, 150)),
-            Class::Chaotic => self.fg(Color::LightMagenta, 207, (255, 90, 220)),
-            Class::Unresolved => self.fg(Color::White, 255, (240, 240, 240)),
-        }
+        let c16 = match c {
+            Class::Period1 => Color::LightCyan,
+            Class::Period2 => Color::Yellow,
+            Class::Period4 => Color::Green,
+            Class::Period8 => Color::Red,
+            Class::Periodic => Color::Magenta,
+            Class::Sticking => Color::Blue,
+            Class::StickingUnresolved => Color::LightBlue,
+            Class::Chaotic => Color::White,
+            Class::Unresolved => Color::LightYellow,
+        };
+        self.fg(c16, c.ansi256(), c.rgb_on_dark())
     }
 
     /// The colour of attractor number `n` (0-based) in the basins panel and the

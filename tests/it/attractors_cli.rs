@@ -172,7 +172,7 @@ fn sweep_lyapunov_column_and_several_starts_merge_like_the_whole() {
     let header = whole.lines().find(|l| l.starts_with("index,")).unwrap();
     assert_eq!(
         header,
-        "index,alpha,phase,v,kind,period,table_periods,status,sticking,lyapunov,attractor"
+        "index,alpha,phase,v,kind,period,table_periods,status,sticking,resolved,growth_decades,lyapunov,attractor"
     );
     // Between 0.45 and 0.48 the (1,1) branch and a sticking cycle coexist: some value
     // lists two attractors, one with exponent -inf.
@@ -181,11 +181,11 @@ fn sweep_lyapunov_column_and_several_starts_merge_like_the_whole() {
         .filter(|l| !l.starts_with('#') && !l.starts_with("index"))
         .map(|l| l.split(',').collect())
         .collect();
-    assert!(rows.iter().any(|r| r[10] == "2"), "{whole}");
-    assert!(rows.iter().any(|r| r[9] == "-inf"), "{whole}");
+    assert!(rows.iter().any(|r| r[12] == "2"), "{whole}");
+    assert!(rows.iter().any(|r| r[11] == "-inf"), "{whole}");
     assert!(
         rows.iter()
-            .any(|r| r[9].parse::<f64>().is_ok_and(|x| x < 0.0)),
+            .any(|r| r[11].parse::<f64>().is_ok_and(|x| x < 0.0)),
         "{whole}"
     );
     // Two shards merge into the whole file (same rows, same checksum line).
@@ -238,7 +238,9 @@ fn one_start_is_todays_sweep() {
     let (_, plain, _) = run(&args);
     let (_, one, _) = run(&[&args[..], &["--starts", "1"]].concat());
     assert_eq!(plain, one);
-    assert!(plain.contains("index,alpha,phase,v,kind,period,table_periods,status,sticking\n"));
+    assert!(plain.contains(
+        "index,alpha,phase,v,kind,period,table_periods,status,sticking,resolved,growth_decades\n"
+    ));
 }
 
 #[test]

@@ -49,7 +49,7 @@ fn every_preset_parses_and_runs() {
         let rows: Vec<&str> = data(&text);
         assert_eq!(
             rows[0],
-            "index,alpha,phase,v,kind,period,table_periods,status,sticking"
+            "index,alpha,phase,v,kind,period,table_periods,status,sticking,resolved,growth_decades"
         );
         let indices: std::collections::BTreeSet<&str> = rows[1..]
             .iter()
@@ -256,5 +256,5 @@ fn resting_values_are_reported_in_csv() {
         "3",
     ]));
     let last = *data(&csv).last().unwrap();
-    assert!(last.ends_with(",resting,true"), "{last}");
+    assert!(last.ends_with(",resting,true,,"), "{last}");
 }

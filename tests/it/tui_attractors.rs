@@ -100,7 +100,7 @@ fn period_colours_follow_the_class_of_each_value() {
     );
     let legend = buffer_text(&buf);
     assert!(
-        legend.contains("period 1 2 4 8 n stick chaos ?"),
+        legend.contains("period 1 2 4 8 n stick stick? chaos ?"),
         "{legend}"
     );
     // `c` switches to density colouring: no class colours left on the plot.

@@ -320,7 +320,7 @@ fn export_writes_csv_and_braille_text_under_a_typed_name() {
     // The diagram measures every value's exponent (its strip), so the file has it too.
     assert_eq!(
         data[0],
-        "index,alpha,phase,v,kind,period,table_periods,status,sticking,lyapunov"
+        "index,alpha,phase,v,kind,period,table_periods,status,sticking,resolved,growth_decades,lyapunov"
     );
     assert!(c.lines().last().unwrap().starts_with("# end 120 values"));
     // The text has a title with the window, axes and labels.

@@ -91,10 +91,11 @@ pub struct Flight {
 }
 
 /// The partials of the impact `e` after the flight from `before`; None unless `e` is an
-/// impact after a flight launched with w > 0 and landing with u ≠ 0.
+/// impact after a flight launched with w ≥ 0 (w = 0: a release, whose launch state is
+/// the table's) and landing with u ≠ 0.
 pub fn flight(sys: &System, before: &State, e: &Event) -> Option<Flight> {
     let u = e.vrel;
-    if e.kind != EventKind::Impact || before.w <= 0.0 || u == 0.0 {
+    if e.kind != EventKind::Impact || before.w < 0.0 || u == 0.0 {
         return None;
     }
     // The flight time, from exact (period, phase) differences.

@@ -3,14 +3,23 @@
 //! their names and legend labels and how a sweep result or a pixel is classified (the
 //! figures, the text pictures and the terminal application's period colours use these).
 //!
-//! A value is *sticking* when its points include a stick or a release, or its exponent
-//! is −∞ (a stick–release cycle, a ball at rest); *chaotic* when it did not settle and
-//! its largest exponent is positive (above [`CHAOS_FLOOR`]); *unresolved* when it did
-//! not settle without a positive exponent (a long or slowly converging cycle, a torus)
-//! or its exponent is not known.
+//! A value is *sticking* when its orbit sticks to the table in what it settled on (the
+//! engine's one meaning: a stick–release cycle, a ball at rest, a stick among the kept
+//! points or in the sample its exponent was measured on; exponent −∞), and *sticking
+//! beyond double precision* when that is a cycle whose length rounding decides
+//! ([`Precision`]); *chaotic* when it did not settle and its largest exponent is
+//! positive (above [`CHAOS_FLOOR`]); *another period* when it settled on a cycle other
+//! than 1, 2, 4, 8, or did not settle with a negative exponent (periodic, but longer
+//! than the detectors or converging too slowly); *unresolved* when it did not settle
+//! with an exponent zero within its error, or its exponent is not known.
+//!
+//! The palette is Okabe and Ito's, which stays apart for colour-blind readers, one
+//! colour per class in the figures, the text pictures and the terminal application
+//! alike ([`Class::rgb`], [`Class::rgb_on_dark`], [`Class::ansi256`]).
 
 use bouncemap_engine::attractors::{Kind, CHAOS_FLOOR};
 use bouncemap_engine::plane::Pixel;
+use bouncemap_engine::run::precision::Precision;
 use bouncemap_engine::run::Outcome;
 use bouncemap_engine::sweep::{ValueAttractor, ValueResult};
 
@@ -27,19 +36,22 @@ pub enum Class {
     /// A cycle of another number of events.
     Periodic,
     Sticking,
+    /// A sticking cycle whose length is beyond double precision.
+    StickingUnresolved,
     Chaotic,
     Unresolved,
 }
 
 impl Class {
     /// Every class, in legend order.
-    pub const ALL: [Class; 8] = [
+    pub const ALL: [Class; 9] = [
         Class::Period1,
         Class::Period2,
         Class::Period4,
         Class::Period8,
         Class::Periodic,
         Class::Sticking,
+        Class::StickingUnresolved,
         Class::Chaotic,
         Class::Unresolved,
     ];
@@ -58,6 +70,7 @@ impl Class {
             Class::Period8 => "8",
             Class::Periodic => "n",
             Class::Sticking => "stick",
+            Class::StickingUnresolved => "stick?",
             Class::Chaotic => "chaos",
             Class::Unresolved => "?",
         }
@@ -70,10 +83,11 @@ impl Class {
             Class::Period2 => "period 2",
             Class::Period4 => "period 4",
             Class::Period8 => "period 8",
-            Class::Periodic => "another period",
+            Class::Periodic => "another period (or longer than 4096 events: exponent < 0)",
             Class::Sticking => "sticks to the table (exponent -inf)",
+            Class::StickingUnresolved => "sticks; cycle length beyond double precision",
             Class::Chaotic => "chaotic (largest exponent > 0)",
-            Class::Unresolved => "not settled, no positive exponent",
+            Class::Unresolved => "not settled, exponent zero within its error",
         }
     }
 
@@ -86,24 +100,44 @@ impl Class {
             Class::Period8 => "period-8",
             Class::Periodic => "periodic",
             Class::Sticking => "sticking",
+            Class::StickingUnresolved => "sticking-unresolved",
             Class::Chaotic => "chaotic",
             Class::Unresolved => "unresolved",
         }
     }
 
-    /// Its colour among the 256 of a terminal: the terminal application's period colour
-    /// in 256-colour mode (a test keeps the two equal), for coloured text pictures.
-    pub fn ansi256(self) -> u8 {
+    /// Its colour on a light background (the figures): Okabe and Ito's palette.
+    pub fn rgb(self) -> (u8, u8, u8) {
         match self {
-            Class::Period1 => 51,
-            Class::Period2 => 84,
-            Class::Period4 => 226,
-            Class::Period8 => 209,
-            Class::Periodic => 111,
-            Class::Sticking => 246,
-            Class::Chaotic => 207,
-            Class::Unresolved => 255,
+            Class::Period1 => (86, 180, 233),             // sky blue
+            Class::Period2 => (230, 159, 0),              // orange
+            Class::Period4 => (0, 158, 115),              // bluish green
+            Class::Period8 => (213, 94, 0),               // vermillion
+            Class::Periodic => (204, 121, 167),           // reddish purple
+            Class::Sticking => (0, 114, 178),             // blue
+            Class::StickingUnresolved => (120, 170, 215), // pale blue
+            Class::Chaotic => (40, 40, 40),               // black
+            Class::Unresolved => (190, 170, 0),           // dark yellow
         }
+    }
+
+    /// Its colour on a dark background (the terminal): the same hues, with the neutral
+    /// and yellow classes light instead of dark, and the blues lifted to stay visible.
+    pub fn rgb_on_dark(self) -> (u8, u8, u8) {
+        match self {
+            Class::Sticking => (40, 140, 220),
+            Class::StickingUnresolved => (150, 190, 230),
+            Class::Chaotic => (235, 235, 235),
+            Class::Unresolved => (240, 228, 66),
+            c => c.rgb(),
+        }
+    }
+
+    /// Its colour among the 256 of a terminal: the nearest of the xterm colour cube and
+    /// grey ramp to [`Self::rgb_on_dark`] (the terminal application's 256-colour mode
+    /// and the coloured text pictures).
+    pub fn ansi256(self) -> u8 {
+        nearest_xterm(self.rgb_on_dark())
     }
 
     /// The class named `name` (as [`Self::name`] writes it).
@@ -122,10 +156,42 @@ impl Class {
     }
 }
 
+/// The index in the xterm 256-colour palette nearest to `rgb` (its 6 × 6 × 6 cube and
+/// 24 greys; the 16 system colours vary between terminals and are left out).
+pub fn nearest_xterm((r, g, b): (u8, u8, u8)) -> u8 {
+    const LEVELS: [i32; 6] = [0, 95, 135, 175, 215, 255];
+    let near = |x: u8| {
+        (0..6)
+            .min_by_key(|&i| (LEVELS[i] - i32::from(x)).abs())
+            .unwrap_or(0)
+    };
+    let (i, j, k) = (near(r), near(g), near(b));
+    let cube = (LEVELS[i], LEVELS[j], LEVELS[k]);
+    let grey_level = ((i32::from(r) + i32::from(g) + i32::from(b)) / 3 - 8).clamp(0, 230) / 10;
+    let grey = 8 + 10 * grey_level;
+    let dist = |(x, y, z): (i32, i32, i32)| {
+        (x - i32::from(r)).pow(2) + (y - i32::from(g)).pow(2) + (z - i32::from(b)).pow(2)
+    };
+    if dist((grey, grey, grey)) < dist(cube) {
+        (232 + grey_level) as u8
+    } else {
+        (16 + 36 * i + 6 * j + k) as u8
+    }
+}
+
 /// The class of a value (of its first start's orbit); None while it is provisional or
 /// when the ball did not land.
 pub fn of_value(r: &ValueResult) -> Option<Class> {
-    of_outcome(&r.outcome, r.sticking, r.lyapunov)
+    let class = of_outcome(&r.outcome, r.sticking, r.lyapunov);
+    match (class, r.precision) {
+        (Some(Class::Sticking), Some(p)) if !p.resolved => Some(Class::StickingUnresolved),
+        _ => class,
+    }
+}
+
+/// Whether a result's cycle is out of reach of double precision.
+pub fn unresolved(precision: Option<Precision>) -> bool {
+    precision.is_some_and(|p| !p.resolved)
 }
 
 /// The class of one pixel of a plane; None when the ball did not land.
@@ -144,6 +210,7 @@ pub fn of_outcome(outcome: &Outcome, sticking: bool, lyapunov: Option<f64>) -> O
         Outcome::Periodic { events, .. } => Some(Class::of_cycle(events)),
         Outcome::Unsettled => Some(match lyapunov {
             Some(l) if l > CHAOS_FLOOR => Class::Chaotic,
+            Some(l) if l < -CHAOS_FLOOR => Class::Periodic,
             _ => Class::Unresolved,
         }),
     }
@@ -153,8 +220,10 @@ pub fn of_outcome(outcome: &Outcome, sticking: bool, lyapunov: Option<f64>) -> O
 pub fn of_attractor(a: &ValueAttractor) -> Option<Class> {
     match a.kind {
         Kind::Periodic => Some(Class::of_cycle(a.events.unwrap_or(0))),
+        Kind::Sticking if unresolved(a.precision) => Some(Class::StickingUnresolved),
         Kind::Sticking | Kind::Resting => Some(Class::Sticking),
         Kind::Chaotic => Some(Class::Chaotic),
+        Kind::Converging => Some(Class::Periodic),
         Kind::Unsettled => Some(Class::Unresolved),
         Kind::Escaping => None,
     }
@@ -175,6 +244,7 @@ mod tests {
             events: 0,
             lyapunov,
             attractors: Vec::new(),
+            precision: None,
         }
     }
 
@@ -200,6 +270,10 @@ mod tests {
         );
         assert_eq!(
             of_value(&value(Outcome::Unsettled, false, Some(-0.01))),
+            Some(Class::Periodic)
+        );
+        assert_eq!(
+            of_value(&value(Outcome::Unsettled, false, Some(-1e-4))),
             Some(Class::Unresolved)
         );
         assert_eq!(
@@ -212,6 +286,32 @@ mod tests {
         );
         for (i, c) in Class::ALL.iter().enumerate() {
             assert_eq!(c.index(), i);
+        }
+    }
+}
+
+#[cfg(test)]
+mod palette {
+    use super::*;
+
+    #[test]
+    fn the_nearest_xterm_colours_are_the_cube_and_grey_entries() {
+        // Exact cube and grey entries map to themselves.
+        assert_eq!(nearest_xterm((0, 0, 0)), 16);
+        assert_eq!(nearest_xterm((255, 255, 255)), 231);
+        assert_eq!(nearest_xterm((0, 135, 215)), 32);
+        assert_eq!(nearest_xterm((128, 128, 128)), 244);
+    }
+
+    #[test]
+    fn every_class_has_its_own_colour_on_both_backgrounds() {
+        for (i, a) in Class::ALL.iter().enumerate() {
+            for b in &Class::ALL[i + 1..] {
+                assert_ne!(a.rgb(), b.rgb(), "{a:?} {b:?}");
+                assert_ne!(a.ansi256(), b.ansi256(), "{a:?} {b:?}");
+            }
+            // Not the axes' grey of the terminal (245) nor its neighbours.
+            assert!(!(243..=247).contains(&a.ansi256()), "{a:?}");
         }
     }
 }

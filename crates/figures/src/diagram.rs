@@ -277,6 +277,7 @@ mod tests {
             events: 1,
             lyapunov: None,
             attractors: Vec::new(),
+            precision: None,
         }
     }
 

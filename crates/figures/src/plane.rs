@@ -12,19 +12,10 @@ use bouncemap_engine::error::fmt_value as shortest;
 use bouncemap_engine::grid::SweepParam;
 use bouncemap_engine::plane::{Curves, Pixel, PlaneSpec};
 
-/// The colour of a class in print (period 1 to 8 in hues that stay apart, sticking
-/// the paper's light blue, chaos dark).
+/// The colour of a class in print: the one palette ([`Class::rgb`]).
 pub fn colour(c: Class) -> Color {
-    match c {
-        Class::Period1 => Color(31, 89, 180),
-        Class::Period2 => Color(230, 120, 20),
-        Class::Period4 => Color(44, 150, 44),
-        Class::Period8 => Color(204, 37, 41),
-        Class::Periodic => Color(140, 86, 180),
-        Class::Sticking => Color::STICKING,
-        Class::Chaotic => Color(40, 40, 40),
-        Class::Unresolved => Color(175, 175, 175),
-    }
+    let (r, g, b) = c.rgb();
+    Color(r, g, b)
 }
 
 /// Where the ball never lands (or rests).
@@ -280,6 +271,7 @@ fn describe(c: Class) -> String {
         Class::Period8 => "period 8".into(),
         Class::Periodic => "other periods".into(),
         Class::Sticking => "sticking".into(),
+        Class::StickingUnresolved => "sticking, length beyond f64".into(),
         Class::Chaotic => "chaotic".into(),
         Class::Unresolved => "unresolved".into(),
     }

@@ -2,6 +2,7 @@
 //! `sweep`: exponents (with `-inf`), attractor kinds, basin rows and documents.
 
 use super::*;
+use bouncemap_engine::run::precision::Precision;
 
 /// A Lyapunov exponent in outputs: a number, `-inf` for a superstable (sticking or
 /// resting) orbit (a string in json, which has no infinities), empty/null where the
@@ -47,6 +48,9 @@ pub enum AttractorKind {
     Periodic,
     Sticking,
     Chaotic,
+    /// No cycle found, negative exponent: periodic, longer than 4096 events or
+    /// converging too slowly for the transient.
+    Converging,
     Unsettled,
     Resting,
     Escaping,
@@ -59,6 +63,7 @@ impl From<bouncemap_engine::attractors::Kind> for AttractorKind {
             K::Periodic => AttractorKind::Periodic,
             K::Sticking => AttractorKind::Sticking,
             K::Chaotic => AttractorKind::Chaotic,
+            K::Converging => AttractorKind::Converging,
             K::Unsettled => AttractorKind::Unsettled,
             K::Resting => AttractorKind::Resting,
             K::Escaping => AttractorKind::Escaping,
@@ -91,10 +96,17 @@ pub struct LyapunovRow {
     /// Impacts measured and the table periods they took.
     pub impacts: Option<u64>,
     pub measured_periods: Option<f64>,
+    /// For a cycle: whether double precision decides it (false: a sticking cycle whose
+    /// length rounding decides; `events` and `periods` are then empty).
+    pub resolved: Option<bool>,
+    /// For a sticking cycle: log₁₀ of the largest growth of a perturbation from a
+    /// release to the next stick, and the impacts of that stretch.
+    pub growth_decades: Option<f64>,
+    pub growth_impacts: Option<usize>,
 }
 
 impl LyapunovRow {
-    pub const HEADER: [&'static str; 14] = [
+    pub const HEADER: [&'static str; 17] = [
         "kind",
         "events",
         "periods",
@@ -109,6 +121,9 @@ impl LyapunovRow {
         "two_ln_r",
         "impacts",
         "measured_periods",
+        "resolved",
+        "growth_decades",
+        "growth_impacts",
     ];
 
     pub fn new(found: &bouncemap_engine::attractors::Found, r: f64) -> LyapunovRow {
@@ -130,7 +145,18 @@ impl LyapunovRow {
             two_ln_r: 2.0 * r.ln(),
             impacts: None,
             measured_periods: None,
+            resolved: found.precision.map(|p| p.resolved),
+            growth_decades: found
+                .precision
+                .filter(|p| p.impacts > 0)
+                .map(|p| p.growth_decades),
+            growth_impacts: found.precision.filter(|p| p.impacts > 0).map(|p| p.impacts),
         };
+        // No cycle length is claimed where rounding decides it.
+        if row.resolved == Some(false) {
+            row.events = None;
+            row.periods = None;
+        }
         match found.spectrum {
             Some(Spectrum::Finite(e)) => {
                 row.method = Some(e.method.as_str());
@@ -185,6 +211,46 @@ pub struct AttractorRecord {
     pub lyapunov: Exponent,
     /// Share of the starts that ended on it.
     pub fraction: f64,
+    /// For a cycle: whether double precision decides it (false: a sticking cycle whose
+    /// length rounding decides; `events` and `periods` are then empty).
+    #[serde(default)]
+    pub resolved: Option<bool>,
+    /// For a sticking cycle: log₁₀ of the largest growth from a release to the next
+    /// stick.
+    #[serde(default)]
+    pub growth_decades: Option<f64>,
+}
+
+impl AttractorRecord {
+    /// Attractor number `id` of this `kind` with its cycle (events, periods), a point
+    /// on it, its largest exponent, its share of the starts and its precision verdict:
+    /// no cycle length is claimed where rounding decides it.
+    pub fn new(
+        id: usize,
+        kind: bouncemap_engine::attractors::Kind,
+        cycle: (Option<usize>, Option<i64>),
+        point: Option<(f64, f64)>,
+        lyapunov: Option<f64>,
+        fraction: f64,
+        precision: Option<Precision>,
+    ) -> AttractorRecord {
+        let resolved = precision.map(|p| p.resolved);
+        let claimed = resolved != Some(false);
+        AttractorRecord {
+            id,
+            kind: kind.into(),
+            events: cycle.0.filter(|_| claimed),
+            periods: cycle.1.filter(|_| claimed),
+            phase: point.map(|p| p.0),
+            v: point.map(|p| p.1),
+            lyapunov: Exponent(lyapunov),
+            fraction,
+            resolved,
+            growth_decades: precision
+                .filter(|p| p.impacts > 0)
+                .map(|p| p.growth_decades),
+        }
+    }
 }
 
 /// One csv row of `basins`: a start and its attractor's id.

@@ -7,6 +7,7 @@
 use bouncemap_engine::grid::SweepParam;
 use bouncemap_engine::linalg::Complex;
 use bouncemap_engine::orbits::{FixedPoint, StabilityWindow};
+use bouncemap_engine::run::precision::Precision;
 use bouncemap_engine::run::Outcome;
 use bouncemap_engine::run::Point as SweepPoint;
 use bouncemap_engine::sweep::{SweepSpec, ValueResult, Warm};
@@ -152,6 +153,13 @@ pub struct SweepRow {
     pub table_periods: Option<i64>,
     pub status: Status,
     pub sticking: bool,
+    /// For a periodic value: whether double precision decides its cycle (false: a
+    /// sticking cycle whose length rounding decides; `period` and `table_periods` are
+    /// then empty).
+    pub resolved: Option<bool>,
+    /// For a sticking cycle: log₁₀ of the largest growth of a perturbation from a
+    /// release to the next stick.
+    pub growth_decades: Option<f64>,
     /// None: no such column.
     #[serde(
         default,
@@ -187,6 +195,8 @@ impl SweepRow {
             "table_periods",
             "status",
             "sticking",
+            "resolved",
+            "growth_decades",
         ];
         if lyapunov {
             h.push("lyapunov");
@@ -200,41 +210,49 @@ impl SweepRow {
     /// The rows of one value, with a `lyapunov` column and with an `attractor` column
     /// (for `several` starts) as asked.
     pub fn rows(r: &ValueResult, lyapunov: bool, several: bool) -> Vec<SweepRow> {
-        let row =
-            |p: Option<&SweepPoint>, o: &Outcome, l: Option<f64>, a: Option<usize>| SweepRow {
+        let row = |p: Option<&SweepPoint>,
+                   o: &Outcome,
+                   l: Option<f64>,
+                   precision: Option<Precision>,
+                   a: Option<usize>| {
+            let resolved = precision.map(|p| p.resolved);
+            let claimed = resolved != Some(false);
+            SweepRow {
                 index: r.index,
                 value: r.value,
                 phase: p.map(|p| p.phase),
                 v: p.map(|p| p.v),
                 kind: p.map(|p| p.kind.into()),
-                period: o.period(),
-                table_periods: o.table_periods(),
+                period: o.period().filter(|_| claimed),
+                table_periods: o.table_periods().filter(|_| claimed),
                 status: o.into(),
                 sticking: r.sticking,
+                resolved,
+                growth_decades: precision
+                    .filter(|p| p.impacts > 0)
+                    .map(|p| p.growth_decades),
                 lyapunov: lyapunov.then_some(Exponent(l)),
                 attractor: a,
-            };
+            }
+        };
         if several && !r.attractors.is_empty() {
             let mut out = Vec::new();
             for (n, a) in r.attractors.iter().enumerate() {
                 let pts = &r.points[a.points.clone()];
+                let row = |p| row(p, &a.outcome, a.lyapunov, a.precision, Some(n + 1));
                 if pts.is_empty() {
-                    out.push(row(None, &a.outcome, a.lyapunov, Some(n + 1)));
+                    out.push(row(None));
                 }
-                for p in pts {
-                    out.push(row(Some(p), &a.outcome, a.lyapunov, Some(n + 1)));
-                }
+                out.extend(pts.iter().map(|p| row(Some(p))));
             }
             return out;
         }
         let attractor = several.then_some(1);
+        let row = |p| row(p, &r.outcome, r.lyapunov, r.precision, attractor);
         if r.points.is_empty() {
-            vec![row(None, &r.outcome, r.lyapunov, attractor)]
+            vec![row(None)]
         } else {
-            r.points
-                .iter()
-                .map(|p| row(Some(p), &r.outcome, r.lyapunov, attractor))
-                .collect()
+            r.points.iter().map(|p| row(Some(p))).collect()
         }
     }
 }
@@ -263,6 +281,12 @@ pub struct SweepValue {
     /// Period at which the early stop happened.
     pub stopped_at: Option<i64>,
     pub sticking: bool,
+    /// For a periodic value: whether double precision decides its cycle (false: the
+    /// period and table periods are then empty).
+    pub resolved: Option<bool>,
+    /// For a sticking cycle: log₁₀ of the largest growth from a release to the next
+    /// stick.
+    pub growth_decades: Option<f64>,
     /// Events computed.
     pub events: u64,
     /// With `--lyapunov`: the largest exponent per impact (`"-inf"` when it sticks).
@@ -287,12 +311,19 @@ impl SweepValue {
                 .position(|a| a.points.contains(&i))
                 .map(|n| n + 1)
         };
+        let resolved = r.precision.map(|p| p.resolved);
+        let claimed = resolved != Some(false);
         SweepValue {
             index: r.index,
             value: r.value,
             status: (&r.outcome).into(),
-            period: r.outcome.period(),
-            table_periods: r.outcome.table_periods(),
+            period: r.outcome.period().filter(|_| claimed),
+            table_periods: r.outcome.table_periods().filter(|_| claimed),
+            resolved,
+            growth_decades: r
+                .precision
+                .filter(|p| p.impacts > 0)
+                .map(|p| p.growth_decades),
             stopped_at: match r.outcome {
                 Outcome::Periodic { stopped_at, .. } => Some(stopped_at),
                 _ => None,
@@ -304,15 +335,16 @@ impl SweepValue {
                 .attractors
                 .iter()
                 .enumerate()
-                .map(|(n, a)| AttractorRecord {
-                    id: n + 1,
-                    kind: a.kind.into(),
-                    events: a.events,
-                    periods: a.periods,
-                    phase: r.points.get(a.points.start).map(|p| p.phase),
-                    v: r.points.get(a.points.start).map(|p| p.v),
-                    lyapunov: Exponent(a.lyapunov),
-                    fraction: a.fraction,
+                .map(|(n, a)| {
+                    AttractorRecord::new(
+                        n + 1,
+                        a.kind,
+                        (a.events, a.periods),
+                        r.points.get(a.points.start).map(|p| (p.phase, p.v)),
+                        a.lyapunov,
+                        a.fraction,
+                        a.precision,
+                    )
                 })
                 .collect(),
             points: r
@@ -594,6 +626,8 @@ mod tests {
                 table_periods: None,
                 status: Status::NoLanding,
                 sticking: false,
+                resolved: None,
+                growth_decades: None,
                 lyapunov: lyapunov.then_some(Exponent(None)),
                 attractor: several.then_some(1),
             };

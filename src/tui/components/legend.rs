@@ -136,12 +136,15 @@ pub fn lines(app: &Shared) -> Vec<Line<'static>> {
         " Period colours (diagram, c switches)",
         app.theme.focus(),
     ));
-    let mut spans = vec![Span::raw("   ")];
-    for c in Class::ALL {
-        spans.push(Span::styled(c.label().to_string(), app.theme.class(c)));
-        spans.push(Span::raw(format!(" {}  ", short(c))));
+    // Two lines: the cycles, then the rest.
+    for part in [&Class::ALL[..5], &Class::ALL[5..]] {
+        let mut spans = vec![Span::raw("   ")];
+        for &c in part {
+            spans.push(Span::styled(c.label().to_string(), app.theme.class(c)));
+            spans.push(Span::raw(format!(" {}  ", short(c))));
+        }
+        out.push(Line::from(spans));
     }
-    out.push(Line::from(spans));
     let mut density = vec![Span::raw("   density (c): ")];
     for (l, t) in ["sparse", "·", "·", "dense"].into_iter().enumerate() {
         density.push(Span::styled(t, app.theme.density(l)));
@@ -173,8 +176,9 @@ fn short(c: Class) -> &'static str {
         Class::Period8 => "8",
         Class::Periodic => "other",
         Class::Sticking => "sticks",
+        Class::StickingUnresolved => "length beyond f64",
         Class::Chaotic => "λ>0",
-        Class::Unresolved => "unsettled",
+        Class::Unresolved => "unsettled (λ≈0)",
     }
 }
 

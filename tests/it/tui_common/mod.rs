@@ -89,6 +89,7 @@ pub fn fill(app: &mut App) {
                 events: 100,
                 lyapunov: None,
                 attractors: Vec::new(),
+                precision: None,
             },
         ));
     }

@@ -29,6 +29,7 @@ pub mod lyapunov;
 use crate::impact::Solver;
 use crate::map::{EventKind, ImpactMap, State};
 use crate::run::detect::Periodicity;
+use crate::run::precision::{self, Precision};
 use crate::run::{Advance, OrbitRun, Outcome, Point};
 use crate::system::System;
 use crate::time::phase_distance;
@@ -85,7 +86,13 @@ pub enum Kind {
     Sticking,
     /// An unsettled orbit with a positive largest exponent.
     Chaotic,
-    /// An unsettled orbit without one (a long or slowly converging cycle, or a torus).
+    /// An orbit with no cycle found whose largest exponent is negative (beyond three
+    /// standard errors): periodic, but with a period over
+    /// [`LONG_PERIOD`](crate::run::detect::LONG_PERIOD) events, or converging too slowly
+    /// for the transient. Never chaos.
+    Converging,
+    /// An orbit neither periodic up to the detectors' length nor shown chaotic nor
+    /// converging: its exponent is zero within its error (a torus, a marginal orbit).
     Unsettled,
     /// The ball rides on the table forever.
     Resting,
@@ -95,10 +102,11 @@ pub enum Kind {
 
 impl Kind {
     /// Every kind, in output order.
-    pub const ALL: [Kind; 6] = [
+    pub const ALL: [Kind; 7] = [
         Kind::Periodic,
         Kind::Sticking,
         Kind::Chaotic,
+        Kind::Converging,
         Kind::Unsettled,
         Kind::Resting,
         Kind::Escaping,
@@ -110,6 +118,7 @@ impl Kind {
             Kind::Periodic => "periodic",
             Kind::Sticking => "sticking",
             Kind::Chaotic => "chaotic",
+            Kind::Converging => "converging",
             Kind::Unsettled => "unsettled",
             Kind::Resting => "resting",
             Kind::Escaping => "escaping",
@@ -147,6 +156,9 @@ pub struct Found {
     pub spectrum: Option<Spectrum>,
     /// What identifies the attractor among others (its cycle, or the cells it visits).
     pub signature: Signature,
+    /// For a cycle: whether double precision decides it ([`Precision`]; a sticking
+    /// cycle's length may be beyond it).
+    pub precision: Option<Precision>,
 }
 
 impl Found {
@@ -220,6 +232,7 @@ pub fn identify(
     cancelled: &mut dyn FnMut(u64) -> bool,
 ) -> Option<Found> {
     let mut map = ImpactMap::new(sys.clone(), settle.solver, state);
+    let on_cycle = map.clone();
     let halted = |outcome: &Outcome| match outcome {
         Outcome::NoLanding { .. } => Found {
             kind: Kind::Escaping,
@@ -228,6 +241,7 @@ pub fn identify(
             point: None,
             spectrum: None,
             signature: Signature::Escaping,
+            precision: None,
         },
         Outcome::Resting { phase, .. } => Found {
             kind: Kind::Resting,
@@ -236,6 +250,7 @@ pub fn identify(
             point: Some((*phase, sys.df(*phase))),
             spectrum: Some(Spectrum::Sticking),
             signature: Signature::Resting,
+            precision: None,
         },
         _ => unreachable!("only halts"),
     };
@@ -247,6 +262,11 @@ pub fn identify(
             Ok((cycle, spectrum)) => {
                 let sticking = cycle.iter().any(|e| e.kind != EventKind::Impact)
                     || spectrum == Spectrum::Sticking;
+                let precision = if sticking {
+                    precision::sticking_cycle(on_cycle, events)
+                } else {
+                    Some(Precision::CONTRACTING)
+                };
                 let cycle = canonical(cycle);
                 Some(Found {
                     kind: if sticking {
@@ -263,6 +283,7 @@ pub fn identify(
                         spectrum
                     }),
                     signature: Signature::Cycle(cycle),
+                    precision,
                 })
             }
             // A cycle that halts: rest on the table from where it stopped.
@@ -300,16 +321,25 @@ pub fn identify(
                 point: last,
                 spectrum: Some(spectrum),
                 signature: Signature::Visits(count_cells(visits)),
+                precision: None,
             })
         }
     }
 }
 
-/// Chaotic or unsettled, from an unsettled orbit's exponents.
+/// Chaotic, converging or unsettled, from an unsettled orbit's exponents: the largest
+/// beyond [`CHAOS_FLOOR`] and three standard errors above zero, below zero, or neither.
 fn unsettled_kind(s: &Spectrum) -> Kind {
     match s {
-        Spectrum::Finite(e) if e.per_impact[0] > CHAOS_FLOOR.max(3.0 * e.stderr[0]) => {
-            Kind::Chaotic
+        Spectrum::Finite(e) => {
+            let margin = CHAOS_FLOOR.max(3.0 * e.stderr[0]);
+            if e.per_impact[0] > margin {
+                Kind::Chaotic
+            } else if e.per_impact[0] < -margin {
+                Kind::Converging
+            } else {
+                Kind::Unsettled
+            }
         }
         _ => Kind::Unsettled,
     }
@@ -370,6 +400,8 @@ pub struct Attractor {
     pub point: Option<(f64, f64)>,
     /// Its exponents (of the first start that found it).
     pub spectrum: Option<Spectrum>,
+    /// For a cycle: whether double precision decides it (of the first start).
+    pub precision: Option<Precision>,
     /// The largest exponent per impact: exact for cycles, the mean over its starts for
     /// an unsettled attractor.
     pub lyapunov: Option<f64>,
@@ -427,6 +459,7 @@ impl Registry {
                 periods: found.periods,
                 point: found.point,
                 spectrum: found.spectrum,
+                precision: found.precision,
                 lyapunov: found.lyapunov(),
                 starts: 0,
                 cycle: match &found.signature {
@@ -446,14 +479,15 @@ impl Registry {
         a.starts += 1;
         if let Signature::Visits(v) = &found.signature {
             a.cells.extend(v.iter().map(|(c, _)| *c));
-            if matches!(a.kind, Kind::Chaotic | Kind::Unsettled) {
+            if matches!(a.kind, Kind::Chaotic | Kind::Converging | Kind::Unsettled) {
                 if let Some(Spectrum::Finite(e)) = found.spectrum {
                     a.exponent_sum += e.per_impact[0];
                     a.exponent_count += 1;
                     let mean = a.exponent_sum / a.exponent_count as f64;
                     a.lyapunov = Some(mean);
                 }
-                // The mean over its starts decides between chaotic and unsettled.
+                // The mean over its starts decides between chaotic, converging and
+                // unsettled.
                 if let Some(Spectrum::Finite(mut e)) = a.spectrum {
                     e.per_impact[0] = a.lyapunov.unwrap_or(e.per_impact[0]);
                     a.kind = unsettled_kind(&Spectrum::Finite(e));
@@ -480,13 +514,18 @@ impl Registry {
                 let total: u32 = v.iter().map(|(_, n)| n).sum();
                 let mut best: Option<(usize, f64)> = None;
                 for (id, a) in self.attractors.iter().enumerate() {
-                    // An unsettled orbit may be a slow approach to a known cycle; a
-                    // sticking or chaotic one only joins its own kinds.
+                    // An unsettled or converging orbit may be a slow approach to a known
+                    // cycle; a sticking or chaotic one only joins its own kinds.
                     let eligible = match a.kind {
                         Kind::Resting | Kind::Escaping => false,
-                        Kind::Periodic => found.kind == Kind::Unsettled,
-                        Kind::Sticking => a.cycle.is_empty() || found.kind == Kind::Unsettled,
-                        Kind::Chaotic | Kind::Unsettled => found.kind != Kind::Sticking,
+                        Kind::Periodic => matches!(found.kind, Kind::Unsettled | Kind::Converging),
+                        Kind::Sticking => {
+                            a.cycle.is_empty()
+                                || matches!(found.kind, Kind::Unsettled | Kind::Converging)
+                        }
+                        Kind::Chaotic | Kind::Converging | Kind::Unsettled => {
+                            found.kind != Kind::Sticking
+                        }
                     };
                     if !eligible || total == 0 {
                         continue;

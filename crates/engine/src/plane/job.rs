@@ -8,7 +8,7 @@ use crate::grid::Shard;
 use crate::jobs::{Control, Executor};
 use crate::map::ImpactMap;
 use crate::picture::{Cells, Chunk, Filled, Picture, PictureJob};
-use crate::run::{has_sticking, Advance, OrbitRun};
+use crate::run::{Advance, OrbitRun};
 
 /// One work item's results: (pixel index, result); a pixel whose system or start is
 /// refused is left out.
@@ -83,8 +83,8 @@ impl Cells for PlaneCells {
             None
         };
         Some(Some(Pixel {
+            sticking: run.sticking(&outcome, &points) || lyapunov == Some(f64::NEG_INFINITY),
             outcome,
-            sticking: has_sticking(&points),
             lyapunov,
         }))
     }

@@ -249,7 +249,8 @@ impl PlaneSpec {
 pub struct Pixel {
     /// Periodic (n events in k periods), unsettled, resting or no landing.
     pub outcome: Outcome,
-    /// Whether its last events include a stick or a release.
+    /// Whether its orbit sticks to the table in what it settled on (see
+    /// [`OrbitRun::sticking`](crate::run::OrbitRun::sticking)), or its exponent is −∞.
     pub sticking: bool,
     /// The largest exponent per impact (−∞ sticking or resting); None when not asked or
     /// where there is none (no landing, grazing).

@@ -27,6 +27,7 @@
 //! for real, so the recorded points are exactly the full run's.
 
 pub mod detect;
+pub mod precision;
 pub mod start;
 
 /// How close the latest event of a confirmed long cycle must be to the exact cycle
@@ -148,6 +149,8 @@ pub struct OrbitRun {
     last_release: Option<(u64, u64, i64)>,
     /// A release cycle jumped over: (events, periods, period of the jump).
     jumped: Option<(usize, i64, i64)>,
+    /// The detected cycle includes a stick or a release.
+    cycle_sticks: bool,
 }
 
 impl OrbitRun {
@@ -166,6 +169,7 @@ impl OrbitRun {
             periodicity,
             last_release: None,
             jumped: None,
+            cycle_sticks: false,
         }
     }
 
@@ -260,6 +264,7 @@ impl OrbitRun {
             if let Some(det) = self.detector.as_mut() {
                 if let Some(cycle) = det.push(rec) {
                     let cyc: Vec<Rec> = (0..cycle.events).rev().map(|b| *det.back(b)).collect();
+                    self.cycle_sticks = cyc.iter().any(|r| r.kind != EventKind::Impact);
                     let points = self.continue_cycle(&cyc, cycle.periods, end);
                     cancelled(since_check);
                     return Advance::Done(
@@ -414,6 +419,17 @@ impl OrbitRun {
                 }
             })
             .collect()
+    }
+
+    /// Whether the run, ended with `outcome` and `points`, sticks to the table in what it
+    /// settled on: a cycle that includes a stick or a release (whatever points were
+    /// kept), a ball at rest, or a stick or release among the kept points. The one
+    /// meaning of "sticking" every output uses.
+    pub fn sticking(&self, outcome: &Outcome, points: &[Point]) -> bool {
+        self.cycle_sticks
+            || self.jumped.is_some()
+            || matches!(outcome, Outcome::Resting { .. })
+            || has_sticking(points)
     }
 
     /// Number of events recorded (pushed to the ring).

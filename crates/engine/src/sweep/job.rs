@@ -11,6 +11,7 @@ use crate::attractors::{self, box_start, default_w_max, Kind, Registry, Settle};
 use crate::error::EngineError;
 use crate::jobs::{Context, Job, Pass};
 use crate::map::{ImpactMap, State};
+use crate::run::precision::{self, Precision};
 use crate::run::start::launch;
 use crate::run::{has_sticking, Advance, OrbitRun, Outcome, Point};
 
@@ -27,8 +28,14 @@ pub struct ValueResult {
     pub points: Vec<Point>,
     /// Periodic, unsettled, resting or no landing (of the first start).
     pub outcome: Outcome,
-    /// Whether the points include a stick or a release.
+    /// Whether the (first start's) orbit sticks to the table in what it settled on: a
+    /// cycle that includes a stick or a release, a ball at rest, a stick among the kept
+    /// points or in the sample its exponent was measured on (exponent −∞). See
+    /// [`OrbitRun::sticking`].
     pub sticking: bool,
+    /// For a periodic outcome (final results): whether double precision decides the
+    /// cycle ([`Precision`]: a sticking cycle's length may be beyond it).
+    pub precision: Option<Precision>,
     /// Events computed for this value.
     pub events: u64,
     /// With [`SweepSpec::lyapunov`], the largest Lyapunov exponent per impact of the
@@ -58,6 +65,8 @@ pub struct ValueAttractor {
     pub fraction: f64,
     /// The outcome of the first start that found it.
     pub outcome: Outcome,
+    /// For a cycle: whether double precision decides it.
+    pub precision: Option<Precision>,
     /// Its recorded points in [`ValueResult::points`].
     pub points: std::ops::Range<usize>,
 }
@@ -183,7 +192,7 @@ impl SweepJob {
         let mut registry = Registry::new();
         // Per attractor id: the points and outcome of the first start that found it.
         let mut first: Vec<(Vec<Point>, Outcome)> = Vec::new();
-        let mut lead: Option<(Outcome, Option<f64>)> = None;
+        let mut lead: Option<(Outcome, Option<f64>, bool, Option<Precision>)> = None;
         let mut events = 0;
         for s in 0..self.spec.starts {
             let start = if s == 0 {
@@ -203,9 +212,15 @@ impl SweepJob {
             if id == first.len() {
                 first.push((points, outcome));
             }
-            lead.get_or_insert((outcome, found.lyapunov()));
+            let sticks = matches!(found.kind, Kind::Sticking | Kind::Resting);
+            lead.get_or_insert((
+                outcome,
+                found.lyapunov(),
+                sticks || has_sticking(&first[id].0),
+                found.precision,
+            ));
         }
-        let Some((outcome, lyapunov)) = lead else {
+        let Some((outcome, lyapunov, sticking, precision)) = lead else {
             return;
         };
         let mut points = Vec::new();
@@ -222,6 +237,7 @@ impl SweepJob {
                 lyapunov: a.lyapunov,
                 fraction: registry.fraction(id),
                 outcome: *o,
+                precision: a.precision,
                 points: from..points.len(),
             });
         }
@@ -230,7 +246,8 @@ impl SweepJob {
                 index,
                 value,
                 complete: true,
-                sticking: has_sticking(&points),
+                sticking,
+                precision,
                 points,
                 outcome,
                 events,
@@ -283,23 +300,38 @@ impl SweepJob {
             Advance::Cancelled => return None,
         };
         let complete = complete && !provisional;
-        let lyapunov = match complete && self.spec.lyapunov {
+        let found = match complete && self.spec.lyapunov {
             true => {
                 let sys = run.system().clone();
                 let settle = self.settle(LYAPUNOV_SAMPLE);
-                let found = attractors::identify(&sys, &settle, &outcome, run.state(), &mut |n| {
-                    cx.tick(n)
-                })?;
-                found.lyapunov()
+                Some(attractors::identify(
+                    &sys,
+                    &settle,
+                    &outcome,
+                    run.state(),
+                    &mut |n| cx.tick(n),
+                )?)
             }
             false => None,
+        };
+        let lyapunov = found.as_ref().and_then(|f| f.lyapunov());
+        let sticking = run.sticking(&outcome, &points) || lyapunov == Some(f64::NEG_INFINITY);
+        let precision = match (complete, outcome, &found) {
+            (true, _, Some(f)) if f.precision.is_some() => f.precision,
+            (true, Outcome::Periodic { events, .. }, _) if sticking => {
+                let map = ImpactMap::new(run.system().clone(), self.spec.solver, run.state());
+                precision::sticking_cycle(map, events)
+            }
+            (true, Outcome::Periodic { .. }, _) => Some(Precision::CONTRACTING),
+            _ => None,
         };
         cx.emit(
             ValueResult {
                 index,
                 value,
                 complete,
-                sticking: has_sticking(&points),
+                sticking,
+                precision,
                 points,
                 outcome,
                 events: run.events(),

@@ -7,4 +7,5 @@ mod long_cycles;
 mod long_runs;
 mod orbits;
 mod plane;
+mod precision;
 mod sweep;

@@ -11,8 +11,14 @@ use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::text::{Line, Span};
 
-/// Labels a cell counts (classes, or attractors 1 … 8 with the last shared).
-pub const LABELS: usize = 8;
+/// Attractors coloured apart (1 … 8, the eighth shared by the rest).
+pub const ATTRACTORS: usize = 8;
+/// Labels a cell counts: every class, or the attractors.
+pub const LABELS: usize = if Class::ALL.len() > ATTRACTORS {
+    Class::ALL.len()
+} else {
+    ATTRACTORS
+};
 
 /// What the diagram's colours show.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -53,7 +59,7 @@ pub fn point_labels(r: &ValueResult, by: ColorBy) -> Vec<Option<u8>> {
     for (rank, a) in r.attractors.iter().enumerate() {
         let l = match by {
             ColorBy::Class => classes::of_attractor(a).map(|c| c.index() as u8),
-            _ => Some(rank.min(LABELS - 1) as u8),
+            _ => Some(rank.min(ATTRACTORS - 1) as u8),
         };
         for slot in &mut out[a.points.clone()] {
             *slot = l;
