@@ -60,6 +60,16 @@ fn single(
                 reason: c.as_ref().err().cloned(),
                 alphas: c.as_ref().map_or(Vec::new(), |c| c.alphas.clone()),
                 deltas: c.as_ref().map_or(Vec::new(), |c| c.deltas.clone()),
+                delta_estimate: c
+                    .as_ref()
+                    .ok()
+                    .and_then(|c| c.delta_estimate())
+                    .map(|e| e.0),
+                delta_uncertainty: c
+                    .as_ref()
+                    .ok()
+                    .and_then(|c| c.delta_estimate())
+                    .map(|e| e.1),
                 feigenbaum_delta: FEIGENBAUM_DELTA,
                 levels: c.as_ref().map_or(Vec::new(), |c| {
                     c.levels.iter().map(LevelRecord::from).collect()
@@ -109,6 +119,13 @@ fn single(
                     "delta_{} = {d:.9}   (Feigenbaum {FEIGENBAUM_DELTA:.9}; difference {:+.2e})",
                     i + 2,
                     d - FEIGENBAUM_DELTA
+                )?;
+            }
+            if let Some((d, e)) = c.delta_estimate() {
+                writeln!(
+                    out,
+                    "delta estimate = {d:.6} ± {e:.1e}   (the last ratio, ± its last change; Feigenbaum {FEIGENBAUM_DELTA:.6} is {} it)",
+                    if (d - FEIGENBAUM_DELTA).abs() <= e { "within" } else { "outside" }
                 )?;
             }
             if let Some(why) = &c.unborn {

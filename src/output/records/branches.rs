@@ -256,6 +256,9 @@ pub struct CascadeDoc<'a> {
     pub reason: Option<String>,
     pub alphas: Vec<f64>,
     pub deltas: Vec<f64>,
+    /// The last ratio δₙ and its uncertainty |δₙ − δₙ₋₁|.
+    pub delta_estimate: Option<f64>,
+    pub delta_uncertainty: Option<f64>,
     pub feigenbaum_delta: f64,
     pub levels: Vec<LevelRecord>,
     /// Why the cascade stops at its last αₙ with no doubled branch, if it does.

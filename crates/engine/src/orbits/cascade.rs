@@ -51,6 +51,17 @@ pub struct Cascade {
 }
 
 impl Cascade {
+    /// The estimate of Feigenbaum's δ the cascade supports: its last ratio δₙ, with the
+    /// uncertainty of a truncated convergent sequence, |δₙ − δₙ₋₁| (the ratios converge
+    /// geometrically, by a factor of about 4.7 per level, so the distance to the limit is
+    /// below the last step). None with fewer than two ratios.
+    pub fn delta_estimate(&self) -> Option<(f64, f64)> {
+        match self.deltas[..] {
+            [.., a, b] => Some((b, (b - a).abs())),
+            _ => None,
+        }
+    }
+
     /// The first branch that ends otherwise than by period doubling (smooth or through
     /// a border collision).
     pub fn interrupted(&self) -> Option<&Level> {
