@@ -231,6 +231,16 @@ pub fn identify(
     state: State,
     cancelled: &mut dyn FnMut(u64) -> bool,
 ) -> Option<Found> {
+    // A cycle of impacts is taken onto the exact cycle by Newton's method (its evidence,
+    // and what makes every start that converged to it record the same events; a long
+    // cycle's events in mid-cycle are only as close as the orbit times the partial
+    // products of its Jacobians).
+    let state = match *outcome {
+        Outcome::Periodic {
+            events, periods, ..
+        } => on_exact_cycle(sys, &state, events, periods).unwrap_or(state),
+        _ => state,
+    };
     let mut map = ImpactMap::new(sys.clone(), settle.solver, state);
     let on_cycle = map.clone();
     let halted = |outcome: &Outcome| match outcome {
@@ -325,6 +335,20 @@ pub fn identify(
             })
         }
     }
+}
+
+/// The state on the exact (n, k) impact cycle next to `state` (right after an impact):
+/// Newton's method on the exact map from it; None if it does not converge to a cycle
+/// within 10⁻⁶ of the state (a sticking cycle, or not a cycle).
+fn on_exact_cycle(sys: &System, state: &State, n: usize, k: i64) -> Option<State> {
+    let cp = crate::orbits::periodic::cycle(sys, n, u32::try_from(k).ok()?, state.phase, state.v)
+        .ok()?;
+    let close = crate::time::phase_distance(cp.phases[0], state.phase) < 1e-6
+        && (cp.velocities[0] - state.v).abs() < 1e-6;
+    if !close {
+        return None;
+    }
+    State::launch(sys, state.period, cp.phases[0], cp.velocities[0], 0.0).ok()
 }
 
 /// Chaotic, converging or unsettled, from an unsettled orbit's exponents: the largest
