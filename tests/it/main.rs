@@ -4,6 +4,7 @@
 mod architecture;
 mod array_and_resume;
 mod attractors_cli;
+mod cli;
 mod cli_orbit;
 mod continuation_cli;
 mod figure_cli;
@@ -13,6 +14,7 @@ mod plane_cli;
 mod reliability;
 mod sweep_cli;
 mod table_files;
+mod trust_cli;
 mod tui_attractors;
 mod tui_branches;
 mod tui_common;
