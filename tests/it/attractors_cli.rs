@@ -3,25 +3,7 @@
 //! (the eigenvalues `fixed` prints, 2 ln r, merge of sharded multi-start sweeps), and
 //! bad input (one line, exit status 2).
 
-use std::process::Command;
-
-fn run(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_bouncemap"))
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
-
-fn json(args: &[&str]) -> serde_json::Value {
-    let (code, out, err) = run(args);
-    assert_eq!(code, 0, "{err}");
-    serde_json::from_str(&out).unwrap()
-}
+use crate::cli::{json, run};
 
 #[test]
 fn basins_of_the_cubic_table_hold_the_fixed_point_and_the_sticking_cycle() {

@@ -3,25 +3,8 @@
 //! commands, not by the plane), shards merged into the unsharded file, `merge`'s
 //! refusals, the text picture, and bad input (one line, exit status 2).
 
+use crate::cli::{json, run};
 use std::process::Command;
-
-fn run(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_bouncemap"))
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
-
-fn json(args: &[&str]) -> serde_json::Value {
-    let (code, out, err) = run(args);
-    assert_eq!(code, 0, "{err}");
-    serde_json::from_str(&out).unwrap()
-}
 
 fn tmp(name: &str) -> String {
     let dir = std::env::temp_dir().join(format!("bouncemap-plane-{}", std::process::id()));
