@@ -263,6 +263,9 @@ impl App {
             Some(Ok(sk)) if focused => sk.under(d.cursor, d.ycursor, d.axis == Axis::Velocity),
             _ => None,
         };
+        self.shared.at_cursor = focused
+            .then(|| super::components::diagram::readout::evidence(d, &self.shared))
+            .flatten();
     }
 
     /// Whether any worker may still send something (the loop then polls more often).

@@ -64,6 +64,9 @@ pub struct Shared {
     /// The continued branch nearest the diagram's cursor (its index) and its cycle at
     /// the cursor's α, while the diagram has the focus.
     pub under_cursor: Option<(usize, CyclePoint)>,
+    /// What the diagram's value at the cursor settled on, with its precision verdict
+    /// (while the diagram has the focus).
+    pub at_cursor: Option<String>,
     pub(in crate::tui) effects: Vec<Effect>,
     /// Rows changed by the action being handled, to announce to every panel.
     pub(in crate::tui) changed: Vec<ParamId>,
@@ -86,6 +89,7 @@ impl Shared {
             stepped: None,
             branches: None,
             under_cursor: None,
+            at_cursor: None,
             effects: Vec::new(),
             changed: Vec::new(),
         }

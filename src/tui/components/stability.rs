@@ -126,6 +126,12 @@ fn render(app: &Shared, area: Rect, buf: &mut Buffer) {
             }
         }
     }
+    // The diagram's value at the cursor, with the evidence for its cycle.
+    if let Some(at) = &app.at_cursor {
+        for l in wrap_words(at, inner.width as usize) {
+            lines.push(Line::styled(l, app.theme.mark2()));
+        }
+    }
     // The continued branch under the diagram's cursor (while the diagram has the focus).
     if let (Some((i, p)), Some(Ok(sk))) = (&app.under_cursor, &app.branches) {
         let b = &sk.branches[*i];
@@ -155,6 +161,21 @@ fn render(app: &Shared, area: Rect, buf: &mut Buffer) {
         .areas(plots);
     eigen_circle(app, fixed, circ, buf);
     region_plot(app, region, buf);
+}
+
+/// `text` in lines of at most `width` characters, broken between words.
+fn wrap_words(text: &str, width: usize) -> Vec<String> {
+    let mut out: Vec<String> = Vec::new();
+    for w in text.split(' ') {
+        match out.last_mut() {
+            Some(l) if l.chars().count() + 1 + w.chars().count() <= width.max(1) => {
+                l.push(' ');
+                l.push_str(w);
+            }
+            _ => out.push(w.to_string()),
+        }
+    }
+    out
 }
 
 /// A pair of multipliers: two reals, or a complex pair as re ± im i.

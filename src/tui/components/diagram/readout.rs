@@ -10,13 +10,15 @@ use crate::tui::params::{fmt_num, Params};
 use bouncemap_engine::run::Outcome;
 use bouncemap_engine::sweep::ValueResult;
 
-/// What a value's orbit does, in words.
+/// What a value's orbit does, in words (no cycle length where double precision cannot
+/// decide it).
 pub fn status(r: &ValueResult) -> String {
     let class = classes::of_value(r);
     match (r.outcome, class) {
         (Outcome::Running { .. }, _) => "running".into(),
         (Outcome::NoLanding { .. }, _) => "no landing".into(),
         (Outcome::Resting { .. }, _) => "resting".into(),
+        (_, Some(Class::StickingUnresolved)) => "sticking, length beyond f64".into(),
         (
             Outcome::Periodic {
                 events, periods, ..
@@ -33,18 +35,45 @@ pub fn status(r: &ValueResult) -> String {
         ) => format!("periodic ({events},{periods})"),
         (Outcome::Unsettled, Some(Class::Sticking)) => "sticking".into(),
         (Outcome::Unsettled, Some(Class::Chaotic)) => "chaotic".into(),
+        (Outcome::Unsettled, Some(Class::Periodic)) => "converging (λ<0, no cycle ≤ 4096)".into(),
         (Outcome::Unsettled, _) => "unsettled".into(),
     }
+}
+
+/// The value nearest the cursor, if any has arrived.
+pub fn nearest(d: &Diagram) -> Option<&ValueResult> {
+    d.slots.iter().flatten().min_by(|a, b| {
+        (a.value - d.cursor)
+            .abs()
+            .total_cmp(&(b.value - d.cursor).abs())
+    })
+}
+
+/// What the value nearest the cursor settled on, with the evidence for it: its status
+/// and, for a cycle, whether double precision decides it.
+pub fn evidence(d: &Diagram, app: &Shared) -> Option<String> {
+    let r = nearest(d)?;
+    let sym = Params::symbol(app.params.param);
+    let verdict = match r.precision {
+        Some(p) if !p.resolved => format!(
+            " (growth 10^{:.0} over {} impacts)",
+            p.growth_decades, p.impacts
+        ),
+        Some(p) if p.impacts > 0 => format!(", resolved (growth 10^{:.1})", p.growth_decades),
+        Some(_) => ", resolved (converges)".into(),
+        None => String::new(),
+    };
+    Some(format!(
+        "{sym} {}: {}{verdict}",
+        fmt_num(r.value),
+        status(r)
+    ))
 }
 
 /// The readout text.
 pub fn text(d: &Diagram, app: &Shared) -> String {
     let sym = Params::symbol(app.params.param);
-    let nearest = d.slots.iter().flatten().min_by(|a, b| {
-        (a.value - d.cursor)
-            .abs()
-            .total_cmp(&(b.value - d.cursor).abs())
-    });
+    let nearest = nearest(d);
     let what = nearest.map_or(String::new(), |r| {
         let l = match r.lyapunov {
             Some(x) if x == f64::NEG_INFINITY => " λ=-inf".to_string(),
