@@ -170,9 +170,16 @@ impl Detector {
     fn check(&mut self) -> Option<Cycle> {
         let tol = self.cfg.tolerance;
         let avail = self.count.min(self.mask as u64 + 1) as usize;
+        let latest = self.hist[(self.count as usize).wrapping_sub(1) & self.mask].phase;
         for p in 1..=self.cfg.max_period {
             if 2 * p > avail {
                 return None;
+            }
+            // The latest event's phase against the one p back first: one subtraction
+            // rules out nearly every p of an orbit that has not settled.
+            let dp = (latest - self.back(p).phase).abs();
+            if dp > tol && dp < 1.0 - tol {
+                continue;
             }
             if self.mismatch(p, 0, p, tol) > tol {
                 continue;
@@ -257,6 +264,8 @@ pub struct LongDetector {
     count: u64,
     /// No candidate before this event (after a refuted one).
     quiet_until: u64,
+    /// Candidates refuted so far.
+    refuted: u32,
 }
 
 impl LongDetector {
@@ -271,6 +280,7 @@ impl LongDetector {
             impacts_only: true,
             count: 0,
             quiet_until: LONG_START,
+            refuted: 0,
         }
     }
 
@@ -289,7 +299,11 @@ impl LongDetector {
         self.lam += 1;
         self.impacts_only &= rec.kind == EventKind::Impact;
         let mut found = None;
+        // The phase first (two comparisons rule out nearly every event), then the
+        // whole distance.
+        let dp = (rec.phase - t.phase).abs();
         if self.lam > self.short
+            && (dp <= LONG_CANDIDATE || dp >= 1.0 - LONG_CANDIDATE)
             && self.impacts_only
             && self.count >= self.quiet_until
             && rec.distance(&t) <= LONG_CANDIDATE
@@ -309,9 +323,12 @@ impl LongDetector {
         found
     }
 
-    /// A candidate of `events` events was refuted: no new one for a few of its lengths.
+    /// A candidate of `events` events was refuted: no new one for a few of its lengths,
+    /// twice as many after each refutation (an orbit shadowing unstable cycles would
+    /// otherwise ask for Newton's method again and again).
     pub fn refuted(&mut self, events: usize) {
-        self.quiet_until = self.count + 4 * events as u64;
+        self.quiet_until = self.count + (4 * events as u64) << self.refuted.min(20);
+        self.refuted += 1;
     }
 }
 

@@ -151,6 +151,8 @@ pub struct OrbitRun {
     jumped: Option<(usize, i64, i64)>,
     /// The detected cycle includes a stick or a release.
     cycle_sticks: bool,
+    /// The state right after the latest release.
+    released: Option<State>,
 }
 
 impl OrbitRun {
@@ -170,6 +172,7 @@ impl OrbitRun {
             last_release: None,
             jumped: None,
             cycle_sticks: false,
+            released: None,
         }
     }
 
@@ -258,6 +261,9 @@ impl OrbitRun {
                 self.ring.pop_front();
             }
             self.ring.push_back(rec);
+            if e.kind == EventKind::Release {
+                self.released = Some(*self.map.state());
+            }
             if e.kind == EventKind::Release && self.periodicity.is_some() && self.jumped.is_none() {
                 self.release_cycle(&e, end);
             }
@@ -430,6 +436,12 @@ impl OrbitRun {
             || self.jumped.is_some()
             || matches!(outcome, Outcome::Resting { .. })
             || has_sticking(points)
+    }
+
+    /// The state right after the latest release the run recorded, if any (where a
+    /// sticking cycle's precision is measured from).
+    pub fn released(&self) -> Option<State> {
+        self.released
     }
 
     /// Number of events recorded (pushed to the ring).

@@ -20,7 +20,7 @@
 //! sequence is decided; above [`UNRESOLVED`] the cycle's length is out of reach of
 //! double precision.
 
-use crate::map::{EventKind, ImpactMap, State};
+use crate::map::{EventKind, ImpactMap, Mode, State};
 use crate::tangent::flight;
 
 /// The relative error of a double (half an ulp of 1).
@@ -71,14 +71,16 @@ impl Precision {
 }
 
 /// The precision of the sticking cycle of `events` events that `map`'s orbit is on
-/// (its state anywhere on the cycle): up to one cycle is stepped to reach a release,
-/// then one cycle measured. None if the orbit halts or has no release within two cycles
-/// (not a sticking cycle).
+/// (its state anywhere on the cycle; right after a release saves stepping to one): up
+/// to one cycle is stepped to reach a release, then one cycle measured. None if the
+/// orbit halts or has no release within two cycles (not a sticking cycle).
 pub fn sticking_cycle(mut map: ImpactMap, events: usize) -> Option<Precision> {
     let sys = map.system().clone();
-    // To the first release.
+    // To the first release, unless the state is one (a ball leaving the table with
+    // its velocity).
+    let released = |s: &State| s.w == 0.0 && s.height == 0.0 && s.mode == Mode::Flying;
     let mut steps = 0;
-    loop {
+    while !released(map.state()) {
         let e = map.step().ok()?;
         steps += 1;
         if e.kind == EventKind::Release {

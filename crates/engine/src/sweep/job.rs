@@ -319,7 +319,8 @@ impl SweepJob {
         let precision = match (complete, outcome, &found) {
             (true, _, Some(f)) if f.precision.is_some() => f.precision,
             (true, Outcome::Periodic { events, .. }, _) if sticking => {
-                let map = ImpactMap::new(run.system().clone(), self.spec.solver, run.state());
+                let from = run.released().unwrap_or(run.state());
+                let map = ImpactMap::new(run.system().clone(), self.spec.solver, from);
                 precision::sticking_cycle(map, events)
             }
             (true, Outcome::Periodic { .. }, _) => Some(Precision::CONTRACTING),
