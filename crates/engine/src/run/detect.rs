@@ -327,7 +327,7 @@ impl LongDetector {
     /// twice as many after each refutation (an orbit shadowing unstable cycles would
     /// otherwise ask for Newton's method again and again).
     pub fn refuted(&mut self, events: usize) {
-        self.quiet_until = self.count + (4 * events as u64) << self.refuted.min(20);
+        self.quiet_until = self.count + ((4 * events as u64) << self.refuted.min(20));
         self.refuted += 1;
     }
 }
