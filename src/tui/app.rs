@@ -80,6 +80,9 @@ impl App {
     /// Apply one action.
     pub fn handle(&mut self, action: Action) {
         self.shared.dirty = true;
+        // A message describes the action before; the next one replaces or clears it, so
+        // the status line never describes a view that is gone.
+        self.shared.message = None;
         if action == Action::Quit {
             self.quit = true;
             return;

@@ -1,13 +1,18 @@
 //! Where each panel goes: the screen's slots (parameters, diagram, phase plot,
 //! stability, bounce, status line), reflowing from 120×40 down to 80×24; below that the
-//! too-small message replaces everything. Which panel takes which slot is the panel
-//! registry's (`components`).
+//! too-small message replaces everything. Under [`FULL_W`] columns the bottom row keeps
+//! the phase plot and the stability panel at readable widths and leaves the bounce panel
+//! out (its slot has no area; stepping still moves the phase plot's ▣), rather than
+//! squeezing three panels into plots a few columns wide. Which panel takes which slot
+//! is the panel registry's (`components`).
 
 use ratatui::layout::{Constraint, Layout, Rect};
 
 /// Smallest usable terminal.
 pub const MIN_W: u16 = 80;
 pub const MIN_H: u16 = 24;
+/// The narrowest screen that shows all three bottom panels.
+pub const FULL_W: u16 = 100;
 
 /// A place on the screen that one panel at a time takes (the focus is one of them).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -55,12 +60,18 @@ pub fn layout(area: Rect) -> Option<Panes> {
     let pw = if area.width >= 110 { 30 } else { 26 };
     let [params, diagram] =
         Layout::horizontal([Constraint::Length(pw), Constraint::Min(0)]).areas(top);
-    let [phase, stability, bounce] = Layout::horizontal([
-        Constraint::Ratio(1, 3),
-        Constraint::Ratio(1, 3),
-        Constraint::Ratio(1, 3),
-    ])
-    .areas(bottom);
+    let [phase, stability, bounce] = if area.width >= FULL_W {
+        Layout::horizontal([
+            Constraint::Ratio(1, 3),
+            Constraint::Ratio(1, 3),
+            Constraint::Ratio(1, 3),
+        ])
+        .areas(bottom)
+    } else {
+        let [phase, stability] =
+            Layout::horizontal([Constraint::Ratio(1, 2), Constraint::Ratio(1, 2)]).areas(bottom);
+        [phase, stability, Rect::new(bottom.right(), bottom.y, 0, 0)]
+    };
     Some(Panes {
         params,
         diagram,

@@ -106,8 +106,9 @@ pub struct Params {
     pub hi: f64,
     pub transient: u64,
     pub keep: usize,
-    /// Values in the diagram's sweep; None: one per column of the plot.
-    pub steps: Option<usize>,
+    /// Values in the diagram's sweep (the data's resolution: exports have as many,
+    /// whatever the screen).
+    pub steps: usize,
     /// The diagram's swept parameter (its window is `lo..hi`).
     pub param: SweepParam,
     /// How every value of the diagram starts.
@@ -149,7 +150,7 @@ impl Default for Params {
             hi,
             transient: START_TRANSIENT,
             keep: rules::KEEP.default as usize,
-            steps: None,
+            steps: rules::STEPS.default as usize,
             param: SweepParam::Alpha,
             start: StartMode::NearFixedPoint,
         }
@@ -172,6 +173,7 @@ pub enum ParamId {
     Start,
     Transient,
     Keep,
+    Values,
 }
 
 /// What a change touches, so that only the affected work restarts.
@@ -186,7 +188,7 @@ pub enum Touch {
 }
 
 impl ParamId {
-    pub const ALL: [ParamId; 13] = [
+    pub const ALL: [ParamId; 14] = [
         ParamId::Table,
         ParamId::D,
         ParamId::Alpha,
@@ -200,6 +202,7 @@ impl ParamId {
         ParamId::Start,
         ParamId::Transient,
         ParamId::Keep,
+        ParamId::Values,
     ];
 
     /// The shared rule of a numeric row.
@@ -212,6 +215,7 @@ impl ParamId {
             ParamId::T0 => Some(rules::T0),
             ParamId::Transient => Some(rules::TRANSIENT),
             ParamId::Keep => Some(rules::KEEP),
+            ParamId::Values => Some(rules::STEPS),
             ParamId::Table | ParamId::V0 | ParamId::Sweep | ParamId::Start => None,
             // The window's rule is the swept parameter's (see `Params::window_rule`).
             ParamId::Lo | ParamId::Hi => None,
@@ -239,7 +243,8 @@ impl ParamId {
             | ParamId::Hi
             | ParamId::Start
             | ParamId::Transient
-            | ParamId::Keep => Touch::Sweep,
+            | ParamId::Keep
+            | ParamId::Values => Touch::Sweep,
         }
     }
 
@@ -369,6 +374,7 @@ impl Params {
             ParamId::Start => self.start.label().into(),
             ParamId::Transient => self.transient.to_string(),
             ParamId::Keep => self.keep.to_string(),
+            ParamId::Values => self.steps.to_string(),
         }
     }
 
@@ -433,6 +439,12 @@ impl Params {
                 (if s > 0.0 { t * f } else { (t / f).floor() }).max(1.0)
             }
             ParamId::Keep => self.keep as f64 + step(50.0, 10.0),
+            ParamId::Values => {
+                // Coarse steps double or halve the values, fine ones add or take 10 %.
+                let v = self.steps as f64;
+                let f = if fine { 1.1 } else { 2.0 };
+                (if s > 0.0 { v * f } else { v / f }).round().max(1.0)
+            }
         };
         self.set_value(id, value)
     }
@@ -456,7 +468,6 @@ impl Params {
         }
         self.param = param;
         (self.lo, self.hi) = default_window(param, &self.table);
-        self.steps = None;
         self.place_alpha();
         Ok(())
     }
@@ -470,11 +481,9 @@ impl Params {
         if self.param == SweepParam::D && self.table.d().is_none() {
             self.param = SweepParam::Alpha;
             (self.lo, self.hi) = default_window(SweepParam::Alpha, &self.table);
-            self.steps = None;
             self.place_alpha();
         } else if kind_changed && self.param == SweepParam::Alpha {
             (self.lo, self.hi) = default_window(SweepParam::Alpha, &self.table);
-            self.steps = None;
             self.place_alpha();
         }
     }
@@ -567,6 +576,7 @@ impl Params {
             ParamId::Hi => next.hi = x,
             ParamId::Transient => next.transient = x as u64,
             ParamId::Keep => next.keep = x as usize,
+            ParamId::Values => next.steps = x as usize,
         }
         next.validate(id)?;
         *self = next;
@@ -614,7 +624,7 @@ impl Params {
         next.k = 1;
         next.lo = spec.lo;
         next.hi = spec.hi;
-        next.steps = Some(spec.steps);
+        next.steps = spec.steps;
         next.transient = spec.transient;
         next.keep = spec.keep;
         next.start = match (spec.initial.near_fixed_point, spec.warm) {

@@ -66,16 +66,33 @@ pub fn render(
     }
 }
 
+/// The axes of a plot: their ranges and names (`t̂`, `v`, `α`, …).
+#[derive(Clone, Copy, Debug)]
+pub struct Axes<'a> {
+    pub x: Range,
+    pub y: Range,
+    pub x_name: &'a str,
+    pub y_name: &'a str,
+}
+
 /// Draw a y axis (labels on the left, `label_w` wide) and an x axis (labels on the
-/// last row) around a plot; returns the plot area inside.
+/// last row, both ends labelled where they fit) around a plot, with the axes' names:
+/// the y name in the label column beside the plot's middle (or the nearest row free of
+/// tick labels), the x name at the left end of the x axis's row. Returns the plot area
+/// inside.
 pub fn draw_axes(
     area: Rect,
     buf: &mut Buffer,
-    x: Range,
-    y: Range,
+    axes: Axes<'_>,
     label_w: u16,
     theme: &Theme,
 ) -> Rect {
+    let Axes {
+        x,
+        y,
+        x_name,
+        y_name,
+    } = axes;
     if area.width <= label_w + 2 || area.height < 3 {
         return area;
     }
@@ -98,6 +115,7 @@ pub fn draw_axes(
         y.span()
     };
     let mut last_row = None;
+    let mut labelled = Vec::new();
     for t in yt {
         let row = plot.y
             + (((1.0 - y.frac(t)) * (plot.height as f64 - 1.0)).round() as u16)
@@ -106,14 +124,31 @@ pub fn draw_axes(
             continue;
         }
         last_row = Some(row);
+        labelled.push(row);
         let mut s = tick_label(t, ystep);
         s.truncate(label_w as usize);
         buf.set_string(area.x + label_w - s.chars().count() as u16, row, &s, style);
         buf.set_string(area.x + label_w, row, "┤", style);
     }
+    // The y axis's name beside the middle, or the nearest row without a tick label.
+    let middle = plot.y + plot.height / 2;
+    let free = (0..plot.height)
+        .flat_map(|d| [middle.checked_sub(d), Some(middle + d)])
+        .flatten()
+        .find(|r| (plot.y..plot.y + plot.height).contains(r) && !labelled.contains(r));
+    if let Some(r) = free {
+        let w = ratatui::text::Line::from(y_name).width() as u16;
+        if w <= label_w {
+            buf.set_string(area.x + label_w - w, r, y_name, theme.focus());
+        }
+    }
     // Horizontal axis labels on the last row.
     let row = area.y + area.height - 1;
     buf.set_string(area.x + label_w, row, "└", style);
+    let w = ratatui::text::Line::from(x_name).width() as u16;
+    if w <= label_w {
+        buf.set_string(area.x + label_w - w, row, x_name, theme.focus());
+    }
     let nx = (plot.width as usize / 12).clamp(2, 8);
     let xt = ticks(x, nx);
     let xstep = if xt.len() > 1 {
@@ -127,8 +162,12 @@ pub fn draw_axes(
             plot.x + ((x.frac(t) * (plot.width as f64 - 1.0)).round() as u16).min(plot.width - 1);
         let s = tick_label(t, xstep);
         let w = s.chars().count() as u16;
-        let start = col.saturating_sub(w / 2).max(plot.x);
-        if start < free_from || start + w > plot.x + plot.width {
+        // Centred on its column, pushed inside at the ends (so the last tick shows).
+        let start = col
+            .saturating_sub(w / 2)
+            .max(plot.x)
+            .min((plot.x + plot.width).saturating_sub(w));
+        if start < free_from {
             continue;
         }
         buf.set_string(start, row, &s, style);

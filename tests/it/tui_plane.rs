@@ -79,7 +79,7 @@ fn the_plane_view_shows_classes_curves_axes_and_legend() {
     let mut buf = Buffer::empty(Rect::new(0, 0, pane.right(), pane.bottom()));
     a.panels.plane.draw(&a.shared, pane, &mut buf);
     let s = crate::tui_common::buffer_text(&buf);
-    assert!(s.contains("Plane α×D · done 1.5s"), "{s}");
+    assert!(s.contains("Plane α×D T=3000 · done 1.5s"), "{s}");
     assert!(s.contains("·1 :2 +4 *8 #n ▒stick ░stick? █chaos"), "{s}");
     assert!(
         s.contains("0.450") && s.contains("1.0┤") && s.contains("0.0┤"),

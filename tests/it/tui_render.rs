@@ -4,8 +4,8 @@
 
 use crate::tui_common::{app, fill, render, size, text};
 use bouncemap::output::hitgrid::Marker;
-use bouncemap::tui::app::{App, Effect, Overlay};
-use bouncemap::tui::components::{status, Component, Target};
+use bouncemap::tui::app::{App, Overlay};
+use bouncemap::tui::components::{status, Component};
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 
@@ -145,24 +145,18 @@ fn overlays_help_and_presets() {
 }
 
 #[test]
-fn enlarging_the_terminal_sweeps_again_at_the_new_resolution() {
-    // A sweep at 80×24 has one value per sub-column there; at 160×48 the diagram has
-    // more columns than values, so the app asks for a new sweep.
+fn the_diagram_sweeps_the_values_parameter_whatever_the_screen() {
+    // The data's resolution is the `values` row (exports have as many values), not
+    // the screen's: every size sweeps the same values, and a new size only re-bins.
     let mut a = app(Marker::Braille);
-    size(&mut a, 80, 24);
-    let n = a.panels.diagram.sweep_columns();
-    let shared = &a.shared;
-    a.panels.diagram.sweep_started(1, n, shared);
+    for (w, h) in [(80, 24), (200, 60)] {
+        size(&mut a, w, h);
+        let spec = a.panels.diagram.sweep_spec(&a.shared);
+        assert_eq!(spec.steps, a.shared.params.steps);
+    }
+    assert_eq!(a.shared.params.steps, 1000, "the sweep command's default");
     a.take_effects();
     size(&mut a, 80, 24);
-    assert!(a.take_effects().is_empty(), "same size: nothing to do");
     size(&mut a, 160, 48);
-    assert!(a.panels.diagram.sweep_columns() > n);
-    assert_eq!(a.take_effects(), vec![Effect::Start(Target::Diagram)]);
-    // Shrinking keeps the values it has: more values than columns is fine.
-    let (n, shared) = (a.panels.diagram.sweep_columns(), &a.shared);
-    a.panels.diagram.sweep_started(2, n, shared);
-    a.take_effects();
-    size(&mut a, 80, 24);
-    assert!(a.take_effects().is_empty());
+    assert!(a.take_effects().is_empty(), "a new size sweeps nothing");
 }

@@ -242,24 +242,19 @@ fn a_long_refusal_fits_in_the_status_line() {
     assert!(!s.lines().take(20).any(|l| l.contains("out of range")));
 }
 
-/// Growing the terminal adds the missing values instead of restarting the sweep;
-/// shrinking only re-bins.
+/// Resizing re-bins the values the diagram has; it never sweeps again.
 #[test]
-fn resizing_refines_instead_of_restarting() {
+fn resizing_rebins_without_sweeping_again() {
     let mut a = app(Marker::Braille);
     size(&mut a, 120, 40);
     fill(&mut a);
     a.take_effects();
     let points = a.panels.diagram.grid.points();
-    size(&mut a, 80, 24);
-    assert!(a.take_effects().is_empty(), "shrinking sweeps nothing");
-    assert_eq!(a.panels.diagram.grid.points(), points);
-    size(&mut a, 200, 50);
-    assert!(
-        a.panels.diagram.refine,
-        "growing asks for the values in between"
-    );
-    assert!(a.take_effects().contains(&Effect::Start(Target::Diagram)));
+    for (w, h) in [(80, 24), (200, 50)] {
+        size(&mut a, w, h);
+        assert!(a.take_effects().is_empty(), "{w}x{h} sweeps nothing");
+        assert_eq!(a.panels.diagram.grid.points(), points);
+    }
 }
 
 /// At 80×24 the help scrolls instead of cutting its lines.

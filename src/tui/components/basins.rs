@@ -15,7 +15,7 @@ use crate::output::hitgrid::Range;
 use crate::tui::keymap::Action;
 use crate::tui::layout::plot_area_within;
 use crate::tui::params::{ParamId, Touch};
-use crate::tui::plot::draw_axes;
+use crate::tui::plot::{draw_axes, Axes};
 use bouncemap_engine::attractors::basins::{BasinChunk, BasinSpec, Basins};
 use bouncemap_engine::attractors::Kind;
 use ratatui::buffer::Buffer;
@@ -151,14 +151,13 @@ impl Component for BasinsPanel {
             return;
         };
         let (picture, legend) = split(inner);
-        let plot = draw_axes(
-            picture,
-            buf,
-            Range::new(0.0, 1.0),
-            Range::new(0.0, spec.w_max),
-            LABEL_W,
-            &app.theme,
-        );
+        let axes = Axes {
+            x: Range::new(0.0, 1.0),
+            y: Range::new(0.0, spec.w_max),
+            x_name: "t̂0",
+            y_name: "w0",
+        };
+        let plot = draw_axes(picture, buf, axes, LABEL_W, &app.theme);
         let reg = b.registry();
         let number = numbers(reg);
         let colour = app.theme.attractor_color(0).is_some();

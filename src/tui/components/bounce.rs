@@ -407,7 +407,7 @@ fn render(b: &Bounce, app: &Shared, area: Rect, buf: &mut Buffer) {
             ctx.layer();
             for &(t, z, kind) in &c.events {
                 let g = if kind == EventKind::Impact {
-                    "*"
+                    "▾"
                 } else {
                     "▪"
                 };

@@ -100,15 +100,11 @@ impl Component for Parameters {
 
     fn draw(&self, app: &Shared, area: Rect, buf: &mut Buffer) {
         let focused = is_focused(app, Slot::Params);
-        let block = panel(app, " Parameters ".into(), focused);
-        let inner = block.inner(area);
-        block.render(area, buf);
-        let label_w = 10usize;
-        let w = inner.width as usize;
         // Rows shown: all if they fit, else a window that keeps the selected one visible
-        // (one row is kept for the hint while typing).
+        // (one row is kept for the hint while typing); the borders say how many rows
+        // are above and below it.
         let hint = self.editing.is_some();
-        let room = (inner.height as usize)
+        let room = (area.height.saturating_sub(2) as usize)
             .saturating_sub(usize::from(hint))
             .max(1);
         let n = ParamId::ALL.len();
@@ -117,6 +113,21 @@ impl Component for Parameters {
         } else {
             self.selected.saturating_sub(room / 2).min(n - room)
         };
+        let below = n.saturating_sub(first + room);
+        let mut block = panel(app, " Parameters ".into(), focused);
+        if first > 0 {
+            block = block
+                .title(Line::styled(format!(" ▲ {first} more "), app.theme.dim()).right_aligned());
+        }
+        if below > 0 {
+            block = block.title_bottom(
+                Line::styled(format!(" ▼ {below} more (↑↓) "), app.theme.dim()).right_aligned(),
+            );
+        }
+        let inner = block.inner(area);
+        block.render(area, buf);
+        let label_w = 10usize;
+        let w = inner.width as usize;
         let mut lines: Vec<Line> = Vec::new();
         for (i, id) in ParamId::ALL.iter().enumerate().skip(first).take(room) {
             let sel = i == self.selected;

@@ -8,7 +8,7 @@ use super::{compact, panel, Component, Effect, Msg, Registered, Shared, Workers}
 use crate::output::hitgrid::{HitGrid, Marker, Range};
 use crate::tui::layout::plot_area_within;
 use crate::tui::params::{ParamId, Touch};
-use crate::tui::plot::{draw_axes, render};
+use crate::tui::plot::{draw_axes, render, Axes};
 use crate::tui::workers::Ticket;
 use bouncemap_engine::{Event, ImpactMap, Solver, State, System};
 use ratatui::buffer::Buffer;
@@ -165,14 +165,13 @@ impl Component for PhasePlot {
         let block = panel(app, title, false);
         let inner = block.inner(area);
         block.render(area, buf);
-        let plot = draw_axes(
-            inner,
-            buf,
-            self.grid.x_range(),
-            self.grid.y_range(),
-            LABEL_W,
-            &app.theme,
-        );
+        let axes = Axes {
+            x: self.grid.x_range(),
+            y: self.grid.y_range(),
+            x_name: "t̂",
+            y_name: "v",
+        };
+        let plot = draw_axes(inner, buf, axes, LABEL_W, &app.theme);
         let recent: Vec<(usize, usize)> = self
             .points
             .iter()

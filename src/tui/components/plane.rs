@@ -11,7 +11,8 @@
 //! lower half, without colour each cell shows its class's glyph (sparse to dense, as
 //! `plane --format braille`). The plane runs at the diagram's α window (α's default
 //! window when another parameter is swept), D ∈ [0, 1] or r ∈ [0.5, 0.95], with the
-//! diagram's transient, started next to the (1, 1) solution. The job, its progress and
+//! diagram's transient up to the plane's default (shown in the title), started next to
+//! the (1, 1) solution. The job, its progress and
 //! the halves are [`super::grid_picture`]'s; the spec, the classes' colours and glyphs,
 //! the curves, the legend and the cursor are this panel's.
 
@@ -23,7 +24,7 @@ use crate::output::plane_map::{self, glyph, Cell, CURVE_MARKS};
 use crate::tui::keymap::Action;
 use crate::tui::layout::{plot_area_within, Slot};
 use crate::tui::params::{default_window, ParamId, Params};
-use crate::tui::plot::draw_axes;
+use crate::tui::plot::{draw_axes, Axes};
 use bouncemap_engine::grid::Axis;
 use bouncemap_engine::grid::SweepParam;
 use bouncemap_engine::plane::{curves, Curves, Plane, PlaneChunk, PlaneSpec};
@@ -78,7 +79,11 @@ pub fn plane_spec(params: &Params, grid: (usize, usize)) -> PlaneSpec {
         params.table()
     };
     let mut spec = PlaneSpec::new(table, x, y, alo, params.r);
-    spec.transient = params.transient;
+    // At most the plane's default transient: a preset's paper-length transient (5·10⁶)
+    // over every pixel would take minutes; the title says which transient is used.
+    spec.transient = params
+        .transient
+        .min(bouncemap_engine::plane::DEFAULT_TRANSIENT);
     spec
 }
 
@@ -129,7 +134,11 @@ impl PlanePanel {
         let Some(s) = &self.view.spec else {
             return " Plane ".into();
         };
-        let head = format!(" Plane α×{}", Params::symbol(s.y.param));
+        let head = format!(
+            " Plane α×{} T={}",
+            Params::symbol(s.y.param),
+            crate::tui::params::fmt_num(s.transient as f64)
+        );
         let Some(p) = &self.view.picture else {
             return format!("{head} ");
         };
@@ -287,14 +296,13 @@ impl Component for PlanePanel {
         let (Some(p), Some(spec)) = (&self.view.picture, &self.view.spec) else {
             return;
         };
-        let plot = draw_axes(
-            inner,
-            buf,
-            Range::new(spec.x.lo, spec.x.hi),
-            Range::new(spec.y.lo, spec.y.hi),
-            LABEL_W,
-            &app.theme,
-        );
+        let axes = Axes {
+            x: Range::new(spec.x.lo, spec.x.hi),
+            y: Range::new(spec.y.lo, spec.y.hi),
+            x_name: crate::tui::params::Params::symbol(spec.x.param),
+            y_name: crate::tui::params::Params::symbol(spec.y.param),
+        };
+        let plot = draw_axes(inner, buf, axes, LABEL_W, &app.theme);
         let (nx, ny) = p.size();
         let colour = app.theme.class(Class::Period1).fg.is_some();
         let fg = |c: Option<Class>| c.and_then(|c| app.theme.class(c).fg);

@@ -173,12 +173,14 @@ macro_rules! registry {
                 )*
             }
 
-            /// Draw the panel shown in each slot.
+            /// Draw the panel shown in each slot (a slot the layout left out at this
+            /// size has no area and is skipped).
             pub fn draw(&self, shared: &Shared, panes: &Panes, buf: &mut Buffer) {
                 $(
                     if let Some(s) = $slot {
-                        if self.in_slot(s) == Some(Target::$target) {
-                            self.$field.draw(shared, panes.get(s), buf);
+                        let area = panes.get(s);
+                        if self.in_slot(s) == Some(Target::$target) && !area.is_empty() {
+                            self.$field.draw(shared, area, buf);
                         }
                     }
                 )*

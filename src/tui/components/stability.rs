@@ -89,11 +89,17 @@ fn render(app: &Shared, area: Rect, buf: &mut Buffer) {
         Some(Ok(i)) => Some(&i.fixed[..]),
         _ => None,
     };
-    let mut lines = vec![Line::from(vec![
-        Span::raw("κ_c = "),
-        Span::styled(format!("{kc:.4}"), app.theme.focus()),
-        Span::raw(format!("  (r = {})", fmt_num(app.params.r))),
-    ])];
+    // A short panel keeps its essentials: the f'' band (κ_c is on its ticks), one line
+    // per solution, and room for the drawings; the words go.
+    let short = inner.height < 14;
+    let mut lines = Vec::new();
+    if !short {
+        lines.push(Line::from(vec![
+            Span::raw("κ_c = "),
+            Span::styled(format!("{kc:.4}"), app.theme.focus()),
+            Span::raw(format!("  (r = {})", fmt_num(app.params.r))),
+        ]));
+    }
     let (band, ticks) = band_lines(app, kc, fixed.unwrap_or(&[]), inner.width as usize);
     lines.push(band);
     lines.push(ticks);
@@ -109,7 +115,7 @@ fn render(app: &Shared, area: Rect, buf: &mut Buffer) {
         )),
         Some(Ok(i)) => {
             // Narrow panels drop the words: ◆ is stable, ◇ unstable (see the legend).
-            let wide = inner.width >= 34;
+            let wide = inner.width >= 34 && !short;
             for f in &i.fixed {
                 let head = match (f.stable, wide) {
                     (true, true) => "◆ stable  ",
@@ -117,23 +123,34 @@ fn render(app: &Shared, area: Rect, buf: &mut Buffer) {
                     (true, false) => "◆",
                     (false, false) => "◇",
                 };
+                let [a, b] = f.eig.map(|(re, im)| re.hypot(im));
+                if short {
+                    lines.push(Line::from(vec![
+                        Span::styled(head, app.theme.mark()),
+                        Span::raw(format!(
+                            " t̂* {:.3} f'' {:.3} |λ| {:.2},{:.2}",
+                            f.phase, f.f2, a, b
+                        )),
+                    ]));
+                    continue;
+                }
                 lines.push(Line::from(vec![
                     Span::styled(head, app.theme.mark()),
                     Span::raw(format!(" t̂* {:.4}  f'' {:.4}", f.phase, f.f2)),
                 ]));
-                let [a, b] = f.eig.map(|(re, im)| re.hypot(im));
                 lines.push(Line::from(format!("  |λ| {}, {}", modulus(a), modulus(b))));
             }
         }
     }
-    // The diagram's value at the cursor, with the evidence for its cycle.
-    if let Some(at) = &app.at_cursor {
+    // The diagram's value at the cursor, with the evidence for its cycle (where there
+    // is room for the drawings too).
+    if let Some(at) = app.at_cursor.as_ref().filter(|_| !short) {
         for l in wrap_words(at, inner.width as usize) {
             lines.push(Line::styled(l, app.theme.mark2()));
         }
     }
     // The continued branch under the diagram's cursor (while the diagram has the focus).
-    if let (Some((i, p)), Some(Ok(sk))) = (&app.under_cursor, &app.branches) {
+    if let (Some((i, p)), Some(Ok(sk)), false) = (&app.under_cursor, &app.branches, short) {
         let b = &sk.branches[*i];
         lines.push(Line::from(vec![
             Span::styled(format!("branch ({}, {})", b.n, b.k), app.theme.mark2()),

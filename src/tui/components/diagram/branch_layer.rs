@@ -1,10 +1,11 @@
 //! The continued branches over the diagram (α sweeps): each impact of each cycle as a
-//! curve in braille dots, stable stretches solid, unstable ones dotted and dim; where a
-//! curve crosses a cell with data its dots are added to the data's. Their special
+//! curve in the plot's marker (braille dots, half blocks or dots), stable stretches
+//! solid, unstable ones dotted and dim; where a braille curve crosses a cell with data
+//! its dots are added to the data's. Their special
 //! points (PD period doubling, F fold, BC border collision) are labelled on the x
 //! axis's row, beside the B and P of the (1, k) solution.
 
-use crate::output::hitgrid::Range;
+use crate::output::hitgrid::{Marker, Range};
 use crate::tui::skeleton::Skeleton;
 use crate::tui::theme::Theme;
 use bouncemap_engine::orbits::continuation::Kind;
@@ -43,10 +44,9 @@ impl Dots {
 /// `velocity`). Returns nothing; the axis row below `plot` gets the labels.
 pub fn draw(
     sk: &Skeleton,
-    x: Range,
-    y: Range,
-    velocity: bool,
+    (x, y, velocity): (Range, Range, bool),
     plot: Rect,
+    marker: Marker,
     buf: &mut Buffer,
     theme: &Theme,
 ) {
@@ -100,14 +100,32 @@ pub fn draw(
     for bits in unstable.bits.iter_mut() {
         *bits &= 0x47;
     }
-    paint(&unstable, plot, buf, theme.dim());
-    paint(&stable, plot, buf, theme.mark2());
+    paint(&unstable, plot, marker, buf, theme.dim());
+    paint(&stable, plot, marker, buf, theme.mark2());
     labels(sk, x, plot, buf, theme);
 }
 
-/// Put a layer's dots into the buffer: on an empty cell as a glyph in `style`; on a
-/// braille cell with data, as extra dots in the data's style.
-fn paint(d: &Dots, plot: Rect, buf: &mut Buffer, style: Style) {
+/// The glyph of a cell's dots (braille bits) in `marker`: the braille pattern, the
+/// upper, lower or full half block, or a dot.
+fn glyph(bits: u8, marker: Marker) -> char {
+    match marker {
+        Marker::Braille => char::from_u32(0x2800 + bits as u32).unwrap_or(' '),
+        Marker::HalfBlock => {
+            let (upper, lower) = (bits & 0x1b != 0, bits & 0xe4 != 0);
+            match (upper, lower) {
+                (true, true) => '█',
+                (true, false) => '▀',
+                _ => '▄',
+            }
+        }
+        Marker::Dot => '•',
+    }
+}
+
+/// Put a layer's dots into the buffer: on an empty cell as a glyph of `marker` in
+/// `style`; on a braille cell with data, as extra dots in the data's style (other
+/// markers leave cells with data as they are).
+fn paint(d: &Dots, plot: Rect, marker: Marker, buf: &mut Buffer, style: Style) {
     for r in 0..d.h {
         for c in 0..d.w {
             let bits = d.bits[r * d.w + c];
@@ -119,9 +137,8 @@ fn paint(d: &Dots, plot: Rect, buf: &mut Buffer, style: Style) {
             };
             let ch = cell.symbol().chars().next().unwrap_or(' ');
             if ch == ' ' || ch == '\u{2800}' {
-                let glyph = char::from_u32(0x2800 + bits as u32).unwrap_or(' ');
-                cell.set_char(glyph).set_style(style);
-            } else if ('\u{2801}'..='\u{28ff}').contains(&ch) {
+                cell.set_char(glyph(bits, marker)).set_style(style);
+            } else if marker == Marker::Braille && ('\u{2801}'..='\u{28ff}').contains(&ch) {
                 let old = ch as u32 - 0x2800;
                 let glyph = char::from_u32(0x2800 + (old | bits as u32)).unwrap_or(ch);
                 cell.set_char(glyph);

@@ -21,7 +21,7 @@ use crate::output::hitgrid::{HitGrid, Range};
 use crate::tui::keymap::Action;
 use crate::tui::layout::{plot_area_within, Slot};
 use crate::tui::params::{fmt_num, ParamId, Params, StartMode, Touch};
-use crate::tui::plot::{draw_axes, render};
+use crate::tui::plot::{draw_axes, render, Axes};
 use bouncemap_engine::grid::SweepParam;
 use bouncemap_engine::sweep::{InitialSpec, SweepBatch, SweepJob, SweepSpec, ValueResult};
 use colouring::{point_labels, ColorBy, LabelGrid};
@@ -120,7 +120,6 @@ pub struct Diagram {
     pub y_view: Option<(f64, f64)>,
     pub zoom_stack: Vec<Zoom>,
     /// The next start adds the values between the stored ones (the plot grew wider).
-    pub refine: bool,
     pub grid: HitGrid,
     /// The plot's screen rectangle at the last layout (for the mouse).
     pub plot_area: Rect,
@@ -153,7 +152,6 @@ impl Diagram {
             mark: None,
             y_view: None,
             zoom_stack: Vec::new(),
-            refine: false,
             grid: HitGrid::new(
                 0,
                 0,
@@ -169,17 +167,11 @@ impl Diagram {
         }
     }
 
-    /// Values a sweep computes when the screen decides: one per sub-column of the
-    /// diagram (at least 80).
-    pub fn sweep_columns(&self) -> usize {
-        self.grid.sub_size().0.max(80)
-    }
-
     /// The sweep for the current parameters: the preset's number of values, or one
     /// value per sub-cell column.
     pub fn sweep_spec(&self, shared: &Shared) -> SweepSpec {
         let p = &shared.params;
-        let steps = p.steps.unwrap_or_else(|| self.sweep_columns());
+        let steps = p.steps;
         let mut spec = SweepSpec::new(p.table(), p.alpha, p.r, p.param, p.lo, p.hi, steps);
         spec.initial = InitialSpec {
             t0: p.t0,
@@ -330,15 +322,9 @@ impl Component for Diagram {
                 self.grid.x_range(),
                 self.grid.y_range(),
             );
+            // The data's resolution is the values parameter's, not the screen's: a
+            // new size only re-bins.
             self.rebin(shared);
-            // Grown wider than the sweep has values (a terminal enlarged, or one too
-            // small at start): add the values between the stored ones, or every other
-            // column would stay empty. Shrinking only re-bins.
-            let values = self.values_total;
-            if shared.params.steps.is_none() && values > 1 && self.sweep_columns() > values {
-                self.refine = true;
-                shared.effect(Effect::Start(Self::TARGET));
-            }
         }
     }
 
@@ -456,9 +442,6 @@ impl Component for Diagram {
 
     fn start(&mut self, shared: &mut Shared, workers: &Workers) {
         let spec = self.sweep_spec(shared);
-        if std::mem::take(&mut self.refine) && self.start_refinement(&spec, shared, workers) {
-            return;
-        }
         let steps = spec.steps;
         let preview = Self::preview(spec.transient);
         match SweepJob::new(spec.clone()) {
@@ -506,13 +489,25 @@ impl Component for Diagram {
 
     fn draw(&self, app: &Shared, area: Rect, buf: &mut Buffer) {
         let focused = is_focused(app, Slot::Diagram);
-        let mut block = panel(app, title(self, app), focused)
-            .title_bottom(colouring::legend(self.color_by, &app.theme));
-        if focused || self.mark.is_some() {
-            block = block.title(
-                ratatui::text::Line::styled(readout::text(self, app), app.theme.mark2())
-                    .right_aligned(),
-            );
+        // The progress always shows in full: with the cursor's readout beside it, the
+        // head words go first, then the readout is cut to the room left.
+        let width = area.width.saturating_sub(2) as usize;
+        let with_readout = focused || self.mark.is_some();
+        let mut left = title(self, app, true);
+        let mut right = String::new();
+        if with_readout {
+            right = readout::text(self, app);
+            let w = |s: &str| ratatui::text::Line::from(s).width();
+            if w(&left) + w(&right) > width {
+                left = title(self, app, false);
+            }
+            right = fit(&right, width.saturating_sub(w(&left) + 1));
+        }
+        let mut block =
+            panel(app, left, focused).title_bottom(colouring::legend(self.color_by, &app.theme));
+        if with_readout && !right.is_empty() {
+            block =
+                block.title(ratatui::text::Line::styled(right, app.theme.mark2()).right_aligned());
         }
         let inner = block.inner(area);
         block.render(area, buf);
@@ -526,15 +521,25 @@ impl Component for Diagram {
         }
         let x = self.grid.x_range();
         let y = self.grid.y_range();
-        let plot = draw_axes(main, buf, x, y, LABEL_W, &app.theme);
+        let axes = Axes {
+            x,
+            y,
+            x_name: Params::symbol(app.params.param),
+            y_name: match self.axis {
+                Axis::Phase => "t̂",
+                Axis::Velocity => "v",
+            },
+        };
+        let plot = draw_axes(main, buf, axes, LABEL_W, &app.theme);
         render(&self.grid, plot, buf, &app.theme, &[], Style::new());
         self.labels.paint(plot, buf, &app.theme, self.color_by);
         // The continued branches of this window (α sweeps), under the marks below.
         if let (Some(Ok(sk)), SweepParam::Alpha) = (&app.branches, app.params.param) {
-            branch_layer::draw(sk, x, y, self.axis == Axis::Velocity, plot, buf, &app.theme);
+            let axes = (x, y, self.axis == Axis::Velocity);
+            branch_layer::draw(sk, axes, plot, app.marker, buf, &app.theme);
         }
         if let Some(a) = strip_area {
-            strip::draw(&self.slots, x, a, LABEL_W, buf, &app.theme);
+            strip::draw(&self.slots, x, a, LABEL_W, app.marker, buf, &app.theme);
         }
         // Marks of the (1, k) solution's birth and period doubling (α sweeps), on the
         // x axis's row so they never cover data.
@@ -600,18 +605,48 @@ fn gauge(frac: f64, w: usize) -> String {
     format!("{}{}", "█".repeat(full), "░".repeat(w - full))
 }
 
-/// The panel's title: what is plotted, and the sweep's progress.
-pub fn title(d: &Diagram, app: &Shared) -> String {
+/// A duration in words: 45s, 3m10s, 2h05m.
+fn duration(secs: f64) -> String {
+    let s = secs.round() as u64;
+    match s {
+        0..=59 => format!("{s}s"),
+        60..=3599 => format!("{}m{:02}s", s / 60, s % 60),
+        _ => format!("{}h{:02}m", s / 3600, (s % 3600) / 60),
+    }
+}
+
+/// `text` cut to `width` display columns, ending in `…` where it was cut.
+fn fit(text: &str, width: usize) -> String {
+    let line = ratatui::text::Line::from(text);
+    if line.width() <= width {
+        return text.to_string();
+    }
+    if width < 2 {
+        return String::new();
+    }
+    let mut out = String::new();
+    for ch in text.chars() {
+        if ratatui::text::Line::from(format!("{out}{ch}…")).width() > width {
+            break;
+        }
+        out.push(ch);
+    }
+    format!("{out}…")
+}
+
+/// The panel's title: what is plotted (in words with `long`), and the sweep's progress.
+pub fn title(d: &Diagram, app: &Shared, long: bool) -> String {
     let paused = app.paused;
     let axis = match d.axis {
         Axis::Phase => "t̂",
         Axis::Velocity => "v",
     };
     let sym = Params::symbol(app.params.param);
-    let head = if d.all_attractors {
-        format!(" Diagram {axis} vs {sym}, all attractors ")
-    } else {
-        format!(" Bifurcation diagram: {axis} vs {sym} ")
+    let head = match (d.all_attractors, long) {
+        (true, true) => format!(" Diagram {axis} vs {sym}, all attractors "),
+        (false, true) => format!(" Bifurcation diagram: {axis} vs {sym} "),
+        (true, false) => format!(" {axis} vs {sym}, all "),
+        (false, false) => format!(" {axis} vs {sym} "),
     };
     match &d.status {
         SweepStatus::Running | SweepStatus::Done => {
@@ -620,6 +655,14 @@ pub fn title(d: &Diagram, app: &Shared) -> String {
                 format!("done {:.1}s", d.elapsed)
             } else if paused {
                 "paused".into()
+            } else if frac > 0.02 && d.elapsed > 2.0 {
+                // The time left at the rate so far, once there is a rate to go by.
+                let left = d.elapsed * (1.0 - frac) / frac;
+                format!(
+                    "{} pts/s, ~{} left",
+                    compact(d.sweep_rate()),
+                    duration(left)
+                )
             } else {
                 format!("{} pts/s", compact(d.sweep_rate()))
             };

@@ -1,13 +1,12 @@
 //! Moving around the diagram: the cursor (a value of the swept parameter and a height),
 //! setting the swept parameter to the cursor, zooming (about the cursor, to a window
 //! or box marked with two corners, vertically by marking two heights in one column),
-//! the zoom stack, and refining the sweep when the plot grows wider.
+//! and the zoom stack.
 
-use super::{Diagram, SweepStatus};
-use crate::tui::components::{Registered, Shared, Workers};
+use super::Diagram;
+use crate::tui::components::Shared;
+use crate::tui::keymap::Action;
 use crate::tui::params::{ParamId, Params};
-use bouncemap_engine::grid::Shard;
-use bouncemap_engine::sweep::{SweepJob, SweepSpec, ValueResult, Warm};
 
 /// A window to go back to.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -50,6 +49,15 @@ impl Diagram {
     pub(super) fn mark_corner(&mut self, shared: &mut Shared) {
         let Some((mx, my)) = self.mark.take() else {
             self.mark = Some((self.cursor, self.ycursor));
+            let k = |a| shared.keymap.hint(a);
+            shared.say(
+                format!(
+                    "zoom: first corner marked; move the cursor to the other corner and press {} again ({} cancels)",
+                    k(Action::MarkWindow),
+                    k(Action::Cancel)
+                ),
+                false,
+            );
             return;
         };
         let y = self.grid.y_range();
@@ -130,66 +138,6 @@ impl Diagram {
         let before = shared.params.clone();
         shared.params.lo = lo;
         shared.params.hi = hi;
-        // A window the user chose is swept at the screen's resolution.
-        shared.params.steps = None;
         shared.after_change(ParamId::Lo, Ok(()), &before);
-    }
-
-    /// The plot grew wider than the sweep has values: compute only the values halfway
-    /// between the stored ones (the odd indices of a grid of 2n − 1 values, shard 2/2),
-    /// keeping every stored result. Only for a finished or running cold sweep of the
-    /// same specification; false if a full sweep is needed instead.
-    pub(super) fn start_refinement(
-        &mut self,
-        spec: &SweepSpec,
-        shared: &Shared,
-        workers: &Workers,
-    ) -> bool {
-        let Some(old) = self.running.clone() else {
-            return false;
-        };
-        let same = SweepSpec {
-            steps: spec.steps,
-            ..old.clone()
-        } == *spec;
-        if !same || spec.warm != Warm::Off || old.steps < 2 || self.status == SweepStatus::Idle {
-            return false;
-        }
-        let steps = 2 * (old.steps - 1) + 1;
-        let full = SweepSpec {
-            steps,
-            ..old.clone()
-        };
-        let part = SweepSpec {
-            shard: Shard { index: 1, count: 2 },
-            ..full.clone()
-        };
-        let Ok(job) = SweepJob::new(part) else {
-            return false;
-        };
-        let gen = workers.start_job(Self::ADDRESS, job);
-        let old_slots = std::mem::take(&mut self.slots);
-        self.sweep_started(gen, steps, shared);
-        for (i, s) in old_slots.into_iter().enumerate() {
-            if let Some(mut r) = s {
-                r.index = 2 * i;
-                self.keep_result(r);
-            }
-        }
-        self.rebin(shared);
-        self.running = Some(full);
-        true
-    }
-
-    /// Store a result without re-binning (the caller re-bins once).
-    fn keep_result(&mut self, r: ValueResult) {
-        self.plotted += r.points.len();
-        if r.complete {
-            self.values_done += 1;
-        }
-        let i = r.index;
-        if i < self.slots.len() {
-            self.slots[i] = Some(r);
-        }
     }
 }

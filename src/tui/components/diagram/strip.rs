@@ -36,6 +36,7 @@ pub fn draw(
     x: Range,
     area: Rect,
     label_w: u16,
+    marker: Marker,
     buf: &mut Buffer,
     theme: &Theme,
 ) {
@@ -49,7 +50,8 @@ pub fn draw(
         height: area.height,
     };
     let y = y_range(slots);
-    let mut grid = HitGrid::new(plot.width, plot.height, Marker::Braille, x, y);
+    let mut grid = HitGrid::new(plot.width, plot.height, marker, x, y);
+    let per_cell = marker.resolution().0;
     let cols = plot.width as usize;
     let mut stuck = vec![false; cols];
     let mut positive = vec![false; cols];
@@ -59,13 +61,13 @@ pub fn draw(
                 grid.add(s.value, l.clamp(y.lo, y.hi));
                 if l > 0.0 {
                     if let Some((i, _)) = grid.sub_cell(s.value, 0.0) {
-                        positive[(i / 2).min(cols - 1)] = true;
+                        positive[(i / per_cell).min(cols - 1)] = true;
                     }
                 }
             }
             Some(_) => {
                 if let Some((i, _)) = grid.sub_cell(s.value, y.lo) {
-                    stuck[(i / 2).min(cols - 1)] = true;
+                    stuck[(i / per_cell).min(cols - 1)] = true;
                 }
             }
             None => {}
@@ -89,6 +91,15 @@ pub fn draw(
         let w = text.chars().count() as u16;
         buf.set_string(area.x + label_w - w, row, &text, theme.axis());
         buf.set_string(area.x + label_w, row, "┤", theme.axis());
+    }
+    // The strip's name in the gutter, on a row without a tick label.
+    let taken = [plot.y, plot.y + plot.height - 1, zero_row];
+    if let Some(r) = (plot.y..plot.y + plot.height).find(|r| !taken.contains(r)) {
+        let name = "λ₁";
+        let w = ratatui::text::Line::from(name).width() as u16;
+        if w <= label_w {
+            buf.set_string(area.x + label_w - w, r, name, theme.focus());
+        }
     }
     let text = grid.to_text();
     for (r, line) in text.iter().enumerate() {
