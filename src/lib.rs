@@ -9,6 +9,8 @@
 //! * [`output`]: typed records written as csv and json, the hit-count grid and its text
 //!   form.
 //! * [`tui`]: the terminal application.
+//! * [`docs`]: the documents made from the code (command reference, man pages, keys,
+//!   the README's screenshot).
 //!
 //! [`main`] is the whole binary; `config`, `output` and `tui` are public for the
 //! integration tests (the headless commands are tested by running the binary).
@@ -16,6 +18,7 @@
 
 mod commands;
 pub mod config;
+pub mod docs;
 pub mod output;
 pub mod tui;
 

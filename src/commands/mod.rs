@@ -42,5 +42,17 @@ pub fn run(cmd: Command) -> anyhow::Result<()> {
         Command::Merge(a) => merge::run(&a),
         Command::Bench(a) => bench::run(&a),
         Command::Figure(a) => figure::run(&a),
+        Command::Completions(a) => {
+            use clap::CommandFactory;
+            let mut cmd = crate::config::flags::Cli::command();
+            clap_complete::generate(a.shell, &mut cmd, "bouncemap", &mut std::io::stdout());
+            Ok(())
+        }
+        Command::GenerateDocs(a) => {
+            for path in crate::docs::write_all(&a.dir)? {
+                println!("wrote {}", a.dir.join(path).display());
+            }
+            Ok(())
+        }
     }
 }

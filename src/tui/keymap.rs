@@ -167,6 +167,9 @@ impl fmt::Display for Action {
     }
 }
 
+/// The named keys of the config file (after an optional `ctrl-`, `alt-` or `shift-`).
+pub const KEY_NAMES: &str = "space, enter, esc, tab, backtab, backspace, up, down, left, right, pageup, pagedown, home, end, f1..f12";
+
 /// A key with modifiers, as written in the config file ("q", "ctrl-c", "shift-left").
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct Key {
@@ -249,7 +252,9 @@ impl Key {
     /// Parse "q", "ctrl-c", "shift-left", "space", "enter", "f1", ...
     pub fn parse(s: &str) -> Result<Key, String> {
         let bad = || {
-            format!("'{s}' is not a key: valid a character, or [ctrl-|alt-|shift-] with space, enter, esc, tab, backtab, backspace, up, down, left, right, pageup, pagedown, home, end, f1..f12")
+            format!(
+                "'{s}' is not a key: valid a character, or [ctrl-|alt-|shift-] with {KEY_NAMES}"
+            )
         };
         let mut key = Key::ch(' ');
         let mut rest = s.trim();

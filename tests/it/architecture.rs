@@ -154,7 +154,7 @@ const ENGINE_LAYERS: &[&[&str]] = &[
 ];
 
 /// The binary's top-level modules, bottom layer first (the engine lies below them all).
-const BINARY_LAYERS: &[&[&str]] = &[&["output"], &["config"], &["commands", "tui"]];
+const BINARY_LAYERS: &[&[&str]] = &[&["output"], &["config"], &["commands", "tui", "docs"]];
 
 /// parent path → sibling → siblings it uses, for the crate whose sources are in `src`.
 fn uses(src: &Path) -> BTreeMap<Vec<String>, BTreeMap<String, BTreeSet<String>>> {

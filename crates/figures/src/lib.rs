@@ -52,6 +52,7 @@ pub mod raster;
 pub mod scaling;
 pub mod shapes;
 pub mod svg;
+pub mod terminal;
 pub mod text;
 
 pub use diagram::{diagram_view, DiagramAxis};

@@ -2,7 +2,7 @@
 //! a system font: the font database holds only them), written with its resolution (the
 //! pHYs chunk) so it prints at the size it was made for.
 
-use super::text::{FAMILY, FONT_OBLIQUE, FONT_REGULAR};
+use super::text::{FAMILY, FONT_MONO, FONT_MONO_BOLD, FONT_OBLIQUE, FONT_REGULAR, MONO_FAMILY};
 use super::FigureError;
 use resvg::{tiny_skia, usvg};
 use std::sync::{Arc, OnceLock};
@@ -12,18 +12,18 @@ fn fonts() -> Arc<usvg::fontdb::Database> {
     static DB: OnceLock<Arc<usvg::fontdb::Database>> = OnceLock::new();
     DB.get_or_init(|| {
         let mut db = usvg::fontdb::Database::new();
-        for bytes in [FONT_REGULAR, FONT_OBLIQUE] {
+        for bytes in [FONT_REGULAR, FONT_OBLIQUE, FONT_MONO, FONT_MONO_BOLD] {
             db.load_font_source(usvg::fontdb::Source::Binary(Arc::new(bytes)));
         }
         for set in [
             usvg::fontdb::Database::set_sans_serif_family,
             usvg::fontdb::Database::set_serif_family,
-            usvg::fontdb::Database::set_monospace_family,
             usvg::fontdb::Database::set_cursive_family,
             usvg::fontdb::Database::set_fantasy_family,
         ] {
             set(&mut db, FAMILY);
         }
+        db.set_monospace_family(MONO_FAMILY);
         Arc::new(db)
     })
     .clone()

@@ -16,6 +16,12 @@ pub const FONT_REGULAR: &[u8] = include_bytes!("../fonts/DejaVuSans.ttf");
 pub const FONT_OBLIQUE: &[u8] = include_bytes!("../fonts/DejaVuSans-Oblique.ttf");
 /// The family both fonts belong to, as the SVG names it.
 pub const FAMILY: &str = "DejaVu Sans";
+/// DejaVu Sans Mono and its bold, for pictures of the terminal application.
+pub const FONT_MONO: &[u8] = include_bytes!("../fonts/DejaVuSansMono.ttf");
+/// DejaVu Sans Mono Bold.
+pub const FONT_MONO_BOLD: &[u8] = include_bytes!("../fonts/DejaVuSansMono-Bold.ttf");
+/// The monospaced family, as the SVG names it.
+pub const MONO_FAMILY: &str = "DejaVu Sans Mono";
 
 /// Height of a subscript or superscript, relative to the text around it.
 pub const SCRIPT_SCALE: f64 = 0.7;

@@ -94,6 +94,27 @@ pub enum Command {
     Bench(BenchArgs),
     /// The paper's figures, or any sweep, as SVG or PNG.
     Figure(FigureArgs),
+    /// Shell completions for bash, zsh, fish, elvish or powershell, on stdout.
+    Completions(CompletionsArgs),
+    /// Write the documents made from the code (reference, man pages, keys, screenshot).
+    #[command(hide = true)]
+    GenerateDocs(GenerateDocsArgs),
+}
+
+/// `bouncemap completions SHELL`.
+#[derive(Args, Debug)]
+pub struct CompletionsArgs {
+    /// The shell to complete for.
+    #[arg(value_enum)]
+    pub shell: clap_complete::Shell,
+}
+
+/// `bouncemap generate-docs DIR`.
+#[derive(Args, Debug)]
+pub struct GenerateDocsArgs {
+    /// The directory to write into (the repository's docs/).
+    #[arg(value_name = "DIR")]
+    pub dir: std::path::PathBuf,
 }
 
 /// The physical system: table shape, amplitude and restitution.

@@ -155,7 +155,9 @@ impl<P: Filled> GridPicture<P> {
     pub fn progress(&self, picture: &P, shared: &Shared) -> String {
         let (nx, ny) = picture.size();
         let frac = picture.covered() as f64 / (nx * ny).max(1) as f64;
-        if self.done {
+        if self.done && !shared.show_times {
+            "done".into()
+        } else if self.done {
             format!("done {:.1}s", self.elapsed)
         } else if shared.paused {
             "paused".into()

@@ -67,6 +67,9 @@ pub struct Shared {
     /// What the diagram's value at the cursor settled on, with its precision verdict
     /// (while the diagram has the focus).
     pub at_cursor: Option<String>,
+    /// Show how long work took ("done 1.2s", the time left). Off for the README's
+    /// screenshot, which must come out the same on every run.
+    pub show_times: bool,
     pub(in crate::tui) effects: Vec<Effect>,
     /// Rows changed by the action being handled, to announce to every panel.
     pub(in crate::tui) changed: Vec<ParamId>,
@@ -90,6 +93,7 @@ impl Shared {
             branches: None,
             under_cursor: None,
             at_cursor: None,
+            show_times: true,
             effects: Vec::new(),
             changed: Vec::new(),
         }

@@ -652,9 +652,15 @@ pub fn title(d: &Diagram, app: &Shared, long: bool) -> String {
         SweepStatus::Running | SweepStatus::Done => {
             let frac = d.values_done as f64 / d.values_total.max(1) as f64;
             let state = if d.status == SweepStatus::Done {
-                format!("done {:.1}s", d.elapsed)
+                if app.show_times {
+                    format!("done {:.1}s", d.elapsed)
+                } else {
+                    "done".into()
+                }
             } else if paused {
                 "paused".into()
+            } else if !app.show_times {
+                String::new()
             } else if frac > 0.02 && d.elapsed > 2.0 {
                 // The time left at the rate so far, once there is a rate to go by.
                 let left = d.elapsed * (1.0 - frac) / frac;
