@@ -11,7 +11,7 @@
 #
 #   0. submissions that submit.sh refuses (clashing or missing arguments, a missing
 #      binary, a partition sbatch rejects) leave no job behind;
-#   1. the README's cluster commands, run as written (the blocks marked for this
+#   1. the cluster commands of docs/commands.md, run as written (the blocks marked for this
 #      script, with HOME in a scratch directory): a 200-value fig3b sweep in 4 shards
 #      through assets/slurm/submit.sh; the merged file must equal the unsharded run but
 #      for the provenance's shard line (merged 4/4 for 1/1);
@@ -20,7 +20,7 @@
 #   3. a shard made to fail (its part's path is a directory): the merge job must end,
 #      failed, with a message naming the shard; after the cause is removed, the same
 #      submission computes only that shard and the merge equals step 1's;
-#   4. the README's workstation commands (GNU parallel, and the xargs alternative);
+#   4. the workstation commands of docs/commands.md (GNU parallel, and the xargs alternative);
 #   5. a small (α, D) plane in 3 shards (800 pixels, so parts of unequal size) through
 #      submit.sh: the merged plane.csv must equal the unsharded plane but for the
 #      shard line (merged 3/3 for 1/1); submitted again, every shard resumes.
@@ -321,15 +321,15 @@ job_states() { scontrol show job -o "$1" | grep -o 'JobState=[A-Z_]* .* ExitCode
 # Field $2 (array_job, merge_job) of the submission record in log directory $1.
 record() { sed -n "s/^$2=//p" "$1/submitted"; }
 
-# The README's shell block marked `<!-- tests/slurm/run.sh: $1 -->`.
+# The shell block of docs/commands.md marked `<!-- tests/slurm/run.sh: $1 -->`.
 readme_block() {
     awk -v tag="<!-- tests/slurm/run.sh: $1 -->" '
         index($0, tag) { armed = 1; next }
         armed && /^```/ { if (inside) exit; inside = 1; next }
-        inside { print }' "$repo/README.md"
+        inside { print }' "$repo/docs/commands.md"
 }
 
-# Run README lines (and test glue) as a user would type them: in the repository, with
+# Run the documented lines (and test glue) as a user would type them: in the repository, with
 # HOME in the scratch directory. Cargo keeps its own homes.
 as_user() {
     local home=$1 script=$2
@@ -345,7 +345,7 @@ as_user() {
 without_shard() { grep -v '^# shard ' "$1"; }
 inode_and_mtime() { stat -c '%i %Y.%y' "$@"; }
 
-the_args=(sweep --preset fig3b --steps 200) # the run the README describes
+the_args=(sweep --preset fig3b --steps 200) # the run docs/commands.md describes
 whole=$work/whole.csv
 "$bin" "${the_args[@]}" --out "$whole" 2>/dev/null
 grep -qx '# shard 1/1' "$whole" || fail "the unsharded file has no '# shard 1/1' line"
@@ -382,26 +382,26 @@ refuses 1 "sbatch refused the shards" --partition=nosuch -- sweep --preset fig3b
     fail "a refused submission left files in $work/runs/refused"
 say "0. passed"
 
-# ------------------------------------------------------------------ 1. the README
+# ------------------------------------------------------------ 1. the documented commands
 submit=$(readme_block cluster-submit)
 after=$(readme_block cluster-after)
-[[ -n $submit && -n $after ]] || fail "README.md lacks the blocks marked cluster-submit and cluster-after"
+[[ -n $submit && -n $after ]] || fail "docs/commands.md lacks the blocks marked cluster-submit and cluster-after"
 # The glue between the blocks waits for the jobs; at the end it hands back $out.
-# shellcheck disable=SC2016 # expanded by the README's shell, not here
+# shellcheck disable=SC2016 # expanded by the documented shell lines, not here
 printf '%s\n' "$submit" wait_for_jobs "$after" 'printf "%s\n" "$out" >"$RESULT"' >"$work/readme-cluster.sh"
-say "1. the README's cluster commands"
+say "1. the cluster commands of docs/commands.md"
 sed 's/^/  | /' "$work/readme-cluster.sh"
 t0=$SECONDS
 RESULT=$work/readme-out as_user "$work/home" "$work/readme-cluster.sh" >"$work/log/readme-cluster.out" 2>&1 ||
     {
         cat "$work/log/readme-cluster.out"
-        fail "the README's cluster commands failed"
+        fail "the cluster commands of docs/commands.md failed"
     }
 sed 's/^/  > /' "$work/log/readme-cluster.out"
 out=$(<"$work/readme-out")
 run=$(realpath "$out/logs/latest")
 [[ $(tr '\0' '\n' <"$run/args") == "$(printf '%s\n' "${the_args[@]}")" ]] ||
-    fail "the README's submission is not '${the_args[*]}'"
+    fail "the documented submission is not '${the_args[*]}'"
 array_job=$(record "$run" array_job)
 merge_job=$(record "$run" merge_job)
 [[ $(job_states "$array_job" | sort | uniq -c | sed 's/^ *//') == "4 COMPLETED 0:0" ]] ||
@@ -468,11 +468,11 @@ cmp -s "$fails/sweep.csv" "$out/sweep.csv" || fail "the repaired run differs fro
 say "3. passed in $((SECONDS - t0)) s: resubmitted, only shard 3 was computed"
 
 # ------------------------------------------------------------------ 4. workstation
-say "4. the README's workstation commands"
+say "4. the workstation commands of docs/commands.md"
 t0=$SECONDS
 local_block=$(readme_block workstation)
 xargs_line=$(readme_block workstation-xargs)
-[[ -n $local_block && -n $xargs_line ]] || fail "README.md lacks the blocks marked workstation and workstation-xargs"
+[[ -n $local_block && -n $xargs_line ]] || fail "docs/commands.md lacks the blocks marked workstation and workstation-xargs"
 grep -q '^parallel ' <<<"$local_block" || fail "the workstation block has no parallel line"
 for tool in parallel xargs; do
     if [[ $tool == parallel ]]; then
@@ -482,14 +482,14 @@ for tool in parallel xargs; do
             if [[ $line == parallel\ * ]]; then printf '%s\n' "$xargs_line"; else printf '%s\n' "$line"; fi
         done <<<"$local_block" >"$work/readme-$tool.sh"
     fi
-    # shellcheck disable=SC2016 # expanded by the README's shell, not here
+    # shellcheck disable=SC2016 # expanded by the documented shell lines, not here
     printf '%s\n' 'printf "%s\n" "$PWD" >"$RESULT"' >>"$work/readme-$tool.sh"
     sed 's/^/  | /' "$work/readme-$tool.sh"
     mkdir -p "$work/home-$tool"
     RESULT=$work/$tool-out as_user "$work/home-$tool" "$work/readme-$tool.sh" >"$work/log/readme-$tool.out" 2>&1 ||
         {
             cat "$work/log/readme-$tool.out"
-            fail "the README's workstation commands ($tool) failed"
+            fail "the workstation commands of docs/commands.md ($tool) failed"
         }
     dir=$(<"$work/$tool-out")
     same_as_unsharded "$dir/sweep.csv"
