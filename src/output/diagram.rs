@@ -6,7 +6,7 @@ use super::hitgrid::{HitGrid, Marker, Range};
 use super::text::shortest;
 use bouncemap_engine::grid::SweepParam;
 use bouncemap_engine::run::Outcome;
-use bouncemap_engine::sweep::{SweepSpec, ValueResult};
+use bouncemap_engine::sweep::{SweepSpec, ValueResult, Warm};
 
 /// Width of the phase labels left of the plot.
 const GUTTER: usize = 6;
@@ -57,8 +57,31 @@ impl BrailleDiagram {
     /// sticking/resting marks.
     pub fn lines(&self, spec: &SweepSpec) -> Vec<String> {
         let (cols, rows) = (self.cols, self.rows);
-        let mut title = format!(
-            "{}  {} = {}..{}  {}  T = {}  keep {}  {} start",
+        // Where each value's orbit starts: the same initial state for every value (the
+        // paper's procedure), or the last state of the neighbouring value.
+        let at = if spec.initial.near_fixed_point {
+            "near (1,1)".to_string()
+        } else {
+            match spec.initial.v0 {
+                Some(v0) => format!(
+                    "at t0 = {}, v0 = {}",
+                    shortest(spec.initial.t0),
+                    shortest(v0)
+                ),
+                None => format!(
+                    "at t0 = {}, v0 = f'(t0) + {}",
+                    shortest(spec.initial.t0),
+                    shortest(bouncemap_engine::map::DEFAULT_HOP)
+                ),
+            }
+        };
+        let start = match spec.warm {
+            Warm::Off => format!("every value started {at}"),
+            Warm::Forward => format!("each value from the one below, the first {at}"),
+            Warm::Backward => format!("each value from the one above, the first {at}"),
+        };
+        let title = format!(
+            "{}  {} = {}..{}  {}  T = {}  keep {}  {start}",
             spec.table.name(),
             spec.param.as_str(),
             shortest(spec.lo),
@@ -66,11 +89,7 @@ impl BrailleDiagram {
             fixed_params(spec),
             spec.transient,
             spec.keep,
-            spec.warm.as_str(),
         );
-        if spec.initial.near_fixed_point {
-            title.push_str(", near (1,1)");
-        }
         let mut lines = vec![title];
         for (row, text) in self.grid.to_text().into_iter().enumerate() {
             // Empty cells as the blank braille pattern, so every row is `cols` wide.

@@ -9,7 +9,7 @@
 //! # spec-hash 3f0c9a1d2b7e4c55
 //! # shard 2/4
 //! # pixels 20000
-//! alpha,d,class,period,table_periods,lyapunov,status
+//! alpha,d,class,period,table_periods,lyapunov,status,resolved,growth_decades
 //! ...
 //! # end 20000 pixels, checksum 9a4f0c2e71b3d855
 //! ```
@@ -117,7 +117,7 @@ impl PlaneHeader {
     /// The csv header row.
     pub fn header_row(&self) -> String {
         format!(
-            "{},{},class,period,table_periods,lyapunov,status",
+            "{},{},class,period,table_periods,lyapunov,status,resolved,growth_decades",
             self.x.param, self.y.param
         )
     }
@@ -136,6 +136,13 @@ pub struct PixelRow {
     pub lyapunov: Exponent,
     /// `periodic`, `unsettled`, `resting`, `no-landing`.
     pub status: String,
+    /// For a periodic pixel: whether double precision decides its cycle (false: a
+    /// sticking cycle whose length rounding decides; `period` and `table_periods` are
+    /// then empty, and the class is `sticking-unresolved`).
+    pub resolved: Option<bool>,
+    /// For a sticking cycle: log₁₀ of the largest growth of a perturbation from a
+    /// release to the next stick.
+    pub growth_decades: Option<f64>,
 }
 
 const STATUSES: [&str; 4] = ["periodic", "unsettled", "resting", "no-landing"];
@@ -143,22 +150,35 @@ const STATUSES: [&str; 4] = ["periodic", "unsettled", "resting", "no-landing"];
 impl PixelRow {
     /// The row of a computed pixel at (x, y).
     pub fn new(x: f64, y: f64, p: &Pixel) -> PixelRow {
+        let resolved = p.precision.map(|p| p.resolved);
+        let claimed = resolved != Some(false);
         PixelRow {
             x,
             y,
             class: of_pixel(p).map_or(NO_LANDING, Class::name).to_string(),
-            period: p.outcome.period(),
-            table_periods: p.outcome.table_periods(),
+            period: p.outcome.period().filter(|_| claimed),
+            table_periods: p.outcome.table_periods().filter(|_| claimed),
             lyapunov: Exponent(p.lyapunov),
             status: p.outcome.as_str().to_string(),
+            resolved,
+            growth_decades: p
+                .precision
+                .filter(|p| p.impacts > 0)
+                .map(|p| p.growth_decades),
         }
     }
 
     fn check(&self) -> Result<(), String> {
         if Class::from_name(&self.class).is_none() && self.class != NO_LANDING {
+            let names: Vec<&str> = Class::ALL
+                .iter()
+                .map(|c| c.name())
+                .chain([NO_LANDING])
+                .collect();
             return Err(format!(
-                "class '{}' is not one of period-1, period-2, period-4, period-8, periodic, sticking, chaotic, unresolved, no-landing",
-                clip(&self.class)
+                "class '{}' is not one of {}",
+                clip(&self.class),
+                names.join(", ")
             ));
         }
         if !STATUSES.contains(&self.status.as_str()) {
@@ -168,10 +188,17 @@ impl PixelRow {
             ));
         }
         let cycle = self.status == "periodic";
-        if cycle != self.period.is_some() || cycle != self.table_periods.is_some() {
+        if cycle != self.resolved.is_some() {
+            return Err("resolved must be given exactly for periodic pixels".into());
+        }
+        let claimed = cycle && self.resolved == Some(true);
+        if claimed != self.period.is_some() || claimed != self.table_periods.is_some() {
             return Err(
-                "period and table_periods must be given exactly for periodic pixels".into(),
+                "period and table_periods must be given exactly for periodic pixels whose cycle is resolved".into(),
             );
+        }
+        if self.growth_decades.is_some_and(|g| !g.is_finite()) {
+            return Err("growth_decades is not a finite number".into());
         }
         if self.lyapunov.0.is_some_and(f64::is_nan) {
             return Err("lyapunov is not a number".into());
@@ -234,6 +261,8 @@ impl FileKind for PlaneFile {
             "table_periods",
             "lyapunov",
             "status",
+            "resolved",
+            "growth_decades",
         ]
     }
 
@@ -347,6 +376,8 @@ pub fn rows<'a>(
                 }
                 .as_str()
                 .into(),
+                resolved: None,
+                growth_decades: None,
             },
         }
     })

@@ -179,3 +179,48 @@ fn sticking_cycles_beyond_double_precision_claim_no_length() {
     );
     assert_eq!(v["periods"], 1);
 }
+
+/// The plane and the basins say what `lyapunov` says of the same sticking cycles:
+/// no length where double precision cannot decide it.
+#[test]
+fn planes_and_basin_legends_claim_no_length_rounding_decides() {
+    let csv = ok(&[
+        "plane",
+        "--table",
+        "fd:0.1",
+        "--x",
+        "alpha:0.599..0.6",
+        "--y",
+        "r:0.79..0.8",
+        "--size",
+        "2x2",
+        "--format",
+        "csv",
+    ]);
+    let rows: Vec<&str> = csv.lines().filter(|l| !l.starts_with('#')).collect();
+    assert_eq!(
+        rows[0],
+        "alpha,r,class,period,table_periods,lyapunov,status,resolved,growth_decades"
+    );
+    // At α 0.6, r 0.8 (the case `lyapunov` refuses a length for above).
+    let last = rows.iter().find(|r| r.starts_with("0.6,0.8,")).unwrap();
+    let cells: Vec<&str> = last.split(',').collect();
+    assert_eq!(
+        cells[2..8],
+        ["sticking-unresolved", "", "", "-inf", "periodic", "false"],
+        "{last}"
+    );
+    assert!(cells[8].parse::<f64>().unwrap() > 20.0, "{last}");
+    // A basins legend does not print the length of such a cycle either.
+    let text = ok(&[
+        "basins", "--table", "fd:0.1", "--alpha", "0.6", "--grid", "8x4", "--format", "braille",
+        "--width", "16", "--height", "10",
+    ]);
+    let legend: Vec<&str> = text.lines().filter(|l| l.contains(" basin ")).collect();
+    assert!(!legend.is_empty(), "{text}");
+    for l in legend {
+        if l.contains("sticking") {
+            assert!(l.contains("sticking (length unresolved)"), "{l}");
+        }
+    }
+}

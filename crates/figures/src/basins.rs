@@ -43,10 +43,12 @@ pub fn numbers(reg: &Registry) -> Vec<usize> {
     number
 }
 
-/// "periodic (1, 1)", "sticking (3, 2)", "chaotic".
+/// "periodic (1, 1)", "sticking (3, 2)", "chaotic", and "sticking (length
+/// unresolved)" for a cycle whose length double precision cannot decide.
 pub fn describe(a: &Attractor) -> String {
     match a.period_label() {
         Some(p) => format!("{} {p}", a.kind.as_str()),
+        None if a.unresolved() => format!("{} (length unresolved)", a.kind.as_str()),
         None => a.kind.as_str().to_string(),
     }
 }

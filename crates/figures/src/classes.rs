@@ -182,9 +182,13 @@ pub fn nearest_xterm((r, g, b): (u8, u8, u8)) -> u8 {
 /// The class of a value (of its first start's orbit); None while it is provisional or
 /// when the ball did not land.
 pub fn of_value(r: &ValueResult) -> Option<Class> {
-    let class = of_outcome(&r.outcome, r.sticking, r.lyapunov);
-    match (class, r.precision) {
-        (Some(Class::Sticking), Some(p)) if !p.resolved => Some(Class::StickingUnresolved),
+    with_precision(of_outcome(&r.outcome, r.sticking, r.lyapunov), r.precision)
+}
+
+/// A sticking class made "stick?" where double precision cannot decide the cycle.
+fn with_precision(class: Option<Class>, precision: Option<Precision>) -> Option<Class> {
+    match class {
+        Some(Class::Sticking) if unresolved(precision) => Some(Class::StickingUnresolved),
         _ => class,
     }
 }
@@ -196,7 +200,7 @@ pub fn unresolved(precision: Option<Precision>) -> bool {
 
 /// The class of one pixel of a plane; None when the ball did not land.
 pub fn of_pixel(p: &Pixel) -> Option<Class> {
-    of_outcome(&p.outcome, p.sticking, p.lyapunov)
+    with_precision(of_outcome(&p.outcome, p.sticking, p.lyapunov), p.precision)
 }
 
 /// The class of an orbit that ended its transient with `outcome`, whose last events

@@ -439,9 +439,18 @@ pub struct Attractor {
 }
 
 impl Attractor {
-    /// Its events per cycle as "(n, k)".
+    /// Its events per cycle as "(n, k)"; None where there is no cycle or where double
+    /// precision cannot decide its length ([`Precision::resolved`]).
     pub fn period_label(&self) -> Option<String> {
+        if self.precision.is_some_and(|p| !p.resolved) {
+            return None;
+        }
         Some(format!("({}, {})", self.events?, self.periods?))
+    }
+
+    /// Whether it is a cycle whose length double precision cannot decide.
+    pub fn unresolved(&self) -> bool {
+        self.precision.is_some_and(|p| !p.resolved)
     }
 }
 

@@ -26,8 +26,9 @@ use crate::table::Table;
 pub struct Level {
     /// 2ⁿ impacts in 2ⁿk periods.
     pub period: usize,
-    /// α where the branch starts (its birth at the previous period doubling; for the
-    /// (1, k) branch, where the continuation started).
+    /// α where the branch is born: at the previous period doubling (smooth or through
+    /// a border collision); for the (1, k) branch, its birth from the closed form (it is
+    /// stable from there to α₁).
     pub alpha_start: f64,
     /// How it ends (period doubling, border collision with the breakpoint, …).
     pub end: Special,
@@ -105,7 +106,7 @@ pub fn cascade(table: &Table, r: f64, k: u32, depth: usize) -> Result<Cascade, N
     let run = fam.follow(seed.clone(), t);
     let mut levels = vec![Level {
         period: 1,
-        alpha_start: seed.alpha,
+        alpha_start: w.alpha_birth,
         end: run.end,
     }];
     let mut alphas = Vec::new();

@@ -679,13 +679,21 @@ pub fn border_collision(
             let x = solve_at(alpha).ok_or(NoBorderCollision::BranchLost { alpha })?;
             let h = x[1].sqrt();
             let low = (x[0] - h - b.seg.start).abs() <= (b.seg.end - x[0] - h).abs();
+            // The colliding impact is on the breakpoint (the condition located, to the
+            // last bits): its phase is the breakpoint's, not 1 − 10⁻¹⁶ printed as 1.
+            let border = wrap_phase(if low { b.seg.start } else { b.seg.end });
+            let (phase0, phase1) = if low {
+                (border, wrap_phase(x[0] + h))
+            } else {
+                (wrap_phase(x[0] - h), border)
+            };
             return Ok(BorderCollision {
                 k,
                 alpha,
-                phase: wrap_phase(if low { b.seg.start } else { b.seg.end }),
+                phase: border,
                 alpha_pd,
-                phase0: wrap_phase(x[0] - h),
-                phase1: wrap_phase(x[0] + h),
+                phase0,
+                phase1,
                 v0: x[2] - h * x[3],
                 v1: x[2] + h * x[3],
                 steps: b.steps,

@@ -71,21 +71,34 @@ impl Cells for PlaneCells {
             Advance::Done(o, p) => (o, p),
             Advance::Checkpoint | Advance::Cancelled => return None,
         };
-        let lyapunov = if spec.lyapunov {
+        let found = if spec.lyapunov {
             let settle = Settle {
                 transient: spec.transient,
                 periodicity: spec.periodicity,
                 sample: LYAPUNOV_SAMPLE,
                 solver: spec.solver,
             };
-            attractors::identify(&sys, &settle, &outcome, run.state(), tick)?.lyapunov()
+            Some(attractors::identify(
+                &sys,
+                &settle,
+                &outcome,
+                run.state(),
+                tick,
+            )?)
         } else {
             None
         };
+        let lyapunov = found.as_ref().and_then(|f| f.lyapunov());
+        let sticking = run.sticking(&outcome, &points) || lyapunov == Some(f64::NEG_INFINITY);
+        let precision = match &found {
+            Some(f) if f.precision.is_some() => f.precision,
+            _ => run.precision(&outcome, sticking),
+        };
         Some(Some(Pixel {
-            sticking: run.sticking(&outcome, &points) || lyapunov == Some(f64::NEG_INFINITY),
+            sticking,
             outcome,
             lyapunov,
+            precision,
         }))
     }
 }

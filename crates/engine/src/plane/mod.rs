@@ -38,6 +38,7 @@ use crate::impact::Solver;
 use crate::limits;
 use crate::map::State;
 use crate::run::detect::Periodicity;
+use crate::run::precision::Precision;
 use crate::run::start::near_fixed_point;
 use crate::run::Outcome;
 use crate::system::System;
@@ -255,6 +256,9 @@ pub struct Pixel {
     /// The largest exponent per impact (−∞ sticking or resting); None when not asked or
     /// where there is none (no landing, grazing).
     pub lyapunov: Option<f64>,
+    /// For a cycle: whether double precision decides it (a sticking cycle's length may
+    /// be decided by rounding).
+    pub precision: Option<Precision>,
 }
 
 #[cfg(test)]

@@ -36,6 +36,7 @@ pub const LONG_AGREEMENT: f64 = 1e-9;
 
 use crate::map::{Event, EventKind, Halt, ImpactMap, State};
 use detect::{Detector, LongDetector, Periodicity, Rec};
+use precision::Precision;
 use std::collections::VecDeque;
 
 use crate::jobs::CANCEL_EVERY;
@@ -442,6 +443,22 @@ impl OrbitRun {
     /// sticking cycle's precision is measured from).
     pub fn released(&self) -> Option<State> {
         self.released
+    }
+
+    /// Whether double precision decides the cycle the run ended on (`outcome`, with
+    /// `sticking` from [`Self::sticking`]): a sticking cycle is measured from the run's
+    /// latest release ([`precision::sticking_cycle`]), any other cycle contracts and is
+    /// resolved by construction. None when it did not end on a cycle.
+    pub fn precision(&self, outcome: &Outcome, sticking: bool) -> Option<Precision> {
+        match *outcome {
+            Outcome::Periodic { events, .. } if sticking => {
+                let from = self.released.unwrap_or(self.state());
+                let map = ImpactMap::new(self.system().clone(), self.map.solver(), from);
+                precision::sticking_cycle(map, events)
+            }
+            Outcome::Periodic { .. } => Some(Precision::CONTRACTING),
+            _ => None,
+        }
     }
 
     /// Number of events recorded (pushed to the ring).

@@ -11,7 +11,7 @@ use crate::attractors::{self, box_start, default_w_max, Kind, Registry, Settle};
 use crate::error::EngineError;
 use crate::jobs::{Context, Job, Pass};
 use crate::map::{ImpactMap, State};
-use crate::run::precision::{self, Precision};
+use crate::run::precision::Precision;
 use crate::run::start::launch;
 use crate::run::{has_sticking, Advance, OrbitRun, Outcome, Point};
 
@@ -316,14 +316,9 @@ impl SweepJob {
         };
         let lyapunov = found.as_ref().and_then(|f| f.lyapunov());
         let sticking = run.sticking(&outcome, &points) || lyapunov == Some(f64::NEG_INFINITY);
-        let precision = match (complete, outcome, &found) {
-            (true, _, Some(f)) if f.precision.is_some() => f.precision,
-            (true, Outcome::Periodic { events, .. }, _) if sticking => {
-                let from = run.released().unwrap_or(run.state());
-                let map = ImpactMap::new(run.system().clone(), self.spec.solver, from);
-                precision::sticking_cycle(map, events)
-            }
-            (true, Outcome::Periodic { .. }, _) => Some(Precision::CONTRACTING),
+        let precision = match (complete, &found) {
+            (true, Some(f)) if f.precision.is_some() => f.precision,
+            (true, _) => run.precision(&outcome, sticking),
             _ => None,
         };
         cx.emit(
