@@ -52,7 +52,7 @@ pub fn main() -> ExitCode {
                         msg.push_str(&names.join(", "));
                     }
                 }
-                eprintln!("{msg}");
+                output::to_stderr(&format!("{msg}\n"));
                 return ExitCode::from(2);
             }
         },
@@ -76,7 +76,7 @@ pub fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            if is_broken_pipe(&e) {
+            if output::sink::is_closed_output(&e) {
                 return ExitCode::SUCCESS;
             }
             let code = if e.downcast_ref::<InputError>().is_some() {
@@ -84,7 +84,7 @@ pub fn main() -> ExitCode {
             } else {
                 1
             };
-            eprintln!("error: {}", e.to_string().replace('\n', " "));
+            output::to_stderr(&format!("error: {}\n", e.to_string().replace('\n', " ")));
             ExitCode::from(code)
         }
     }
@@ -134,16 +134,4 @@ fn subcommand_names(args: impl Iterator<Item = String>) -> Vec<String> {
         .map(|c| c.get_name().to_string())
         .filter(|n| n != "help")
         .collect()
-}
-
-fn is_broken_pipe(e: &anyhow::Error) -> bool {
-    e.chain().any(|c| {
-        c.downcast_ref::<std::io::Error>()
-            .is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe)
-            || c.downcast_ref::<csv::Error>().is_some_and(|ce| {
-                matches!(ce.kind(), csv::ErrorKind::Io(io) if io.kind() == std::io::ErrorKind::BrokenPipe)
-            })
-            || c.downcast_ref::<serde_json::Error>()
-                .is_some_and(|je| je.io_error_kind() == Some(std::io::ErrorKind::BrokenPipe))
-    })
 }

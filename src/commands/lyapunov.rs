@@ -10,13 +10,14 @@
 use crate::config::flags::LyapunovArgs;
 use crate::config::{self, InputError};
 use crate::output::records::{csv_writer, InitialRecord, LyapunovDoc, LyapunovRow};
+use crate::output::sink::Sink;
 use crate::output::text::significant;
 use crate::output::Format;
 use bouncemap_engine::attractors::lyapunov::{Method, Spectrum};
 use bouncemap_engine::attractors::{self, Found, Settle};
 use bouncemap_engine::run::detect::Periodicity;
 use bouncemap_engine::run::start::near_fixed_point;
-use std::io::{self, BufWriter, Write};
+use std::io::{self, Write};
 
 pub fn run(args: &LyapunovArgs) -> anyhow::Result<()> {
     let sys = config::system(&args.system)?;
@@ -49,29 +50,31 @@ pub fn run(args: &LyapunovArgs) -> anyhow::Result<()> {
     let (found, ..) = attractors::settle(&sys, start, &settle, 1, &mut |_| false)
         .expect("an uncancellable run finishes");
     let row = LyapunovRow::new(&found, sys.r());
-    let mut out = BufWriter::new(io::stdout().lock());
-    match args.format {
-        Format::Json => {
-            let doc = LyapunovDoc {
-                table: sys.table().name(),
-                alpha: sys.alpha(),
-                r: sys.r(),
-                start: initial,
-                transient: args.transient,
-                result: row,
-            };
-            serde_json::to_writer(&mut out, &doc)?;
-            writeln!(out)?;
+    let mut out = Sink::stdout();
+    let written = (|| -> anyhow::Result<()> {
+        match args.format {
+            Format::Json => {
+                let doc = LyapunovDoc {
+                    table: sys.table().name(),
+                    alpha: sys.alpha(),
+                    r: sys.r(),
+                    start: initial,
+                    transient: args.transient,
+                    result: row,
+                };
+                serde_json::to_writer(&mut out, &doc)?;
+                writeln!(out)?;
+            }
+            Format::Csv => {
+                let mut w = csv_writer(&mut out, &LyapunovRow::HEADER)?;
+                w.serialize(&row)?;
+                w.flush()?;
+            }
+            Format::Text => text(&mut out, &sys, &found, args)?,
         }
-        Format::Csv => {
-            let mut w = csv_writer(&mut out, &LyapunovRow::HEADER)?;
-            w.serialize(&row)?;
-            w.flush()?;
-        }
-        Format::Text => text(&mut out, &sys, &found, args)?,
-    }
-    out.flush()?;
-    Ok(())
+        Ok(())
+    })();
+    out.end(written)
 }
 
 fn text(

@@ -21,11 +21,12 @@ use crate::output::sweep_file::SweepFile;
 use std::path::Path;
 
 pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
-    let sink = Sink::open(args.output.out.as_deref()).map_err(InputError)?;
     let mut texts = Vec::new();
     for f in &args.files {
         texts.push(read_text(Path::new(f), "merge: part", LARGE_FILE)?);
     }
+    // Opened once the parts are read: --out can then never be one of them.
+    let sink = Sink::open(args.output.out.as_deref()).map_err(InputError)?;
     if texts.first().is_some_and(|t| is_plane(t)) {
         merge::<PlaneFile>(args, &texts, sink)
     } else {

@@ -3,12 +3,13 @@
 //! layout, tool, specification and shard, is left as it is and nothing is computed;
 //! anything else is computed, and stderr says why.
 
-use crate::config::files::{read_text, LARGE_FILE};
+use crate::config::files::{read_existing_output, LARGE_FILE};
 use crate::config::flags::PartArgs;
 use crate::config::InputError;
 use crate::output::part_file::{
     differing_setting, read_part, shard_name, spec_text, FileKind, Layout, TOOL,
 };
+use crate::output::to_stderr;
 use bouncemap_engine::grid::Shard;
 use clap::ValueEnum;
 use std::path::Path;
@@ -48,11 +49,13 @@ pub fn already_written<K: FileKind>(
     })?;
     match check::<K>(Path::new(out), layout, header, shard) {
         Ok(done) => {
-            eprintln!("bouncemap: --resume: {done}: nothing to compute");
+            to_stderr(&format!(
+                "bouncemap: --resume: {done}: nothing to compute\n"
+            ));
             Ok(true)
         }
         Err(why) => {
-            eprintln!("bouncemap: --resume: {why}; computing it");
+            to_stderr(&format!("bouncemap: --resume: {why}; computing it\n"));
             Ok(false)
         }
     }
@@ -73,7 +76,7 @@ pub fn check<K: FileKind>(
     if std::fs::symlink_metadata(path).is_err_and(|e| e.kind() == std::io::ErrorKind::NotFound) {
         return Err(format!("no {shown} yet"));
     }
-    let text = read_text(path, "the existing file", LARGE_FILE).map_err(|e| e.0)?;
+    let text = read_existing_output(path, "the existing file", LARGE_FILE).map_err(|e| e.0)?;
     let part = read_part::<K>(&shown, &text)?;
     let kind = K::KIND;
     if part.layout != layout {
