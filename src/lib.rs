@@ -34,14 +34,15 @@ pub fn main() -> ExitCode {
             ErrorKind::DisplayHelp
             | ErrorKind::DisplayVersion
             | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
-                let _ = e.print();
-                return ExitCode::SUCCESS;
+                return print_help(&e);
             }
             kind => {
-                let mut msg = one_line_clap_error(&e.render().to_string()).replace(
-                    "requires a subcommand but one was not provided",
-                    "needs a NAME",
-                );
+                let mut msg = value_error(&e).unwrap_or_else(|| {
+                    one_line_clap_error(&e.render().to_string()).replace(
+                        "requires a subcommand but one was not provided",
+                        "needs a NAME",
+                    )
+                });
                 if matches!(
                     kind,
                     ErrorKind::InvalidSubcommand | ErrorKind::MissingSubcommand
@@ -88,6 +89,94 @@ pub fn main() -> ExitCode {
             ExitCode::from(code)
         }
     }
+}
+
+/// The help or version text on stdout (in colour on a terminal); a failed write is
+/// reported as any command's is (a closed pipe is a quiet end).
+fn print_help(e: &clap::Error) -> ExitCode {
+    use std::io::{IsTerminal, Write};
+    if std::io::stdout().is_terminal() {
+        let _ = e.print();
+        return ExitCode::SUCCESS;
+    }
+    let mut out = output::sink::Sink::stdout();
+    let written = write!(out, "{}", e.render()).map_err(anyhow::Error::from);
+    match out.end(written) {
+        Err(e) if !output::sink::is_closed_output(&e) => {
+            output::to_stderr(&format!("error: {e}\n"));
+            ExitCode::from(1)
+        }
+        _ => ExitCode::SUCCESS,
+    }
+}
+
+/// A refused value as one line naming the flag, the value and the valid form (for
+/// values our parsers refuse, their own message; for a value missing or not among the
+/// possible ones, those or the flag's help), rebuilt from clap's context so no parser
+/// internals and no raw typed text reach the user.
+fn value_error(e: &clap::Error) -> Option<String> {
+    use clap::error::{ContextKind, ContextValue};
+    let ContextValue::String(arg) = e.get(ContextKind::InvalidArg)? else {
+        return None;
+    };
+    // "--alpha <A>" → "--alpha"; a positional argument keeps its "<FILE>".
+    let flag = if arg.starts_with('-') {
+        arg.split_whitespace().next().unwrap_or(arg)
+    } else {
+        arg.as_str()
+    };
+    match e.kind() {
+        ErrorKind::ValueValidation => {
+            let why = std::error::Error::source(e)?.to_string();
+            Some(format!("error: {flag}: {}", why.replace('\n', " ")))
+        }
+        ErrorKind::InvalidValue => {
+            let value = match e.get(ContextKind::InvalidValue) {
+                Some(ContextValue::String(v)) => v.clone(),
+                _ => String::new(),
+            };
+            let valid = match e.get(ContextKind::ValidValue) {
+                Some(ContextValue::Strings(v)) if !v.is_empty() => {
+                    format!("valid {}", v.join(", "))
+                }
+                _ => flag_help(flag)?,
+            };
+            Some(if value.is_empty() {
+                format!("error: {flag} needs a value: {valid}")
+            } else {
+                format!(
+                    "error: {flag}: {} is not a possible value: valid {valid}",
+                    output::text::quoted(&value)
+                )
+            })
+        }
+        _ => None,
+    }
+}
+
+/// What the help of `flag` (`--alpha`), in the subcommand the command line reached, says
+/// its values are: "valid …" where it states them, else its first line.
+fn flag_help(flag: &str) -> Option<String> {
+    use clap::CommandFactory;
+    let long = flag.strip_prefix("--")?;
+    let mut cmd = config::flags::Cli::command();
+    for a in std::env::args().skip(1) {
+        if let Some(sub) = cmd.find_subcommand(&a).cloned() {
+            cmd = sub;
+        }
+    }
+    let arg = cmd.get_arguments().find(|a| a.get_long() == Some(long))?;
+    let help = arg.get_help()?.to_string();
+    let first = help
+        .lines()
+        .next()?
+        .trim()
+        .trim_end_matches('.')
+        .to_string();
+    Some(match first.split_once("valid ") {
+        Some((_, valid)) => format!("valid {valid}"),
+        None => first,
+    })
 }
 
 /// Clap's message cut to one line: the first line, the items it introduces (the

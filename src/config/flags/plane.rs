@@ -43,7 +43,8 @@ pub struct PlaneSpecArgs {
     /// Restitution r where it is not an axis; valid (0, 1) [default: 0.8].
     #[arg(long, value_parser = rules::R.real(), value_name = "R")]
     pub r: Option<f64>,
-    /// End of each pixel's transient in table periods (early stop on cycles).
+    /// End of each pixel's transient in table periods (early stop on cycles); valid 1 to
+    /// 1e12.
     #[arg(long, default_value_t = rules::PLANE_TRANSIENT.default as u64, value_parser = rules::PLANE_TRANSIENT.whole::<u64>(), value_name = "PERIODS")]
     pub transient: u64,
     /// Where each pixel's orbit starts.

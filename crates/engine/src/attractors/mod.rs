@@ -27,6 +27,7 @@ pub mod basins;
 pub mod lyapunov;
 
 use crate::impact::Solver;
+use crate::limits;
 use crate::map::{EventKind, ImpactMap, State};
 use crate::run::detect::Periodicity;
 use crate::run::precision::{self, Precision};
@@ -185,9 +186,10 @@ pub fn cell(phase: f64, v: f64) -> u64 {
 }
 
 /// The default height W of the start box: twice the table's largest velocity α·max|F'|,
-/// at least 1 (the (1, 1) and (1, 2) orbits leave the table with w ≈ ½ and ≈ 1).
+/// at least 1 (the (1, 1) and (1, 2) orbits leave the table with w ≈ ½ and ≈ 1), and at
+/// most the largest W accepted ([`limits::W_MAX`]), so a default is always valid.
 pub fn default_w_max(sys: &System) -> f64 {
-    (2.0 * sys.alpha() * sys.table().velocity_bound()).max(1.0)
+    (2.0 * sys.alpha() * sys.table().velocity_bound()).clamp(1.0, limits::W_MAX.hi)
 }
 
 /// Start `s` of a set spread over the box [0, 1) × [0, W]: the additive recurrence with
