@@ -497,7 +497,13 @@ pub struct LyapunovArgs {
     /// stops there); valid 1 to 1e12.
     #[arg(long, default_value_t = rules::LYAPUNOV_TRANSIENT.default as u64, value_parser = rules::LYAPUNOV_TRANSIENT.whole::<u64>(), value_name = "PERIODS")]
     pub transient: u64,
-    /// Impacts measured by QR on an orbit that has not settled on a cycle.
+    /// Impacts measured by QR on an orbit that has not settled on a cycle; valid 1 to
+    /// 1e10.
+    ///
+    /// The measurement streams: memory does not grow with M (the QR sums, 16 block
+    /// means and the cells the orbit visits, a few MB), time does (about 2 s per 10⁷
+    /// impacts on one core, so 1e10 takes half an hour or more), with progress on
+    /// stderr; Ctrl-C stops it.
     #[arg(long, default_value_t = rules::IMPACTS.default as u64, value_parser = rules::IMPACTS.whole::<u64>(), value_name = "M")]
     pub impacts: u64,
     /// Run the full transient and measure by QR even on a cycle (a second method).
