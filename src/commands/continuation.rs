@@ -31,6 +31,16 @@ pub fn run(args: &ContinueArgs) -> anyhow::Result<()> {
     let (found, reason) = match branches(&table, args.r, args.alpha, start, opts) {
         Ok(b) => (b, None),
         Err(NoStart::Invalid(e)) => return Err(InputError::from(e).into()),
+        // An unstable (1, k) solution is not a start of its own, but it can be followed
+        // from one of its points.
+        Err(NoStart::NotFound(why)) if matches!(start, Start::Fixed { .. }) && why.contains("no stability window") => (
+            Vec::new(),
+            Some(format!(
+                "{why}; to follow an unstable one, start on it as a cycle: --n 1 --k {k} --t0 PHASE --v0 {v} with PHASE from `bouncemap fixed --k {k} --alpha A` at an A where it exists, and a window from A",
+                k = args.k,
+                v = 0.5 * args.k as f64
+            )),
+        ),
         Err(NoStart::NotFound(why)) => (Vec::new(), Some(why)),
     };
     let start_text = match start {
