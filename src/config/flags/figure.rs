@@ -30,7 +30,9 @@ pub struct FigureArgs {
     /// A preview in seconds: fewer values and a shorter transient.
     #[arg(long, global = true)]
     pub quick: bool,
-    /// Also write the numbers behind the figure (every series) as JSON to FILE.
+    /// Also write the numbers behind the figure (every series) as JSON to FILE; a
+    /// diagram of more than 2²¹ points gives them as counts on a 4096 × 4096 grid
+    /// (series kind density_grid).
     #[arg(long, global = true, value_name = "FILE")]
     pub data: Option<String>,
     /// Worker threads, at most 4 × the cores [default: all cores].
