@@ -145,7 +145,7 @@ fn value_error(e: &clap::Error) -> Option<String> {
                 format!("error: {flag} needs a value: {valid}")
             } else {
                 format!(
-                    "error: {flag}: {} is not a possible value: valid {valid}",
+                    "error: {flag}: {} is not a possible value: {valid}",
                     output::text::quoted(&value)
                 )
             })
@@ -198,12 +198,14 @@ fn one_line_clap_error(text: &str) -> String {
         msg.push(' ');
         msg.push_str(&items.join(", "));
     }
-    if let Some(valid) = lines
-        .map(str::trim)
-        .find(|l| l.starts_with("[possible values"))
-    {
-        msg.push(' ');
-        msg.push_str(valid);
+    for l in lines.map(str::trim) {
+        if l.starts_with("[possible values") {
+            msg.push(' ');
+            msg.push_str(l);
+        } else if let Some(tip) = l.strip_prefix("tip: ") {
+            // "a similar argument exists: '--steps'"
+            msg.push_str(&format!(" ({tip})"));
+        }
     }
     msg
 }

@@ -54,7 +54,8 @@ pub fn run(args: &FigureArgs) -> anyhow::Result<()> {
         .or_else(|| ImageFormat::from_path(path))
         .ok_or_else(|| {
             InputError(format!(
-                "--out {out}: the file name does not say the format: valid a name ending in .svg or .png, or --format svg|png"
+                "--out {}: the file name does not say the format: valid a name ending in .svg or .png, or --format svg|png",
+                crate::output::text::quoted(&out)
             ))
         })?;
     let dpi = args.dpi.unwrap_or(DEFAULT_DPI);

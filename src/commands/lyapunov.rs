@@ -55,6 +55,20 @@ pub fn run(args: &LyapunovArgs) -> anyhow::Result<()> {
         sample: args.impacts,
         solver: bouncemap_engine::Solver::Exact,
     };
+    if args.check.check {
+        return super::print_plan(&[
+            format!(
+                "lyapunov of one orbit of table {} at alpha {}, r {}: transient {} periods, then up to {} impacts measured by QR",
+                sys.table().name(),
+                sys.alpha(),
+                sys.r(),
+                args.transient,
+                args.impacts
+            ),
+            "memory: a few MB, whatever the impacts (the measurement streams)".into(),
+            "writes to standard output".into(),
+        ]);
+    }
     let found = measure(&sys, start, &settle)?;
     let row = LyapunovRow::new(&found, sys.r());
     let mut out = Sink::stdout();

@@ -21,7 +21,10 @@ pub const LARGE_FILE: u64 = 8 << 30;
 pub fn read_text(path: &Path, what: &str, cap: u64) -> Result<String, InputError> {
     let text = read_capped(path, what, cap)?;
     let name = what.rsplit(": ").next().unwrap_or(what);
-    note_input(path, &format!("the {name} {}", path.display()));
+    note_input(
+        path,
+        &format!("the {name} {}", crate::output::text::shown_path(path)),
+    );
     Ok(text)
 }
 
@@ -32,7 +35,7 @@ pub fn read_existing_output(path: &Path, what: &str, cap: u64) -> Result<String,
 }
 
 fn read_capped(path: &Path, what: &str, cap: u64) -> Result<String, InputError> {
-    let shown = path.display();
+    let shown = crate::output::text::shown_path(path);
     let meta = std::fs::metadata(path)
         .map_err(|e| InputError(format!("{what} {shown}: cannot read: {e}")))?;
     if !meta.is_file() {

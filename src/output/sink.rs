@@ -22,6 +22,7 @@
 //! before any computing; a write that fails afterwards (a full disk, an I/O error) is
 //! status 1. Either way one line names the file (or standard output).
 
+use super::text::shown_path;
 use std::fs::File;
 use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
@@ -134,7 +135,10 @@ impl AtomicFile {
     /// if it is a FIFO nobody reads (bad input: status 2).
     pub fn create(path: &Path) -> Result<AtomicFile, String> {
         use std::os::unix::fs::{FileTypeExt, OpenOptionsExt};
-        let shown = path.display();
+        if path.as_os_str().is_empty() {
+            return Err("an empty path: valid a file path".into());
+        }
+        let shown = shown_path(path);
         let bad = |e: io::Error| format!("cannot create {shown}: {e}");
         if let Ok(meta) = std::fs::metadata(path) {
             if meta.is_dir() {
@@ -233,7 +237,7 @@ impl AtomicFile {
     /// Flush, sync and rename into place. A failure names the file (status 1) and
     /// leaves the old file as it was.
     pub fn commit(mut self) -> anyhow::Result<()> {
-        let shown = self.target.display().to_string();
+        let shown = shown_path(&self.target);
         let fail = |e: io::Error| anyhow::anyhow!("cannot write {shown}: {e}");
         self.out.flush().map_err(fail)?;
         if let Some(temp) = self.temp.take() {
@@ -338,7 +342,7 @@ impl Sink {
         }
         match self {
             Sink::Stdout(_) => describe_stdout(e),
-            Sink::File(f) => anyhow::anyhow!("cannot write {}: {e}", f.path().display()),
+            Sink::File(f) => anyhow::anyhow!("cannot write {}: {e}", shown_path(f.path())),
         }
     }
 }

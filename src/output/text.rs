@@ -48,6 +48,18 @@ pub fn quoted(text: &str) -> String {
     }
 }
 
+/// A path for a message: control characters escaped, cut to 200 characters (an
+/// ellipsis marks the cut).
+pub fn shown_path(path: &std::path::Path) -> String {
+    let text = escape(&path.display().to_string());
+    if text.chars().count() > 200 {
+        let head: String = text.chars().take(199).collect();
+        format!("{head}…")
+    } else {
+        text
+    }
+}
+
 /// The longest text [`quoted`] shows whole.
 pub const QUOTED_MAX: usize = 40;
 

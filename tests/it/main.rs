@@ -8,6 +8,7 @@ mod cli;
 mod cli_orbit;
 mod continuation_cli;
 mod figure_cli;
+mod hostile;
 mod merge_property;
 mod orbits_cli;
 mod plane_cli;

@@ -279,3 +279,39 @@ fn a_paused_application_uses_no_cpu_whatever_was_pressed() {
     r.send(b"q");
     assert_eq!(r.exit_code(Duration::from_secs(5)), Some(0));
 }
+
+/// Every signal whose default action ends the process leaves the terminal as it was:
+/// cooked, the main screen, the cursor shown; and the process ends by that signal.
+#[test]
+fn every_signal_that_ends_the_application_restores_the_terminal() {
+    for sig in ["-QUIT", "-USR1", "-ALRM", "-USR2", "-RTMIN"] {
+        let mut r = start(&[]);
+        assert!(r.wait_count("Bifurcation diagram", 1), "{sig}");
+        let running = r.stty();
+        assert!(running.contains("-icanon"), "{sig}: {running}");
+        let left = r.count("\x1b[?1049l");
+        r.kill(sig);
+        let t = Instant::now();
+        let status = loop {
+            if let Some(s) = r.child.try_wait().unwrap() {
+                break s;
+            }
+            assert!(t.elapsed() < Duration::from_secs(5), "{sig}: still running");
+            std::thread::sleep(Duration::from_millis(20));
+        };
+        assert!(
+            status.signal().is_some(),
+            "{sig}: not ended by the signal: {status:?}"
+        );
+        assert!(
+            r.wait_count("\x1b[?1049l", left + 1),
+            "{sig}: the main screen was not restored"
+        );
+        assert!(r.count("\x1b[?25h") >= 1, "{sig}: the cursor was not shown");
+        let after = r.stty();
+        assert!(
+            after.contains(" icanon") && after.contains(" echo "),
+            "{sig}: the terminal is left raw: {after}"
+        );
+    }
+}

@@ -367,14 +367,34 @@ pub struct TextSizeArgs {
     pub height: Option<u16>,
 }
 
-/// How a computation over a grid runs and draws: its threads and the size of its text
-/// picture (`sweep`, `plane`, `basins`).
+/// How a computation over a grid runs and draws: its threads, the size of its text
+/// picture, and whether it only checks (`sweep`, `plane`, `basins`).
 #[derive(Args, Debug, Clone, Default)]
 pub struct RunArgs {
     #[command(flatten)]
     pub text: TextSizeArgs,
     #[command(flatten)]
     pub workers: ThreadsArgs,
+    #[command(flatten)]
+    pub check: CheckArgs,
+}
+
+/// `--check`: a dry run (`sweep`, `plane`, `basins`, `lyapunov`).
+#[derive(Args, Debug, Clone, Default)]
+pub struct CheckArgs {
+    /// Check the command line and print the plan, computing nothing: exit 0, or 2 with
+    /// the one-line refusal the run would give.
+    ///
+    /// Every flag, preset and table file is parsed and validated as for the run; --out
+    /// is checked as the run opens it (created and removed again; never one of the
+    /// run's inputs), and --resume's file as the run reads it. The plan on stdout states
+    /// what would be computed (the specification, values or pixels, the shard), where
+    /// it would be written, the worker threads and a bound on the memory. The threads
+    /// and memory are stated against this machine but not refused, as the run may be
+    /// meant for another one (a cluster's nodes: assets/slurm/submit.sh runs --check
+    /// before it submits).
+    #[arg(long)]
+    pub check: bool,
 }
 
 /// `--threads`: the worker threads of a computation (`sweep`, `plane`, `basins`).
@@ -512,6 +532,8 @@ pub struct LyapunovArgs {
     /// Output format.
     #[arg(long, value_enum, default_value_t = Format::Text)]
     pub format: Format,
+    #[command(flatten)]
+    pub check: CheckArgs,
 }
 
 /// Output format of `basins`.
