@@ -349,9 +349,11 @@ pub struct PartArgs {
     ///
     /// FILE is checked as `merge` checks a part (provenance, specification hash, values,
     /// end line, checksum) and must be of this sweep, shard, format and version: then the
-    /// run exits 0 at once and leaves it untouched. Otherwise (missing, damaged, another
-    /// sweep or shard) it is computed, and stderr says why. Re-running every shard of a
-    /// run with --resume recomputes only the missing ones.
+    /// run exits 0 at once and leaves it untouched. A missing FILE, or one whose
+    /// provenance is this run's but that was cut off or damaged, is computed, and stderr
+    /// says why; any other file (not written by bouncemap, another sweep's or another
+    /// shard's part, another format) is refused with status 2 and left as it is.
+    /// Re-running every shard of a run with --resume recomputes only the missing ones.
     #[arg(long)]
     pub resume: bool,
 }
