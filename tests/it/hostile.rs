@@ -41,6 +41,8 @@ fn run_cmd(cmd: Command, limit: Duration) -> Ran {
 }
 
 /// [`run_cmd`] with standard output going to `stdout` (not read back unless piped).
+// The child is reaped by `wait4` (for its peak memory), which clippy does not see.
+#[allow(clippy::zombie_processes)]
 fn run_to(mut cmd: Command, limit: Duration, stdout: Stdio) -> Ran {
     let t = Instant::now();
     let mut child = cmd
