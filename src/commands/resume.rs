@@ -2,9 +2,10 @@
 //! already there, complete and verified (checked as `merge` checks a part), of this run's
 //! layout, tool, specification and shard, is left as it is and nothing is computed. A
 //! missing file, or one that carries this run's provenance but was cut off or damaged,
-//! is computed (stderr says why); any other file (not written by this tool, another
-//! run's part, another format) is refused and left as it is: `--resume` replaces only
-//! this run's own output.
+//! is computed (stderr says why); any other regular file (not written by this tool,
+//! another run's part, another format) is refused and left as it is: `--resume`
+//! replaces only this run's own output. A path that is not a regular file (a directory,
+//! a device) is left to the output's own rules.
 
 use crate::config::files::{read_existing_output, LARGE_FILE};
 use crate::config::flags::PartArgs;
@@ -58,7 +59,9 @@ pub fn already_written<K: FileKind>(
             ));
             Ok(true)
         }
-        Err(why) if !exists(path) || own_output::<K>(path, layout, header, shard) => {
+        // Not there, or not a regular file (a directory, a device: the output's own
+        // rules decide), or this run's own part damaged: computed.
+        Err(why) if !regular(path) || own_output::<K>(path, layout, header, shard) => {
             to_stderr(&format!("bouncemap: --resume: {why}; computing it\n"));
             Ok(false)
         }
@@ -68,8 +71,9 @@ pub fn already_written<K: FileKind>(
     }
 }
 
-fn exists(path: &Path) -> bool {
-    std::fs::symlink_metadata(path).is_ok()
+/// Whether `path` is a regular file (through a symlink).
+fn regular(path: &Path) -> bool {
+    std::fs::metadata(path).is_ok_and(|m| m.is_file())
 }
 
 /// Whether the file at `path` opens with this run's provenance ([`opens_as`]): a part of
