@@ -37,14 +37,15 @@ pub fn main() -> ExitCode {
             ErrorKind::DisplayHelp
             | ErrorKind::DisplayVersion
             | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
-                let _ = e.print();
-                return ExitCode::SUCCESS;
+                return print_help(&e);
             }
             kind => {
-                let mut msg = one_line_clap_error(&e.render().to_string()).replace(
-                    "requires a subcommand but one was not provided",
-                    "needs a NAME",
-                );
+                let mut msg = value_error(&e).unwrap_or_else(|| {
+                    one_line_clap_error(&e.render().to_string()).replace(
+                        "requires a subcommand but one was not provided",
+                        "needs a NAME",
+                    )
+                });
                 if matches!(
                     kind,
                     ErrorKind::InvalidSubcommand | ErrorKind::MissingSubcommand
@@ -55,7 +56,7 @@ pub fn main() -> ExitCode {
                         msg.push_str(&names.join(", "));
                     }
                 }
-                eprintln!("{msg}");
+                output::to_stderr(&format!("{msg}\n"));
                 return ExitCode::from(2);
             }
         },
@@ -79,7 +80,7 @@ pub fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            if is_broken_pipe(&e) {
+            if output::sink::is_closed_output(&e) {
                 return ExitCode::SUCCESS;
             }
             let code = if e.downcast_ref::<InputError>().is_some() {
@@ -87,10 +88,98 @@ pub fn main() -> ExitCode {
             } else {
                 1
             };
-            eprintln!("error: {}", e.to_string().replace('\n', " "));
+            output::to_stderr(&format!("error: {}\n", e.to_string().replace('\n', " ")));
             ExitCode::from(code)
         }
     }
+}
+
+/// The help or version text on stdout (in colour on a terminal); a failed write is
+/// reported as any command's is (a closed pipe is a quiet end).
+fn print_help(e: &clap::Error) -> ExitCode {
+    use std::io::{IsTerminal, Write};
+    if std::io::stdout().is_terminal() {
+        let _ = e.print();
+        return ExitCode::SUCCESS;
+    }
+    let mut out = output::sink::Sink::stdout();
+    let written = write!(out, "{}", e.render()).map_err(anyhow::Error::from);
+    match out.end(written) {
+        Err(e) if !output::sink::is_closed_output(&e) => {
+            output::to_stderr(&format!("error: {e}\n"));
+            ExitCode::from(1)
+        }
+        _ => ExitCode::SUCCESS,
+    }
+}
+
+/// A refused value as one line naming the flag, the value and the valid form (for
+/// values our parsers refuse, their own message; for a value missing or not among the
+/// possible ones, those or the flag's help), rebuilt from clap's context so no parser
+/// internals and no raw typed text reach the user.
+fn value_error(e: &clap::Error) -> Option<String> {
+    use clap::error::{ContextKind, ContextValue};
+    let ContextValue::String(arg) = e.get(ContextKind::InvalidArg)? else {
+        return None;
+    };
+    // "--alpha <A>" → "--alpha"; a positional argument keeps its "<FILE>".
+    let flag = if arg.starts_with('-') {
+        arg.split_whitespace().next().unwrap_or(arg)
+    } else {
+        arg.as_str()
+    };
+    match e.kind() {
+        ErrorKind::ValueValidation => {
+            let why = std::error::Error::source(e)?.to_string();
+            Some(format!("error: {flag}: {}", why.replace('\n', " ")))
+        }
+        ErrorKind::InvalidValue => {
+            let value = match e.get(ContextKind::InvalidValue) {
+                Some(ContextValue::String(v)) => v.clone(),
+                _ => String::new(),
+            };
+            let valid = match e.get(ContextKind::ValidValue) {
+                Some(ContextValue::Strings(v)) if !v.is_empty() => {
+                    format!("valid {}", v.join(", "))
+                }
+                _ => flag_help(flag)?,
+            };
+            Some(if value.is_empty() {
+                format!("error: {flag} needs a value: {valid}")
+            } else {
+                format!(
+                    "error: {flag}: {} is not a possible value: {valid}",
+                    output::text::quoted(&value)
+                )
+            })
+        }
+        _ => None,
+    }
+}
+
+/// What the help of `flag` (`--alpha`), in the subcommand the command line reached, says
+/// its values are: "valid …" where it states them, else its first line.
+fn flag_help(flag: &str) -> Option<String> {
+    use clap::CommandFactory;
+    let long = flag.strip_prefix("--")?;
+    let mut cmd = config::flags::Cli::command();
+    for a in std::env::args().skip(1) {
+        if let Some(sub) = cmd.find_subcommand(&a).cloned() {
+            cmd = sub;
+        }
+    }
+    let arg = cmd.get_arguments().find(|a| a.get_long() == Some(long))?;
+    let help = arg.get_help()?.to_string();
+    let first = help
+        .lines()
+        .next()?
+        .trim()
+        .trim_end_matches('.')
+        .to_string();
+    Some(match first.split_once("valid ") {
+        Some((_, valid)) => format!("valid {valid}"),
+        None => first,
+    })
 }
 
 /// Clap's message cut to one line: the first line, the items it introduces (the
@@ -112,12 +201,14 @@ fn one_line_clap_error(text: &str) -> String {
         msg.push(' ');
         msg.push_str(&items.join(", "));
     }
-    if let Some(valid) = lines
-        .map(str::trim)
-        .find(|l| l.starts_with("[possible values"))
-    {
-        msg.push(' ');
-        msg.push_str(valid);
+    for l in lines.map(str::trim) {
+        if l.starts_with("[possible values") {
+            msg.push(' ');
+            msg.push_str(l);
+        } else if let Some(tip) = l.strip_prefix("tip: ") {
+            // "a similar argument exists: '--steps'"
+            msg.push_str(&format!(" ({tip})"));
+        }
     }
     msg
 }
@@ -137,16 +228,4 @@ fn subcommand_names(args: impl Iterator<Item = String>) -> Vec<String> {
         .map(|c| c.get_name().to_string())
         .filter(|n| n != "help")
         .collect()
-}
-
-fn is_broken_pipe(e: &anyhow::Error) -> bool {
-    e.chain().any(|c| {
-        c.downcast_ref::<std::io::Error>()
-            .is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe)
-            || c.downcast_ref::<csv::Error>().is_some_and(|ce| {
-                matches!(ce.kind(), csv::ErrorKind::Io(io) if io.kind() == std::io::ErrorKind::BrokenPipe)
-            })
-            || c.downcast_ref::<serde_json::Error>()
-                .is_some_and(|je| je.io_error_kind() == Some(std::io::ErrorKind::BrokenPipe))
-    })
 }

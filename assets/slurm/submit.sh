@@ -26,6 +26,13 @@
 # SBATCH_OPTIONs (--partition, --account, --time, --cpus-per-task, --mem, ...) go to
 # both jobs, after the defaults --nodes=1 --ntasks=1 --cpus-per-task=1
 # --job-name=bouncemap-COMMAND, so they override them; the merge job runs on one CPU.
+# Each must be an sbatch option written in full (--partition=debug, --time 1:00:00,
+# -p debug): abbreviations and unknown options are refused, as are those this script
+# sets itself (--array, --dependency, --output, --error, --wrap, --parsable, --chdir).
+#
+# Before anything is queued the bouncemap arguments are checked: the first shard's
+# command runs with --check (parse, validate, print the plan, compute nothing), and a
+# refusal ends the submission with bouncemap's one-line message.
 # No --time is set: the partition's default applies unless you give one. A shard's
 # worker threads are its --cpus-per-task (SLURM_CPUS_PER_TASK).
 #
@@ -68,7 +75,64 @@ for o in "${sbatch_opts[@]}"; do
     --output | --output=* | -o | -o?* | --error | --error=* | -e | -e?*)
         die "sbatch option '$o': the logs go to OUT_DIR/logs/" ;;
     --wrap | --wrap=*) die "sbatch option '$o': this script submits its own batch scripts" ;;
+    --parsable | --test-only | --wait | -W | --help | -h | --usage | --version | -V)
+        die "sbatch option '$o': this script submits and reports the jobs itself" ;;
+    --chdir | --chdir=* | -D | -D?*)
+        die "sbatch option '$o': the jobs run where you submit from (relative paths in the arguments are relative to it)" ;;
     esac
+done
+
+# Every other option must be one sbatch has, written in full: sbatch takes any
+# unambiguous abbreviation (--arr, --dep, --out), which would slip past the checks above,
+# and an unknown option would be found only by sbatch. Options that take a value take it
+# as --NAME=VALUE or as the next word (-X VALUE or -XVALUE for a short one).
+with_value=" account acctg-freq begin bb bbf clusters cluster-constraint comment constraint
+ container container-id core-spec cores-per-socket cpu-freq cpus-per-gpu cpus-per-task
+ deadline delay-boot distribution exclude export export-file extra extra-node-info gid
+ gpu-bind gpu-freq gpus gpus-per-node gpus-per-socket gpus-per-task gres gres-flags hint
+ input job-name licenses mail-type mail-user mcs-label mem mem-bind mem-per-cpu
+ mem-per-gpu mincpus network nice nodefile nodelist nodes ntasks ntasks-per-core
+ ntasks-per-gpu ntasks-per-node ntasks-per-socket open-mode partition power prefer
+ priority profile propagate qos reservation signal sockets-per-node switches thread-spec
+ threads-per-core time time-min tmp tres-per-task uid wckey "
+flags=" contiguous exclusive get-user-env hold ignore-pbs kill-on-invalid-dep no-kill
+ no-requeue overcommit oversubscribe quiet reboot requeue spread-job use-min-nodes verbose
+ wait-all-nodes "
+short_with_value="ACcGiJLMmNnpqSbtwxF"
+short_flags="HkOQsv"
+i=0
+while ((i < ${#sbatch_opts[@]})); do
+    o=${sbatch_opts[i]}
+    case $o in
+    --*=*)
+        name=${o%%=*}
+        name=${name#--}
+        [[ $with_value == *" $name "* || $flags == *" $name "* ]] ||
+            die "sbatch option '$o': '--$name' is not an sbatch option written in full: valid the full names of sbatch --help (e.g. --partition, --time, --cpus-per-task, --mem)"
+        ;;
+    --?*)
+        name=${o#--}
+        if [[ $with_value == *" $name "* ]]; then
+            ((i + 1 < ${#sbatch_opts[@]})) || die "sbatch option '$o' needs a value: valid $o=VALUE"
+            i=$((i + 1))
+        elif [[ $flags != *" $name "* ]]; then
+            die "sbatch option '$o': not an sbatch option written in full: valid the full names of sbatch --help (e.g. --partition, --time, --cpus-per-task, --mem)"
+        fi
+        ;;
+    -?*)
+        letter=${o:1:1}
+        if [[ $short_with_value == *"$letter"* ]]; then
+            if [[ ${#o} -eq 2 ]]; then
+                ((i + 1 < ${#sbatch_opts[@]})) || die "sbatch option '$o' needs a value: valid $o VALUE"
+                i=$((i + 1))
+            fi
+        elif [[ $short_flags != *"$letter"* || ${#o} -ne 2 ]]; then
+            die "sbatch option '$o': not an sbatch option this script passes on: valid e.g. -p PARTITION, -t TIME, -c CPUS, or a full --NAME=VALUE"
+        fi
+        ;;
+    *) die "'$o' is not an sbatch option (before --): valid --NAME=VALUE, --NAME VALUE, -X VALUE; the bouncemap arguments go after --" ;;
+    esac
+    i=$((i + 1))
 done
 case ${args[0]} in
 sweep | plane) ;;
@@ -102,6 +166,13 @@ version=$("$bin" --version 2>&1) || die "$bin does not run here: $version"
 
 mkdir -p -- "$out_dir" || die "cannot create OUT_DIR $out_dir"
 out_dir=$(realpath -- "$out_dir")
+
+# The bouncemap arguments checked before anything is queued: the same command the first
+# shard runs, as a dry run (--check: every flag, file and the part's path checked, the
+# plan printed, nothing computed). A typo is refused here, not on the nodes.
+check=("$bin" "${args[@]}" --shard "1/$parts" --resume --format csv --out "$out_dir/part-1-of-$parts.csv" --check)
+plan=$("${check[@]}" 2>&1) || die "bouncemap refused the arguments, nothing was submitted: $(tail -n 1 <<<"$plan")"
+sed "s/^/$me: /" <<<"$plan"
 stamp=$(date +%Y%m%d-%H%M%S)-$$
 run=$out_dir/logs/$stamp
 mkdir -p -- "$run"

@@ -20,6 +20,21 @@ use std::io::Write;
 
 pub fn run(args: &BasinsArgs) -> anyhow::Result<()> {
     let spec = config::basin_spec(&args.spec)?;
+    if args.run.check.check {
+        let (_, threads) = config::threads_plan(args.run.workers.threads);
+        let what = match args.format {
+            BasinsFormat::Csv => "csv",
+            BasinsFormat::Json => "json",
+            BasinsFormat::Braille => "the braille picture",
+        };
+        return super::print_plan(&[
+            format!("basins of {} starts: {}", spec.len(), title(&spec)),
+            threads,
+            // A label per start, and the attractors' cells.
+            config::memory_plan(spec.len() as u64 * 16 + (64 << 20)),
+            super::output_plan(args.output.out.as_deref(), what)?,
+        ]);
+    }
     let threads = config::threads(args.run.workers.threads)?;
     let mut sink = Sink::open(args.output.out.as_deref()).map_err(InputError)?;
     let basins = compute(&spec, &Executor::new(threads)?)?;

@@ -17,6 +17,7 @@ use crate::config::flags::{BenchArgs, BenchFormat};
 use crate::config::presets::preset;
 use crate::config::table_spec::TableSpec;
 use crate::config::InputError;
+use crate::output::sink::Sink;
 use bouncemap_engine::jobs::{available_cores, Control, Executor};
 use bouncemap_engine::map::{Event, EventKind, ImpactMap, State};
 use bouncemap_engine::orbits;
@@ -124,91 +125,94 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         None => None,
     };
     let date = today();
-    let mut out = std::io::BufWriter::new(std::io::stdout().lock());
-    match args.format {
-        BenchFormat::Text => {
-            writeln!(out, "bouncemap bench  ({date}, {cores} cores)")?;
-            writeln!(out)?;
-            writeln!(
-                out,
-                "{:<9} {:<22} {:>12} {:>12} {:>7} {:>11} {:>11}  note",
-                "orbit", "system", "exact ev/s", "grid ev/s", "ratio", "exact err", "grid err"
-            )?;
-            for r in &rows {
+    let mut out = Sink::stdout();
+    let written = (|| -> anyhow::Result<()> {
+        match args.format {
+            BenchFormat::Text => {
+                writeln!(out, "bouncemap bench  ({date}, {cores} cores)")?;
+                writeln!(out)?;
                 writeln!(
                     out,
-                    "{:<9} {:<22} {:>12.0} {:>12.0} {:>7.1} {:>11.1e} {:>11.1e}  {}",
-                    r.case,
-                    r.system,
-                    r.exact_rate,
-                    r.grid_rate,
-                    r.exact_rate / r.grid_rate,
-                    r.exact_err,
-                    r.grid_err,
-                    r.note
+                    "{:<9} {:<22} {:>12} {:>12} {:>7} {:>11} {:>11}  note",
+                    "orbit", "system", "exact ev/s", "grid ev/s", "ratio", "exact err", "grid err"
                 )?;
-            }
-            writeln!(out)?;
-            writeln!(out, "targets: exact/grid >= 10 on period-1, >= 4 chaotic")?;
-            writeln!(out)?;
-            writeln!(
+                for r in &rows {
+                    writeln!(
+                        out,
+                        "{:<9} {:<22} {:>12.0} {:>12.0} {:>7.1} {:>11.1e} {:>11.1e}  {}",
+                        r.case,
+                        r.system,
+                        r.exact_rate,
+                        r.grid_rate,
+                        r.exact_rate / r.grid_rate,
+                        r.exact_err,
+                        r.grid_err,
+                        r.note
+                    )?;
+                }
+                writeln!(out)?;
+                writeln!(out, "targets: exact/grid >= 10 on period-1, >= 4 chaotic")?;
+                writeln!(out)?;
+                writeln!(
                 out,
                 "sweep fig3b (fd:0.1, alpha 0.45..0.60, 1000 values), exact solver, {cores} cores:"
             )?;
-            writeln!(
-                out,
-                "  coarse pass (every value to t = {}):   {:.3} s   (target 1 s)",
-                sweep::DEFAULT_PREVIEW,
-                coarse.as_secs_f64()
-            )?;
-            writeln!(
-                out,
-                "  cancel to idle:                          {:.1} ms  (target 50 ms)",
-                cancel.as_secs_f64() * 1e3
-            )?;
-            print_panel(&mut out, &format!("panel at T = {reduced_t}"), &reduced_run)?;
-            let est = estimate_full(&reduced_run, reduced_t, sweep::PAPER_TRANSIENT);
-            writeln!(out,
+                writeln!(
+                    out,
+                    "  coarse pass (every value to t = {}):   {:.3} s   (target 1 s)",
+                    sweep::DEFAULT_PREVIEW,
+                    coarse.as_secs_f64()
+                )?;
+                writeln!(
+                    out,
+                    "  cancel to idle:                          {:.1} ms  (target 50 ms)",
+                    cancel.as_secs_f64() * 1e3
+                )?;
+                print_panel(&mut out, &format!("panel at T = {reduced_t}"), &reduced_run)?;
+                let est = estimate_full(&reduced_run, reduced_t, sweep::PAPER_TRANSIENT);
+                writeln!(out,
                 "  estimated full panel at T = 5e6 (unsettled values scale with T): {:.0} s  (target 60 s)",
                 est
             )?;
-            if let Some((name, f)) = &full {
-                print_panel(
-                    &mut out,
-                    &format!("{name} at paper fidelity (T = 5e6, keep 100)"),
-                    f,
-                )?;
+                if let Some((name, f)) = &full {
+                    print_panel(
+                        &mut out,
+                        &format!("{name} at paper fidelity (T = 5e6, keep 100)"),
+                        f,
+                    )?;
+                }
+            }
+            BenchFormat::Json => {
+                let solver: Vec<_> = rows
+                    .iter()
+                    .map(|r| {
+                        serde_json::json!({
+                            "orbit": r.case, "system": r.system,
+                            "exact_events_per_s": r.exact_rate, "grid_events_per_s": r.grid_rate,
+                            "ratio": r.exact_rate / r.grid_rate,
+                            "exact_error": r.exact_err, "grid_error": r.grid_err, "note": r.note,
+                        })
+                    })
+                    .collect();
+                let doc = serde_json::json!({
+                    "date": date, "cores": cores, "quick": args.quick,
+                    "solvers": solver,
+                    "coarse_pass_s": coarse.as_secs_f64(),
+                    "cancel_ms": cancel.as_secs_f64() * 1e3,
+                    "panel_reduced": panel_json(&reduced_run, reduced_t),
+                    "panel_full_estimate_s": estimate_full(&reduced_run, reduced_t, sweep::PAPER_TRANSIENT),
+                    "panel_full": full.as_ref().map(|(n, f)| {
+                        let mut j = panel_json(f, sweep::PAPER_TRANSIENT);
+                        j["preset"] = serde_json::Value::String(n.clone());
+                        j
+                    }),
+                });
+                writeln!(out, "{doc}")?;
             }
         }
-        BenchFormat::Json => {
-            let solver: Vec<_> = rows
-                .iter()
-                .map(|r| {
-                    serde_json::json!({
-                        "orbit": r.case, "system": r.system,
-                        "exact_events_per_s": r.exact_rate, "grid_events_per_s": r.grid_rate,
-                        "ratio": r.exact_rate / r.grid_rate,
-                        "exact_error": r.exact_err, "grid_error": r.grid_err, "note": r.note,
-                    })
-                })
-                .collect();
-            let doc = serde_json::json!({
-                "date": date, "cores": cores, "quick": args.quick,
-                "solvers": solver,
-                "coarse_pass_s": coarse.as_secs_f64(),
-                "cancel_ms": cancel.as_secs_f64() * 1e3,
-                "panel_reduced": panel_json(&reduced_run, reduced_t),
-                "panel_full_estimate_s": estimate_full(&reduced_run, reduced_t, sweep::PAPER_TRANSIENT),
-                "panel_full": full.as_ref().map(|(n, f)| {
-                    let mut j = panel_json(f, sweep::PAPER_TRANSIENT);
-                    j["preset"] = serde_json::Value::String(n.clone());
-                    j
-                }),
-            });
-            writeln!(out, "{doc}")?;
-        }
-    }
-    Ok(())
+        Ok(())
+    })();
+    out.end(written)
 }
 
 /// Measured run of a whole panel.

@@ -10,11 +10,12 @@ use crate::output::records::{
     csv_writer, CascadeDoc, FamilyDoc, FamilyRecord, FamilyRow, LevelRecord, LevelRow,
     FEIGENBAUM_DELTA,
 };
+use crate::output::sink::Sink;
 use crate::output::Format;
 use bouncemap_engine::orbits::cascade::{cascade, Cascade};
 use bouncemap_engine::orbits::continuation::NoStart;
 use bouncemap_engine::table::Table;
-use std::io::{self, BufWriter, Write};
+use std::io::Write;
 
 /// The cascade of one table: Ok(Err(reason)) when it has none.
 fn one(table: &Table, args: &CascadeArgs) -> Result<Result<Cascade, String>, InputError> {
@@ -26,21 +27,23 @@ fn one(table: &Table, args: &CascadeArgs) -> Result<Result<Cascade, String>, Inp
 }
 
 pub fn run(args: &CascadeArgs) -> anyhow::Result<()> {
-    let mut out = BufWriter::new(io::stdout().lock());
-    if let Some(ds) = &args.d {
-        let mut rows = Vec::with_capacity(ds.0.len());
-        for &d in &ds.0 {
-            let c = one(&Table::fd(d).map_err(InputError::from)?, args)?;
-            rows.push(FamilyRecord::new(d, c.as_ref().map_err(Clone::clone)));
+    let mut out = Sink::stdout();
+    let written = (|| -> anyhow::Result<()> {
+        if let Some(ds) = &args.d {
+            let mut rows = Vec::with_capacity(ds.0.len());
+            for &d in &ds.0 {
+                let c = one(&Table::fd(d).map_err(InputError::from)?, args)?;
+                rows.push(FamilyRecord::new(d, c.as_ref().map_err(Clone::clone)));
+            }
+            family(&mut out, args, rows)?;
+        } else {
+            let table = args.table.load()?;
+            let c = one(&table, args)?;
+            single(&mut out, args, &table, c)?;
         }
-        family(&mut out, args, rows)?;
-    } else {
-        let table = args.table.load()?;
-        let c = one(&table, args)?;
-        single(&mut out, args, &table, c)?;
-    }
-    out.flush()?;
-    Ok(())
+        Ok(())
+    })();
+    out.end(written)
 }
 
 fn single(

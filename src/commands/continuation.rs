@@ -6,10 +6,11 @@
 use crate::config::flags::{ContinueArgs, FromArg};
 use crate::config::InputError;
 use crate::output::records::{csv_writer, BranchRecord, ContinueDoc, ContinueRow};
+use crate::output::sink::Sink;
 use crate::output::text::complex;
 use crate::output::Format;
 use bouncemap_engine::orbits::continuation::{branches, Branch, NoStart, Options, Special, Start};
-use std::io::{self, BufWriter, Write};
+use std::io::{self, Write};
 
 pub fn run(args: &ContinueArgs) -> anyhow::Result<()> {
     let table = args.table.load()?;
@@ -30,6 +31,16 @@ pub fn run(args: &ContinueArgs) -> anyhow::Result<()> {
     let (found, reason) = match branches(&table, args.r, args.alpha, start, opts) {
         Ok(b) => (b, None),
         Err(NoStart::Invalid(e)) => return Err(InputError::from(e).into()),
+        // An unstable (1, k) solution is not a start of its own, but it can be followed
+        // from one of its points.
+        Err(NoStart::NotFound(why)) if matches!(start, Start::Fixed { .. }) && why.contains("no stability window") => (
+            Vec::new(),
+            Some(format!(
+                "{why}; to follow an unstable one, start on it as a cycle: --n 1 --k {k} --t0 PHASE --v0 {v} with PHASE from `bouncemap fixed --k {k} --alpha A` at an A where it exists, and a window from A",
+                k = args.k,
+                v = 0.5 * args.k as f64
+            )),
+        ),
         Err(NoStart::NotFound(why)) => (Vec::new(), Some(why)),
     };
     let start_text = match start {
@@ -37,60 +48,62 @@ pub fn run(args: &ContinueArgs) -> anyhow::Result<()> {
         Start::TwoCycle { k } => format!("two-cycle (2, {})", 2 * k),
         Start::Point { n, k, t0, v0 } => format!("({n}, {k}) near t0 = {t0}, v0 = {v0}"),
     };
-    let mut out = BufWriter::new(io::stdout().lock());
-    match args.format {
-        Format::Json => {
-            let doc = ContinueDoc {
-                table: table.name(),
-                r: args.r,
-                alpha_lo: args.alpha.0,
-                alpha_hi: args.alpha.1,
-                start: start_text,
-                found: reason.is_none(),
-                reason,
-                branches: found
-                    .iter()
-                    .enumerate()
-                    .map(|(i, b)| BranchRecord::new(i, b))
-                    .collect(),
-            };
-            serde_json::to_writer(&mut out, &doc)?;
-            writeln!(out)?;
-        }
-        Format::Csv => {
-            let mut w = csv_writer(&mut out, &ContinueRow::HEADER)?;
-            for (i, b) in found.iter().enumerate() {
-                w.serialize(ContinueRow::special(i, b, &b.begin))?;
-                for p in &b.points {
-                    w.serialize(ContinueRow::point(i, b, p))?;
+    let mut out = Sink::stdout();
+    let written = (|| -> anyhow::Result<()> {
+        match args.format {
+            Format::Json => {
+                let doc = ContinueDoc {
+                    table: table.name(),
+                    r: args.r,
+                    alpha_lo: args.alpha.0,
+                    alpha_hi: args.alpha.1,
+                    start: start_text,
+                    found: reason.is_none(),
+                    reason,
+                    branches: found
+                        .iter()
+                        .enumerate()
+                        .map(|(i, b)| BranchRecord::new(i, b))
+                        .collect(),
+                };
+                serde_json::to_writer(&mut out, &doc)?;
+                writeln!(out)?;
+            }
+            Format::Csv => {
+                let mut w = csv_writer(&mut out, &ContinueRow::HEADER)?;
+                for (i, b) in found.iter().enumerate() {
+                    w.serialize(ContinueRow::special(i, b, &b.begin))?;
+                    for p in &b.points {
+                        w.serialize(ContinueRow::point(i, b, p))?;
+                    }
+                    for s in &b.specials {
+                        w.serialize(ContinueRow::special(i, b, s))?;
+                    }
+                    w.serialize(ContinueRow::special(i, b, &b.end))?;
                 }
-                for s in &b.specials {
-                    w.serialize(ContinueRow::special(i, b, s))?;
+                w.flush()?;
+            }
+            Format::Text => {
+                writeln!(
+                    out,
+                    "table {}  r {}  alpha {}..{}  start {}",
+                    table.name(),
+                    args.r,
+                    args.alpha.0,
+                    args.alpha.1,
+                    start_text
+                )?;
+                if let Some(why) = reason {
+                    writeln!(out, "no branch: {why}")?;
                 }
-                w.serialize(ContinueRow::special(i, b, &b.end))?;
-            }
-            w.flush()?;
-        }
-        Format::Text => {
-            writeln!(
-                out,
-                "table {}  r {}  alpha {}..{}  start {}",
-                table.name(),
-                args.r,
-                args.alpha.0,
-                args.alpha.1,
-                start_text
-            )?;
-            if let Some(why) = reason {
-                writeln!(out, "no branch: {why}")?;
-            }
-            for (i, b) in found.iter().enumerate() {
-                text_branch(&mut out, i, b)?;
+                for (i, b) in found.iter().enumerate() {
+                    text_branch(&mut out, i, b)?;
+                }
             }
         }
-    }
-    out.flush()?;
-    Ok(())
+        Ok(())
+    })();
+    out.end(written)
 }
 
 fn text_special(out: &mut impl Write, what: &str, s: &Special) -> io::Result<()> {

@@ -4,10 +4,11 @@
 //! loop for a picture the job fills in chunk by chunk.
 
 use super::progress::Progress;
+use crate::output::sink::check_stdout;
 use bouncemap_engine::jobs::{Batch, Handle, Summary};
 use bouncemap_engine::picture::{Cells, Chunk, Filled};
 use std::sync::mpsc::RecvTimeoutError;
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 /// How long the loop waits for a batch before it redraws the progress anyway.
 const TICK: Duration = Duration::from_millis(200);
@@ -15,18 +16,25 @@ const TICK: Duration = Duration::from_millis(200);
 /// Drive the job behind `handle` to its end: every batch of the current generation goes
 /// to `each` as it arrives (with the handle, to acknowledge what was used), and
 /// `progress` is brought up to date between batches, at least every [`TICK`]. An error
-/// from `each` ends the drive at once (dropping the handle stops the job). Returns the
-/// job's summary; whether the results are complete is the caller's to check.
+/// from `each` ends the drive at once (dropping the handle stops the job), and so does a
+/// standard output whose reader has gone, when the results go there (a quiet end, see
+/// [`check_stdout`]). Returns the job's summary; whether the results are complete is the
+/// caller's to check.
 pub fn drive_job<T>(
     handle: Handle<T>,
     mut progress: Progress,
     mut each: impl FnMut(&Handle<T>, Batch<T>) -> anyhow::Result<()>,
 ) -> anyhow::Result<Summary> {
+    let mut checked = Instant::now();
     loop {
         match handle.receiver().recv_timeout(TICK) {
             Ok(b) if handle.is_current(&b) => each(&handle, b)?,
             Ok(_) | Err(RecvTimeoutError::Timeout) => {}
             Err(RecvTimeoutError::Disconnected) => break,
+        }
+        if checked.elapsed() >= TICK {
+            checked = Instant::now();
+            check_stdout()?;
         }
         progress.update(&handle.progress());
     }

@@ -4,7 +4,9 @@
 //! by clap, the sweep of `diagram`, the output's format and path). Then the figure's
 //! data are computed on all cores (sweeps on the engine's executor, the scaling rows
 //! of Fig. 4 and 5 on threads of their own) with a progress bar on a terminal, the
-//! figure is drawn by [`bouncemap_figures`], and the file is written atomically.
+//! figure is drawn by [`bouncemap_figures`], and the file is written atomically. A
+//! sweep's values are drawn into its [`Diagram`] as they complete and dropped: memory
+//! is the picture's, whatever the number of values and kept events.
 
 use super::drive::drive_job;
 use super::progress::Progress;
@@ -17,8 +19,8 @@ use bouncemap_engine::grid::Shard;
 use bouncemap_engine::jobs::{Control, Executor, Progress as JobProgress};
 use bouncemap_engine::orbits::scaling::{log_spaced, scaling_row, ScalingRow};
 use bouncemap_engine::plane::PlaneSpec;
-use bouncemap_engine::sweep::{self, SweepSpec, ValueResult};
-use bouncemap_figures::diagram::{self, diagram_panel, DiagramAxis};
+use bouncemap_engine::sweep::{self, SweepSpec};
+use bouncemap_figures::diagram::{self, Diagram, GRID_BINS, HELD_POINTS};
 use bouncemap_figures::scaling::{self as scaling_fig, FIG5_D};
 use bouncemap_figures::text::plain;
 use bouncemap_figures::{self as figure, shapes, Figure, ImageFormat, Layer, DEFAULT_DPI};
@@ -52,7 +54,8 @@ pub fn run(args: &FigureArgs) -> anyhow::Result<()> {
         .or_else(|| ImageFormat::from_path(path))
         .ok_or_else(|| {
             InputError(format!(
-                "--out {out}: the file name does not say the format: valid a name ending in .svg or .png, or --format svg|png"
+                "--out {}: the file name does not say the format: valid a name ending in .svg or .png, or --format svg|png",
+                crate::output::text::quoted(&out)
             ))
         })?;
     let dpi = args.dpi.unwrap_or(DEFAULT_DPI);
@@ -94,10 +97,11 @@ pub fn run(args: &FigureArgs) -> anyhow::Result<()> {
         _ => None,
     };
     if let Some(spec) = &diagram_spec {
-        // Every point is held until the figure is drawn: the results and their copy
-        // in the figure.
+        // Drawn as values complete: the points up to HELD_POINTS (and their copy in the
+        // figure), then a grid of counts; a byte and an exponent per value.
+        let points = (spec.steps as u64 * spec.keep as u64).min(HELD_POINTS as u64);
         config::check_memory(
-            spec.steps as u64 * (spec.keep as u64 * 48 + 512),
+            points * 32 + (GRID_BINS * GRID_BINS * 4) as u64 + spec.steps as u64 * 9,
             "this diagram",
         )?;
     }
@@ -148,29 +152,27 @@ fn preset_spec(name: &str, q: bool) -> anyhow::Result<SweepSpec> {
     Ok(quick(preset(name)?.sweep_spec()?, q))
 }
 
-/// Run a whole sweep on `executor`, with a progress bar labelled `what`.
-fn run_sweep(
-    spec: &SweepSpec,
-    executor: &Executor,
-    what: &str,
-) -> anyhow::Result<Vec<ValueResult>> {
+/// Run a whole sweep on `executor`, with a progress bar labelled `what`, drawing its
+/// diagram as values complete (each value is dropped once drawn: memory for the picture
+/// only, see [`Diagram`]).
+fn run_sweep(spec: &SweepSpec, executor: &Executor, what: &str) -> anyhow::Result<Diagram> {
     let handle = sweep::start(spec.clone(), executor, &Control::new())?;
-    let mut values = Vec::with_capacity(spec.steps);
+    let mut diagram = Diagram::new(spec);
+    let mut done = 0usize;
     drive_job(handle, Progress::bar(what), |_, b| {
         if b.complete {
-            values.push(b.data);
+            diagram.add(&b.data);
+            done += 1;
         }
         Ok(())
     })?;
-    if values.len() != spec.shard_values() {
+    if done != spec.shard_values() {
         anyhow::bail!(
-            "{what}: the sweep stopped after {} of {} values",
-            values.len(),
+            "{what}: the sweep stopped after {done} of {} values",
             spec.shard_values()
         );
     }
-    values.sort_by_key(|v| v.index);
-    Ok(values)
+    Ok(diagram)
 }
 
 /// The Fig. 4/5 rows for `ds` (r = 0.8, k = 1), computed on `threads` threads.
@@ -240,10 +242,9 @@ fn build(
             let mut panels = Vec::new();
             for letter in ['a', 'b', 'c', 'd', 'e', 'f'] {
                 let spec = preset_spec(&format!("fig3{letter}"), q)?;
-                let values = run_sweep(&spec, executor, &format!("fig3 ({letter})"))?;
-                panels.push((spec, values));
+                panels.push(run_sweep(&spec, executor, &format!("fig3 ({letter})"))?);
             }
-            Ok(diagram::fig3(&panels))
+            Ok(diagram::fig3(panels))
         }
         FigureName::Fig3a
         | FigureName::Fig3b
@@ -253,16 +254,14 @@ fn build(
         | FigureName::Fig3f => {
             let n = panel_name(name);
             let spec = preset_spec(&n, q)?;
-            let values = run_sweep(&spec, executor, &n)?;
-            Ok(diagram::diagram_figure(&n, &spec, &values))
+            Ok(diagram::diagram_figure(&n, run_sweep(&spec, executor, &n)?))
         }
         FigureName::Fig4 => {
             let mut upper = Vec::new();
             let mut caption = Vec::new();
             for (letter, d) in ['a', 'b', 'c'].into_iter().zip(FIG4_D) {
                 let spec = preset_spec(&format!("fig4{letter}"), q)?;
-                let values = run_sweep(&spec, executor, &format!("fig4 ({letter})"))?;
-                let mut p = diagram_panel(&spec, &values, None, DiagramAxis::Phase);
+                let mut p = run_sweep(&spec, executor, &format!("fig4 ({letter})"))?.into_panel();
                 p.title = Some(format!("$D$ = {d}"));
                 upper.push(p);
                 if caption.is_empty() {
@@ -292,8 +291,8 @@ fn build(
         }
         FigureName::Lyapunov(_) => {
             let spec = diagram_spec.expect("the diagram's sweep was checked first");
-            let values = run_sweep(&spec, executor, "lyapunov")?;
-            Ok(figure::lyapunov::lyapunov_figure(&spec, &values))
+            let diagram = run_sweep(&spec, executor, "lyapunov")?;
+            Ok(figure::lyapunov::lyapunov_figure(diagram))
         }
         FigureName::Plane(_) => {
             let spec = plane_spec.expect("the plane was checked first");
@@ -312,8 +311,8 @@ fn build(
         }
         FigureName::Diagram(_) => {
             let spec = diagram_spec.expect("the diagram's sweep was checked first");
-            let values = run_sweep(&spec, executor, "diagram")?;
-            Ok(diagram::diagram_figure("diagram", &spec, &values))
+            let diagram = run_sweep(&spec, executor, "diagram")?;
+            Ok(diagram::diagram_figure("diagram", diagram))
         }
     }
 }

@@ -6,17 +6,26 @@
 //! cycle (the sweep's detector); a cycle's exponents come from the eigenvalues of its
 //! Jacobian, any other orbit's from QR over `--impacts` more impacts.
 //! `--no-early-stop` always measures by QR (a second method for a cycle's exponents).
+//! The measurement streams (memory does not grow with `--impacts`, up to its 1e10), with
+//! progress on stderr; a closed standard output or a signal stops it.
 
+use super::progress::Progress;
 use crate::config::flags::LyapunovArgs;
 use crate::config::{self, InputError};
 use crate::output::records::{csv_writer, InitialRecord, LyapunovDoc, LyapunovRow};
+use crate::output::sink::check_stdout;
+use crate::output::sink::Sink;
 use crate::output::text::significant;
 use crate::output::Format;
 use bouncemap_engine::attractors::lyapunov::{Method, Spectrum};
 use bouncemap_engine::attractors::{self, Found, Settle};
+use bouncemap_engine::jobs::Progress as JobProgress;
 use bouncemap_engine::run::detect::Periodicity;
 use bouncemap_engine::run::start::near_fixed_point;
-use std::io::{self, BufWriter, Write};
+use bouncemap_engine::run::{Advance, OrbitRun};
+use bouncemap_engine::{ImpactMap, State, System};
+use std::io::{self, Write};
+use std::time::{Duration, Instant};
 
 pub fn run(args: &LyapunovArgs) -> anyhow::Result<()> {
     let sys = config::system(&args.system)?;
@@ -46,32 +55,112 @@ pub fn run(args: &LyapunovArgs) -> anyhow::Result<()> {
         sample: args.impacts,
         solver: bouncemap_engine::Solver::Exact,
     };
-    let (found, ..) = attractors::settle(&sys, start, &settle, 1, &mut |_| false)
-        .expect("an uncancellable run finishes");
-    let row = LyapunovRow::new(&found, sys.r());
-    let mut out = BufWriter::new(io::stdout().lock());
-    match args.format {
-        Format::Json => {
-            let doc = LyapunovDoc {
-                table: sys.table().name(),
-                alpha: sys.alpha(),
-                r: sys.r(),
-                start: initial,
-                transient: args.transient,
-                result: row,
-            };
-            serde_json::to_writer(&mut out, &doc)?;
-            writeln!(out)?;
-        }
-        Format::Csv => {
-            let mut w = csv_writer(&mut out, &LyapunovRow::HEADER)?;
-            w.serialize(&row)?;
-            w.flush()?;
-        }
-        Format::Text => text(&mut out, &sys, &found, args)?,
+    if args.check.check {
+        return super::print_plan(&[
+            format!(
+                "lyapunov of one orbit of table {} at alpha {}, r {}: transient {} periods, then up to {} impacts measured by QR",
+                sys.table().name(),
+                sys.alpha(),
+                sys.r(),
+                args.transient,
+                args.impacts
+            ),
+            "memory: a few MB, whatever the impacts (the measurement streams)".into(),
+            "writes to standard output".into(),
+        ]);
     }
-    out.flush()?;
-    Ok(())
+    let found = measure(&sys, start, &settle)?;
+    let row = LyapunovRow::new(&found, sys.r());
+    let mut out = Sink::stdout();
+    let written = (|| -> anyhow::Result<()> {
+        match args.format {
+            Format::Json => {
+                let doc = LyapunovDoc {
+                    table: sys.table().name(),
+                    alpha: sys.alpha(),
+                    r: sys.r(),
+                    start: initial,
+                    transient: args.transient,
+                    result: row,
+                };
+                serde_json::to_writer(&mut out, &doc)?;
+                writeln!(out)?;
+            }
+            Format::Csv => {
+                let mut w = csv_writer(&mut out, &LyapunovRow::HEADER)?;
+                w.serialize(&row)?;
+                w.flush()?;
+            }
+            Format::Text => text(&mut out, &sys, &found, args)?,
+        }
+        Ok(())
+    })();
+    out.end(written)
+}
+
+/// Run `start` to the end of its transient, then identify what it settled on (measuring
+/// an unsettled orbit by QR over `settle.sample` impacts), with progress on stderr: the
+/// impacts measured (none yet during the transient) and the events per second. Memory
+/// does not grow with the transient or the sample (the run keeps one point, the QR
+/// measurement its sums and block means, the sample the cells it visits). A standard
+/// output whose reader has gone stops it (a quiet end).
+fn measure(sys: &System, start: State, settle: &Settle) -> anyhow::Result<Found> {
+    let total = settle.sample as usize;
+    let spec = format!(
+        "table {}  alpha {}  r {}  transient {} periods  impacts {}",
+        sys.table().name(),
+        sys.alpha(),
+        sys.r(),
+        settle.transient,
+        settle.sample
+    );
+    let mut progress = Progress::start_units("lyapunov", "impacts", total, &spec);
+    let t0 = Instant::now();
+    let mut events = 0u64;
+    let mut measured = 0u64;
+    let mut last = Instant::now();
+    let mut closed = false;
+    // Counts `n` more events (measured ones when `measuring`); says whether to stop.
+    let mut tick = |n: u64, measuring: bool, progress: &mut Progress| {
+        events += n;
+        if measuring {
+            measured += n;
+        }
+        if last.elapsed() >= Duration::from_millis(200) {
+            last = Instant::now();
+            closed = check_stdout().is_err();
+            progress.update(&JobProgress {
+                done: (measured.min(settle.sample)) as usize,
+                total,
+                events,
+                elapsed: t0.elapsed(),
+            });
+        }
+        closed
+    };
+    let map = ImpactMap::new(sys.clone(), settle.solver, start);
+    let mut run = OrbitRun::new(map, 1, settle.periodicity);
+    let end = settle.transient as i64;
+    let outcome = match run.advance(end, end, &mut |n| tick(n, false, &mut progress)) {
+        Advance::Done(o, _) => Some(o),
+        Advance::Checkpoint | Advance::Cancelled => None,
+    };
+    let found = outcome.and_then(|o| {
+        attractors::identify(sys, settle, &o, run.state(), &mut |n| {
+            tick(n, true, &mut progress)
+        })
+    });
+    let Some(found) = found else {
+        // Only a closed standard output stops the run early.
+        return Err(std::io::Error::from(std::io::ErrorKind::BrokenPipe).into());
+    };
+    progress.finish(&JobProgress {
+        done: total,
+        total,
+        events,
+        elapsed: t0.elapsed(),
+    });
+    Ok(found)
 }
 
 fn text(

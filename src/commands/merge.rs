@@ -16,11 +16,20 @@ use crate::config::flags::MergeArgs;
 use crate::config::InputError;
 use crate::output::part_file::{join, read_part, FileKind};
 use crate::output::plane_file::{is_plane, PlaneFile};
-use crate::output::sink::Sink;
+use crate::output::sink::{note_input, Sink};
 use crate::output::sweep_file::SweepFile;
+use crate::output::text::shown_path;
 use std::path::Path;
 
 pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
+    // The parts are inputs before they are read, so --out, opened (and so checked)
+    // before the reading, can never be one of them.
+    for f in &args.files {
+        note_input(
+            Path::new(f),
+            &format!("the part {}", shown_path(Path::new(f))),
+        );
+    }
     let sink = Sink::open(args.output.out.as_deref()).map_err(InputError)?;
     let mut texts = Vec::new();
     for f in &args.files {

@@ -2,8 +2,10 @@
 //! validated specification through [`crate::config`], calls the engine and writes
 //! through [`crate::output`]. Input problems are [`crate::config::InputError`]s, which
 //! the binary reports with status 2. What they share: [`drive`] (an engine job run to
-//! its end with [`progress`] on stderr) and [`resume`] (`--resume` for the commands that
-//! write part files).
+//! its end with [`progress`] on stderr), [`resume`] (`--resume` for the commands that
+//! write part files) and the `--check` plan ([`print_plan`], [`output_plan`]): a
+//! command with `--check` does everything a run does before its first computation,
+//! then prints what it would do.
 
 pub mod basins;
 pub mod bench;
@@ -23,6 +25,9 @@ pub mod sweep;
 pub mod two_cycle;
 
 use crate::config::flags::Command;
+use crate::config::InputError;
+use crate::output::sink::Sink;
+use std::io::Write;
 
 /// Run one subcommand. A SIGTERM, SIGINT or SIGHUP removes any output file still being
 /// written (the old one stays) and exits with 128 + the signal's number.
@@ -54,5 +59,30 @@ pub fn run(cmd: Command) -> anyhow::Result<()> {
             }
             Ok(())
         }
+    }
+}
+
+/// A `--check` plan on stdout, one `plan:` line each, then the verdict.
+pub fn print_plan(lines: &[String]) -> anyhow::Result<()> {
+    let mut out = Sink::stdout();
+    let written = (|| -> anyhow::Result<()> {
+        for l in lines {
+            writeln!(out, "plan: {l}")?;
+        }
+        writeln!(out, "plan: checked; nothing computed")?;
+        Ok(())
+    })();
+    out.end(written)
+}
+
+/// Where a run would write, as a line of a `--check` plan, after checking it as the run
+/// opens it (created, then removed again: nothing is left behind).
+pub fn output_plan(out: Option<&str>, what: &str) -> Result<String, InputError> {
+    match out {
+        Some(path) => {
+            drop(Sink::open(Some(path)).map_err(InputError)?);
+            Ok(format!("writes {what} to {path} (checked writable)"))
+        }
+        None => Ok(format!("writes {what} to standard output")),
     }
 }

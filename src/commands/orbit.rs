@@ -9,51 +9,59 @@
 use crate::config;
 use crate::config::flags::OrbitArgs;
 use crate::output::records::{csv_writer, solver_name, EventRecord, OrbitHeader};
+use crate::output::sink::{check_stdout, Sink};
 use crate::output::text::significant;
 use crate::output::Format;
 use bouncemap_engine::{Event, ImpactMap};
-use std::io::{self, BufWriter, Write};
+use std::io::Write;
 
 pub fn run(args: &OrbitArgs) -> anyhow::Result<()> {
     let sys = config::system(&args.system)?;
     let state = config::start(&sys, &args.initial)?;
     let mut map = ImpactMap::new(sys, args.solver.into(), state);
+    let mut out = Sink::stdout();
     let mut halt = None;
-    for _ in 0..args.skip {
+    for i in 0..args.skip {
+        // A reader that went away ends a long silent stretch too.
+        if i % (1 << 20) == 0 {
+            check_stdout()?;
+        }
         if let Err(h) = map.step() {
             halt = Some(h);
             break;
         }
     }
-    let out = BufWriter::new(io::stdout().lock());
-    let mut sink = Sink::new(out, args.format, &map)?;
-    if halt.is_none() {
-        for i in 0..args.bounces {
-            match map.step() {
-                Ok(e) => sink.event(args.skip + i, &e)?,
-                Err(h) => {
-                    halt = Some(h);
-                    break;
+    let written = (|| -> anyhow::Result<()> {
+        let mut records = Records::new(&mut out, args.format, &map)?;
+        if halt.is_none() {
+            for i in 0..args.bounces {
+                match map.step() {
+                    Ok(e) => records.event(args.skip + i, &e)?,
+                    Err(h) => {
+                        halt = Some(h);
+                        break;
+                    }
                 }
             }
         }
-    }
-    sink.finish(halt.map(|h| h.to_string()))?;
+        records.finish(halt.as_ref().map(|h| h.to_string()))
+    })();
+    out.end(written)?;
     if let Some(h) = halt {
-        eprintln!("note: {h}");
+        crate::output::to_stderr(&format!("note: {h}\n"));
     }
     Ok(())
 }
 
-/// Where events go, in the chosen format.
-enum Sink<W: Write> {
+/// Events in the chosen format.
+enum Records<W: Write> {
     Text(W),
     Csv(Box<csv::Writer<W>>),
     Json { out: W, first: bool },
 }
 
-impl<W: Write> Sink<W> {
-    fn new(mut out: W, format: Format, map: &ImpactMap) -> anyhow::Result<Sink<W>> {
+impl<W: Write> Records<W> {
+    fn new(mut out: W, format: Format, map: &ImpactMap) -> anyhow::Result<Records<W>> {
         Ok(match format {
             Format::Text => {
                 writeln!(
@@ -61,9 +69,9 @@ impl<W: Write> Sink<W> {
                     "{:>8} {:>12} {:>18} {:>18} {:>18}  kind",
                     "index", "period", "phase", "v", "vrel"
                 )?;
-                Sink::Text(out)
+                Records::Text(out)
             }
-            Format::Csv => Sink::Csv(Box::new(csv_writer(out, &EventRecord::HEADER)?)),
+            Format::Csv => Records::Csv(Box::new(csv_writer(out, &EventRecord::HEADER)?)),
             Format::Json => {
                 let s = map.system();
                 let head = serde_json::to_string(&OrbitHeader {
@@ -74,14 +82,14 @@ impl<W: Write> Sink<W> {
                 })?;
                 // The header object, left open for the events array.
                 write!(out, "{},\"events\":[", &head[..head.len() - 1])?;
-                Sink::Json { out, first: true }
+                Records::Json { out, first: true }
             }
         })
     }
 
     fn event(&mut self, index: u64, e: &Event) -> anyhow::Result<()> {
         match self {
-            Sink::Text(out) => writeln!(
+            Records::Text(out) => writeln!(
                 out,
                 "{index:>8} {:>12} {:>18.15} {:>18} {:>18}  {}",
                 e.period,
@@ -90,8 +98,8 @@ impl<W: Write> Sink<W> {
                 significant(e.vrel, 15),
                 e.kind.as_str()
             )?,
-            Sink::Csv(w) => w.serialize(EventRecord::new(index, e))?,
-            Sink::Json { out, first } => {
+            Records::Csv(w) => w.serialize(EventRecord::new(index, e))?,
+            Records::Json { out, first } => {
                 if !*first {
                     out.write_all(b",")?;
                 }
@@ -104,9 +112,9 @@ impl<W: Write> Sink<W> {
 
     fn finish(self, halt: Option<String>) -> anyhow::Result<()> {
         match self {
-            Sink::Text(mut out) => out.flush()?,
-            Sink::Csv(mut w) => w.flush()?,
-            Sink::Json { mut out, .. } => {
+            Records::Text(mut out) => out.flush()?,
+            Records::Csv(mut w) => w.flush()?,
+            Records::Json { mut out, .. } => {
                 writeln!(out, "],\"halt\":{}}}", serde_json::to_string(&halt)?)?;
                 out.flush()?;
             }

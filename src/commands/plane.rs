@@ -22,6 +22,9 @@ use std::io::Write;
 
 pub fn run(args: &PlaneArgs) -> anyhow::Result<()> {
     let spec = config::plane::plane_spec(args)?;
+    if args.run.check.check {
+        return check(args, &spec);
+    }
     let threads = config::threads(args.run.workers.threads)?;
     let header = PlaneHeader::from(&spec);
     if resume::already_written::<PlaneFile>(&args.part, args.format, &header, spec.shard)? {
@@ -75,6 +78,34 @@ pub fn run(args: &PlaneArgs) -> anyhow::Result<()> {
     };
     write(&mut sink).map_err(|e| sink.describe(e))?;
     sink.finish()
+}
+
+/// `--check`: what the run would do, checked as it would be, nothing computed.
+fn check(args: &PlaneArgs, spec: &PlaneSpec) -> anyhow::Result<()> {
+    let mut plan = vec![format!(
+        "plane of {} pixels (shard {} of {}): {}",
+        spec.shard_len(),
+        shard_name(spec.shard),
+        spec.x.n * spec.y.n,
+        title(spec)
+    )];
+    let (_, line) = config::threads_plan(args.run.workers.threads);
+    plan.push(line);
+    // A few numbers per pixel of the shard, and a run per worker.
+    plan.push(config::memory_plan(
+        spec.shard_len() as u64 * 64 + (16 << 20),
+    ));
+    let header = PlaneHeader::from(spec);
+    let what = match resume::part_layout(args.format) {
+        Some(l) => l.name(),
+        None => "the braille picture",
+    };
+    if resume::already_written::<PlaneFile>(&args.part, args.format, &header, spec.shard)? {
+        plan.push("--resume: the part is already there: nothing to compute".into());
+    } else {
+        plan.push(super::output_plan(args.part.output.out.as_deref(), what)?);
+    }
+    super::print_plan(&plan)
 }
 
 /// Run the plane to the end with progress on stderr.

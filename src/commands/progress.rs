@@ -1,11 +1,16 @@
 //! Progress of a long headless computation on stderr: a bar redrawn in place when
-//! stderr is a terminal; otherwise (a batch log) a first line stating the command and
-//! what it computes, one line every [`LOG_EVERY`] (values done, rate, estimated time
-//! left; `BOUNCEMAP_PROGRESS_EVERY=SECONDS` changes the interval) and a last line.
-//! [`Progress::bar`] draws only the bar and says nothing in a batch log (figures).
+//! stderr is a terminal (and cleared however the run ends); otherwise (a batch log) a
+//! first line stating the command and what it computes, one line every [`LOG_EVERY`]
+//! (values done, rate, estimated time left; `BOUNCEMAP_PROGRESS_EVERY=SECONDS` changes
+//! the interval) and a last line. A run whose results stream into another program
+//! (standard output a pipe: `| head`, `| gzip`) writes no batch log: its stderr carries
+//! only errors. [`Progress::bar`] draws only the bar and says nothing in a batch log
+//! (figures).
 
+use crate::output::sink::streams_to_program;
+use crate::output::to_stderr;
 use bouncemap_engine::jobs::Progress as JobProgress;
-use std::io::{IsTerminal, Write};
+use std::io::IsTerminal;
 use std::time::{Duration, Instant};
 
 /// Interval of the log lines when stderr is not a terminal.
@@ -21,6 +26,8 @@ pub struct Progress {
     log: bool,
     every: Duration,
     last: Instant,
+    /// Whether a bar is on the terminal (to be cleared).
+    drawn: bool,
 }
 
 impl Progress {
@@ -43,21 +50,22 @@ impl Progress {
             .and_then(|s| s.parse::<f64>().ok())
             .filter(|s| *s > 0.0 && s.is_finite())
             .map_or(LOG_EVERY, Duration::from_secs_f64);
-        if !terminal {
+        let log = !streams_to_program();
+        if !terminal && log {
             let argv: Vec<String> = std::env::args().map(|a| shell_word(&a)).collect();
-            let _ = writeln!(
-                std::io::stderr(),
-                "bouncemap: {what} of {total} {unit} started: {}\nbouncemap: {what} specification: {spec}",
+            to_stderr(&format!(
+                "bouncemap: {what} of {total} {unit} started: {}\nbouncemap: {what} specification: {spec}\n",
                 argv.join(" ")
-            );
+            ));
         }
         Progress {
             what: what.to_string(),
             unit,
             terminal,
-            log: true,
+            log,
             every,
             last: Instant::now(),
+            drawn: false,
         }
     }
 
@@ -70,6 +78,7 @@ impl Progress {
             log: false,
             every: LOG_EVERY,
             last: Instant::now(),
+            drawn: false,
         }
     }
 
@@ -94,7 +103,7 @@ impl Progress {
             } else {
                 String::new()
             };
-            eprint!(
+            to_stderr(&format!(
                 "\r\x1b[2K{} [{}{}] {}/{} {}{rate}  {:.0} s",
                 self.what,
                 "#".repeat(filled),
@@ -103,28 +112,31 @@ impl Progress {
                 p.total,
                 self.unit,
                 p.elapsed.as_secs_f64()
-            );
+            ));
+            self.drawn = true;
         } else if self.log && now.duration_since(self.last) >= self.every {
             self.last = now;
-            let _ = writeln!(
-                std::io::stderr(),
-                "bouncemap: {}",
-                line(&self.what, self.unit, p)
-            );
+            to_stderr(&format!("bouncemap: {}\n", line(&self.what, self.unit, p)));
         }
     }
 
     /// The last report.
     pub fn finish(self, p: &JobProgress) {
-        if self.terminal {
-            eprint!("\r\x1b[2K");
-        } else if self.log {
-            let _ = writeln!(
-                std::io::stderr(),
-                "bouncemap: {} finished: {}",
+        if !self.terminal && self.log {
+            to_stderr(&format!(
+                "bouncemap: {} finished: {}\n",
                 self.what,
                 line(&self.what, self.unit, p)
-            );
+            ));
+        }
+    }
+}
+
+impl Drop for Progress {
+    /// The bar is cleared however the run ends (finished, failed, or its output closed).
+    fn drop(&mut self) {
+        if self.drawn {
+            to_stderr("\r\x1b[2K");
         }
     }
 }

@@ -1,14 +1,19 @@
 //! `--resume` for the commands that write part files (`sweep`, `plane`): a part that is
 //! already there, complete and verified (checked as `merge` checks a part), of this run's
-//! layout, tool, specification and shard, is left as it is and nothing is computed;
-//! anything else is computed, and stderr says why.
+//! layout, tool, specification and shard, is left as it is and nothing is computed. A
+//! missing file, or one that carries this run's provenance but was cut off or damaged,
+//! is computed (stderr says why); any other regular file (not written by this tool,
+//! another run's part, another format) is refused and left as it is: `--resume`
+//! replaces only this run's own output. A path that is not a regular file (a directory,
+//! a device) is left to the output's own rules.
 
-use crate::config::files::{read_text, LARGE_FILE};
+use crate::config::files::{read_existing_output, LARGE_FILE};
 use crate::config::flags::PartArgs;
 use crate::config::InputError;
 use crate::output::part_file::{
-    differing_setting, read_part, shard_name, spec_text, FileKind, Layout, TOOL,
+    differing_setting, opens_as, read_part, shard_name, spec_text, FileKind, Layout, TOOL,
 };
+use crate::output::to_stderr;
 use bouncemap_engine::grid::Shard;
 use clap::ValueEnum;
 use std::path::Path;
@@ -46,16 +51,36 @@ pub fn already_written<K: FileKind>(
             "--resume without --out: valid with --out FILE, the file to check and write".into(),
         )
     })?;
-    match check::<K>(Path::new(out), layout, header, shard) {
+    let path = Path::new(out);
+    match check::<K>(path, layout, header, shard) {
         Ok(done) => {
-            eprintln!("bouncemap: --resume: {done}: nothing to compute");
+            to_stderr(&format!(
+                "bouncemap: --resume: {done}: nothing to compute\n"
+            ));
             Ok(true)
         }
-        Err(why) => {
-            eprintln!("bouncemap: --resume: {why}; computing it");
+        // Not there, or not a regular file (a directory, a device: the output's own
+        // rules decide), or this run's own part damaged: computed.
+        Err(why) if !regular(path) || own_output::<K>(path, layout, header, shard) => {
+            to_stderr(&format!("bouncemap: --resume: {why}; computing it\n"));
             Ok(false)
         }
+        Err(why) => Err(InputError(format!(
+            "--resume: {why}, and it is not this run's output, so it is left as it is: valid an --out FILE that is missing or holds this part of this run"
+        ))),
     }
+}
+
+/// Whether `path` is a regular file (through a symlink).
+fn regular(path: &Path) -> bool {
+    std::fs::metadata(path).is_ok_and(|m| m.is_file())
+}
+
+/// Whether the file at `path` opens with this run's provenance ([`opens_as`]): a part of
+/// this run, maybe cut off or damaged, which the run may replace.
+fn own_output<K: FileKind>(path: &Path, layout: Layout, header: &K::Header, shard: Shard) -> bool {
+    read_existing_output(path, "the existing file", LARGE_FILE)
+        .is_ok_and(|text| opens_as::<K>(&text, layout, header, &shard_name(shard)))
 }
 
 /// Whether `path` already holds the part of kind `K` with settings `header` and shard
@@ -73,7 +98,7 @@ pub fn check<K: FileKind>(
     if std::fs::symlink_metadata(path).is_err_and(|e| e.kind() == std::io::ErrorKind::NotFound) {
         return Err(format!("no {shown} yet"));
     }
-    let text = read_text(path, "the existing file", LARGE_FILE).map_err(|e| e.0)?;
+    let text = read_existing_output(path, "the existing file", LARGE_FILE).map_err(|e| e.0)?;
     let part = read_part::<K>(&shown, &text)?;
     let kind = K::KIND;
     if part.layout != layout {

@@ -5,12 +5,13 @@
 
 use crate::config::flags::ScalingArgs;
 use crate::output::records::csv_writer;
+use crate::output::sink::Sink;
 use crate::output::Format;
 use bouncemap_engine::orbits::scaling::{
     scaling_row, Fit, ScalingRow as Row, EXACT_RANGE, SIM_BOUNCES, SIM_RANGE,
 };
 use serde::Serialize;
-use std::io::{self, BufWriter, Write};
+use std::io::Write;
 
 pub fn run(args: &ScalingArgs) -> anyhow::Result<()> {
     let (r, k) = (args.r, args.k);
@@ -20,92 +21,97 @@ pub fn run(args: &ScalingArgs) -> anyhow::Result<()> {
         .iter()
         .map(|&d| scaling_row(d, r, k))
         .collect::<Result<_, _>>()?;
-    let mut out = BufWriter::new(io::stdout().lock());
-    match args.format {
-        Format::Json => {
-            serde_json::to_writer(&mut out, &ScalingDoc::new(args, &rows))?;
-            writeln!(out)?;
-        }
-        Format::Csv => {
-            let mut w = csv_writer(&mut out, &ScalingRow::HEADER)?;
-            for row in &rows {
-                w.serialize(ScalingRow::from(row))?;
+    let mut out = Sink::stdout();
+    let written = (|| -> anyhow::Result<()> {
+        match args.format {
+            Format::Json => {
+                serde_json::to_writer(&mut out, &ScalingDoc::new(args, &rows))?;
+                writeln!(out)?;
             }
-            w.flush()?;
-        }
-        Format::Text => {
-            writeln!(out, "log10 dT = a_T log10 dkappa + b_T,  log10 dt = a_t log10 dkappa + b_t   (r = {r}, k = {k}, table fd:D)")?;
-            writeln!(
-                out,
-                "exact:     {} exact (2,{}) solutions, dkappa log-spaced in [{:e}, {:e}]",
-                EXACT_RANGE.2,
-                2 * k,
-                EXACT_RANGE.0,
-                EXACT_RANGE.1
-            )?;
-            writeln!(out, "simulated: {} orbits of the exact map from the (1,{k}) solution moved by 1e-3, dkappa log-spaced in [{:e}, {:e}], up to {SIM_BOUNCES} impacts each", SIM_RANGE.2, SIM_RANGE.0, SIM_RANGE.1)?;
-            writeln!(out, "analytic:  b_T, b_t of the corrected approximation (f', f''' at alpha_PD); printed: the paper's Eqs. (bT), (bt)")?;
-            writeln!(
-                out,
-                "{:>8}  {:<11} {:>8} {:>8} {:>8} {:>8}",
-                "D", "source", "a_T", "b_T", "a_t", "b_t"
-            )?;
-            let f = |x: Option<f64>| x.map_or("-".to_string(), |v| format!("{v:.4}"));
-            for row in &rows {
-                let lines: [(&str, [Option<f64>; 4]); 5] = [
-                    ("exact", fits4(row.exact)),
-                    ("simulated", fits4(row.sim)),
-                    (
-                        "analytic",
-                        [
-                            Some(1.0),
-                            row.corrected_analytic.map(|a| a.0),
-                            Some(0.5),
-                            row.corrected_analytic.map(|a| a.1),
-                        ],
-                    ),
-                    (
-                        "printed",
-                        [
-                            Some(1.0),
-                            Some(row.paper_analytic.0),
-                            Some(0.5),
-                            Some(row.paper_analytic.1),
-                        ],
-                    ),
-                    (
-                        "paper fit",
-                        row.paper_fit
-                            .map_or([None; 4], |p| [Some(p.0), Some(p.1), Some(p.2), Some(p.3)]),
-                    ),
-                ];
-                for (name, v) in lines {
-                    if name == "paper fit" && row.paper_fit.is_none() {
-                        continue;
+            Format::Csv => {
+                let mut w = csv_writer(&mut out, &ScalingRow::HEADER)?;
+                for row in &rows {
+                    w.serialize(ScalingRow::from(row))?;
+                }
+                w.flush()?;
+            }
+            Format::Text => {
+                writeln!(out, "log10 dT = a_T log10 dkappa + b_T,  log10 dt = a_t log10 dkappa + b_t   (r = {r}, k = {k}, table fd:D)")?;
+                writeln!(
+                    out,
+                    "exact:     {} exact (2,{}) solutions, dkappa log-spaced in [{:e}, {:e}]",
+                    EXACT_RANGE.2,
+                    2 * k,
+                    EXACT_RANGE.0,
+                    EXACT_RANGE.1
+                )?;
+                writeln!(out, "simulated: {} orbits of the exact map from the (1,{k}) solution moved by 1e-3, dkappa log-spaced in [{:e}, {:e}], up to {SIM_BOUNCES} impacts each", SIM_RANGE.2, SIM_RANGE.0, SIM_RANGE.1)?;
+                writeln!(out, "analytic:  b_T, b_t of the corrected approximation (f', f''' at alpha_PD); printed: the paper's Eqs. (bT), (bt)")?;
+                writeln!(
+                    out,
+                    "{:>8}  {:<11} {:>8} {:>8} {:>8} {:>8}",
+                    "D", "source", "a_T", "b_T", "a_t", "b_t"
+                )?;
+                let f = |x: Option<f64>| x.map_or("-".to_string(), |v| format!("{v:.4}"));
+                for row in &rows {
+                    let lines: [(&str, [Option<f64>; 4]); 5] = [
+                        ("exact", fits4(row.exact)),
+                        ("simulated", fits4(row.sim)),
+                        (
+                            "analytic",
+                            [
+                                Some(1.0),
+                                row.corrected_analytic.map(|a| a.0),
+                                Some(0.5),
+                                row.corrected_analytic.map(|a| a.1),
+                            ],
+                        ),
+                        (
+                            "printed",
+                            [
+                                Some(1.0),
+                                Some(row.paper_analytic.0),
+                                Some(0.5),
+                                Some(row.paper_analytic.1),
+                            ],
+                        ),
+                        (
+                            "paper fit",
+                            row.paper_fit.map_or([None; 4], |p| {
+                                [Some(p.0), Some(p.1), Some(p.2), Some(p.3)]
+                            }),
+                        ),
+                    ];
+                    for (name, v) in lines {
+                        if name == "paper fit" && row.paper_fit.is_none() {
+                            continue;
+                        }
+                        writeln!(
+                            out,
+                            "{:>8}  {:<11} {:>8} {:>8} {:>8} {:>8}",
+                            row.d,
+                            name,
+                            f(v[0]),
+                            f(v[1]),
+                            f(v[2]),
+                            f(v[3])
+                        )?;
                     }
-                    writeln!(
-                        out,
-                        "{:>8}  {:<11} {:>8} {:>8} {:>8} {:>8}",
-                        row.d,
-                        name,
-                        f(v[0]),
-                        f(v[1]),
-                        f(v[2]),
-                        f(v[3])
-                    )?;
-                }
-                if let Some(worst) = row.sim_points.iter().map(|p| p.settled_to).reduce(f64::max) {
-                    writeln!(
-                        out,
-                        "{:>8}  simulated orbits settled to {worst:.1e} in phase",
-                        row.d
-                    )?;
+                    if let Some(worst) =
+                        row.sim_points.iter().map(|p| p.settled_to).reduce(f64::max)
+                    {
+                        writeln!(
+                            out,
+                            "{:>8}  simulated orbits settled to {worst:.1e} in phase",
+                            row.d
+                        )?;
+                    }
                 }
             }
         }
-    }
-    out.flush()?;
-    Ok(())
+        Ok(())
+    })();
+    out.end(written)
 }
 
 fn fits4(f: Option<(Fit, Fit)>) -> [Option<f64>; 4] {

@@ -33,22 +33,16 @@ fn value_bytes(keep: usize) -> u64 {
 
 pub fn run(args: &SweepArgs) -> anyhow::Result<()> {
     let spec = config::sweep::sweep_spec(args)?;
+    if args.run.check.check {
+        return check(args, &spec);
+    }
     let threads = config::threads(args.run.workers.threads)?;
     let header = SweepHeader::from(&spec);
     if resume::already_written::<SweepFile>(&args.part, args.format, &header, spec.shard)? {
         return Ok(());
     }
-    // Values in flight: as many as the budget holds, at least two per worker.
-    let per_value = value_bytes(spec.keep);
-    let window = (WINDOW_BYTES / per_value).clamp(2 * threads as u64, 1 << 16) as usize;
-    // Per worker: its value's ring of kept events and the periodicity detector.
-    let max_period = spec.periodicity.map_or(0, |p| p.max_period) as u64;
-    let per_worker =
-        spec.keep as u64 * 32 + (2 * (64 + max_period) + max_period).next_power_of_two() * 32;
-    check_memory(
-        window as u64 * per_value + threads as u64 * per_worker,
-        "this sweep",
-    )?;
+    let (window, memory) = budget(&spec, threads);
+    check_memory(memory, "this sweep")?;
     let mut sink = Sink::open(args.part.output.out.as_deref()).map_err(InputError)?;
     let executor = Executor::new(threads)?;
     let result = match resume::part_layout(args.format) {
@@ -57,6 +51,46 @@ pub fn run(args: &SweepArgs) -> anyhow::Result<()> {
     };
     result.map_err(|e| sink.describe(e))?;
     sink.finish()
+}
+
+/// The values in flight (as many as [`WINDOW_BYTES`] holds, at least two per worker)
+/// and a bound on the run's memory.
+fn budget(spec: &SweepSpec, threads: usize) -> (usize, u64) {
+    let per_value = value_bytes(spec.keep);
+    let window = (WINDOW_BYTES / per_value).clamp(2 * threads as u64, 1 << 16) as usize;
+    // Per worker: its value's ring of kept events and the periodicity detector.
+    let max_period = spec.periodicity.map_or(0, |p| p.max_period) as u64;
+    let per_worker =
+        spec.keep as u64 * 32 + (2 * (64 + max_period) + max_period).next_power_of_two() * 32;
+    (
+        window,
+        window as u64 * per_value + threads as u64 * per_worker,
+    )
+}
+
+/// `--check`: what the run would do, checked as it would be, nothing computed.
+fn check(args: &SweepArgs, spec: &SweepSpec) -> anyhow::Result<()> {
+    let header = SweepHeader::from(spec);
+    let mut plan = vec![format!(
+        "sweep of {} values (shard {} of {}): {}",
+        spec.shard_values(),
+        shard_name(spec.shard),
+        spec.steps,
+        spec_text(&header)
+    )];
+    let (threads, line) = config::threads_plan(args.run.workers.threads);
+    plan.push(line);
+    plan.push(config::memory_plan(budget(spec, threads).1));
+    let what = match resume::part_layout(args.format) {
+        Some(l) => l.name(),
+        None => "the braille diagram",
+    };
+    if resume::already_written::<SweepFile>(&args.part, args.format, &header, spec.shard)? {
+        plan.push("--resume: the part is already there: nothing to compute".into());
+    } else {
+        plan.push(super::output_plan(args.part.output.out.as_deref(), what)?);
+    }
+    super::print_plan(&plan)
 }
 
 // The tests below read back the parts a sweep writes, as `--resume` does.

@@ -5,6 +5,7 @@
 use crate::config;
 use crate::config::flags::TwoCycleArgs;
 use crate::output::records::{csv_writer, ComplexRecord, FixedSolution};
+use crate::output::sink::Sink;
 use crate::output::text::complex;
 use crate::output::Format;
 use bouncemap_engine::orbits::two_cycle::period_doubling_candidate;
@@ -13,7 +14,7 @@ use bouncemap_engine::orbits::{
     TwoCycle,
 };
 use serde::Serialize;
-use std::io::{self, BufWriter, Write};
+use std::io::{self, Write};
 
 /// Impacts iterated to confirm a stable solution.
 pub const CHECK_BOUNCES: u64 = 200_000;
@@ -30,44 +31,45 @@ pub fn run(args: &TwoCycleArgs) -> anyhow::Result<()> {
         .filter(|tc| tc.stable && tc.admissible)
         .and_then(|tc| map_check(&sys, tc, CHECK_PERTURBATION, CHECK_BOUNCES));
     let border = border_collision(sys.table(), sys.r(), args.k);
-    let mut out = BufWriter::new(io::stdout().lock());
-    match args.format {
-        Format::Json => {
-            let doc = TwoCycleDoc {
-                table: sys.table().name(),
-                alpha: sys.alpha(),
-                r: sys.r(),
-                k: args.k,
-                kappa_c: sys.kappa_c(),
-                fixed: fp.as_ref().map(FixedSolution::from),
-                found: result.is_ok(),
-                reason: result.as_ref().err().map(|e| Reason {
-                    code: e.as_str(),
-                    message: e.to_string(),
-                }),
-                two_cycle: result.as_ref().ok().map(|tc| CycleRecord::new(tc, check)),
-                border_collision: BorderRecord::from(&border),
-            };
-            serde_json::to_writer(&mut out, &doc)?;
-            writeln!(out)?;
-        }
-        Format::Csv => {
-            let mut w = csv_writer(&mut out, &TwoCycleRow::HEADER)?;
-            w.serialize(TwoCycleRow::from(result.as_ref().ok()))?;
-            w.flush()?;
-        }
-        Format::Text => {
-            writeln!(
-                out,
-                "table {}  alpha {}  r {}  k {}  kappa_c = {:.15}",
-                sys.table().name(),
-                sys.alpha(),
-                sys.r(),
-                args.k,
-                sys.kappa_c()
-            )?;
-            if let Some(p) = &fp {
+    let mut out = Sink::stdout();
+    let written = (|| -> anyhow::Result<()> {
+        match args.format {
+            Format::Json => {
+                let doc = TwoCycleDoc {
+                    table: sys.table().name(),
+                    alpha: sys.alpha(),
+                    r: sys.r(),
+                    k: args.k,
+                    kappa_c: sys.kappa_c(),
+                    fixed: fp.as_ref().map(FixedSolution::from),
+                    found: result.is_ok(),
+                    reason: result.as_ref().err().map(|e| Reason {
+                        code: e.as_str(),
+                        message: e.to_string(),
+                    }),
+                    two_cycle: result.as_ref().ok().map(|tc| CycleRecord::new(tc, check)),
+                    border_collision: BorderRecord::from(&border),
+                };
+                serde_json::to_writer(&mut out, &doc)?;
+                writeln!(out)?;
+            }
+            Format::Csv => {
+                let mut w = csv_writer(&mut out, &TwoCycleRow::HEADER)?;
+                w.serialize(TwoCycleRow::from(result.as_ref().ok()))?;
+                w.flush()?;
+            }
+            Format::Text => {
                 writeln!(
+                    out,
+                    "table {}  alpha {}  r {}  k {}  kappa_c = {:.15}",
+                    sys.table().name(),
+                    sys.alpha(),
+                    sys.r(),
+                    args.k,
+                    sys.kappa_c()
+                )?;
+                if let Some(p) = &fp {
+                    writeln!(
                     out,
                     "(1,{}) solution: phase {:.15}, f'' = {:.12}, f''' = {:.12}, delta_kappa = {:.6e} ({})",
                     args.k,
@@ -77,12 +79,12 @@ pub fn run(args: &TwoCycleArgs) -> anyhow::Result<()> {
                     p.delta_kappa,
                     p.classification.as_str()
                 )?;
-            }
-            match &result {
-                Ok(tc) => write_cycle_text(&mut out, tc, check)?,
-                Err(e) => writeln!(out, "no (2,{}) solution: {e}", 2 * args.k)?,
-            }
-            match &border {
+                }
+                match &result {
+                    Ok(tc) => write_cycle_text(&mut out, tc, check)?,
+                    Err(e) => writeln!(out, "no (2,{}) solution: {e}", 2 * args.k)?,
+                }
+                match &border {
                 Ok(b) => writeln!(
                     out,
                     "border collision: the branch born at alpha_PD = {:.15} reaches t = {} at alpha = {:.15} (phases {:.12}, {:.12})",
@@ -90,10 +92,11 @@ pub fn run(args: &TwoCycleArgs) -> anyhow::Result<()> {
                 )?,
                 Err(e) => writeln!(out, "border collision: none ({e})")?,
             }
+            }
         }
-    }
-    out.flush()?;
-    Ok(())
+        Ok(())
+    })();
+    out.end(written)
 }
 
 fn rel(approx: f64, exact: f64) -> f64 {

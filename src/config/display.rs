@@ -1,6 +1,7 @@
 //! How pictures are shown: the colour choice (`--color`, `color =` in the config file).
 //! The glyphs (`--marker`) are [`crate::output::hitgrid::Marker`].
 
+use crate::output::text::quoted;
 use std::fmt;
 
 /// How many colours the terminal is assumed to have.
@@ -33,7 +34,8 @@ impl ColorChoice {
             "256" => Ok(ColorChoice::Ansi256),
             "truecolor" | "24bit" => Ok(ColorChoice::TrueColor),
             _ => Err(format!(
-                "'{s}' is not a colour mode: valid auto, never, 16, 256, truecolor"
+                "{} is not a colour mode: valid auto, never, 16, 256, truecolor",
+                quoted(s)
             )),
         }
     }

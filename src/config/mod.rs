@@ -139,6 +139,36 @@ pub fn threads_from(
     }
 }
 
+/// The worker threads a run would have, as a line of a `--check` plan: the count, or
+/// why this machine would refuse it (not a refusal: the run may be meant for another).
+pub fn threads_plan(requested: Option<usize>) -> (usize, String) {
+    let cores = bouncemap_engine::jobs::available_cores();
+    match threads(requested) {
+        Ok(n) => (n, format!("{n} worker threads ({cores} cores here)")),
+        Err(e) => (
+            requested.unwrap_or(cores),
+            format!("worker threads refused on this machine ({e}); checked again where it runs"),
+        ),
+    }
+}
+
+/// A memory bound as a line of a `--check` plan, with what this machine has.
+pub fn memory_plan(estimate: u64) -> String {
+    match available_memory() {
+        Some(avail) if estimate > avail => format!(
+            "memory: about {} at most, more than the {} available here (refused if run here)",
+            bytes(estimate),
+            bytes(avail)
+        ),
+        Some(avail) => format!(
+            "memory: about {} at most ({} available here)",
+            bytes(estimate),
+            bytes(avail)
+        ),
+        None => format!("memory: about {} at most", bytes(estimate)),
+    }
+}
+
 /// Memory this machine can still give, in bytes (MemAvailable of /proc/meminfo), if
 /// known.
 pub fn available_memory() -> Option<u64> {

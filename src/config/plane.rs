@@ -6,6 +6,7 @@ use super::rules::{self, Rule};
 use super::sweep::shard;
 use super::table_spec::TableSpec;
 use super::InputError;
+use crate::output::text::quoted;
 use bouncemap_engine::grid::Axis;
 use bouncemap_engine::grid::Shard;
 use bouncemap_engine::grid::SweepParam;
@@ -22,7 +23,7 @@ fn rule_of(p: SweepParam) -> Rule {
 
 /// `PARAM:LO..HI` with PARAM alpha, r or d and n pixels.
 pub fn parse_axis(flag: &str, s: &str, n: usize) -> Result<Axis, InputError> {
-    let refuse = |msg: String| InputError(format!("--{flag} {s}: {msg}"));
+    let refuse = |msg: String| InputError(format!("--{flag} {}: {msg}", quoted(s)));
     let (name, window) = s.trim().split_once(':').ok_or_else(|| {
         refuse(
             "not an axis: valid PARAM:LO..HI with PARAM alpha, r or d, e.g. alpha:0.45..0.6".into(),

@@ -97,8 +97,8 @@ pub fn preset(name: &str) -> Result<Preset, InputError> {
         .ok_or_else(|| {
             let names: Vec<&str> = PRESETS.iter().map(|p| p.0).collect();
             InputError(format!(
-                "unknown preset '{}': valid {}",
-                super::table_spec::escape(name),
+                "unknown preset {}: valid {}",
+                crate::output::text::quoted(name),
                 names.join(", ")
             ))
         })?;

@@ -7,6 +7,7 @@
 //! Refusals from [`Rule::parse`] name the value and the range but not the setting:
 //! each front end puts its own name in front (`--alpha`, `defaults.alpha`, `α`).
 
+use crate::output::text::quoted;
 use bouncemap_engine::limits::{self, Limit};
 
 /// One settable number.
@@ -23,22 +24,38 @@ pub struct Rule {
 }
 
 impl Rule {
-    /// Parse typed text: a number (whole numbers may be written as 5e6), then check it.
+    /// Parse typed text: a decimal number (whole numbers may be written as 5e6), then
+    /// check it. The one parser of every number a user types: NaN, infinities, numbers
+    /// beyond f64, hexadecimal, digit separators and empty text are refused, each with
+    /// the valid range; −0 is 0.
     pub fn parse(&self, text: &str) -> Result<f64, String> {
         let t = text.trim();
-        let x: f64 = t.parse().map_err(|_| {
-            let what = if self.limit.whole {
-                "a whole number"
-            } else {
-                "a number"
-            };
-            format!("'{t}' is not {what}: valid {}", self.limit.text)
-        })?;
+        let what = if self.limit.whole {
+            "a whole number"
+        } else {
+            "a number"
+        };
+        let decimal = !t.is_empty()
+            && t.chars()
+                .all(|c| c.is_ascii_digit() || matches!(c, '+' | '-' | '.' | 'e' | 'E'));
+        let x: f64 = t
+            .parse()
+            .ok()
+            .filter(|_| decimal)
+            .ok_or_else(|| format!("{} is not {what}: valid {}", quoted(t), self.limit.text))?;
+        if !x.is_finite() {
+            return Err(format!(
+                "{} is out of range: valid {}",
+                quoted(t),
+                self.limit.text
+            ));
+        }
         self.check(x)
     }
 
-    /// Check a number against the range.
+    /// Check a number against the range (−0 is 0).
     pub fn check(&self, x: f64) -> Result<f64, String> {
+        let x = if x == 0.0 { 0.0 } else { x };
         if self.limit.contains(x) {
             Ok(x)
         } else {
@@ -62,7 +79,7 @@ impl Rule {
         move |s| {
             let x = self.parse(s)?;
             T::try_from(x as u64)
-                .map_err(|_| format!("{s} is out of range: valid {}", self.limit.text))
+                .map_err(|_| format!("{} is out of range: valid {}", quoted(s), self.limit.text))
         }
     }
 }
@@ -89,6 +106,9 @@ pub const D: Rule = rule("d", "D", limits::D, 0.1);
 pub const K: Rule = rule("k", "k", limits::K, 1.0);
 /// Initial phase t̂0.
 pub const T0: Rule = rule("t0", "t̂0", limits::PHASE, 0.0);
+/// Initial velocity v0 (its default, f'(t0) + 0.5, depends on the table; this one is
+/// only for completeness).
+pub const V0: Rule = rule("v0", "v0", limits::VELOCITY, 0.5);
 /// Initial height above the table.
 pub const Z0: Rule = rule("z0", "z0", limits::HEIGHT, 0.0);
 /// Values in a sweep (the paper's 1000).
@@ -127,22 +147,9 @@ pub const PLANE_TRANSIENT: Rule = rule(
     limits::TRANSIENT,
     bouncemap_engine::plane::DEFAULT_TRANSIENT as f64,
 );
-/// Top W of the launch velocities of basins and of sweep starts (0: the default
-/// max(1, 2α·max|F'|)).
-pub const W_MAX: Rule = rule(
-    "w-max",
-    "W",
-    Limit {
-        name: "w-max",
-        lo: 0.0,
-        hi: 1000.0,
-        lo_open: true,
-        hi_open: false,
-        whole: false,
-        text: "(0, 1000] (launch velocity relative to the table)",
-    },
-    1.0,
-);
+/// Top W of the launch velocities of basins and of sweep starts (the default is
+/// computed per system: max(1, 2α·max|F'|), clamped into the range).
+pub const W_MAX: Rule = rule("w-max", "W", limits::W_MAX, 1.0);
 /// Initial conditions per value of a sweep.
 pub const STARTS: Rule = rule(
     "starts",
@@ -308,6 +315,26 @@ mod tests {
             .starts_with("'abc' is not a number"));
         // Whole numbers may use exponent notation; fractions are refused.
         assert_eq!(TRANSIENT.parse("1e7"), Ok(1e7));
+        // Not numbers, or beyond every range, each refused with the range.
+        for bad in [
+            "nan", "NaN", "inf", "-inf", "infinity", "", " ", "0x10", "1_000", "1,5", "+",
+        ] {
+            let e = ALPHA.parse(bad).unwrap_err();
+            assert!(e.contains("is not a number: valid (0, 1000]"), "{bad}: {e}");
+        }
+        for big in ["1e400", "-1e400"] {
+            let e = ALPHA.parse(big).unwrap_err();
+            assert!(e.contains("is out of range: valid (0, 1000]"), "{big}: {e}");
+        }
+        let long = "9".repeat(5000);
+        let e = ALPHA.parse(&long).unwrap_err();
+        assert!(e.len() < 120 && e.contains("(5000 characters)"), "{e}");
+        // −0 is 0: refused where 0 is, accepted as +0 where it is.
+        assert_eq!(T0.parse("-0").map(f64::to_bits), Ok(0f64.to_bits()));
+        assert!(ALPHA
+            .parse("-0")
+            .unwrap_err()
+            .starts_with("0 is out of range"));
         assert!(TRANSIENT.parse("2.5").is_err());
         assert!(K.parse("0").is_err() && K.parse("100").is_ok() && K.parse("101").is_err());
         let whole = TRANSIENT.whole::<u64>();
@@ -322,6 +349,7 @@ mod tests {
             D,
             K,
             T0,
+            V0,
             Z0,
             STEPS,
             TRANSIENT,

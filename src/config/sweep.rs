@@ -7,6 +7,7 @@ use super::rules::{self, Rule};
 use super::table_spec::TableSpec;
 use super::InputError;
 use crate::config::flags::{ShardArg, SweepArgs, SweepSpecArgs};
+use crate::output::text::quoted;
 use bouncemap_engine::grid::Shard;
 use bouncemap_engine::run::detect::Periodicity;
 use bouncemap_engine::sweep::{InitialSpec, SweepSpec, Warm};
@@ -31,20 +32,21 @@ fn parse_setting(p: Param, s: &str) -> Result<Setting, InputError> {
     let (flag, rule) = flag_rule(p);
     let one = |t: &str| {
         rule.parse(t)
-            .map_err(|e| InputError(format!("--{flag} {s}: {e}")))
+            .map_err(|e| InputError(format!("--{flag} {}: {e}", quoted(s))))
     };
     if let Some((a, b)) = s.split_once("..") {
         let (lo, hi) = (one(a)?, one(b)?);
         if lo > hi {
             return Err(InputError(format!(
-                "--{flag} {s}: the window is empty: valid LO..HI with LO ≤ HI"
+                "--{flag} {}: the window is empty: valid LO..HI with LO ≤ HI",
+                quoted(s)
             )));
         }
         Ok(Setting::Window(lo, hi))
     } else {
         let x = rule
             .parse(s)
-            .map_err(|e| InputError(format!("--{flag} {s}: {e} (or a window LO..HI)")))?;
+            .map_err(|e| InputError(format!("--{flag} {}: {e} (or a window LO..HI)", quoted(s))))?;
         Ok(Setting::Fixed(x))
     }
 }

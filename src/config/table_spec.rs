@@ -47,8 +47,8 @@ impl TableSpec {
             return Ok(TableSpec::File(s.to_string()));
         }
         Err(format!(
-            "unknown table '{}': valid {}",
-            escape(s),
+            "unknown table {}: valid {}",
+            crate::output::text::quoted(s),
             table_range()
         ))
     }

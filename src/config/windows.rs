@@ -2,12 +2,14 @@
 //! `--d LO..HI:N`, each end checked by its rule in [`super::rules`].
 
 use super::rules;
+use crate::output::text::quoted;
 
 /// `--alpha LO..HI` of `continue`: both in α's range, LO < HI.
 pub fn parse_alpha_window(s: &str) -> Result<(f64, f64), String> {
     let (lo, hi) = s.split_once("..").ok_or_else(|| {
         format!(
-            "'{s}' is not a window: valid LO..HI, each in {}",
+            "{} is not a window: valid LO..HI, each in {}",
+            quoted(s),
             rules::ALPHA.limit.text
         )
     })?;
@@ -29,7 +31,8 @@ pub struct DFamily(pub Vec<f64>);
 pub fn parse_d_family(s: &str) -> Result<DFamily, String> {
     let bad = || {
         format!(
-            "'{s}' is not a family: valid LO..HI:N, D in {}, N a whole number in [1, 1000]",
+            "{} is not a family: valid LO..HI:N, D in {}, N a whole number in [1, 1000]",
+            quoted(s),
             rules::D.limit.text
         )
     };

@@ -8,7 +8,10 @@
 //!   joins: provenance, hashes, shards, csv and json layouts, the streaming writer, the
 //!   reader that checks a part and the join; [`sweep_file`] and [`plane_file`] are its
 //!   two kinds (their rows, and where a row belongs).
-//! * [`sink`]: standard output, or a file written atomically (temporary, then rename).
+//! * [`sink`]: the one output layer: standard output (a closed pipe ends the run
+//!   quietly, any other write error fails it) or a file written atomically (temporary,
+//!   then rename), and the `--out` rule (never an input of the run). Notes and
+//!   progress go to stderr through [`to_stderr`], which never fails.
 //! * [`hitgrid`]: the one hit-count grid behind every text picture; [`diagram`]: its
 //!   text form with axes and labels (`sweep --format braille`).
 //! * [`basin_map`]: a basin picture on character cells, and each attractor's texture
@@ -36,6 +39,13 @@ pub mod text;
 
 pub use bouncemap_figures::classes;
 use clap::ValueEnum;
+use std::io::Write;
+
+/// `text` on stderr (a note, a refusal, progress): a stderr that cannot be written
+/// (closed, full) loses the text, it never fails or stops the run.
+pub fn to_stderr(text: &str) {
+    let _ = std::io::stderr().lock().write_all(text.as_bytes());
+}
 
 /// Output format of a headless command.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, Default)]

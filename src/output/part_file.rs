@@ -405,6 +405,38 @@ pub struct Part<K: FileKind> {
     pub values: Vec<K::Value>,
 }
 
+/// Whether `text` opens as a file of this very run would: kind `K`, `layout`, this
+/// tool, the specification `header` (by its hash) and shard `shard`, read from the
+/// provenance at its head only (the first lines of a csv file, the first object of a
+/// json one), so a part of this run that was cut off or damaged later is still
+/// recognised as its own, and anything else (another run's part, a file not written by
+/// this tool) is not.
+pub fn opens_as<K: FileKind>(text: &str, layout: Layout, header: &K::Header, shard: &str) -> bool {
+    let hash = spec_hash(&spec_text(header));
+    match layout {
+        Layout::Csv => {
+            let mut lines = text.lines();
+            let tool_line = format!("# {TOOL} {}", K::KIND);
+            lines.next() == Some(tool_line.as_str())
+                && lines.next().is_some_and(|l| l.starts_with("# spec "))
+                && lines.next() == Some(format!("# spec-hash {hash}").as_str())
+                && lines.next() == Some(format!("# shard {shard}").as_str())
+        }
+        Layout::Json => {
+            let Some(rest) = text.strip_prefix("{\"provenance\":") else {
+                return false;
+            };
+            let Some(Ok(prov)) = serde_json::Deserializer::from_str(rest)
+                .into_iter::<serde_json::Value>()
+                .next()
+            else {
+                return false;
+            };
+            prov["tool"] == TOOL && prov["spec_hash"] == hash.as_str() && prov["shard"] == shard
+        }
+    }
+}
+
 /// Read and check part `name` of kind `K`: its provenance, its specification against
 /// its hash, every row (complete, well-formed, inside its shard, where its place says),
 /// its end line or checksum, and its count. Refusals are one line naming the file (and

@@ -1,24 +1,46 @@
-//! Where output goes: standard output, or a file written atomically.
+//! The one output layer: standard output, or a file written atomically, and the rules
+//! every command's output follows.
 //!
-//! A file is written to a temporary file in the same directory and renamed into place
-//! only when complete ([`Sink::finish`]): an interrupted run, a second process writing
-//! the same path, or a failed write leaves whatever was there before untouched and no
-//! temporary behind (it is removed when the sink is dropped unfinished, and on SIGTERM,
-//! SIGINT or SIGHUP by [`clean_up_on_signals`]). A path that exists and is not a regular
-//! file (a device such as /dev/null or /dev/full, a FIFO) is written directly.
+//! * A file is written to a temporary file in the same directory and renamed into place
+//!   only when complete ([`Sink::finish`]): an interrupted run, a second process writing
+//!   the same path, or a failed write leaves whatever was there before untouched and no
+//!   temporary behind (it is removed when the sink is dropped unfinished, and on
+//!   SIGTERM, SIGINT or SIGHUP by [`clean_up_on_signals`]). A path that exists and is
+//!   not a regular file (a device such as /dev/null or /dev/full, a FIFO) is written
+//!   directly.
+//! * The `--out` rule ([`AtomicFile::create`]): an output is never a file this run read
+//!   (the input files noted by [`note_input`], compared as files, so a symlink, a hard
+//!   link or `./a` is the same file) nor another output of this run; it is created (and
+//!   so checked writable) before any work starts.
+//! * Standard output ([`Sink::stdout`]): a reader that goes away (`| head`) ends the
+//!   run quietly, status 0 and nothing on stderr ([`is_closed_output`]); a long
+//!   computation notices it between its batches ([`check_stdout`]) instead of at its
+//!   next write. Any other write error (`> /dev/full`) is reported and fails the run.
 //!
-//! Exit status: an output that cannot be created (missing directory, no permission) is
-//! bad input (the caller reports it with status 2) and is refused before any computing;
-//! a write that fails afterwards (a full disk, an I/O error) is status 1. Either way one
-//! line names the file.
+//! Exit status: an output that cannot be created (missing directory, no permission, an
+//! input of the run) is bad input (the caller reports it with status 2) and is refused
+//! before any computing; a write that fails afterwards (a full disk, an I/O error) is
+//! status 1. Either way one line names the file (or standard output).
 
+use super::text::shown_path;
 use std::fs::File;
 use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Mutex;
 
 /// Temporary files being written, removed if the process is stopped by a signal.
 static TEMPORARIES: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+/// The files this run read (device and inode, and the name it was given by), which no
+/// output may replace.
+static INPUTS: Mutex<Vec<(u64, u64, String)>> = Mutex::new(Vec::new());
+
+/// The files this run writes (where they really are), none of which may be written twice.
+static OUTPUTS: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+/// Whether this run's results go to standard output.
+static STDOUT_IS_OUTPUT: AtomicBool = AtomicBool::new(false);
 
 fn register(p: &Path) {
     TEMPORARIES
@@ -32,6 +54,47 @@ fn unregister(p: &Path) {
         .lock()
         .unwrap_or_else(|e| e.into_inner())
         .retain(|q| q != p);
+}
+
+/// Note that this run reads `path` (shown as `shown` in refusals): no output may
+/// replace it. Called by the one reader of input files.
+pub fn note_input(path: &Path, shown: &str) {
+    use std::os::unix::fs::MetadataExt;
+    if let Ok(m) = std::fs::metadata(path) {
+        INPUTS.lock().unwrap_or_else(|e| e.into_inner()).push((
+            m.dev(),
+            m.ino(),
+            shown.to_string(),
+        ));
+    }
+}
+
+/// The input `path` is the same file as, if any.
+fn input_at(path: &Path) -> Option<String> {
+    use std::os::unix::fs::MetadataExt;
+    let m = std::fs::metadata(path).ok()?;
+    INPUTS
+        .lock()
+        .unwrap_or_else(|e| e.into_inner())
+        .iter()
+        .find(|(dev, ino, _)| *dev == m.dev() && *ino == m.ino())
+        .map(|(.., shown)| shown.clone())
+}
+
+/// Where `path` really is: its directory resolved (symlinks, `.`, `..`), then the file
+/// itself if it is a symlink.
+fn real_path(path: &Path) -> PathBuf {
+    if let Ok(p) = std::fs::canonicalize(path) {
+        return p;
+    }
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    match (std::fs::canonicalize(dir), path.file_name()) {
+        (Ok(d), Some(n)) => d.join(n),
+        _ => path.to_path_buf(),
+    }
 }
 
 /// On SIGTERM, SIGINT or SIGHUP: remove every temporary file being written, then exit
@@ -61,14 +124,21 @@ pub struct AtomicFile {
     target: PathBuf,
     /// The temporary file; None when the target is written directly (not a regular file).
     temp: Option<PathBuf>,
+    /// Where the file really is, held as an output of this run until it is dropped.
+    claimed: Option<PathBuf>,
     out: BufWriter<File>,
 }
 
 impl AtomicFile {
     /// Start writing `path`. Refused, with the reason, if its directory is missing or
-    /// not writable (bad input: status 2).
+    /// not writable, if it is a file this run reads or another output of this run, or
+    /// if it is a FIFO nobody reads (bad input: status 2).
     pub fn create(path: &Path) -> Result<AtomicFile, String> {
-        let shown = path.display();
+        use std::os::unix::fs::{FileTypeExt, OpenOptionsExt};
+        if path.as_os_str().is_empty() {
+            return Err("an empty path: valid a file path".into());
+        }
+        let shown = shown_path(path);
         let bad = |e: io::Error| format!("cannot create {shown}: {e}");
         if let Ok(meta) = std::fs::metadata(path) {
             if meta.is_dir() {
@@ -77,18 +147,53 @@ impl AtomicFile {
                 ));
             }
             if !meta.is_file() {
-                // A device or a FIFO: no rename possible, write it as it is.
+                // A device or a FIFO: no rename possible, write it as it is. A FIFO is
+                // opened without waiting: one that nobody reads is refused, not waited on.
+                let fifo = meta.file_type().is_fifo();
                 let f = std::fs::OpenOptions::new()
                     .write(true)
+                    .custom_flags(if fifo { libc::O_NONBLOCK } else { 0 })
                     .open(path)
-                    .map_err(bad)?;
+                    .map_err(|e| {
+                        if e.raw_os_error() == Some(libc::ENXIO) {
+                            format!("cannot create {shown}: a FIFO that nobody reads: valid a file, or a FIFO with a reader")
+                        } else {
+                            bad(e)
+                        }
+                    })?;
+                if fifo {
+                    use std::os::fd::AsRawFd;
+                    // Writes wait for the reader again.
+                    unsafe {
+                        let fd = f.as_raw_fd();
+                        let flags = libc::fcntl(fd, libc::F_GETFL);
+                        libc::fcntl(fd, libc::F_SETFL, flags & !libc::O_NONBLOCK);
+                    }
+                }
                 return Ok(AtomicFile {
                     target: path.to_path_buf(),
                     temp: None,
+                    claimed: None,
                     out: BufWriter::new(f),
                 });
             }
+            if let Some(input) = input_at(path) {
+                return Err(format!(
+                    "{shown}: it is {input}, an input of this run: valid a file that is none of its inputs"
+                ));
+            }
         }
+        let real = real_path(path);
+        {
+            let mut outputs = OUTPUTS.lock().unwrap_or_else(|e| e.into_inner());
+            if outputs.contains(&real) {
+                return Err(format!(
+                    "{shown} is already an output of this run: valid a file of its own for each output"
+                ));
+            }
+            outputs.push(real.clone());
+        }
+        let mut claim = Claim(Some(real));
         // An existing file is replaced where it really is (through a symlink).
         let target = std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf());
         let dir = match target.parent() {
@@ -112,6 +217,7 @@ impl AtomicFile {
                     return Ok(AtomicFile {
                         target,
                         temp: Some(temp),
+                        claimed: claim.0.take(),
                         out: BufWriter::with_capacity(1 << 16, f),
                     });
                 }
@@ -131,7 +237,7 @@ impl AtomicFile {
     /// Flush, sync and rename into place. A failure names the file (status 1) and
     /// leaves the old file as it was.
     pub fn commit(mut self) -> anyhow::Result<()> {
-        let shown = self.target.display().to_string();
+        let shown = shown_path(&self.target);
         let fail = |e: io::Error| anyhow::anyhow!("cannot write {shown}: {e}");
         self.out.flush().map_err(fail)?;
         if let Some(temp) = self.temp.take() {
@@ -167,10 +273,25 @@ impl Drop for AtomicFile {
             let _ = std::fs::remove_file(&temp);
             unregister(&temp);
         }
+        drop(Claim(self.claimed.take()));
     }
 }
 
-/// Standard output or an atomically written file.
+/// A path held in [`OUTPUTS`], given back when dropped.
+struct Claim(Option<PathBuf>);
+
+impl Drop for Claim {
+    fn drop(&mut self) {
+        if let Some(p) = self.0.take() {
+            OUTPUTS
+                .lock()
+                .unwrap_or_else(|e| e.into_inner())
+                .retain(|q| *q != p);
+        }
+    }
+}
+
+/// Standard output or an atomically written file: where every command writes.
 pub enum Sink {
     Stdout(BufWriter<io::StdoutLock<'static>>),
     File(AtomicFile),
@@ -184,28 +305,126 @@ impl Sink {
             Some(path) => AtomicFile::create(Path::new(path))
                 .map(Sink::File)
                 .map_err(|e| format!("--out: {e}")),
-            None => Ok(Sink::Stdout(BufWriter::with_capacity(
-                1 << 16,
-                io::stdout().lock(),
-            ))),
+            None => Ok(Sink::stdout()),
         }
     }
 
-    /// Flush, and put a file into place. Write errors name the file.
+    /// Standard output, for a command that writes there.
+    pub fn stdout() -> Sink {
+        STDOUT_IS_OUTPUT.store(true, Ordering::Relaxed);
+        Sink::Stdout(BufWriter::with_capacity(1 << 16, io::stdout().lock()))
+    }
+
+    /// Flush, and put a file into place. Write errors name the file (or standard
+    /// output); a closed standard output stays a closed pipe ([`is_closed_output`]).
     pub fn finish(self) -> anyhow::Result<()> {
         match self {
-            Sink::Stdout(mut o) => Ok(o.flush()?),
+            Sink::Stdout(mut o) => o.flush().map_err(|e| describe_stdout(e.into())),
             Sink::File(f) => f.commit(),
         }
     }
 
-    /// A write error with the destination named (stdout errors, such as a closed pipe,
-    /// pass unchanged).
-    pub fn describe(&self, e: anyhow::Error) -> anyhow::Error {
-        match self {
-            Sink::Stdout(_) => e,
-            Sink::File(f) => anyhow::anyhow!("cannot write {}: {e}", f.path().display()),
+    /// `written` (the result of writing everything) and then [`Self::finish`]: the
+    /// end of every command's output. A write error names the destination; a failed
+    /// file is not put into place.
+    pub fn end(self, written: anyhow::Result<()>) -> anyhow::Result<()> {
+        match written {
+            Ok(()) => self.finish(),
+            Err(e) => Err(self.describe(e)),
         }
+    }
+
+    /// A write error with the destination named (a closed pipe passes unchanged, to end
+    /// the run quietly).
+    pub fn describe(&self, e: anyhow::Error) -> anyhow::Error {
+        if is_closed_output(&e) {
+            return e;
+        }
+        match self {
+            Sink::Stdout(_) => describe_stdout(e),
+            Sink::File(f) => anyhow::anyhow!("cannot write {}: {e}", shown_path(f.path())),
+        }
+    }
+}
+
+fn describe_stdout(e: anyhow::Error) -> anyhow::Error {
+    if is_closed_output(&e) {
+        e
+    } else {
+        anyhow::anyhow!("cannot write standard output: {e}")
+    }
+}
+
+/// Whether `e` is a write to a pipe (or socket) that its reader has closed: the run
+/// ends quietly with status 0.
+pub fn is_closed_output(e: &anyhow::Error) -> bool {
+    e.chain().any(closed)
+}
+
+/// A broken pipe, however wrapped (an io error around a csv or json error around one).
+fn closed(e: &(dyn std::error::Error + 'static)) -> bool {
+    if let Some(io) = e.downcast_ref::<io::Error>() {
+        return io.kind() == io::ErrorKind::BrokenPipe
+            || io.get_ref().is_some_and(|inner| closed(inner));
+    }
+    if let Some(ce) = e.downcast_ref::<csv::Error>() {
+        return matches!(ce.kind(), csv::ErrorKind::Io(io) if closed(io));
+    }
+    if let Some(je) = e.downcast_ref::<serde_json::Error>() {
+        return je.io_error_kind() == Some(io::ErrorKind::BrokenPipe);
+    }
+    false
+}
+
+/// Err(BrokenPipe) if this run writes to standard output and its reader has gone (a
+/// pipe or socket closed at the other end): a long computation asks between batches and
+/// ends quietly at once instead of at its next write.
+pub fn check_stdout() -> io::Result<()> {
+    if STDOUT_IS_OUTPUT.load(Ordering::Relaxed) && stdout_closed() {
+        return Err(io::ErrorKind::BrokenPipe.into());
+    }
+    Ok(())
+}
+
+/// Whether standard output is a pipe or socket whose reader has gone.
+fn stdout_closed() -> bool {
+    if !stdout_kind().is_some_and(|k| k.pipe) {
+        return false;
+    }
+    // SAFETY: poll on descriptor 1 with a structure of its own.
+    unsafe {
+        let mut p = libc::pollfd {
+            fd: 1,
+            events: 0,
+            revents: 0,
+        };
+        libc::poll(&mut p, 1, 0) == 1 && p.revents & (libc::POLLERR | libc::POLLHUP) != 0
+    }
+}
+
+/// Whether this run's results stream into another program: they go to standard output
+/// and it is a pipe or a socket. Such a run's stderr carries only errors (no batch log),
+/// so a reader that stops early (`| head`) ends it with nothing on stderr.
+pub fn streams_to_program() -> bool {
+    STDOUT_IS_OUTPUT.load(Ordering::Relaxed) && stdout_kind().is_some_and(|k| k.pipe)
+}
+
+/// What standard output is: `pipe` for a pipe or socket.
+struct StdoutKind {
+    pipe: bool,
+}
+
+fn stdout_kind() -> Option<StdoutKind> {
+    // SAFETY: fstat on descriptor 1 into a structure of its own.
+    unsafe {
+        let mut st: libc::stat = std::mem::zeroed();
+        if libc::fstat(1, &mut st) != 0 {
+            return None;
+        }
+        let kind = st.st_mode & libc::S_IFMT;
+        Some(StdoutKind {
+            pipe: kind == libc::S_IFIFO || kind == libc::S_IFSOCK,
+        })
     }
 }
 

@@ -35,6 +35,34 @@ pub fn escape(text: &str) -> String {
         .collect()
 }
 
+/// What the user typed, for a refusal: quoted, control characters escaped, and cut to
+/// at most [`QUOTED_MAX`] characters (an ellipsis marks the cut), so a refusal stays one
+/// short line whatever was typed.
+pub fn quoted(text: &str) -> String {
+    let esc = escape(text);
+    if esc.chars().count() > QUOTED_MAX {
+        let head: String = esc.chars().take(QUOTED_MAX - 1).collect();
+        format!("'{head}…' ({} characters)", text.chars().count())
+    } else {
+        format!("'{esc}'")
+    }
+}
+
+/// A path for a message: control characters escaped, cut to 200 characters (an
+/// ellipsis marks the cut).
+pub fn shown_path(path: &std::path::Path) -> String {
+    let text = escape(&path.display().to_string());
+    if text.chars().count() > 200 {
+        let head: String = text.chars().take(199).collect();
+        format!("{head}…")
+    } else {
+        text
+    }
+}
+
+/// The longest text [`quoted`] shows whole.
+pub const QUOTED_MAX: usize = 40;
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -47,5 +75,14 @@ mod tests {
         assert_eq!(significant(0.0, 4), "0.000");
         assert_eq!(significant(1.5e-300, 3), "1.50e-300");
         assert_eq!(shortest(1e300), "1e300");
+    }
+
+    #[test]
+    fn typed_text_is_quoted_escaped_and_cut() {
+        assert_eq!(quoted("0.5"), "'0.5'");
+        assert_eq!(quoted("a\nb"), "'a\\nb'");
+        let long = quoted(&"1".repeat(5000));
+        assert!(long.ends_with("…' (5000 characters)"), "{long}");
+        assert!(long.chars().count() < 70, "{long}");
     }
 }

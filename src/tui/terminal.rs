@@ -1,8 +1,15 @@
 //! The terminal: raw mode and the alternate screen on entry, and their undoing on every
 //! way out — normal quit, panic (a hook restores before the message is printed), and
-//! SIGTERM/SIGHUP/SIGINT (a flag the event loop checks several times a second; the
-//! process then exits with status 128 + the signal's number, as a shell expects) — and
-//! around a stop (Ctrl-Z, SIGTSTP): restored while stopped, taken back on `fg`.
+//! every signal whose default action ends the process ([`signal_flag`], the one place
+//! signals that end the application are handled): SIGTERM, SIGHUP and SIGINT set a
+//! flag the event loop checks several times a second (the process then exits with
+//! status 128 + the signal's number, as a shell expects); every other one (SIGQUIT,
+//! SIGABRT, SIGUSR1, SIGUSR2, SIGALRM, the real-time signals, ...) restores the
+//! terminal inside its handler with async-signal-safe calls only (a write of the
+//! restoring sequences and `tcsetattr` with the mode saved on entry) and then takes the
+//! signal's default action. The program's own faults (SIGSEGV, SIGBUS, SIGILL, SIGFPE,
+//! SIGTRAP) keep their default handling, and SIGKILL cannot be caught. Around a stop
+//! (Ctrl-Z, SIGTSTP) the terminal is restored while stopped and taken back on `fg`.
 //! Frames are wrapped in synchronized updates so slow links never show half a frame.
 
 use crossterm::event::{DisableMouseCapture, EnableMouseCapture};
@@ -15,7 +22,7 @@ use ratatui::backend::CrosstermBackend;
 use ratatui::Terminal;
 use std::io::{self, BufWriter, Stdout, Write};
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
-use std::sync::{Arc, Once};
+use std::sync::{Arc, Once, OnceLock};
 
 pub type Term = Terminal<CrosstermBackend<BufWriter<Stdout>>>;
 
@@ -23,6 +30,15 @@ pub type Term = Terminal<CrosstermBackend<BufWriter<Stdout>>>;
 static ACTIVE: AtomicBool = AtomicBool::new(false);
 static MOUSE: AtomicBool = AtomicBool::new(false);
 static HOOK: Once = Once::new();
+/// The terminal's mode before raw mode was entered (standard input's, which is the
+/// terminal), for restoring it from a signal handler.
+static ORIGINAL: OnceLock<libc::termios> = OnceLock::new();
+
+/// What [`restore`] writes, as bytes a signal handler can write at once: the mouse
+/// released (crossterm's `DisableMouseCapture`), then the rest.
+const RELEASE_MOUSE: &[u8] = b"\x1b[?1006l\x1b[?1015l\x1b[?1003l\x1b[?1002l\x1b[?1000l";
+/// The end of a synchronized update, the main screen and the cursor shown.
+const LEAVE: &[u8] = b"\x1b[?2026l\x1b[?1049l\x1b[?25h";
 
 /// Enter raw mode and the alternate screen; capture the mouse only if asked.
 pub fn setup(mouse: bool) -> io::Result<Term> {
@@ -33,6 +49,15 @@ pub fn setup(mouse: bool) -> io::Result<Term> {
 }
 
 fn enter(mouse: bool) -> io::Result<()> {
+    if ORIGINAL.get().is_none() {
+        // SAFETY: tcgetattr fills a termios of our own.
+        unsafe {
+            let mut t: libc::termios = std::mem::zeroed();
+            if libc::tcgetattr(libc::STDIN_FILENO, &mut t) == 0 {
+                let _ = ORIGINAL.set(t);
+            }
+        }
+    }
     terminal::enable_raw_mode()?;
     ACTIVE.store(true, Ordering::SeqCst);
     MOUSE.store(mouse, Ordering::SeqCst);
@@ -107,8 +132,10 @@ pub fn draw_synced(term: &mut Term, f: impl FnOnce(&mut ratatui::Frame)) -> io::
     Ok(())
 }
 
-/// The stop signal received, if any: 0 until SIGTERM, SIGHUP or SIGINT arrives, then
-/// that signal's number.
+/// The one handler of the signals that end the application. Returns the stop signal
+/// received, if any: 0 until SIGTERM, SIGHUP or SIGINT arrives, then that signal's
+/// number (the event loop answers it). Every other signal whose default action ends the
+/// process ([`ENDING`]) restores the terminal in its handler and then takes that action.
 pub fn signal_flag() -> io::Result<Arc<AtomicUsize>> {
     let flag = Arc::new(AtomicUsize::new(0));
     for sig in [
@@ -118,7 +145,82 @@ pub fn signal_flag() -> io::Result<Arc<AtomicUsize>> {
     ] {
         signal_hook::flag::register_usize(sig, flag.clone(), sig as usize)?;
     }
+    for sig in ending_signals() {
+        // SAFETY: the action calls only async-signal-safe functions (atomics, write,
+        // tcsetattr, sigaction, pthread_sigmask, raise).
+        unsafe {
+            signal_hook::low_level::register(sig, move || {
+                restore_in_handler();
+                die_by(sig);
+            })?;
+        }
+    }
     Ok(flag)
+}
+
+/// Signals whose default action ends the process, other than the three the event loop
+/// answers, the program's own faults and SIGPIPE (ignored by the Rust runtime).
+pub const ENDING: [libc::c_int; 13] = [
+    libc::SIGQUIT,
+    libc::SIGABRT,
+    libc::SIGUSR1,
+    libc::SIGUSR2,
+    libc::SIGALRM,
+    libc::SIGVTALRM,
+    libc::SIGPROF,
+    libc::SIGIO,
+    libc::SIGPWR,
+    libc::SIGSTKFLT,
+    libc::SIGXCPU,
+    libc::SIGXFSZ,
+    libc::SIGSYS,
+];
+
+/// [`ENDING`] and the real-time signals (whose default action ends the process too).
+fn ending_signals() -> Vec<libc::c_int> {
+    let mut v = ENDING.to_vec();
+    v.extend(libc::SIGRTMIN()..=libc::SIGRTMAX());
+    v
+}
+
+/// End the process by `sig`'s default action (as the shell expects: status 128 + its
+/// number, a core where SIGQUIT or SIGABRT leave one), from inside its handler: the
+/// default disposition back, the signal unblocked, raised again.
+fn die_by(sig: libc::c_int) {
+    // SAFETY: sigaction, pthread_sigmask and raise are async-signal-safe; the structures
+    // are our own.
+    unsafe {
+        let mut action: libc::sigaction = std::mem::zeroed();
+        action.sa_sigaction = libc::SIG_DFL;
+        libc::sigaction(sig, &action, std::ptr::null_mut());
+        let mut set: libc::sigset_t = std::mem::zeroed();
+        libc::sigemptyset(&mut set);
+        libc::sigaddset(&mut set, sig);
+        libc::pthread_sigmask(libc::SIG_UNBLOCK, &set, std::ptr::null_mut());
+        libc::raise(sig);
+    }
+}
+
+/// [`restore`] as a signal handler may do it: one write of the restoring sequences and
+/// the terminal mode saved on entry, nothing that allocates or locks.
+fn restore_in_handler() {
+    if !ACTIVE.swap(false, Ordering::SeqCst) {
+        return;
+    }
+    // SAFETY: write and tcsetattr are async-signal-safe; the buffers are static.
+    unsafe {
+        if MOUSE.load(Ordering::SeqCst) {
+            libc::write(
+                libc::STDOUT_FILENO,
+                RELEASE_MOUSE.as_ptr().cast(),
+                RELEASE_MOUSE.len(),
+            );
+        }
+        libc::write(libc::STDOUT_FILENO, LEAVE.as_ptr().cast(), LEAVE.len());
+        if let Some(t) = ORIGINAL.get() {
+            libc::tcsetattr(libc::STDIN_FILENO, libc::TCSANOW, t);
+        }
+    }
 }
 
 /// The exit status after stop signal `sig` (0: none): 128 + its number.

@@ -16,7 +16,8 @@
 //! * interactive work (the phase plot, the orbit analysis) runs on a thread of its own,
 //!   so it never waits behind a job, paused or not.
 //!
-//! One pause [`Gate`] parks everything that checks it (job workers, the phase plot):
+//! One pause [`Gate`] parks everything that checks it (job workers, the phase plot, the
+//! continued branches):
 //! paused means no CPU and no output, and every item keeps its progress.
 
 use bouncemap_engine::jobs::{Batch, Control, Executor, Gate, Job};

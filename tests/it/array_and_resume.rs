@@ -261,7 +261,7 @@ fn modified(p: &Path) -> (std::time::SystemTime, u64) {
 }
 
 #[test]
-fn a_resumed_part_that_is_complete_is_left_alone_and_any_other_is_computed() {
+fn a_resumed_part_is_left_alone_if_complete_computed_if_damaged_refused_if_foreign() {
     let d = dir("resume");
     let f = d.join("part.csv");
     // A part that takes a while: fig3b at full transient, 40 values, shard 2/2.
@@ -324,7 +324,8 @@ fn a_resumed_part_that_is_complete_is_left_alone_and_any_other_is_computed() {
         "{err}"
     );
     assert_eq!(read(&f), original);
-    // So is the part of another sweep or another shard.
+    // The part of another sweep or another shard is not this run's: refused, left as
+    // it is.
     let g = d.join("other.csv");
     for (other, why) in [
         (
@@ -340,17 +341,24 @@ fn a_resumed_part_that_is_complete_is_left_alone_and_any_other_is_computed() {
         a.extend(&other);
         a.extend(["--out", s(&g)]);
         ok(&run(&[], &a));
-        let (o, _) = go(&["--resume", "--out", s(&g)]);
-        let err = String::from_utf8_lossy(&o.stderr);
-        assert!(err.contains(why), "{err}");
-        assert_eq!(read(&g), original);
+        let theirs = read(&g);
+        let resume = args(&["--resume", "--out", s(&g)]);
+        let o = run(&[], &resume.iter().map(String::as_str).collect::<Vec<_>>());
+        refused(&o, why);
+        assert!(
+            String::from_utf8_lossy(&o.stderr).contains("it is not this run's output"),
+            "{}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        assert_eq!(read(&g), theirs);
     }
     std::fs::remove_dir_all(&d).unwrap();
 }
 
 /// A json part that does not parse (a key holding a newline, a shard 0/1) is reported in
 /// one line by `--resume` and refused in one line by `merge`, for a sweep and a plane
-/// alike: both are read by the one part-file reader.
+/// alike: both are read by the one part-file reader. `--resume` computes the first
+/// again (its provenance is this run's) and refuses the second (its shard is not).
 #[test]
 fn a_malformed_json_part_is_reported_in_one_line_for_sweeps_and_planes() {
     let d = dir("malformed");
@@ -375,19 +383,26 @@ fn a_malformed_json_part_is_reported_in_one_line_for_sweeps_and_planes() {
             (
                 text.replacen("\"table\":", "\"ta\\nble\":0,\"table\":", 1),
                 format!("not a complete {kind} json file (unknown field `ta ble`"),
+                true,
             ),
             (
                 text.replacen("\"shard\":\"1/2\"", "\"shard\":\"0/1\"", 1),
                 "shard '0/1' is not I/N with 1 ≤ I ≤ N".to_string(),
+                false,
             ),
         ];
-        for (damaged, why) in cases {
+        for (damaged, why, own) in cases {
             assert_ne!(damaged, text, "{kind}: {why}");
             std::fs::write(&f, &damaged).unwrap();
             refused(&run(&[], &["merge", s(&f)]), &format!("{}: {why}", s(&f)));
             let mut resume = a.clone();
             resume.push("--resume");
             let o = run(&[], &resume);
+            if !own {
+                refused(&o, &format!("--resume: {}: {why}", s(&f)));
+                assert_eq!(read(&f), damaged, "{kind}: a refused file was changed");
+                continue;
+            }
             ok(&o);
             let err = String::from_utf8_lossy(&o.stderr);
             let line = err.lines().next().unwrap_or_default();

@@ -10,6 +10,7 @@ mod continuation_cli;
 mod docs;
 mod figure_cli;
 mod generated_docs;
+mod hostile;
 mod merge_property;
 mod orbits_cli;
 mod plane_cli;

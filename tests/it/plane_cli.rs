@@ -346,7 +346,7 @@ fn bad_input_is_one_line_with_status_2() {
 }
 
 #[test]
-fn resume_leaves_a_complete_part_and_computes_a_foreign_one() {
+fn resume_leaves_a_complete_part_and_refuses_a_foreign_one() {
     let part = tmp("resume-1-of-2.csv");
     let _ = std::fs::remove_file(&part);
     let args = plane_args("csv", &["--shard", "1/2", "--resume", "--out", &part]);
@@ -361,14 +361,16 @@ fn resume_leaves_a_complete_part_and_computes_a_foreign_one() {
         "{err}"
     );
     assert_eq!(std::fs::read_to_string(&part).unwrap(), before);
-    // Another shard's file at that path is computed again.
+    // Another shard's file at that path is not this run's: refused, left as it is.
     let args = plane_args("csv", &["--shard", "2/2", "--resume", "--out", &part]);
     let (code, _, err) = run(&args);
-    assert_eq!(code, 0, "{err}");
+    assert_eq!(code, 2, "{err}");
     assert!(
-        err.contains("holds shard 1/2 of this plane, not shard 2/2"),
+        err.contains("holds shard 1/2 of this plane, not shard 2/2")
+            && err.contains("it is not this run's output"),
         "{err}"
     );
+    assert_eq!(std::fs::read_to_string(&part).unwrap(), before);
 }
 
 #[test]

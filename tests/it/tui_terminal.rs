@@ -239,3 +239,79 @@ fn configs_that_leave_no_way_to_quit_or_bind_a_key_twice_are_refused() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// CPU time (user + system, in clock ticks) the process has used so far.
+fn cpu_ticks(pid: u32) -> u64 {
+    let stat = std::fs::read_to_string(format!("/proc/{pid}/stat")).unwrap();
+    let fields: Vec<&str> = stat
+        .rsplit(')')
+        .next()
+        .unwrap()
+        .split_whitespace()
+        .collect();
+    // utime and stime are fields 14 and 15 of the whole line: 12 and 13 after the name.
+    fields[11].parse::<u64>().unwrap() + fields[12].parse::<u64>().unwrap()
+}
+
+#[test]
+fn a_paused_application_uses_no_cpu_whatever_was_pressed() {
+    let mut r = start(&[]);
+    assert!(r.wait_count("Bifurcation diagram", 1));
+    r.send(b" ");
+    assert!(r.wait_count("PAUSED", 1), "not paused");
+    // A storm of every kind of key but pause, quit, stop and export: parameters moved
+    // up and down (table, D, α, r, k, the window), panels, steps, zooms, overlays.
+    let keys: [&[u8]; 22] = [
+        b"\x1b[A", b"\x1b[B", b"\x1b[C", b"\x1b[D", b"\t", b"\x1b[Z", b"n", b"N", b"b", b"0", b"t",
+        b"m", b"+", b"-", b"z", b"c", b"a", b"B", b"M", b"T", b"\x1b", b"\r",
+    ];
+    for i in 0..600 {
+        r.send(keys[(i * 7 + i / 22) % keys.len()]);
+    }
+    let pid = r.child.process_id().unwrap();
+    std::thread::sleep(Duration::from_millis(1500));
+    let before = cpu_ticks(pid);
+    std::thread::sleep(Duration::from_secs(3));
+    let used = cpu_ticks(pid) - before;
+    // A clock tick is 10 ms: at most 60 ms of CPU in 3 s (the event loop's idle wake-ups
+    // and parked workers' polls), against seconds for any computation.
+    assert!(used <= 6, "{used} ticks of CPU in 3 s while paused");
+    r.send(b"q");
+    assert_eq!(r.exit_code(Duration::from_secs(5)), Some(0));
+}
+
+/// Every signal whose default action ends the process leaves the terminal as it was:
+/// cooked, the main screen, the cursor shown; and the process ends by that signal.
+#[test]
+fn every_signal_that_ends_the_application_restores_the_terminal() {
+    for sig in ["-QUIT", "-USR1", "-ALRM", "-USR2", "-RTMIN"] {
+        let mut r = start(&[]);
+        assert!(r.wait_count("Bifurcation diagram", 1), "{sig}");
+        let running = r.stty();
+        assert!(running.contains("-icanon"), "{sig}: {running}");
+        let left = r.count("\x1b[?1049l");
+        r.kill(sig);
+        let t = Instant::now();
+        let status = loop {
+            if let Some(s) = r.child.try_wait().unwrap() {
+                break s;
+            }
+            assert!(t.elapsed() < Duration::from_secs(5), "{sig}: still running");
+            std::thread::sleep(Duration::from_millis(20));
+        };
+        assert!(
+            status.signal().is_some(),
+            "{sig}: not ended by the signal: {status:?}"
+        );
+        assert!(
+            r.wait_count("\x1b[?1049l", left + 1),
+            "{sig}: the main screen was not restored"
+        );
+        assert!(r.count("\x1b[?25h") >= 1, "{sig}: the cursor was not shown");
+        let after = r.stty();
+        assert!(
+            after.contains(" icanon") && after.contains(" echo "),
+            "{sig}: the terminal is left raw: {after}"
+        );
+    }
+}

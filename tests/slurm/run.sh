@@ -9,8 +9,9 @@
 # munged, slurmctld and slurmd as plain background processes on free loopback ports
 # with a private key, socket, state and logs, and waits for the node to be idle. Then:
 #
-#   0. submissions that submit.sh refuses (clashing or missing arguments, a missing
-#      binary, a partition sbatch rejects) leave no job behind;
+#   0. submissions that submit.sh refuses (clashing or missing arguments, abbreviated
+#      sbatch options, bouncemap arguments its --check refuses, a missing binary, a
+#      partition sbatch rejects) leave no job behind;
 #   1. the cluster commands of docs/commands.md, run as written (the blocks marked for this
 #      script, with HOME in a scratch directory): a 200-value fig3b sweep in 4 shards
 #      through assets/slurm/submit.sh; the merged file must equal the unsharded run but
@@ -375,6 +376,8 @@ refuses 2 "bouncemap argument '--out'" -- sweep --preset fig3b --out x.csv
 refuses 2 "bouncemap argument '--shard=1/2'" -- sweep --preset fig3b --shard=1/2
 refuses 2 "sbatch option '--array=1-3'" --array=1-3 -- sweep --preset fig3b
 refuses 2 "sbatch option '-o'" -o log -- sweep --preset fig3b
+refuses 2 "'--part' is not an sbatch option written in full" --part=debug -- sweep --preset fig3b
+refuses 2 "bouncemap refused the arguments" -- sweep --preset fig3b --stpes 5
 BOUNCEMAP=$work/nowhere refuses 2 "BOUNCEMAP=$work/nowhere is not an executable file" -- sweep
 refuses 1 "sbatch refused the shards" --partition=nosuch -- sweep --preset fig3b
 [[ -z $(squeue -h) ]] || fail "a refused submission left jobs: $(squeue -h)"

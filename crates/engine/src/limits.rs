@@ -130,6 +130,31 @@ pub const PHASE: Limit = Limit {
 };
 /// Largest relative velocity |v0 − f'(t0)| and initial height accepted for a start.
 pub const MAX_INITIAL: f64 = 1e3;
+/// An initial velocity v0 (a start, or a guess at a cycle's launch): at most
+/// [`MAX_INITIAL`] beyond the fastest table accepted ([`MAX_VELOCITY`]); a start is
+/// further held to |v0 − f'(t0)| ≤ [`MAX_INITIAL`].
+pub const VELOCITY: Limit = Limit {
+    name: "v0",
+    lo: -(MAX_VELOCITY + MAX_INITIAL),
+    hi: MAX_VELOCITY + MAX_INITIAL,
+    lo_open: false,
+    hi_open: false,
+    whole: false,
+    text: "a velocity in [-7300, 7300]",
+};
+/// The top W of a box of starts' launch velocities w0 = v0 − f'(t̂0) ∈ [0, W] (basins,
+/// the extra starts of a sweep): a start's relative velocity is at most
+/// [`MAX_INITIAL`]. The default W ([`crate::attractors::default_w_max`]) is clamped into
+/// it.
+pub const W_MAX: Limit = Limit {
+    name: "w-max",
+    lo: 0.0,
+    hi: MAX_INITIAL,
+    lo_open: true,
+    hi_open: false,
+    whole: false,
+    text: "(0, 1000] (launch velocity relative to the table)",
+};
 /// The initial height above the table.
 pub const HEIGHT: Limit = Limit {
     name: "z0",

@@ -3,13 +3,14 @@
 //! ([`diagram_view`]).
 //!
 //! Every recorded event is a dot (t̂ or v against the swept parameter), drawn with the
-//! density rendering of [`super::svg`]. Values whose points include a stick or a
+//! density rendering of [`super::svg`]. A [`Diagram`] takes a sweep's values in as they
+//! complete, so a figure of any sweep holds the picture, not the sweep. Values whose points include a stick or a
 //! release (or whose ball comes to rest on the table) are shaded over the whole height,
 //! where the paper shades its "inaccurate" region: here sticking is computed exactly,
 //! so the caption says sticking. Dashed lines mark t̂ = 0 and 1, the domain of t̂.
 
 use super::text::plain;
-use super::{fmt_count, Axis, Color, Dash, Figure, Layer, Panel, COLUMN, FULL_WIDTH};
+use super::{fmt_count, Axis, Color, Dash, DensityGrid, Figure, Layer, Panel, COLUMN, FULL_WIDTH};
 use bouncemap_engine::grid::SweepParam;
 use bouncemap_engine::run::Outcome;
 use bouncemap_engine::sweep::{SweepSpec, ValueResult};
@@ -45,25 +46,31 @@ pub fn table_title(table: &Table) -> String {
 }
 
 /// Values whose orbit sticks or rests, as spans of the swept parameter (each value
-/// covers half the spacing on either side).
-fn sticking_spans(spec: &SweepSpec, values: &[&ValueResult]) -> Vec<[f64; 2]> {
+/// covers half the spacing on either side); `values` are (value, sticks or rests) in
+/// increasing order.
+fn sticking_spans(spec: &SweepSpec, values: impl Iterator<Item = (f64, bool)>) -> Vec<[f64; 2]> {
     let half = if spec.steps > 1 {
         0.5 * (spec.hi - spec.lo) / (spec.steps - 1) as f64
     } else {
         0.5 * (spec.hi - spec.lo).abs().max(1e-9)
     };
     let mut spans: Vec<[f64; 2]> = Vec::new();
-    for v in values {
-        if !(v.sticking || matches!(v.outcome, Outcome::Resting { .. })) {
+    for (value, sticks) in values {
+        if !sticks {
             continue;
         }
-        let (a, b) = (v.value - half, v.value + half);
+        let (a, b) = (value - half, value + half);
         match spans.last_mut() {
             Some(last) if a <= last[1] + 1e-9 * half.max(1e-300) => last[1] = b,
             _ => spans.push([a, b]),
         }
     }
     spans
+}
+
+/// Whether a value's orbit sticks or rests (shaded in a diagram).
+fn sticks(v: &ValueResult) -> bool {
+    v.sticking || matches!(v.outcome, Outcome::Resting { .. })
 }
 
 /// One diagram panel: the values' points against the swept parameter over `window`
@@ -93,11 +100,38 @@ pub fn diagram_panel<'a>(
             })
         })
         .collect();
-    let spans = sticking_spans(spec, &values);
+    let spans = sticking_spans(spec, values.iter().map(|v| (v.value, sticks(v))));
     let y = match axis {
-        DiagramAxis::Phase => Axis::new("$t\u{302}$", -0.06, 1.06),
+        DiagramAxis::Phase => phase_axis(),
         DiagramAxis::Velocity => Axis::around("$v$", points.iter().map(|p| p[1]), 0.05),
     };
+    let name = match axis {
+        DiagramAxis::Phase => "phase",
+        DiagramAxis::Velocity => "v",
+    };
+    let layer = Layer::Density {
+        name: name.into(),
+        points,
+        color: Color::BLACK,
+    };
+    panel_of(spec, (lo, hi), y, spans, axis, layer)
+}
+
+/// The phase axis of a diagram: t̂ ∈ [0, 1) with a margin.
+fn phase_axis() -> Axis {
+    Axis::new("$t\u{302}$", -0.06, 1.06)
+}
+
+/// A diagram panel from its parts: the sticking bands, the dashed t̂ = 0 and 1 (phase),
+/// the points on top, the title.
+fn panel_of(
+    spec: &SweepSpec,
+    (lo, hi): (f64, f64),
+    y: Axis,
+    spans: Vec<[f64; 2]>,
+    axis: DiagramAxis,
+    points: Layer,
+) -> Panel {
     let mut panel = Panel::new(Axis::new(param_label(spec.param), lo, hi), y);
     if !spans.is_empty() {
         panel.layers.push(Layer::Bands {
@@ -115,21 +149,145 @@ pub fn diagram_panel<'a>(
             });
         }
     }
-    panel.layers.push(Layer::Density {
-        name: match axis {
-            DiagramAxis::Phase => "phase",
-            DiagramAxis::Velocity => "v",
-        }
-        .into(),
-        points,
-        color: Color::BLACK,
-    });
+    panel.layers.push(points);
     panel.title = Some(if spec.param == SweepParam::D {
         "$F_D$".to_string()
     } else {
         table_title(&spec.table)
     });
     panel
+}
+
+/// Points a [`Diagram`] holds as they are (2²¹, 32 MB); beyond, it counts them on a
+/// [`DensityGrid`] instead.
+pub const HELD_POINTS: usize = 1 << 21;
+/// Bins of that grid along each axis (finer than the dots of the largest figure).
+pub const GRID_BINS: usize = 4096;
+
+/// A sweep's diagram (phase against the swept parameter) built as its values complete,
+/// in any order: each value's points are taken in as it arrives and the value itself
+/// can be dropped. Memory is the picture's: the points up to [`HELD_POINTS`], then
+/// counts on a [`GRID_BINS`]² grid (64 MB), plus a byte per value (whether it sticks)
+/// and, for a sweep that measures them, the values' exponents.
+pub struct Diagram {
+    spec: SweepSpec,
+    /// Points held as they are at most ([`HELD_POINTS`]).
+    held: usize,
+    /// Per value index: whether its orbit sticks or rests.
+    sticking: Vec<bool>,
+    /// Per value index: its largest exponent (NaN: none), if the sweep measures them.
+    lyapunov: Vec<f64>,
+    points: Points,
+}
+
+enum Points {
+    Held(Vec<[f64; 2]>),
+    Counted(DensityGrid),
+}
+
+impl Diagram {
+    /// An empty diagram of `spec`'s sweep.
+    pub fn new(spec: &SweepSpec) -> Diagram {
+        Diagram {
+            spec: spec.clone(),
+            held: HELD_POINTS,
+            sticking: vec![false; spec.steps],
+            lyapunov: if spec.lyapunov {
+                vec![f64::NAN; spec.steps]
+            } else {
+                Vec::new()
+            },
+            points: Points::Held(Vec::new()),
+        }
+    }
+
+    /// The diagram of `values`, all at once.
+    pub fn of<'a>(spec: &SweepSpec, values: impl IntoIterator<Item = &'a ValueResult>) -> Diagram {
+        let mut d = Diagram::new(spec);
+        for v in values {
+            d.add(v);
+        }
+        d
+    }
+
+    /// The sweep it is of.
+    pub fn spec(&self) -> &SweepSpec {
+        &self.spec
+    }
+
+    /// Take in one value's result.
+    pub fn add(&mut self, v: &ValueResult) {
+        if let Some(s) = self.sticking.get_mut(v.index) {
+            *s = sticks(v);
+        }
+        if let Some(l) = self.lyapunov.get_mut(v.index) {
+            *l = v.lyapunov.unwrap_or(f64::NAN);
+        }
+        let new = v.points.iter().map(|p| [v.value, p.phase]);
+        match &mut self.points {
+            Points::Held(held) if held.len() + v.points.len() <= self.held => held.extend(new),
+            Points::Held(held) => {
+                let y = phase_axis();
+                let mut grid = DensityGrid::new(
+                    (self.spec.lo, self.spec.hi),
+                    (y.lo, y.hi),
+                    self.spec.steps.min(GRID_BINS),
+                    GRID_BINS,
+                );
+                for q in held.drain(..).chain(new) {
+                    grid.add(q);
+                }
+                self.points = Points::Counted(grid);
+            }
+            Points::Counted(grid) => new.for_each(|q| grid.add(q)),
+        }
+    }
+
+    /// (value, largest exponent per impact: None where there is none) in increasing
+    /// order, for a sweep that measures exponents.
+    pub fn exponents(&self) -> impl Iterator<Item = (f64, Option<f64>)> + '_ {
+        self.lyapunov
+            .iter()
+            .enumerate()
+            .map(|(i, l)| (self.spec.value(i), (!l.is_nan()).then_some(*l)))
+    }
+
+    /// The panel: every point against the swept parameter over the sweep's window (the
+    /// points move into it, uncopied).
+    pub fn into_panel(self) -> Panel {
+        let spec = &self.spec;
+        let spans = sticking_spans(
+            spec,
+            self.sticking
+                .iter()
+                .enumerate()
+                .map(|(i, s)| (spec.value(i), *s)),
+        );
+        let layer = match self.points {
+            Points::Held(mut points) => {
+                // In order of the swept value, each value's points in their order.
+                points.sort_by(|a, b| a[0].total_cmp(&b[0]));
+                Layer::Density {
+                    name: "phase".into(),
+                    points,
+                    color: Color::BLACK,
+                }
+            }
+            Points::Counted(grid) => Layer::Grid {
+                name: "phase".into(),
+                grid,
+                color: Color::BLACK,
+            },
+        };
+        panel_of(
+            spec,
+            (spec.lo, spec.hi),
+            phase_axis(),
+            spans,
+            DiagramAxis::Phase,
+            layer,
+        )
+    }
 }
 
 /// The sweep in words: its fixed parameters, values, transient, kept events and start.
@@ -179,8 +337,10 @@ pub fn spec_caption(spec: &SweepSpec) -> String {
 pub const STICKING_NOTE: &str = "Shaded: values whose orbit sticks to the table (stick and release are computed exactly). Dashed: $t\u{302}$ = 0 and 1, the domain of $t\u{302}$.";
 
 /// One sweep as a one-column figure (`figure diagram`, `figure fig3a` …).
-pub fn diagram_figure(name: &str, spec: &SweepSpec, values: &[ValueResult]) -> Figure {
-    let mut panel = diagram_panel(spec, values, None, DiagramAxis::Phase);
+pub fn diagram_figure(name: &str, diagram: Diagram) -> Figure {
+    let spec = diagram.spec().clone();
+    let spec = &spec;
+    let mut panel = diagram.into_panel();
     let fixed = match spec.param {
         SweepParam::Alpha => format!("$r$ = {}", spec.r),
         SweepParam::R => format!("$\u{3b1}$ = {}", spec.alpha),
@@ -222,16 +382,17 @@ pub fn diagram_view<'a>(
     }
 }
 
-/// Fig. 3: the six panels (a)–(f), each a sweep with its results.
-pub fn fig3(panels: &[(SweepSpec, Vec<ValueResult>)]) -> Figure {
+/// Fig. 3: the six panels (a)–(f), each a sweep's diagram.
+pub fn fig3(panels: Vec<Diagram>) -> Figure {
+    let first = panels.first().map(|d| d.spec().clone());
     let mut out = Vec::new();
-    for (i, (spec, values)) in panels.iter().enumerate() {
-        let mut p = diagram_panel(spec, values, None, DiagramAxis::Phase);
+    for (i, d) in panels.into_iter().enumerate() {
+        let mut p = d.into_panel();
         p.letter = Some(format!("({})", (b'a' + i as u8) as char));
         out.push(p);
     }
-    let caption = match panels.first() {
-        Some((s, _)) => vec![
+    let caption = match &first {
+        Some(s) => vec![
             plain(&format!(
                 "Bifurcation diagrams, r = {}: the last {} events before t = {} for each of {} values of \u{3b1}, each started near the (1, 1) solution.",
                 s.r,
@@ -295,8 +456,7 @@ mod tests {
         let vals: Vec<ValueResult> = (0..11)
             .map(|i| value(i, i as f64 / 10.0, (3..=5).contains(&i) || i == 8))
             .collect();
-        let refs: Vec<&ValueResult> = vals.iter().collect();
-        let spans = sticking_spans(&spec, &refs);
+        let spans = sticking_spans(&spec, vals.iter().map(|v| (v.value, sticks(v))));
         assert_eq!(spans.len(), 2);
         assert!((spans[0][0] - 0.25).abs() < 1e-12 && (spans[0][1] - 0.55).abs() < 1e-12);
         assert!((spans[1][0] - 0.75).abs() < 1e-12 && (spans[1][1] - 0.85).abs() < 1e-12);
@@ -305,6 +465,66 @@ mod tests {
             panic!("the points come last, on top")
         };
         assert_eq!(points.len(), 5, "only the values inside the window");
+    }
+
+    /// Past its budget a diagram counts its points on a grid: the same picture (the
+    /// same dots but for points within a bin of a dot's edge), every point counted.
+    #[test]
+    fn a_diagram_past_its_budget_counts_its_points_and_draws_the_same_picture() {
+        let spec = SweepSpec::new(
+            Table::fd(0.1).unwrap(),
+            0.45,
+            0.8,
+            SweepParam::Alpha,
+            0.4,
+            0.6,
+            200,
+        );
+        let vals: Vec<ValueResult> = (0..200)
+            .map(|i| {
+                let mut v = value(i, spec.value(i), i % 50 == 0);
+                v.points = (0..40)
+                    .map(|k| SweepPoint {
+                        phase: ((i * 37 + k * 101) % 997) as f64 / 997.0,
+                        v: 0.5,
+                        kind: EventKind::Impact,
+                    })
+                    .collect();
+                v
+            })
+            .collect();
+        let held = Diagram::of(&spec, vals.iter().rev());
+        let mut counted = Diagram::new(&spec);
+        counted.held = 1000;
+        for v in &vals {
+            counted.add(v);
+        }
+        assert!(matches!(held.points, Points::Held(_)));
+        assert!(matches!(counted.points, Points::Counted(_)));
+        let (a, b) = (held.into_panel(), counted.into_panel());
+        assert_eq!(a.layers.len(), b.layers.len(), "bands, lines and points");
+        let Some(Layer::Grid { grid, .. }) = b.layers.last() else {
+            panic!("the points come last, counted")
+        };
+        assert_eq!(
+            grid.bins().map(|(_, c)| c as usize).sum::<usize>(),
+            200 * 40
+        );
+        let dots = |p: Panel| {
+            let fig = Figure {
+                name: "d".into(),
+                panels: vec![p],
+                columns: 1,
+                caption: Vec::new(),
+                size: (COLUMN, 2.9),
+            };
+            crate::svg::to_svg(&fig, fig.size).matches("h0").count()
+        };
+        let (da, db) = (dots(a), dots(b));
+        assert!(
+            da > 1000 && da.abs_diff(db) * 50 <= da,
+            "{da} dots held, {db} counted"
+        );
     }
 
     #[test]

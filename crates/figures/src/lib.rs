@@ -32,7 +32,7 @@
 //! spec.transient = 2000;
 //! spec.keep = 20;
 //! let values = collect(&spec, &Executor::new(1)?)?;
-//! let figure = diagram::diagram_figure("diagram", &spec, &values);
+//! let figure = diagram::diagram_figure("diagram", diagram::Diagram::of(&spec, &values));
 //!
 //! // The SVG as text, at the figure's own size; the PNG as bytes, 5 × 3.5 inches.
 //! let svg = bouncemap_figures::svg::to_svg(&figure, figure.size);
@@ -116,6 +116,13 @@ pub enum Layer {
         points: Vec<[f64; 2]>,
         color: Color,
     },
+    /// Points already counted on a fine grid ([`DensityGrid`]), drawn as
+    /// [`Layer::Density`] draws points: for more points than are worth holding.
+    Grid {
+        name: String,
+        grid: DensityGrid,
+        color: Color,
+    },
     /// Points with a marker each.
     Markers {
         name: String,
@@ -151,6 +158,74 @@ pub enum Layer {
     HLine { y: f64, color: Color, dash: Dash },
     /// A vertical line across the panel.
     VLine { x: f64, color: Color, dash: Dash },
+}
+
+/// Points counted on a grid over [x0, x1] × [y0, y1] as they come, so a picture of any
+/// number of points holds only its counts (4 bytes per bin). Along x the bins are
+/// centred on `nx` evenly spaced values from x0 to x1 (a sweep of at most `nx` values
+/// keeps every value's own column), along y they split [y0, y1] in `ny`. Points outside
+/// are not counted.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DensityGrid {
+    pub x: (f64, f64),
+    pub y: (f64, f64),
+    pub nx: usize,
+    pub ny: usize,
+    counts: Vec<u32>,
+}
+
+impl DensityGrid {
+    /// An empty grid of `nx` × `ny` bins (each at least 1).
+    pub fn new(x: (f64, f64), y: (f64, f64), nx: usize, ny: usize) -> DensityGrid {
+        let (nx, ny) = (nx.max(1), ny.max(1));
+        DensityGrid {
+            x,
+            y,
+            nx,
+            ny,
+            counts: vec![0; nx * ny],
+        }
+    }
+
+    /// Count one point.
+    pub fn add(&mut self, p: [f64; 2]) {
+        let (fx, fy) = (
+            if self.x.1 > self.x.0 {
+                (p[0] - self.x.0) / (self.x.1 - self.x.0)
+            } else {
+                0.0
+            },
+            (p[1] - self.y.0) / (self.y.1 - self.y.0),
+        );
+        if !(0.0..=1.0).contains(&fx) || !(0.0..=1.0).contains(&fy) {
+            return;
+        }
+        let i = (fx * (self.nx - 1) as f64).round() as usize;
+        let j = ((fy * self.ny as f64) as usize).min(self.ny - 1);
+        let c = &mut self.counts[i * self.ny + j];
+        *c = c.saturating_add(1);
+    }
+
+    /// The centre of each bin holding points, and its count.
+    pub fn bins(&self) -> impl Iterator<Item = ([f64; 2], u32)> + '_ {
+        let dx = if self.nx > 1 {
+            (self.x.1 - self.x.0) / (self.nx - 1) as f64
+        } else {
+            0.0
+        };
+        let dy = (self.y.1 - self.y.0) / self.ny as f64;
+        self.counts
+            .iter()
+            .enumerate()
+            .filter(|(_, c)| **c > 0)
+            .map(move |(k, c)| {
+                let (i, j) = (k / self.ny, k % self.ny);
+                (
+                    [self.x.0 + i as f64 * dx, self.y.0 + (j as f64 + 0.5) * dy],
+                    *c,
+                )
+            })
+    }
 }
 
 /// Linear or decimal-logarithmic axis.
@@ -409,7 +484,7 @@ pub struct AxisData {
 }
 
 /// One layer's numbers: points (x, y), or for lines one list per polyline, or for
-/// bands the spans [x0, x1].
+/// bands the spans [x0, x1]; for points counted on a grid, the grid.
 #[derive(Serialize, Debug)]
 pub struct SeriesData {
     pub name: String,
@@ -417,6 +492,20 @@ pub struct SeriesData {
     pub points: Vec<[f64; 2]>,
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub lines: Vec<Vec<[f64; 2]>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub grid: Option<GridData>,
+}
+
+/// A [`DensityGrid`]'s numbers: the bins along x are centred on `nx` evenly spaced
+/// values from x[0] to x[1], along y they split [y[0], y[1]] in `ny`; `counts` holds
+/// the points per bin, x-major (bin (i, j) at i·ny + j).
+#[derive(Serialize, Debug)]
+pub struct GridData {
+    pub x: [f64; 2],
+    pub y: [f64; 2],
+    pub nx: usize,
+    pub ny: usize,
+    pub counts: Vec<u32>,
 }
 
 impl Figure {
@@ -448,6 +537,7 @@ impl Figure {
                                 kind,
                                 points: points.to_vec(),
                                 lines: Vec::new(),
+                                grid: None,
                             };
                             match l {
                                 Layer::Density { name, points, .. } => {
@@ -465,6 +555,20 @@ impl Figure {
                                     kind: "lines",
                                     points: Vec::new(),
                                     lines: lines.clone(),
+                                    grid: None,
+                                }),
+                                Layer::Grid { name, grid, .. } => Some(SeriesData {
+                                    name: name.clone(),
+                                    kind: "density_grid",
+                                    points: Vec::new(),
+                                    lines: Vec::new(),
+                                    grid: Some(GridData {
+                                        x: [grid.x.0, grid.x.1],
+                                        y: [grid.y.0, grid.y.1],
+                                        nx: grid.nx,
+                                        ny: grid.ny,
+                                        counts: grid.counts.clone(),
+                                    }),
                                 }),
                                 Layer::HLine { .. } | Layer::VLine { .. } => None,
                             }

@@ -3,25 +3,23 @@
 //! finite values, zero dashed; values whose exponent is −∞ (the orbit sticks: the
 //! stick collapses every perturbation) are open circles on the lower edge.
 
-use super::diagram::{diagram_panel, param_label, spec_caption, DiagramAxis, STICKING_NOTE};
+use super::diagram::{param_label, spec_caption, Diagram, STICKING_NOTE};
 use super::{Axis, Color, Corner, Dash, Figure, Layer, Legend, Marker, Panel, Swatch, COLUMN};
-use bouncemap_engine::sweep::{SweepSpec, ValueResult};
 
-/// The two panels: (a) the diagram, (b) λ₁ against the same parameter.
-pub fn lyapunov_figure(spec: &SweepSpec, values: &[ValueResult]) -> Figure {
-    let mut top = diagram_panel(spec, values, None, DiagramAxis::Phase);
-    top.letter = Some("(a)".into());
-    let mut sorted: Vec<&ValueResult> = values.iter().collect();
-    sorted.sort_by(|a, b| a.value.total_cmp(&b.value));
+/// The two panels: (a) the diagram, (b) λ₁ against the same parameter (the diagram's
+/// sweep measures exponents).
+pub fn lyapunov_figure(diagram: Diagram) -> Figure {
+    let spec = diagram.spec().clone();
+    let spec = &spec;
     // Runs of finite exponents become unbroken lines; −∞ and missing values break them.
     let mut lines: Vec<Vec<[f64; 2]>> = vec![Vec::new()];
     let mut minus_inf = Vec::new();
-    for v in &sorted {
-        match v.lyapunov {
-            Some(l) if l.is_finite() => lines.last_mut().unwrap().push([v.value, l]),
+    for (value, l) in diagram.exponents() {
+        match l {
+            Some(l) if l.is_finite() => lines.last_mut().unwrap().push([value, l]),
             other => {
                 if other == Some(f64::NEG_INFINITY) {
-                    minus_inf.push(v.value);
+                    minus_inf.push(value);
                 }
                 if !lines.last().unwrap().is_empty() {
                     lines.push(Vec::new());
@@ -30,6 +28,8 @@ pub fn lyapunov_figure(spec: &SweepSpec, values: &[ValueResult]) -> Figure {
         }
     }
     lines.retain(|l| !l.is_empty());
+    let mut top = diagram.into_panel();
+    top.letter = Some("(a)".into());
     let finite = lines.iter().flatten().map(|p| p[1]);
     let mut y = Axis::around(
         "$\u{3bb}_1$ per impact",

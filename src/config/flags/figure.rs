@@ -30,10 +30,12 @@ pub struct FigureArgs {
     /// A preview in seconds: fewer values and a shorter transient.
     #[arg(long, global = true)]
     pub quick: bool,
-    /// Also write the numbers behind the figure (every series) as JSON to FILE.
+    /// Also write the numbers behind the figure (every series) as JSON to FILE; a
+    /// diagram of more than 2²¹ points gives them as counts on a 4096 × 4096 grid
+    /// (series kind density_grid).
     #[arg(long, global = true, value_name = "FILE")]
     pub data: Option<String>,
-    /// Worker threads [default: all cores].
+    /// Worker threads, at most 4 × the cores [default: all cores].
     #[arg(long, global = true, value_parser = rules::THREADS.whole::<usize>(), value_name = "N")]
     pub threads: Option<usize>,
 }
@@ -129,7 +131,8 @@ impl FigureName {
 pub fn parse_size(s: &str) -> Result<(f64, f64), String> {
     let bad = || {
         format!(
-            "'{s}' is not a size: valid {}, e.g. 3.4x2.6",
+            "{} is not a size: valid {}, e.g. 3.4x2.6",
+            quoted(s),
             rules::FIG_SIDE.limit.text
         )
     };

@@ -9,6 +9,7 @@ use super::rules;
 use super::table_spec::TableSpec;
 use super::windows::{parse_alpha_window, parse_d_family, DFamily};
 use crate::output::hitgrid::Marker;
+use crate::output::text::quoted;
 use crate::output::Format;
 use bouncemap_engine::grid::Shard;
 use bouncemap_engine::Solver;
@@ -156,8 +157,9 @@ pub struct InitialArgs {
     /// Initial phase t̂0 in [0, 1).
     #[arg(long, default_value_t = rules::T0.default, value_parser = rules::T0.real(), value_name = "PHASE")]
     pub t0: f64,
-    /// Initial velocity v0 (default: f'(t0) + 0.5, a short hop leaving the table).
-    #[arg(long, value_name = "V", allow_hyphen_values = true)]
+    /// Initial velocity v0, in [-7300, 7300] and at most 1000 from the table's f'(t0)
+    /// (default: f'(t0) + 0.5, a short hop leaving the table).
+    #[arg(long, value_parser = rules::V0.real(), value_name = "V", allow_hyphen_values = true)]
     pub v0: Option<f64>,
     /// Initial height above the table, in [0, 1000].
     #[arg(long, default_value_t = rules::Z0.default, value_parser = rules::Z0.real(), value_name = "Z")]
@@ -171,10 +173,11 @@ pub struct OrbitArgs {
     pub system: SystemArgs,
     #[command(flatten)]
     pub initial: InitialArgs,
-    /// Number of events to print.
+    /// Number of events to print; valid a whole number ≥ 0 (at most 1e15).
     #[arg(long, default_value_t = rules::BOUNCES.default as u64, value_parser = rules::BOUNCES.whole::<u64>(), value_name = "N")]
     pub bounces: u64,
-    /// Number of events to compute first without printing them.
+    /// Number of events to compute first without printing them; valid a whole number ≥ 0
+    /// (at most 1e15).
     #[arg(long, default_value_t = rules::SKIP.default as u64, value_parser = rules::SKIP.whole::<u64>(), value_name = "M")]
     pub skip: u64,
     /// Next-impact solver.
@@ -245,8 +248,8 @@ pub struct ContinueArgs {
     /// The guess's launch phase t̂0 in [0, 1).
     #[arg(long, value_parser = rules::T0.real(), value_name = "PHASE", requires = "n")]
     pub t0: Option<f64>,
-    /// The guess's launch velocity v0 (right after an impact).
-    #[arg(long, value_name = "V", allow_hyphen_values = true, requires = "n")]
+    /// The guess's launch velocity v0 (right after an impact), in [-7300, 7300].
+    #[arg(long, value_parser = rules::V0.real(), value_name = "V", allow_hyphen_values = true, requires = "n")]
     pub v0: Option<f64>,
     /// No doubled branch is started beyond this period; valid 1 to 4096.
     #[arg(long, default_value_t = rules::CONTINUE_MAX_PERIOD.default as usize, value_parser = rules::CONTINUE_MAX_PERIOD.whole::<usize>(), value_name = "P")]
@@ -367,9 +370,11 @@ pub struct PartArgs {
     ///
     /// FILE is checked as `merge` checks a part (provenance, specification hash, values,
     /// end line, checksum) and must be of this sweep, shard, format and version: then the
-    /// run exits 0 at once and leaves it untouched. Otherwise (missing, damaged, another
-    /// sweep or shard) it is computed, and stderr says why. Re-running every shard of a
-    /// run with --resume recomputes only the missing ones.
+    /// run exits 0 at once and leaves it untouched. A missing FILE, or one whose
+    /// provenance is this run's but that was cut off or damaged, is computed, and stderr
+    /// says why; any other file (not written by bouncemap, another sweep's or another
+    /// shard's part, another format) is refused with status 2 and left as it is.
+    /// Re-running every shard of a run with --resume recomputes only the missing ones.
     #[arg(long)]
     pub resume: bool,
 }
@@ -377,22 +382,42 @@ pub struct PartArgs {
 /// `--width` and `--height`: the size of a text picture (`sweep`, `plane`, `basins`).
 #[derive(Args, Debug, Clone, Default)]
 pub struct TextSizeArgs {
-    /// Braille width in characters [default: the terminal's].
+    /// Braille width in characters; valid 10 to 2000 [default: the terminal's].
     #[arg(long, value_parser = rules::CELLS.whole::<u16>(), value_name = "COLS")]
     pub width: Option<u16>,
-    /// Braille height in lines [default: the terminal's].
+    /// Braille height in lines; valid 10 to 2000 [default: the terminal's].
     #[arg(long, value_parser = rules::CELLS.whole::<u16>(), value_name = "LINES")]
     pub height: Option<u16>,
 }
 
-/// How a computation over a grid runs and draws: its threads and the size of its text
-/// picture (`sweep`, `plane`, `basins`).
+/// How a computation over a grid runs and draws: its threads, the size of its text
+/// picture, and whether it only checks (`sweep`, `plane`, `basins`).
 #[derive(Args, Debug, Clone, Default)]
 pub struct RunArgs {
     #[command(flatten)]
     pub text: TextSizeArgs,
     #[command(flatten)]
     pub workers: ThreadsArgs,
+    #[command(flatten)]
+    pub check: CheckArgs,
+}
+
+/// `--check`: a dry run (`sweep`, `plane`, `basins`, `lyapunov`).
+#[derive(Args, Debug, Clone, Default)]
+pub struct CheckArgs {
+    /// Check the command line and print the plan, computing nothing: exit 0, or 2 with
+    /// the one-line refusal the run would give.
+    ///
+    /// Every flag, preset and table file is parsed and validated as for the run; --out
+    /// is checked as the run opens it (created and removed again; never one of the
+    /// run's inputs), and --resume's file as the run reads it. The plan on stdout states
+    /// what would be computed (the specification, values or pixels, the shard), where
+    /// it would be written, the worker threads and a bound on the memory. The threads
+    /// and memory are stated against this machine but not refused, as the run may be
+    /// meant for another one (a cluster's nodes: assets/slurm/submit.sh runs --check
+    /// before it submits).
+    #[arg(long)]
+    pub check: bool,
 }
 
 /// `--threads`: the worker threads of a computation (`sweep`, `plane`, `basins`).
@@ -439,14 +464,14 @@ pub struct SweepSpecArgs {
     /// The swept parameter [default: the one given as a window].
     #[arg(long, value_enum)]
     pub param: Option<Param>,
-    /// Number of parameter values [default: 1000].
+    /// Number of parameter values; valid 1 to 10000000 [default: 1000].
     #[arg(long, value_parser = rules::STEPS.whole::<usize>(), value_name = "N")]
     pub steps: Option<usize>,
-    /// End of the transient T in table periods; points are the last events before T
-    /// [default: 5000000, the paper's].
+    /// End of the transient T in table periods; points are the last events before T;
+    /// valid 1 to 1e12 [default: 5000000, the paper's].
     #[arg(long, value_parser = rules::TRANSIENT.whole::<u64>(), value_name = "PERIODS")]
     pub transient: Option<u64>,
-    /// Events recorded per value [default: 100].
+    /// Events recorded per value; valid 1 to 1000000 [default: 100].
     #[arg(long, value_parser = rules::KEEP.whole::<usize>(), value_name = "M")]
     pub keep: Option<usize>,
     #[command(flatten)]
@@ -464,10 +489,10 @@ pub struct SweepSpecArgs {
     /// Run every value to the full transient (no periodicity early stop).
     #[arg(long)]
     pub no_early_stop: bool,
-    /// Longest cycle (in events) the early stop detects.
+    /// Longest cycle (in events) the early stop detects; valid 1 to 4096.
     #[arg(long, default_value_t = rules::MAX_PERIOD.default as usize, value_parser = rules::MAX_PERIOD.whole::<usize>(), value_name = "P")]
     pub max_period: usize,
-    /// Agreement in phase and velocity promised by the early stop.
+    /// Agreement in phase and velocity promised by the early stop; valid (0, 1e-3].
     #[arg(long, default_value_t = rules::TOLERANCE.default, value_parser = rules::TOLERANCE.real(), value_name = "TOL")]
     pub tolerance: f64,
     /// Add a `lyapunov` column: the largest Lyapunov exponent per impact of each
@@ -475,10 +500,12 @@ pub struct SweepSpecArgs {
     #[arg(long)]
     pub lyapunov: bool,
     /// Initial conditions per value: the start above and N − 1 more spread over the
-    /// basin box (t̂0 ∈ [0, 1), w0 ∈ [0, W]); adds an `attractor` column [default: 1].
+    /// basin box (t̂0 ∈ [0, 1), w0 ∈ [0, W]); adds an `attractor` column; valid 1 to 1000
+    /// [default: 1].
     #[arg(long, value_parser = rules::STARTS.whole::<usize>(), value_name = "N")]
     pub starts: Option<usize>,
-    /// Top W of the extra starts' launch velocities [default: max(1, 2α·max|F'|)].
+    /// Top W of the extra starts' launch velocities; valid (0, 1000] [default: max(1,
+    /// 2α·max|F'|), at most 1000].
     #[arg(long, value_parser = rules::W_MAX.real(), value_name = "W")]
     pub w_max: Option<f64>,
 }
@@ -510,10 +537,16 @@ pub struct LyapunovArgs {
     #[arg(long)]
     pub near_fixed_point: bool,
     /// End of the transient in table periods (an orbit that settles on a cycle earlier
-    /// stops there).
+    /// stops there); valid 1 to 1e12.
     #[arg(long, default_value_t = rules::LYAPUNOV_TRANSIENT.default as u64, value_parser = rules::LYAPUNOV_TRANSIENT.whole::<u64>(), value_name = "PERIODS")]
     pub transient: u64,
-    /// Impacts measured by QR on an orbit that has not settled on a cycle.
+    /// Impacts measured by QR on an orbit that has not settled on a cycle; valid 1 to
+    /// 1e10.
+    ///
+    /// The measurement streams: memory does not grow with M (the QR sums, 16 block
+    /// means and the cells the orbit visits, a few MB), time does (about 2 s per 10⁷
+    /// impacts on one core, so 1e10 takes half an hour or more), with progress on
+    /// stderr; Ctrl-C stops it.
     #[arg(long, default_value_t = rules::IMPACTS.default as u64, value_parser = rules::IMPACTS.whole::<u64>(), value_name = "M")]
     pub impacts: u64,
     /// Run the full transient and measure by QR even on a cycle (a second method).
@@ -522,6 +555,8 @@ pub struct LyapunovArgs {
     /// Output format.
     #[arg(long, value_enum, default_value_t = Format::Text)]
     pub format: Format,
+    #[command(flatten)]
+    pub check: CheckArgs,
 }
 
 /// Output format of `basins`.
@@ -548,7 +583,8 @@ pub struct BasinsSpecArgs {
     /// [default: max(1, 2α·max|F'|), twice the table's largest velocity].
     #[arg(long, value_parser = rules::W_MAX.real(), value_name = "W")]
     pub w_max: Option<f64>,
-    /// End of each start's transient in table periods (early stop on cycles).
+    /// End of each start's transient in table periods (early stop on cycles); valid 1 to
+    /// 1e12.
     #[arg(long, default_value_t = rules::BASIN_TRANSIENT.default as u64, value_parser = rules::BASIN_TRANSIENT.whole::<u64>(), value_name = "PERIODS")]
     pub transient: u64,
 }
@@ -591,7 +627,10 @@ pub fn parse_sides(s: &str, text: SidesText<'_>) -> Result<(usize, usize), Strin
         example,
     } = text;
     let bad = || {
-        format!("'{s}' is not {what}: valid {form} with each side in 1..={MAX_SIDE} and at most {MAX_CELLS} {cells}, e.g. {example}")
+        format!(
+            "{} is not {what}: valid {form} with each side in 1..={MAX_SIDE} and at most {MAX_CELLS} {cells}, e.g. {example}",
+            quoted(s)
+        )
     };
     let (a, b) = s.trim().split_once(['x', 'X']).ok_or_else(bad)?;
     let nx: usize = a.trim().parse().map_err(|_| bad())?;
@@ -625,14 +664,22 @@ pub fn parse_shard_arg(s: &str) -> Result<ShardArg, String> {
     if s.trim() == "auto" {
         return Ok(ShardArg::Auto);
     }
-    parse_shard(s)
-        .map(ShardArg::Part)
-        .map_err(|_| format!("'{s}' is not a shard: valid I/N with 1 ≤ I ≤ N, e.g. 2/8, or auto"))
+    parse_shard(s).map(ShardArg::Part).map_err(|_| {
+        format!(
+            "{} is not a shard: valid I/N with 1 ≤ I ≤ N, e.g. 2/8, or auto",
+            quoted(s)
+        )
+    })
 }
 
 /// `I/N` with 1 ≤ I ≤ N.
 pub fn parse_shard(s: &str) -> Result<Shard, String> {
-    let bad = || format!("'{s}' is not a shard: valid I/N with 1 ≤ I ≤ N, e.g. 2/8");
+    let bad = || {
+        format!(
+            "{} is not a shard: valid I/N with 1 ≤ I ≤ N, e.g. 2/8",
+            quoted(s)
+        )
+    };
     let (i, n) = s.trim().split_once('/').ok_or_else(bad)?;
     let i: usize = i.trim().parse().map_err(|_| bad())?;
     let n: usize = n.trim().parse().map_err(|_| bad())?;

@@ -43,7 +43,8 @@ pub struct PlaneSpecArgs {
     /// Restitution r where it is not an axis; valid (0, 1) [default: 0.8].
     #[arg(long, value_parser = rules::R.real(), value_name = "R")]
     pub r: Option<f64>,
-    /// End of each pixel's transient in table periods (early stop on cycles).
+    /// End of each pixel's transient in table periods (early stop on cycles); valid 1 to
+    /// 1e12.
     #[arg(long, default_value_t = rules::PLANE_TRANSIENT.default as u64, value_parser = rules::PLANE_TRANSIENT.whole::<u64>(), value_name = "PERIODS")]
     pub transient: u64,
     /// Where each pixel's orbit starts.
@@ -72,7 +73,7 @@ pub struct FigurePlaneArgs {
         .help("Compute only the I-th of N interleaved parts (pixels whose index is I − 1 modulo N), or `auto` (the Slurm array task's part); join the parts with `merge`")
         .long_help(None)),
     mut_arg("resume", |a| a
-        .help("Do nothing if --out FILE already holds this part of this plane, complete and verified (checked as `merge` checks a part); otherwise compute it")
+        .help("Do nothing if --out FILE already holds this part of this plane, complete and verified (checked as `merge` checks a part); compute it if FILE is missing or this part damaged; refuse any other file")
         .long_help(None)),
     mut_arg("width", |a| a.help("Picture width in characters [default: the terminal's]")),
     mut_arg("height", |a| a.help("Picture height in lines [default: the terminal's]")),

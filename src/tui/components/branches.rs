@@ -1,7 +1,7 @@
 //! The skeleton under the diagram: every periodic branch the continuation reaches in the
 //! current α window from the (1, k) solution (its period doublings followed onto the
 //! doubled branches), computed in the background whenever the table, r, k or the window
-//! changes (not when only α moves). The diagram draws them (stable solid, unstable
+//! changes (not when only α moves; parked while the application is paused). The diagram draws them (stable solid, unstable
 //! dotted) with their special points on the axis; the stability panel lists the branch
 //! under the diagram's cursor. Draw-only otherwise: it has no panel of its own.
 
@@ -39,8 +39,10 @@ impl Component for Branches {
             return;
         }
         let (table, r, k, window) = (p.table(), p.r, p.k, (p.lo, p.hi));
+        // Parked while paused (a continuation can take a while): a storm of changes
+        // while paused leaves parked threads that end as newer ones replace them.
         let gen = workers.spawn(Self::ADDRESS, "branches", move |t| {
-            if !t.stale() {
+            if t.wait_if_paused() {
                 t.send(compute(table, r, k, window));
             }
         });

@@ -68,13 +68,7 @@ impl BasinSpec {
                 range: "at most 1000000 points",
             });
         }
-        if !(self.w_max > 0.0 && self.w_max <= limits::MAX_INITIAL) {
-            return Err(EngineError::InvalidParameter {
-                name: "w-max",
-                value: crate::error::fmt_value(self.w_max),
-                range: "0 < W ≤ 1000 (launch velocity relative to the table)",
-            });
-        }
+        limits::W_MAX.check(self.w_max)?;
         limits::TRANSIENT.check(self.settle.transient as f64)?;
         Ok(())
     }

@@ -27,6 +27,7 @@ pub mod basins;
 pub mod lyapunov;
 
 use crate::impact::Solver;
+use crate::limits;
 use crate::map::{EventKind, ImpactMap, State};
 use crate::run::detect::Periodicity;
 use crate::run::precision::{self, Precision};
@@ -49,6 +50,9 @@ pub const CELLS_PER_VELOCITY: f64 = 64.0;
 pub const CHAOS_FLOOR: f64 = 1e-3;
 /// Tangent steps that align the QR vectors before an unsettled orbit is sampled.
 pub const ALIGN: u64 = 200;
+/// Cells of (t̂, v) an unsettled orbit's sample records at most (about 40 MB): the
+/// sample's memory does not grow with its length.
+pub const MAX_VISITED_CELLS: usize = 1 << 20;
 
 /// How a start is run to its attractor.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -185,9 +189,10 @@ pub fn cell(phase: f64, v: f64) -> u64 {
 }
 
 /// The default height W of the start box: twice the table's largest velocity α·max|F'|,
-/// at least 1 (the (1, 1) and (1, 2) orbits leave the table with w ≈ ½ and ≈ 1).
+/// at least 1 (the (1, 1) and (1, 2) orbits leave the table with w ≈ ½ and ≈ 1), and at
+/// most the largest W accepted ([`limits::W_MAX`]), so a default is always valid.
 pub fn default_w_max(sys: &System) -> f64 {
-    (2.0 * sys.alpha() * sys.table().velocity_bound()).max(1.0)
+    (2.0 * sys.alpha() * sys.table().velocity_bound()).clamp(1.0, limits::W_MAX.hi)
 }
 
 /// Start `s` of a set spread over the box [0, 1) × [0, W]: the additive recurrence with
@@ -303,10 +308,12 @@ pub fn identify(
             })),
         },
         Outcome::Unsettled | Outcome::Running { .. } => {
-            let mut visits: Vec<u64> = Vec::with_capacity(settle.sample as usize);
+            // Cells are counted as the sample streams by: memory grows with the cells
+            // visited (at most MAX_VISITED_CELLS), never with the sample's length.
+            let mut visits = Visits::default();
             let mut last = None;
             let spectrum = qr_spectrum(&mut map, ALIGN, settle.sample, cancelled, &mut |e| {
-                visits.push(cell(e.phase, e.v));
+                visits.add(cell(e.phase, e.v));
                 last = Some((e.phase, e.v));
             });
             let spectrum = match spectrum {
@@ -330,7 +337,7 @@ pub fn identify(
                 periods: None,
                 point: last,
                 spectrum: Some(spectrum),
-                signature: Signature::Visits(count_cells(visits)),
+                signature: Signature::Visits(visits.sorted()),
                 precision: None,
             })
         }
@@ -369,16 +376,30 @@ fn unsettled_kind(s: &Spectrum) -> Kind {
     }
 }
 
-fn count_cells(mut cells: Vec<u64>) -> Vec<(u64, u32)> {
-    cells.sort_unstable();
-    let mut out: Vec<(u64, u32)> = Vec::new();
-    for c in cells {
-        match out.last_mut() {
-            Some((last, n)) if *last == c => *n += 1,
-            _ => out.push((c, 1)),
+/// The cells an unsettled orbit's sample visits, with their counts (saturating), as
+/// the sample streams by. At most [`MAX_VISITED_CELLS`] cells are held: beyond, only
+/// the cells already met are counted (an orbit is then identified by the first ones).
+#[derive(Default)]
+struct Visits(std::collections::HashMap<u64, u32>);
+
+impl Visits {
+    fn add(&mut self, cell: u64) {
+        let full = self.0.len() >= MAX_VISITED_CELLS;
+        match self.0.get_mut(&cell) {
+            Some(n) => *n = n.saturating_add(1),
+            None if !full => {
+                self.0.insert(cell, 1);
+            }
+            None => {}
         }
     }
-    out
+
+    /// (cell, count), sorted by cell.
+    fn sorted(self) -> Vec<(u64, u32)> {
+        let mut out: Vec<(u64, u32)> = self.0.into_iter().collect();
+        out.sort_unstable();
+        out
+    }
 }
 
 /// Rotate a cycle to start at its impact (else event) of smallest phase.

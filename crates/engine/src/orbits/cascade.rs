@@ -84,7 +84,12 @@ pub fn cascade(table: &Table, r: f64, k: u32, depth: usize) -> Result<Cascade, N
         .map_err(NoStart::Invalid)?;
     let w = stability_window(table, r, k)
         .map_err(NoStart::Invalid)?
-        .ok_or_else(|| NoStart::NotFound(format!("no (1, {k}) solution with f'' < 0 exists")))?;
+        .ok_or_else(|| {
+            NoStart::NotFound(format!(
+                "{}; a cascade starts from a stable (1, {k}) solution",
+                super::fixed::without_window(table, r, k, limits::ALPHA.lo)
+            ))
+        })?;
     let pd = w.alpha_pd().ok_or_else(|| {
         NoStart::NotFound(format!(
             "the stable (1, {k}) solution ends otherwise than by period doubling ({})",

@@ -56,7 +56,7 @@
 use super::border;
 use super::events::special;
 pub use super::events::{jump_phases, Kind, Special};
-use super::fixed::{fixed_points, stability_window};
+use super::fixed::{fixed_points, stability_window, without_window};
 use super::periodic::{correct, map_for, pass, CyclePoint, PassError};
 use super::roots::bracketed_root_nan;
 use super::two_cycle::two_cycle;
@@ -228,7 +228,12 @@ pub(crate) fn find_start(
         Start::Fixed { k } => {
             let w = stability_window(table, r, k)
                 .map_err(NoStart::Invalid)?
-                .ok_or_else(|| NoStart::NotFound(format!("no (1, {k}) solution with f'' < 0 exists for alpha up to the engine's limit")))?;
+                .ok_or_else(|| {
+                    NoStart::NotFound(format!(
+                        "{}; continuation from the (1, {k}) solution starts only where it is stable",
+                        without_window(table, r, k, lo)
+                    ))
+                })?;
             let a = lo.max(w.alpha_birth + 1e-6 * (1.0 + w.alpha_birth));
             if a > hi {
                 return Err(NoStart::NotFound(format!(

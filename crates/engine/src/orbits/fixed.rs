@@ -428,6 +428,68 @@ pub fn stability_window(
     Ok(stability_windows(table, r, k)?.into_iter().next())
 }
 
+/// Why no (1, k) solution of `table` at restitution `r` has a stability window, in
+/// words for a refusal: where (1, k) solutions exist (from `from` on, up to α's limit)
+/// and what each is there (phase, f'', classification), or that none exists. For
+/// clients that start on the stable (1, k) solution and found no window.
+pub fn without_window(table: &Table, r: f64, k: u32, from: f64) -> String {
+    let c = fixed_point_slope(r, k);
+    let at = |a: f64| {
+        System::new(table.clone(), a, r)
+            .ok()
+            .and_then(|s| fixed_points(&s, k).ok())
+            .unwrap_or_default()
+    };
+    let none = format!(
+        "no (1, {k}) solution exists for alpha up to {} (one needs f'(t*) = {}, more than the table's slope reaches)",
+        MAX_ALPHA,
+        crate::error::fmt_value(c)
+    );
+    let from = from.clamp(1e-6, MAX_ALPHA);
+    // Solutions exist from the α where α·max F' reaches c on (and on to the limit).
+    let (a, points) = if !at(from).is_empty() {
+        (from, at(from))
+    } else if at(MAX_ALPHA).is_empty() {
+        return none;
+    } else {
+        let (mut lo, mut hi) = (from, MAX_ALPHA);
+        for _ in 0..60 {
+            let mid = 0.5 * (lo + hi);
+            if at(mid).is_empty() {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        (hi, at(hi))
+    };
+    let list: Vec<String> = points
+        .iter()
+        .map(|p| {
+            format!(
+                "phase {} with f'' = {} ({})",
+                crate::error::fmt_value((p.phase * 1e6).round() / 1e6),
+                crate::error::fmt_value((p.ddf * 1e4).round() / 1e4),
+                p.classification.as_str()
+            )
+        })
+        .collect();
+    let shown = crate::error::fmt_value((a * 1e6).round() / 1e6);
+    let since = if a > from {
+        format!("(1, {k}) solutions exist only from alpha = {shown} on")
+    } else {
+        format!("at alpha = {shown} the (1, {k}) solutions are")
+    };
+    format!(
+        "no (1, {k}) solution is stable at any alpha up to {MAX_ALPHA} (no stability window); {since}: {}",
+        if a > from {
+            format!("there, {}", list.join(" and "))
+        } else {
+            list.join(" and ")
+        }
+    )
+}
+
 /// The α (and phase) at which the solution that loses stability at the end of the first
 /// stability window has f''(t̂*) = κ_c − Δκ, following the same branch (F' > 0,
 /// F'' < 0) beyond α_PD for Δκ > 0. None if the window does not end by period doubling

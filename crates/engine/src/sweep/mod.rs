@@ -317,13 +317,7 @@ impl SweepSpec {
             )));
         }
         if let Some(w) = self.w_max {
-            if !(w > 0.0 && w <= limits::MAX_INITIAL) {
-                return Err(EngineError::InvalidParameter {
-                    name: "w-max",
-                    value: crate::error::fmt_value(w),
-                    range: "(0, 1000] (launch velocity relative to the table)",
-                });
-            }
+            limits::W_MAX.check(w)?;
         }
         self.shard.validate()?;
         match self.param {

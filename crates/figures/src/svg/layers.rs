@@ -44,6 +44,66 @@ fn cells(out: &mut String, f: &Frame, p: &Panel, centres: &[[f64; 2]], size: [f6
     }
 }
 
+/// Weighted points as density dots: counted in cells of [`DOT_CELL`] points of the
+/// frame (held densely: memory for the frame's cells, whatever the number of points),
+/// each cell a disc whose opacity grows with its count, one path per opacity step.
+fn density(
+    out: &mut String,
+    f: &Frame,
+    p: &Panel,
+    points: impl Iterator<Item = ([f64; 2], u32)>,
+    color: Color,
+) {
+    let cell = |v: f64| (v / DOT_CELL) as i64;
+    let (i0, j0) = (cell(f.x0 - 1.0), cell(f.y0 - 1.0));
+    let (ni, nj) = (
+        (cell(f.x1 + 1.0) - i0 + 1).max(1) as usize,
+        (cell(f.y1 + 1.0) - j0 + 1).max(1) as usize,
+    );
+    let mut counts = vec![0u32; ni * nj];
+    for (q, w) in points {
+        let (x, y) = (f.px(&p.x, q[0]), f.py(&p.y, q[1]));
+        if !(x >= f.x0 - 1.0 && x <= f.x1 + 1.0 && y >= f.y0 - 1.0 && y <= f.y1 + 1.0) {
+            continue;
+        }
+        let (i, j) = ((cell(x) - i0) as usize, (cell(y) - j0) as usize);
+        if i < ni && j < nj {
+            let c = &mut counts[i * nj + j];
+            *c = c.saturating_add(w);
+        }
+    }
+    // One path per opacity step; each dot a zero-length stroke with round caps (a
+    // disc), moved to by whole hundredths of a point so the relative moves add up
+    // exactly. Cells in order of x, then y.
+    let mut levels: BTreeMap<u32, (String, (i64, i64))> = BTreeMap::new();
+    for (k, &count) in counts.iter().enumerate() {
+        if count == 0 {
+            continue;
+        }
+        let (i, j) = ((k / nj) as i64 + i0, (k % nj) as i64 + j0);
+        let alpha = 1.0 - (1.0 - DOT_ALPHA).powi(count.min(1000) as i32);
+        let level = ((alpha * DOT_LEVELS as f64).ceil() as u32).clamp(1, DOT_LEVELS);
+        let at = (
+            ((i as f64 + 0.5) * DOT_CELL * 100.0).round() as i64,
+            ((j as f64 + 0.5) * DOT_CELL * 100.0).round() as i64,
+        );
+        let (d, last) = levels.entry(level).or_default();
+        let (dx, dy) = (hundredths(at.0 - last.0), hundredths(at.1 - last.1));
+        let sep = if dy.starts_with('-') { "" } else { " " };
+        let _ = write!(d, "m{dx}{sep}{dy}h0");
+        *last = at;
+    }
+    for (level, (d, _)) in levels {
+        let _ = writeln!(
+            out,
+            "<path fill=\"none\" stroke=\"{}\" stroke-opacity=\"{}\" stroke-width=\"{}\" stroke-linecap=\"round\" d=\"{d}\"/>",
+            color.hex(),
+            n(level as f64 / DOT_LEVELS as f64),
+            n(2.0 * DOT_RADIUS)
+        );
+    }
+}
+
 pub(super) fn layer(out: &mut String, f: &Frame, p: &Panel, l: &Layer) {
     match l {
         Layer::Bands { spans, color, .. } => {
@@ -71,43 +131,9 @@ pub(super) fn layer(out: &mut String, f: &Frame, p: &Panel, l: &Layer) {
             ..
         } => cells(out, f, p, centres, *size, *color),
         Layer::Density { points, color, .. } => {
-            let mut cells: BTreeMap<(i64, i64), u32> = BTreeMap::new();
-            for q in points {
-                let (x, y) = (f.px(&p.x, q[0]), f.py(&p.y, q[1]));
-                if !(x >= f.x0 - 1.0 && x <= f.x1 + 1.0 && y >= f.y0 - 1.0 && y <= f.y1 + 1.0) {
-                    continue;
-                }
-                *cells
-                    .entry(((x / DOT_CELL) as i64, (y / DOT_CELL) as i64))
-                    .or_default() += 1;
-            }
-            // One path per opacity step; each dot a zero-length stroke with round caps
-            // (a disc), moved to by whole hundredths of a point so the relative moves
-            // add up exactly.
-            let mut levels: BTreeMap<u32, (String, (i64, i64))> = BTreeMap::new();
-            for ((i, j), count) in cells {
-                let alpha = 1.0 - (1.0 - DOT_ALPHA).powi(count.min(1000) as i32);
-                let level = ((alpha * DOT_LEVELS as f64).ceil() as u32).clamp(1, DOT_LEVELS);
-                let at = (
-                    ((i as f64 + 0.5) * DOT_CELL * 100.0).round() as i64,
-                    ((j as f64 + 0.5) * DOT_CELL * 100.0).round() as i64,
-                );
-                let (d, last) = levels.entry(level).or_default();
-                let (dx, dy) = (hundredths(at.0 - last.0), hundredths(at.1 - last.1));
-                let sep = if dy.starts_with('-') { "" } else { " " };
-                let _ = write!(d, "m{dx}{sep}{dy}h0");
-                *last = at;
-            }
-            for (level, (d, _)) in levels {
-                let _ = writeln!(
-                    out,
-                    "<path fill=\"none\" stroke=\"{}\" stroke-opacity=\"{}\" stroke-width=\"{}\" stroke-linecap=\"round\" d=\"{d}\"/>",
-                    color.hex(),
-                    n(level as f64 / DOT_LEVELS as f64),
-                    n(2.0 * DOT_RADIUS)
-                );
-            }
+            density(out, f, p, points.iter().map(|q| (*q, 1)), *color);
         }
+        Layer::Grid { grid, color, .. } => density(out, f, p, grid.bins(), *color),
         Layer::Lines {
             lines,
             color,
