@@ -69,9 +69,11 @@ pub fn run(args: &LyapunovArgs) -> anyhow::Result<()> {
             "writes to standard output".into(),
         ]);
     }
+    // Standard output is this run's output before the measurement starts, so its
+    // progress knows whether the results stream into another program.
+    let mut out = Sink::stdout();
     let found = measure(&sys, start, &settle)?;
     let row = LyapunovRow::new(&found, sys.r());
-    let mut out = Sink::stdout();
     let written = (|| -> anyhow::Result<()> {
         match args.format {
             Format::Json => {
