@@ -11,6 +11,9 @@
 //! * [`continuation`]: pseudo-arclength continuation of cycles in α with period
 //!   doubling, fold, border collision, grazing, onset of sticking and window exits
 //!   located, and branch switching onto doubled branches ([`continuation::branches`]).
+//! * [`curves`]: two-parameter curves of period doublings, folds, border collisions
+//!   and grazings over (α, r) or (α, D), with their codimension-two points and the
+//!   flip's criticality.
 //! * [`events`]: the special points of a branch (PD, fold, border collision, grazing,
 //!   onset of sticking, window exit) and the helpers that locate them.
 //! * [`cascade`]: the period-doubling cascade from a (1, k) solution: α₁ < α₂ < …, how
@@ -25,6 +28,7 @@
 pub mod border;
 pub mod cascade;
 pub mod continuation;
+pub mod curves;
 pub mod events;
 pub mod fixed;
 pub mod periodic;

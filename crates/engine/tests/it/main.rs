@@ -2,6 +2,7 @@
 
 mod attractors;
 mod continuation;
+mod curves;
 mod engine_properties;
 mod long_cycles;
 mod long_runs;

@@ -1,0 +1,363 @@
+//! Two-parameter curves (orbits::curves) against independent results: the closed-form
+//! period doubling of the (1, 1) solution, the two-cycle's own border collision, the
+//! one-parameter continuation at points of each curve and on both sides of each
+//! codimension-two point, and simulation of the doubled orbit past a flip.
+
+use bouncemap_engine::grid::SweepParam;
+use bouncemap_engine::map::{ImpactMap, State};
+use bouncemap_engine::orbits::continuation::{branches, Kind, Options, Special, Start};
+use bouncemap_engine::orbits::curves::{
+    curves, Codim2Kind, Curve, CurvePoint, Curves, Plane, Seeds,
+};
+use bouncemap_engine::orbits::fixed::stability_window;
+use bouncemap_engine::orbits::two_cycle::border_collision;
+use bouncemap_engine::system::System;
+use bouncemap_engine::table::Table;
+use bouncemap_engine::Solver;
+use std::sync::OnceLock;
+
+fn fd_plane() -> &'static (Plane, Curves) {
+    static P: OnceLock<(Plane, Curves)> = OnceLock::new();
+    P.get_or_init(|| {
+        let plane = Plane {
+            table: Table::fd(1.0).unwrap(),
+            r: 0.8,
+            alpha: (0.4, 0.7),
+            second: SweepParam::D,
+            window: (0.0, 1.0),
+        };
+        let seeds = Seeds::FromFixed {
+            k: 1,
+            max_period: 8,
+            at: 1.0,
+            count: 5,
+        };
+        let c = curves(&plane, seeds).unwrap();
+        (plane, c)
+    })
+}
+
+fn of<'a>(c: &'a Curves, kind: &str, n: usize) -> Vec<&'a Curve> {
+    c.curves
+        .iter()
+        .filter(|cv| cv.kind.as_str() == kind && cv.n == n)
+        .collect()
+}
+
+/// Every point of the (1, 1) PD curve over (α, r) lies on the closed-form α_PD(r).
+fn pd_curve_over_r_is_the_closed_form(table: Table, r_lo: f64) {
+    let windows: Vec<f64> = (0..50)
+        .map(|i| r_lo + (0.95 - r_lo) * (i as f64 + 0.5) / 50.0)
+        .map(|r| {
+            stability_window(&table, r, 1)
+                .unwrap()
+                .unwrap()
+                .alpha_pd()
+                .unwrap()
+        })
+        .collect();
+    let lo = windows.iter().cloned().fold(f64::INFINITY, f64::min);
+    let hi = windows.iter().cloned().fold(0.0, f64::max);
+    let plane = Plane {
+        table: table.clone(),
+        r: 0.8,
+        alpha: (0.9 * lo, 1.1 * hi),
+        second: SweepParam::R,
+        window: (r_lo, 0.95),
+    };
+    let c = curves(
+        &plane,
+        Seeds::FromFixed {
+            k: 1,
+            max_period: 1,
+            at: 0.8,
+            count: 1,
+        },
+    )
+    .unwrap();
+    let pd = of(&c, "period_doubling", 1);
+    assert_eq!(pd.len(), 1, "{}: one (1, 1) PD curve", table.name());
+    let cv = pd[0];
+    // It spans the whole r window.
+    let rs: Vec<f64> = cv.points.iter().map(|q| q.p).collect();
+    assert!(
+        rs.iter().cloned().fold(1.0, f64::min) < r_lo + 1e-9,
+        "{:?}",
+        cv.ends
+    );
+    assert!(
+        rs.iter().cloned().fold(0.0, f64::max) > 0.95 - 1e-9,
+        "{:?}",
+        cv.ends
+    );
+    assert!(cv.points.len() >= 50);
+    for q in &cv.points {
+        let exact = stability_window(&table, q.p, 1)
+            .unwrap()
+            .unwrap()
+            .alpha_pd()
+            .unwrap();
+        assert!(
+            (q.alpha - exact).abs() < 1e-10,
+            "{}: r = {}: curve {} closed form {}",
+            table.name(),
+            q.p,
+            q.alpha,
+            exact
+        );
+    }
+}
+
+#[test]
+fn the_one_one_pd_curve_over_r_is_the_closed_form_for_the_sine_and_fd_half() {
+    pd_curve_over_r_is_the_closed_form(Table::sine(), 0.2);
+    // Below r ≈ 0.33 the fd:0.5 window of (1, 1) does not end by period doubling.
+    pd_curve_over_r_is_the_closed_form(Table::fd(0.5).unwrap(), 0.35);
+}
+
+#[test]
+fn the_one_one_pd_curve_over_d_is_the_closed_form() {
+    let (_, c) = fd_plane();
+    let pd = of(c, "period_doubling", 1);
+    assert_eq!(pd.len(), 1);
+    let pts = &pd[0].points;
+    assert!(pts.len() >= 50);
+    assert_eq!(pd[0].ends.map(|e| e.as_str()), ["window", "window"]);
+    for q in pts {
+        let exact = stability_window(&Table::fd(q.p).unwrap(), 0.8, 1)
+            .unwrap()
+            .unwrap()
+            .alpha_pd()
+            .unwrap();
+        assert!(
+            (q.alpha - exact).abs() < 1e-10,
+            "D = {}: {} vs {}",
+            q.p,
+            q.alpha,
+            exact
+        );
+    }
+}
+
+/// The special points of the (n, k) branch through a curve point's cycle, continued in
+/// α at second parameter `d` over α ± `half` by the one-parameter continuation (its
+/// own test functions and root location).
+fn one_parameter(q: &CurvePoint, d: f64, half: f64) -> Vec<Special> {
+    let table = Table::fd(d).unwrap();
+    let start = Start::Point {
+        n: q.cycle.n,
+        k: q.cycle.k,
+        t0: q.cycle.phases[0],
+        v0: q.cycle.velocities[0],
+    };
+    let opts = Options {
+        max_period: q.cycle.n,
+        ..Options::default()
+    };
+    // Windows of that half-width and ten and a hundred times narrower: a branch may
+    // end at a border collision next to the point in the widest.
+    [half, half / 10.0, half / 100.0]
+        .into_iter()
+        .flat_map(|h| {
+            let window = (q.alpha - h, q.alpha + h);
+            branches(&table, 0.8, window, start, opts).unwrap_or_default()
+        })
+        .filter(|b| b.n == q.cycle.n)
+        .flat_map(|b| b.specials.into_iter().chain([b.begin, b.end]))
+        .collect()
+}
+
+/// At ten points of each PD curve of the (2, 2), (4, 4) and (8, 8) cycles, the
+/// one-parameter continuation at that D finds a period doubling of that cycle at the
+/// same α.
+#[test]
+fn pd_curves_agree_with_the_one_parameter_continuation() {
+    let (_, c) = fd_plane();
+    for n in [2, 4, 8] {
+        let pd = of(c, "period_doubling", n);
+        let mut checked = 0;
+        for cv in pd {
+            // Where every impact is 2e-3 or more from a breakpoint: closer, the α window
+            // ±1e-3 would reach the border, where the one-parameter continuation
+            // reports the collision instead (and the cycle may not exist beyond).
+            let pts: Vec<&CurvePoint> = cv
+                .points
+                .iter()
+                .filter(|q| {
+                    q.cycle
+                        .phases
+                        .iter()
+                        .all(|&ph| ph.min(1.0 - ph) > 2e-3 && (ph - 0.5).abs() > 2e-3)
+                })
+                .collect();
+            let m = pts.len();
+            if m < 10 {
+                continue;
+            }
+            checked += 1;
+            for i in 0..10 {
+                let q = pts[(i * (m - 1)) / 9];
+                let best = one_parameter(q, q.p, 1e-3)
+                    .iter()
+                    .filter(|s| s.kind == Kind::PeriodDoubling)
+                    .map(|s| (s.alpha - q.alpha).abs())
+                    .fold(f64::INFINITY, f64::min);
+                assert!(
+                    best < 1e-9,
+                    "({n}, {n}) at D = {}: α {} off by {best:e}",
+                    q.p,
+                    q.alpha
+                );
+            }
+        }
+        assert!(checked >= 1, "no ({n}, {n}) PD curve checked");
+    }
+}
+
+/// The (2, 2) border-collision curve through the two-cycle's own border collision
+/// (`two_cycle::border_collision`) at 20 values of D.
+#[test]
+fn the_two_two_border_collision_curve_is_the_two_cycles() {
+    let (_, c) = fd_plane();
+    let bc = of(c, "border_collision", 2);
+    assert!(!bc.is_empty());
+    let mut checked = 0;
+    for i in 0..20 {
+        let d = 0.05 + 0.6 * i as f64 / 19.0;
+        let Ok(exact) = border_collision(&Table::fd(d).unwrap(), 0.8, 1) else {
+            continue;
+        };
+        // The curve's α at this D, interpolated between its two points around it and
+        // corrected: the curve passes within 1e-9 of the exact point.
+        let near = bc.iter().any(|cv| {
+            cv.passes_near(exact.alpha, d, 1e-9) || {
+                cv.points.windows(2).any(|w| {
+                    let (a, b) = (&w[0], &w[1]);
+                    (a.p - d) * (b.p - d) <= 0.0 && {
+                        let t = (d - a.p) / (b.p - a.p);
+                        let alpha = a.alpha + t * (b.alpha - a.alpha);
+                        // Chord error: the points are ≤ 0.005 of the window apart.
+                        (alpha - exact.alpha).abs() < 1e-5
+                    }
+                })
+            }
+        });
+        assert!(near, "D = {d}: no (2, 2) BC curve near α = {}", exact.alpha);
+        checked += 1;
+    }
+    assert!(
+        checked >= 15,
+        "only {checked} values of D have a border collision"
+    );
+    // And exactly, at the curve's own points: two_cycle's collision at that D.
+    let mut exact_points = 0;
+    for cv in &bc {
+        for q in cv.points.iter().step_by(10) {
+            if let Ok(exact) = border_collision(&Table::fd(q.p).unwrap(), 0.8, 1) {
+                if (exact.alpha - q.alpha).abs() < 1e-6 {
+                    assert!(
+                        (exact.alpha - q.alpha).abs() < 1e-9,
+                        "D = {}: {} vs {}",
+                        q.p,
+                        q.alpha,
+                        exact.alpha
+                    );
+                    exact_points += 1;
+                }
+            }
+        }
+    }
+    assert!(exact_points >= 10, "{exact_points}");
+}
+
+/// Each PD-at-a-border point, by the one-parameter continuation on the curve's side:
+/// at D = D* + δ the cycle's branch has a period doubling and a border collision, and
+/// the two close in on each other linearly as δ shrinks (the gap halves with δ), at
+/// the point's α.
+#[test]
+fn codimension_two_points_are_confirmed_by_the_one_parameter_continuation() {
+    let (_, c) = fd_plane();
+    let mut checked = 0;
+    for p in c.codim2.iter().filter(|p| p.kind == Codim2Kind::PdBorder) {
+        let cv = &c.curves[p.curve];
+        let side = cv.points[cv.points.len() / 2].p - p.p;
+        let gap = |delta: f64| -> Option<(f64, f64)> {
+            let target = p.p + delta.copysign(side);
+            let q = cv
+                .points
+                .iter()
+                .min_by(|a, b| (a.p - target).abs().total_cmp(&(b.p - target).abs()))?;
+            let ss = one_parameter(q, q.p, 5e-3);
+            let nearest = |kind: Kind| {
+                ss.iter()
+                    .filter(|s| s.kind == kind)
+                    .map(|s| s.alpha)
+                    .min_by(|a, b| (a - p.alpha).abs().total_cmp(&(b - p.alpha).abs()))
+            };
+            let (pd, bc) = (
+                nearest(Kind::PeriodDoubling)?,
+                nearest(Kind::BorderCollision)?,
+            );
+            assert!(
+                (pd - q.alpha).abs() < 1e-9,
+                "{p:?}: PD at {pd}, curve at {}",
+                q.alpha
+            );
+            Some(((pd - bc).abs(), (q.p - p.p).abs()))
+        };
+        let (Some((g1, d1)), Some((g2, d2))) = (gap(2e-3), gap(1e-3)) else {
+            continue;
+        };
+        let ratio = (g2 / d2) / (g1 / d1);
+        assert!(
+            (ratio - 1.0).abs() < 0.2,
+            "{p:?}: gaps {g1} at {d1}, {g2} at {d2}"
+        );
+        checked += 1;
+    }
+    assert!(checked >= 2, "only {checked} PD-border points confirmed");
+}
+
+/// The flip's criticality against simulation: where the (1, 1) PD curve over D says
+/// supercritical, the map just past α_PD, started next to the unstable (1, 1)
+/// solution, settles on a two-cycle close to it (its distance ∝ √Δα).
+#[test]
+fn supercritical_flips_give_a_stable_doubled_orbit() {
+    let (_, c) = fd_plane();
+    let cv = of(c, "period_doubling", 1)[0];
+    let mut checked = 0;
+    for q in cv.points.iter().step_by(cv.points.len() / 8) {
+        let crit = q.criticality.unwrap();
+        let Some(sup) = crit.supercritical() else {
+            continue;
+        };
+        assert!(sup, "D = {}: {:?}", q.p, crit);
+        // Past α_PD by Δα and Δα/4: a two-cycle, its split halving (∝ √Δα).
+        let split = |da: f64| {
+            let sys = System::new(Table::fd(q.p).unwrap(), q.alpha + da, 0.8).unwrap();
+            let ph = q.cycle.phases[0];
+            let st = State::launch(&sys, 0, ph + 1e-3, q.cycle.velocities[0], 0.0).unwrap();
+            let mut map = ImpactMap::new(sys, Solver::Exact, st);
+            let mut phases = Vec::new();
+            for _ in 0..100_000 {
+                phases.push(map.step().unwrap().phase);
+            }
+            let m = phases.len();
+            let (a, b, c2) = (phases[m - 3], phases[m - 2], phases[m - 1]);
+            assert!(
+                (a - c2).abs() < 1e-9,
+                "D = {}: not period two ({a}, {b}, {c2})",
+                q.p
+            );
+            (a - b).abs()
+        };
+        let (s1, s2) = (split(1e-4), split(2.5e-5));
+        assert!(
+            s1 < 0.2 && (s1 / s2 - 2.0).abs() < 0.1,
+            "D = {}: splits {s1}, {s2}",
+            q.p
+        );
+        checked += 1;
+    }
+    assert!(checked >= 5);
+}
