@@ -11,6 +11,7 @@ pub mod basins;
 pub mod bench;
 pub mod cascade;
 pub mod continuation;
+pub mod curves;
 pub mod drive;
 pub mod figure;
 pub mod fixed;
@@ -40,6 +41,7 @@ pub fn run(cmd: Command) -> anyhow::Result<()> {
         Command::Scaling(a) => scaling::run(&a),
         Command::Continue(a) => continuation::run(&a),
         Command::Cascade(a) => cascade::run(&a),
+        Command::Curves(a) => curves::run(&a),
         Command::Sweep(a) => sweep::run(&a),
         Command::Lyapunov(a) => lyapunov::run(&a),
         Command::Basins(a) => basins::run(&a),

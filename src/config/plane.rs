@@ -108,3 +108,78 @@ pub fn plane_spec_from(
     spec.validate()?;
     Ok(spec)
 }
+
+/// `curves`' flags into the engine's plane of two parameters and the second
+/// parameter's value the curves are started from: the x axis must be α, the y axis r
+/// or d (d with the F_D family: `--table fd` starts from the window's middle, `fd:D`
+/// from D, which must lie in the window; an r axis starts from `--r`).
+pub fn curves_plane(
+    args: &super::flags::CurvesArgs,
+) -> Result<(bouncemap_engine::orbits::curves::Plane, f64), InputError> {
+    let x = parse_axis("x", &args.x, 2)?;
+    let y = parse_axis("y", &args.y, 2)?;
+    if x.param != SweepParam::Alpha {
+        return Err(InputError(format!(
+            "--x {}: the curves' x axis is alpha: valid alpha:LO..HI",
+            quoted(&args.x)
+        )));
+    }
+    if y.param == SweepParam::Alpha {
+        return Err(InputError(format!(
+            "--y {}: the second parameter is r or d: valid r:LO..HI or d:LO..HI",
+            quoted(&args.y)
+        )));
+    }
+    for (flag, axis, text) in [("x", x, &args.x), ("y", y, &args.y)] {
+        if axis.lo >= axis.hi {
+            return Err(InputError(format!(
+                "--{flag} {}: the window is a single value: valid LO..HI with LO < HI",
+                quoted(text)
+            )));
+        }
+    }
+    let table = match args.table.trim() {
+        "fd" => TableSpec::fd(rules::D.default),
+        t => TableSpec::parse(t).map_err(|e| InputError(format!("--table: {e}")))?,
+    };
+    let at = match y.param {
+        SweepParam::D => {
+            let Some(d) = table.d() else {
+                return Err(InputError(format!(
+                    "--table {}: a d axis needs the F_D family: valid --table fd or fd:D",
+                    crate::output::text::escape(args.table.trim())
+                )));
+            };
+            if args.table.trim() == "fd" {
+                0.5 * (y.lo + y.hi)
+            } else if d < y.lo || d > y.hi {
+                return Err(InputError(format!(
+                    "--table {}: D = {d} is outside the d window {}..{}: valid fd:D with D in the window, or fd",
+                    args.table.trim(),
+                    y.lo,
+                    y.hi
+                )));
+            } else {
+                d
+            }
+        }
+        _ => {
+            if args.r < y.lo || args.r > y.hi {
+                return Err(InputError(format!(
+                    "--r {}: outside the r window {}..{}: valid an r in the window, where the curves start",
+                    args.r, y.lo, y.hi
+                )));
+            }
+            args.r
+        }
+    };
+    let plane = bouncemap_engine::orbits::curves::Plane {
+        table: table.load()?,
+        r: args.r,
+        alpha: (x.lo, x.hi),
+        second: y.param,
+        window: (y.lo, y.hi),
+    };
+    plane.check()?;
+    Ok((plane, at))
+}

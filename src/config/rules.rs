@@ -218,6 +218,8 @@ pub const CELLS: Rule = rule(
 pub const CYCLE_N: Rule = rule("n", "n", limits::CYCLE_N, 1.0);
 /// The longest period `continue` starts doubled branches up to.
 pub const CONTINUE_MAX_PERIOD: Rule = rule("max-period", "max period", limits::MAX_PERIOD, 16.0);
+/// Values of the second parameter `curves` seeds at.
+pub const CURVE_SEEDS: Rule = rule("seeds", "seeds", limits::CURVE_SEEDS, 5.0);
 /// Period doublings a cascade looks for.
 pub const DEPTH: Rule = rule("depth", "depth", limits::CASCADE_DEPTH, 6.0);
 /// D values of `cascade --d LO..HI:N`.
@@ -362,6 +364,7 @@ mod tests {
             FPS,
             CELLS,
             SCALING_D,
+            CURVE_SEEDS,
             D_POINTS,
             LYAPUNOV_TRANSIENT,
             IMPACTS,

@@ -195,3 +195,113 @@ fn bad_input_is_one_line_with_the_valid_range_and_status_2() {
         assert!(err.contains(range), "{args:?}: {err}");
     }
 }
+
+/// `curves` through the binary: the (1, 1) PD curve's points against `fixed`'s
+/// closed-form α_PD at their D, every point's condition within 1e-9, json and csv
+/// describing the same curves, `--out` written whole.
+#[test]
+fn curves_agree_with_fixed_and_their_formats_agree() {
+    let args = [
+        "curves",
+        "--table",
+        "fd:1",
+        "--x",
+        "alpha:0.4..0.7",
+        "--y",
+        "d:0..1",
+        "--max-period",
+        "4",
+        "--seeds",
+        "1",
+        "--format",
+        "json",
+    ];
+    let v = json(&args);
+    let curves = v["curves"].as_array().unwrap();
+    let pd = curves
+        .iter()
+        .find(|c| c["kind"] == "period_doubling" && c["n"] == 1)
+        .expect("the (1, 1) PD curve");
+    let pts = pd["points"].as_array().unwrap();
+    for q in pts.iter().step_by(pts.len() / 10) {
+        let d = f(&q["d"]);
+        let table = format!("fd:{d}");
+        let fx = json(&[
+            "fixed", "--table", &table, "--alpha", "0.5", "--format", "json",
+        ]);
+        assert!(
+            (f(&q["alpha"]) - f(&fx["alpha_pd"])).abs() < 1e-10,
+            "D = {d}"
+        );
+    }
+    for c in curves {
+        for q in c["points"].as_array().unwrap() {
+            assert!(f(&q["condition"]).abs() <= 1e-9);
+        }
+    }
+    let dir = std::env::temp_dir().join(format!("bouncemap-curves-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = dir.join("c.csv");
+    let mut csv_args: Vec<&str> = args[..args.len() - 1].to_vec();
+    csv_args.push("csv");
+    csv_args.push("--out");
+    csv_args.push(out.to_str().unwrap());
+    let (code, _, err) = run(&csv_args);
+    assert_eq!(code, 0, "{err}");
+    let text = std::fs::read_to_string(&out).unwrap();
+    std::fs::remove_dir_all(&dir).ok();
+    let points = text.lines().filter(|l| l.starts_with("point,")).count();
+    let total: usize = curves
+        .iter()
+        .map(|c| c["points"].as_array().unwrap().len())
+        .sum();
+    assert_eq!(points, total);
+    let codim2 = text.lines().filter(|l| l.starts_with("codim2,")).count();
+    assert_eq!(codim2, v["codim2"].as_array().unwrap().len());
+    assert!(codim2 >= 2);
+}
+
+#[test]
+fn curves_refuse_bad_planes_with_one_line() {
+    for (args, needle) in [
+        (
+            &["--table", "sine", "--x", "alpha:0.4..0.7", "--y", "d:0..1"][..],
+            "F_D family",
+        ),
+        (&["--x", "r:0.2..0.9", "--y", "d:0..1"][..], "alpha:LO..HI"),
+        (
+            &["--x", "alpha:0.4..0.7", "--y", "alpha:0.4..0.7"][..],
+            "r:LO..HI or d:LO..HI",
+        ),
+        (
+            &[
+                "--table",
+                "fd:0.3",
+                "--x",
+                "alpha:0.4..0.7",
+                "--y",
+                "d:0.5..1",
+            ][..],
+            "outside the d window",
+        ),
+        (
+            &["--x", "alpha:0.4..0.7", "--y", "r:0.2..0.5"][..],
+            "outside the r window",
+        ),
+        (
+            &["--x", "alpha:0.5..0.5", "--y", "d:0..1", "--table", "fd"][..],
+            "single value",
+        ),
+        (
+            &["--x", "alpha:0.4..0.7", "--y", "d:0..1", "--seeds", "0"][..],
+            "seeds",
+        ),
+    ] {
+        let mut a = vec!["curves"];
+        a.extend_from_slice(args);
+        let (code, _, err) = run(&a);
+        assert_eq!(code, 2, "{a:?}: {err}");
+        assert_eq!(err.trim().lines().count(), 1, "{a:?}: {err}");
+        assert!(err.contains(needle), "{a:?}: {err}");
+    }
+}

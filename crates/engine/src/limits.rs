@@ -183,6 +183,8 @@ pub const MAX_PERIOD: Limit = whole("max-period", 1.0, 4096.0, "a whole number i
 /// Agreement promised by the early stop.
 /// Period doublings a cascade looks for (each doubles the cycle: 2¹² impacts at most).
 pub const CASCADE_DEPTH: Limit = whole("depth", 1.0, 12.0, "a whole number in [1, 12]");
+/// Values of the second parameter the two-parameter curves are seeded at.
+pub const CURVE_SEEDS: Limit = whole("seeds", 1.0, 64.0, "a whole number in [1, 64]");
 /// Impacts per cycle of a continued orbit.
 pub const CYCLE_N: Limit = whole("n", 1.0, 1024.0, "a whole number in [1, 1024]");
 /// Number of D values of a cascade over the F_D family.

@@ -78,6 +78,10 @@ pub enum Command {
     Continue(ContinueArgs),
     /// The period-doubling cascade: αₙ, the Feigenbaum ratios, how each 2ⁿ branch ends.
     Cascade(CascadeArgs),
+    /// Two-parameter bifurcation curves over (α, r) or (α, D): period doublings, folds,
+    /// border collisions, grazings, and their codimension-two points.
+    #[command(allow_negative_numbers = true)]
+    Curves(CurvesArgs),
     /// Sweep one parameter over a window: a bifurcation diagram (csv, json, braille).
     Sweep(SweepArgs),
     /// Both Lyapunov exponents of one orbit, per impact and per table period.
@@ -257,6 +261,41 @@ pub struct ContinueArgs {
     /// Output format.
     #[arg(long, value_enum, default_value_t = Format::Text)]
     pub format: Format,
+}
+
+/// `bouncemap curves`.
+#[derive(Args, Debug, Clone)]
+pub struct CurvesArgs {
+    /// Table shape: sine, quad (= fd:0), cubic (= fd:1), fd:D with D in [0, 1], or
+    /// PATH.toml; with a d axis, fd (the family) or fd:D, D the value the curves are
+    /// started from.
+    #[arg(long, default_value = rules::DEFAULT_TABLE, value_name = "TABLE")]
+    pub table: String,
+    /// The horizontal axis: alpha:LO..HI.
+    #[arg(long, value_name = "alpha:LO..HI")]
+    pub x: String,
+    /// The vertical axis, the second parameter: r:LO..HI or d:LO..HI.
+    #[arg(long, value_name = "PARAM:LO..HI")]
+    pub y: String,
+    /// Coefficient of restitution r; valid (0, 1). With an r axis, the value the
+    /// curves are started from.
+    #[arg(long, default_value_t = rules::R.default, value_parser = rules::R.real(), value_name = "R")]
+    pub r: f64,
+    /// k of the (1, k) solution whose branches are followed; valid 1 to 100.
+    #[arg(long, default_value_t = rules::K.default as u32, value_parser = rules::K.whole::<u32>(), value_name = "K")]
+    pub k: u32,
+    /// No doubled branch is started beyond this period; valid 1 to 4096.
+    #[arg(long, default_value_t = rules::CONTINUE_MAX_PERIOD.default as usize, value_parser = rules::CONTINUE_MAX_PERIOD.whole::<usize>(), value_name = "P")]
+    pub max_period: usize,
+    /// Besides the starting value, seed at this many values of the second parameter
+    /// spread over its window; valid 1 to 64 (1: the starting value only).
+    #[arg(long, default_value_t = rules::CURVE_SEEDS.default as usize, value_parser = rules::CURVE_SEEDS.whole::<usize>(), value_name = "N")]
+    pub seeds: usize,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    pub format: Format,
+    #[command(flatten)]
+    pub output: OutArgs,
 }
 
 /// `bouncemap cascade`.

@@ -41,6 +41,12 @@
 //! * on a border-collision curve, the other impacts' distances to the breakpoints: two
 //!   border collisions at once.
 //!
+//! Fold curves are not followed: the cycle is solved at fixed (α, p) by Newton's
+//! method on the map, and that is singular where a multiplier is +1 (a fold needs the
+//! extended system with the cycle's equations, which this module does not build). The
+//! one-parameter continuation locates folds, and the (1, k) birth curves are closed
+//! forms ([`crate::plane::curves`]).
+//!
 //! A fold and a period doubling cannot meet on a cycle of this map: at a multiplier −1
 //! the other is −r²ⁿ, never +1 for r < 1, so no such point is looked for.
 //!
@@ -400,8 +406,9 @@ impl Curve {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Seeds {
     /// Every special point of every branch reached from the (1, k) solution by the
-    /// one-parameter continuation in α, up to `max_period`, at `count` values of the
-    /// second parameter spread over its window (1: at `at`).
+    /// one-parameter continuation in α, up to `max_period`, at the second parameter's
+    /// value `at` and (for `count` > 1) at `count` more values spread evenly over its
+    /// window, ends included.
     FromFixed {
         /// k of the (1, k) solution.
         k: u32,
@@ -435,8 +442,9 @@ pub struct Curves {
     pub curves: Vec<Curve>,
     /// Codimension-two points located on them.
     pub codim2: Vec<Codim2>,
-    /// Special points that were not followed, with the reason (e.g. on a smooth table a
-    /// grazing that ends at once, or a seed the corrector could not solve).
+    /// Special points that were not followed, with the reason: folds (below), or a seed
+    /// the corrector could not solve (a grazing cycle that cannot be solved at the
+    /// grazing itself).
     pub skipped: Vec<(Special, String)>,
 }
 
@@ -453,10 +461,10 @@ pub fn curves(plane: &Plane, seeds: Seeds) -> Result<Curves, EngineError> {
     };
     let values: Vec<f64> = match seeds {
         Seeds::FromFixed { at, count, .. } if count <= 1 => vec![at],
-        Seeds::FromFixed { count, .. } => (0..count)
-            .map(|i| {
+        Seeds::FromFixed { at, count, .. } => std::iter::once(at)
+            .chain((0..count).map(|i| {
                 plane.window.0 + (plane.window.1 - plane.window.0) * i as f64 / (count - 1) as f64
-            })
+            }))
             .collect(),
         Seeds::Point { at, .. } => vec![at],
     };
@@ -512,6 +520,13 @@ pub fn curves(plane: &Plane, seeds: Seeds) -> Result<Curves, EngineError> {
                 if out.curves.len() >= MAX_CURVES {
                     out.skipped
                         .push((s.clone(), format!("more than {MAX_CURVES} curves")));
+                    continue;
+                }
+                if kind == CurveKind::Fold {
+                    out.skipped.push((
+                        s.clone(),
+                        "fold curves are not followed: the cycle is solved at fixed (α, p) by Newton's method, which is singular at a fold (a multiplier +1)".into(),
+                    ));
                     continue;
                 }
                 let index = out.curves.len();

@@ -1,0 +1,317 @@
+//! `bouncemap curves`: two-parameter bifurcation curves over (α, r) or (α, D), followed
+//! from the special points of every branch the one-parameter continuation reaches from
+//! the (1, k) solution: each curve's points with the evidence (its condition's value
+//! there, the flip's criticality on a PD curve), how it ends, and the
+//! codimension-two points located on it.
+
+use crate::config::flags::CurvesArgs;
+use crate::config::plane::curves_plane;
+use crate::config::InputError;
+use crate::output::records::csv_writer;
+use crate::output::sink::Sink;
+use crate::output::Format;
+use bouncemap_engine::orbits::curves::{curves, Codim2, Curve, CurveKind, Curves, Plane, Seeds};
+use serde_json::json;
+use std::io::{self, Write};
+
+pub fn run(args: &CurvesArgs) -> anyhow::Result<()> {
+    let (plane, at) = curves_plane(args)?;
+    let mut out = Sink::open(args.output.out.as_deref()).map_err(InputError)?;
+    let seeds = Seeds::FromFixed {
+        k: args.k,
+        max_period: args.max_period,
+        at,
+        count: if args.seeds <= 1 { 1 } else { args.seeds },
+    };
+    let found = curves(&plane, seeds).map_err(InputError::from)?;
+    let y = plane.second.as_str();
+    let written = (|| -> anyhow::Result<()> {
+        match args.format {
+            Format::Text => text(&mut out, &plane, at, args, &found)?,
+            Format::Csv => {
+                let header = [
+                    "row",
+                    "curve",
+                    "kind",
+                    "n",
+                    "k",
+                    "impact",
+                    "breakpoint",
+                    "alpha",
+                    y,
+                    "condition",
+                    "criticality",
+                    "criticality_error",
+                    "flip",
+                    "detail",
+                ];
+                let mut w = csv_writer(&mut out, &header)?;
+                for (i, c) in found.curves.iter().enumerate() {
+                    let (impact, bp) = impact_of(c);
+                    for (j, q) in c.points.iter().enumerate() {
+                        let detail = match j {
+                            0 => format!("end:{}", c.ends[0].as_str()),
+                            _ if j + 1 == c.points.len() => format!("end:{}", c.ends[1].as_str()),
+                            _ => String::new(),
+                        };
+                        let (cc, ce, flip) = match q.criticality {
+                            Some(cr) => (num(cr.c), num(cr.error), cr.as_str().to_string()),
+                            None => (String::new(), String::new(), String::new()),
+                        };
+                        w.write_record([
+                            "point".to_string(),
+                            i.to_string(),
+                            c.kind.as_str().to_string(),
+                            c.n.to_string(),
+                            c.k.to_string(),
+                            impact.clone(),
+                            bp.clone(),
+                            num(q.alpha),
+                            num(q.p),
+                            num(q.condition),
+                            cc,
+                            ce,
+                            flip,
+                            detail,
+                        ])?;
+                    }
+                }
+                for p in &found.codim2 {
+                    let c = &found.curves[p.curve];
+                    let (impact, bp) = p.impact.map_or((String::new(), String::new()), |(i, b)| {
+                        (i.to_string(), num(b))
+                    });
+                    w.write_record([
+                        "codim2".to_string(),
+                        p.curve.to_string(),
+                        p.kind.as_str().to_string(),
+                        c.n.to_string(),
+                        c.k.to_string(),
+                        impact,
+                        bp,
+                        num(p.alpha),
+                        num(p.p),
+                        num(p.condition),
+                        String::new(),
+                        String::new(),
+                        String::new(),
+                        format!("second_condition:{}", num(p.second_condition)),
+                    ])?;
+                }
+                w.flush()?;
+            }
+            Format::Json => {
+                let doc = json!({
+                    "table": plane.table.name(),
+                    "r": args.r,
+                    "alpha": [plane.alpha.0, plane.alpha.1],
+                    "second": y,
+                    "window": [plane.window.0, plane.window.1],
+                    "start": at,
+                    "k": args.k,
+                    "max_period": args.max_period,
+                    "seeds": args.seeds,
+                    "curves": found.curves.iter().enumerate().map(|(i, c)| {
+                        let (impact, bp) = match c.kind {
+                            CurveKind::BorderCollision { impact, breakpoint } => (Some(impact), Some(breakpoint)),
+                            _ => (None, None),
+                        };
+                        json!({
+                            "index": i,
+                            "kind": c.kind.as_str(),
+                            "n": c.n,
+                            "k": c.k,
+                            "impact": impact,
+                            "breakpoint": bp,
+                            "ends": [c.ends[0].as_str(), c.ends[1].as_str()],
+                            "seed": c.seed,
+                            "points": c.points.iter().map(|q| json!({
+                                "alpha": q.alpha,
+                                y: q.p,
+                                "condition": q.condition,
+                                "criticality": q.criticality.map(|c| c.c).filter(|c| c.is_finite()),
+                                "criticality_error": q.criticality.map(|c| c.error).filter(|c| c.is_finite()),
+                                "flip": q.criticality.map(|c| c.as_str()),
+                            })).collect::<Vec<_>>(),
+                        })
+                    }).collect::<Vec<_>>(),
+                    "codim2": found.codim2.iter().map(|p| json!({
+                        "kind": p.kind.as_str(),
+                        "curve": p.curve,
+                        "alpha": p.alpha,
+                        y: p.p,
+                        "condition": p.condition,
+                        "second_condition": p.second_condition,
+                        "impact": p.impact.map(|x| x.0),
+                        "breakpoint": p.impact.map(|x| x.1),
+                    })).collect::<Vec<_>>(),
+                    "skipped": found.skipped.iter().map(|(s, why)| json!({
+                        "kind": s.kind.as_str(),
+                        "n": s.point.n,
+                        "k": s.point.k,
+                        "alpha": s.alpha,
+                        "reason": why,
+                    })).collect::<Vec<_>>(),
+                });
+                serde_json::to_writer(&mut out, &doc)?;
+                writeln!(out)?;
+            }
+        }
+        Ok(())
+    })();
+    out.end(written)
+}
+
+fn num(x: f64) -> String {
+    if x.is_finite() {
+        format!("{x}")
+    } else {
+        String::new()
+    }
+}
+
+fn impact_of(c: &Curve) -> (String, String) {
+    match c.kind {
+        CurveKind::BorderCollision { impact, breakpoint } => {
+            (impact.to_string(), format!("{breakpoint}"))
+        }
+        _ => (String::new(), String::new()),
+    }
+}
+
+fn describe(kind: &CurveKind) -> String {
+    match kind {
+        CurveKind::PeriodDoubling => "period doubling (PD)".into(),
+        CurveKind::Fold => "fold (F)".into(),
+        CurveKind::BorderCollision { impact, breakpoint } => {
+            format!("border collision (BC) of impact {impact} at phase {breakpoint}")
+        }
+        CurveKind::Grazing => "grazing (G)".into(),
+    }
+}
+
+fn text(
+    out: &mut impl Write,
+    plane: &Plane,
+    at: f64,
+    args: &CurvesArgs,
+    found: &Curves,
+) -> io::Result<()> {
+    let y = plane.second.as_str();
+    writeln!(
+        out,
+        "table {}  r {}  alpha {}..{}  {y} {}..{}  (1, {}) branches up to period {}, started at {y} = {at}{}",
+        if y == "d" { "fd" } else { plane.table.name() },
+        if y == "r" { "axis".to_string() } else { format!("{}", plane.r) },
+        plane.alpha.0,
+        plane.alpha.1,
+        plane.window.0,
+        plane.window.1,
+        args.k,
+        args.max_period,
+        if args.seeds > 1 {
+            format!(" and at {} values over the window", args.seeds)
+        } else {
+            String::new()
+        }
+    )?;
+    writeln!(
+        out,
+        "{} curves, {} codimension-two points; every point's condition holds to 1e-9 (its value is in --format csv/json)",
+        found.curves.len(),
+        found.codim2.len()
+    )?;
+    for (i, c) in found.curves.iter().enumerate() {
+        let (a0, a1) = c
+            .points
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), q| {
+                (lo.min(q.alpha), hi.max(q.alpha))
+            });
+        let (p0, p1) = c
+            .points
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), q| {
+                (lo.min(q.p), hi.max(q.p))
+            });
+        writeln!(
+            out,
+            "\ncurve {i}: {} of ({}, {}), {} points, alpha {a0:.9}..{a1:.9}, {y} {p0:.9}..{p1:.9}",
+            describe(&c.kind),
+            c.n,
+            c.k,
+            c.points.len()
+        )?;
+        let first = &c.points[0];
+        let last = &c.points[c.points.len() - 1];
+        writeln!(
+            out,
+            "  ends: {} at (alpha {:.12}, {y} {:.12}); {} at (alpha {:.12}, {y} {:.12})",
+            c.ends[0].as_str(),
+            first.alpha,
+            first.p,
+            c.ends[1].as_str(),
+            last.alpha,
+            last.p
+        )?;
+        if c.kind == CurveKind::PeriodDoubling {
+            let mut counts = [0usize; 3];
+            for q in &c.points {
+                match q.criticality.and_then(|c| c.supercritical()) {
+                    Some(true) => counts[0] += 1,
+                    Some(false) => counts[1] += 1,
+                    None => counts[2] += 1,
+                }
+            }
+            writeln!(
+                out,
+                "  flip: supercritical at {} points, subcritical at {}, undecided at {} (|c| within its error: near a border, or c ≈ 0)",
+                counts[0], counts[1], counts[2]
+            )?;
+        }
+    }
+    if !found.codim2.is_empty() {
+        writeln!(out, "\ncodimension-two points:")?;
+        for p in &found.codim2 {
+            text_codim2(out, found, p, y)?;
+        }
+    }
+    for (s, why) in &found.skipped {
+        writeln!(
+            out,
+            "not followed: {} of ({}, {}) at alpha {:.9}: {why}",
+            s.kind.as_str(),
+            s.point.n,
+            s.point.k,
+            s.alpha
+        )?;
+    }
+    Ok(())
+}
+
+fn text_codim2(out: &mut impl Write, found: &Curves, p: &Codim2, y: &str) -> io::Result<()> {
+    let c = &found.curves[p.curve];
+    let at = p
+        .impact
+        .map_or(String::new(), |(i, b)| format!("  impact {i} at phase {b}"));
+    let evidence = match p.kind {
+        bouncemap_engine::orbits::curves::Codim2Kind::DegenerateFlip => {
+            format!("[c = {:.1e} there]", p.second_condition)
+        }
+        _ => format!(
+            "[condition {:.1e}; last point {:.1e} from the breakpoint]",
+            p.condition,
+            p.second_condition.abs()
+        ),
+    };
+    writeln!(
+        out,
+        "  {:<16} curve {} ({}, {})  alpha {:.12}  {y} {:.12}{at}  {evidence}",
+        p.kind.as_str(),
+        p.curve,
+        c.n,
+        c.k,
+        p.alpha,
+        p.p
+    )
+}
