@@ -4,7 +4,7 @@
 //! there, the flip's criticality on a PD curve), how it ends, and the
 //! codimension-two points located on it.
 
-use crate::config::flags::CurvesArgs;
+use crate::config::flags::{CurvesArgs, CurvesSpecArgs};
 use crate::config::plane::curves_plane;
 use crate::config::InputError;
 use crate::output::records::csv_writer;
@@ -14,19 +14,14 @@ use bouncemap_engine::orbits::curves::{curves, Codim2, Curve, CurveKind, Curves,
 use serde_json::json;
 use std::io::{self, Write};
 
-pub fn run(args: &CurvesArgs) -> anyhow::Result<()> {
+pub fn run(cli: &CurvesArgs) -> anyhow::Result<()> {
+    let args = &cli.spec;
     let (plane, at) = curves_plane(args)?;
-    let mut out = Sink::open(args.output.out.as_deref()).map_err(InputError)?;
-    let seeds = Seeds::FromFixed {
-        k: args.k,
-        max_period: args.max_period,
-        at,
-        count: if args.seeds <= 1 { 1 } else { args.seeds },
-    };
-    let found = curves(&plane, seeds).map_err(InputError::from)?;
+    let mut out = Sink::open(cli.output.out.as_deref()).map_err(InputError)?;
+    let found = compute(&plane, at, args)?;
     let y = plane.second.as_str();
     let written = (|| -> anyhow::Result<()> {
-        match args.format {
+        match cli.format {
             Format::Text => text(&mut out, &plane, at, args, &found)?,
             Format::Csv => {
                 let header = [
@@ -162,6 +157,17 @@ pub fn run(args: &CurvesArgs) -> anyhow::Result<()> {
     out.end(written)
 }
 
+/// The curves of `plane` that `args` ask for, started at `at`.
+pub fn compute(plane: &Plane, at: f64, args: &CurvesSpecArgs) -> Result<Curves, InputError> {
+    let seeds = Seeds::FromFixed {
+        k: args.k,
+        max_period: args.max_period,
+        at,
+        count: args.seeds,
+    };
+    curves(plane, seeds).map_err(InputError::from)
+}
+
 fn num(x: f64) -> String {
     if x.is_finite() {
         format!("{x}")
@@ -194,7 +200,7 @@ fn text(
     out: &mut impl Write,
     plane: &Plane,
     at: f64,
-    args: &CurvesArgs,
+    args: &CurvesSpecArgs,
     found: &Curves,
 ) -> io::Result<()> {
     let y = plane.second.as_str();

@@ -10,7 +10,7 @@
 
 use super::drive::drive_job;
 use super::progress::Progress;
-use crate::config::flags::{FigureArgs, FigureName};
+use crate::config::flags::{CurvesSpecArgs, FigureArgs, FigureName};
 use crate::config::presets::preset;
 use crate::config::{self, InputError};
 use crate::output::sink::AtomicFile;
@@ -105,6 +105,30 @@ pub fn run(args: &FigureArgs) -> anyhow::Result<()> {
             "this diagram",
         )?;
     }
+    // The two-parameter curves: of `figure curves`, or over a plane (`--curves P`).
+    let curves_task = match &args.name {
+        FigureName::Curves(a) => {
+            let (plane, at) = config::plane::curves_plane(a)?;
+            Some((plane, at, (**a).clone()))
+        }
+        FigureName::Plane(a) => match (a.curves, &plane_spec) {
+            (Some(p), Some(spec)) => {
+                let (plane, at) = config::plane::plane_curves(spec)?;
+                let seeds = CurvesSpecArgs {
+                    table: spec.table.name().to_string(),
+                    x: String::new(),
+                    y: String::new(),
+                    r: spec.r,
+                    k: 1,
+                    max_period: p,
+                    seeds: config::rules::CURVE_SEEDS.default as usize,
+                };
+                Some((plane, at, seeds))
+            }
+            _ => None,
+        },
+        _ => None,
+    };
     let threads = config::threads(args.threads)?;
     // The files are created now: a path that cannot be written is refused before any
     // computing, and nothing is put in place until the figure is complete.
@@ -118,7 +142,7 @@ pub fn run(args: &FigureArgs) -> anyhow::Result<()> {
     let executor = Executor::new(threads)?;
     let fig = build(
         &args.name,
-        (diagram_spec, basin_spec, plane_spec),
+        (diagram_spec, basin_spec, plane_spec, curves_task),
         args.quick,
         &executor,
         threads,
@@ -227,14 +251,23 @@ pub fn fig5_d() -> Vec<f64> {
 
 /// The figure `name`; `specs` are the checked sweep of `diagram` and `lyapunov`, the
 /// checked grid of `basins` and the checked plane of `plane`.
+/// What `figure curves` and `figure plane --curves` follow: the plane, the starting
+/// value of its second parameter, and the seeds.
+type CurvesTask = (bouncemap_engine::orbits::curves::Plane, f64, CurvesSpecArgs);
+
 fn build(
     name: &FigureName,
-    specs: (Option<SweepSpec>, Option<BasinSpec>, Option<PlaneSpec>),
+    specs: (
+        Option<SweepSpec>,
+        Option<BasinSpec>,
+        Option<PlaneSpec>,
+        Option<CurvesTask>,
+    ),
     q: bool,
     executor: &Executor,
     threads: usize,
 ) -> anyhow::Result<Figure> {
-    let (diagram_spec, basin_spec, plane_spec) = specs;
+    let (diagram_spec, basin_spec, plane_spec, curves_task) = specs;
     let panel_name = |n: &FigureName| n.as_str().to_string();
     match name {
         FigureName::Fig2 => Ok(shapes::fig2()?),
@@ -298,16 +331,33 @@ fn build(
             let spec = plane_spec.expect("the plane was checked first");
             let plane = super::plane::compute(&spec, executor)?;
             let curves = bouncemap_engine::plane::curves(&spec);
-            Ok(figure::plane::plane_figure(
-                &spec,
-                plane.pixels(),
-                curves.as_ref(),
-            ))
+            let mut fig = figure::plane::plane_figure(&spec, plane.pixels(), curves.as_ref());
+            if let Some((cplane, at, seeds)) = curves_task {
+                let found = super::curves::compute(&cplane, at, &seeds)?;
+                let alpha_on_x = spec.x.param == bouncemap_engine::grid::SweepParam::Alpha;
+                figure::curves::overlay(&mut fig, &found, alpha_on_x);
+                if let Some(c) = fig.caption.first_mut() {
+                    c.push_str(&format!(
+                        " Black lines over the pixels: the two-parameter curves of the cycles up to period {} (solid: period doubling, dashed: border collision, dotted: grazing; circles: codimension-two points), as `bouncemap curves` gives them.",
+                        seeds.max_period
+                    ));
+                }
+            }
+            Ok(fig)
         }
         FigureName::Basins(_) => {
             let spec = basin_spec.expect("the basins' grid was checked first");
             let basins = super::basins::compute(&spec, executor)?;
             Ok(figure::basins::basins_figure(&spec, &basins))
+        }
+        FigureName::Curves(_) => {
+            let (plane, at, seeds) = curves_task.expect("the curves' plane was checked first");
+            let found = super::curves::compute(&plane, at, &seeds)?;
+            Ok(figure::curves::curves_figure(
+                &plane,
+                &found,
+                seeds.max_period,
+            ))
         }
         FigureName::Diagram(_) => {
             let spec = diagram_spec.expect("the diagram's sweep was checked first");

@@ -114,7 +114,7 @@ pub fn plane_spec_from(
 /// or d (d with the F_D family: `--table fd` starts from the window's middle, `fd:D`
 /// from D, which must lie in the window; an r axis starts from `--r`).
 pub fn curves_plane(
-    args: &super::flags::CurvesArgs,
+    args: &super::flags::CurvesSpecArgs,
 ) -> Result<(bouncemap_engine::orbits::curves::Plane, f64), InputError> {
     let x = parse_axis("x", &args.x, 2)?;
     let y = parse_axis("y", &args.y, 2)?;
@@ -179,6 +179,41 @@ pub fn curves_plane(
         alpha: (x.lo, x.hi),
         second: y.param,
         window: (y.lo, y.hi),
+    };
+    plane.check()?;
+    Ok((plane, at))
+}
+
+/// The plane of two-parameter curves that covers a `plane`'s picture (`--curves`): α on
+/// one axis and r or d on the other, started at the plane's r (an r axis) or its
+/// table's D (a d axis), or the middle of the window when that lies outside it.
+pub fn plane_curves(
+    spec: &PlaneSpec,
+) -> Result<(bouncemap_engine::orbits::curves::Plane, f64), InputError> {
+    let (alpha, other) = match (spec.x.param, spec.y.param) {
+        (SweepParam::Alpha, p) if p != SweepParam::Alpha => (spec.x, spec.y),
+        (p, SweepParam::Alpha) if p != SweepParam::Alpha => (spec.y, spec.x),
+        _ => {
+            return Err(InputError(
+                "--curves: the curves live in a plane of alpha and r or d: valid with one axis alpha:LO..HI and the other r or d".into(),
+            ))
+        }
+    };
+    let current = match other.param {
+        SweepParam::D => spec.table.d().unwrap_or(rules::D.default),
+        _ => spec.r,
+    };
+    let at = if (other.lo..=other.hi).contains(&current) {
+        current
+    } else {
+        0.5 * (other.lo + other.hi)
+    };
+    let plane = bouncemap_engine::orbits::curves::Plane {
+        table: spec.table.clone(),
+        r: spec.r,
+        alpha: (alpha.lo, alpha.hi),
+        second: other.param,
+        window: (other.lo, other.hi),
     };
     plane.check()?;
     Ok((plane, at))

@@ -36,6 +36,7 @@ pub enum Action {
     ToggleBasins,
     TableView,
     TogglePlane,
+    PlaneCurves,
     Legend,
     Presets,
     Export,
@@ -45,7 +46,7 @@ pub enum Action {
 
 impl Action {
     /// Every action, in help order.
-    pub const ALL: [Action; 32] = [
+    pub const ALL: [Action; 33] = [
         Action::Up,
         Action::Down,
         Action::Left,
@@ -70,6 +71,7 @@ impl Action {
         Action::ToggleBasins,
         Action::TableView,
         Action::TogglePlane,
+        Action::PlaneCurves,
         Action::Presets,
         Action::Export,
         Action::ExportView,
@@ -110,6 +112,7 @@ impl Action {
             Action::ToggleBasins => "basins",
             Action::TableView => "table_view",
             Action::TogglePlane => "plane",
+            Action::PlaneCurves => "plane_curves",
             Action::Legend => "legend",
             Action::Presets => "presets",
             Action::Export => "export",
@@ -152,6 +155,7 @@ impl Action {
             Action::ToggleBasins => "basins of attraction in place of the phase plot (and back)",
             Action::TableView => "the table: F, F′, F″ with breakpoints, t̂* and release phases",
             Action::TogglePlane => "the (α, D) or (α, r) plane in place of the diagram (and back)",
+            Action::PlaneCurves => "plane: two-parameter curves (PD, BC, grazing) over it, on/off",
             Action::Legend => "what every mark, line and colour on the screen means",
             Action::Presets => "presets: the paper's figures",
             Action::Export => "export the diagram (csv and text; the name is typed)",
@@ -397,6 +401,7 @@ impl Default for Keymap {
             (Key::ch('B'), Action::ToggleBasins),
             (Key::ch('T'), Action::TableView),
             (Key::ch('M'), Action::TogglePlane),
+            (Key::ch('C'), Action::PlaneCurves),
             (Key::ch('p'), Action::Presets),
             (Key::ch('e'), Action::Export),
             (Key::ch('E'), Action::ExportView),

@@ -240,3 +240,55 @@ fn export_view_writes_the_plane_when_it_is_shown() {
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// `C` switches the two-parameter curves on: the work starts in the background, and its
+/// result is drawn over the plane (`•` on the (1, 1) period-doubling curve, which lies
+/// at the closed-form α_PD the `P` marks show), with its legend; `C` again takes them off.
+#[test]
+fn the_curves_key_draws_the_two_parameter_curves_over_the_plane() {
+    let mut a = app(ColorMode::None);
+    filled(&mut a, 120, 40);
+    a.handle(Action::PlaneCurves);
+    assert!(a.shared.show_plane_curves);
+    let fx = a.take_effects();
+    assert!(fx.contains(&Effect::Start(Target::PlaneCurves)), "{fx:?}");
+    // What the background work computes, delivered as the worker would.
+    let spec = bouncemap::tui::components::plane::plane_spec(&a.shared.params, (2, 2));
+    let (plane, at) = bouncemap::config::plane::plane_curves(&spec).unwrap();
+    let seeds = bouncemap_engine::orbits::curves::Seeds::FromFixed {
+        k: 1,
+        max_period: 4,
+        at,
+        count: 3,
+    };
+    let found = bouncemap_engine::orbits::curves::curves(&plane, seeds).unwrap();
+    assert!(found
+        .curves
+        .iter()
+        .any(|c| c.n == 1 && c.kind.as_str() == "period_doubling"));
+    a.panels.plane_curves.gen = 3;
+    a.receive(Msg::PlaneCurves(3, Ok(found)));
+    let pane = bouncemap::tui::layout::layout(Rect::new(0, 0, 120, 40))
+        .unwrap()
+        .diagram;
+    let mut buf = Buffer::empty(Rect::new(0, 0, pane.right(), pane.bottom()));
+    a.panels.plane.draw(&a.shared, pane, &mut buf);
+    let s = crate::tui_common::buffer_text(&buf);
+    assert!(s.contains("•PD ×BC ◉codim2"), "{s}");
+    // On most rows the (1, 1) PD curve's mark sits within a column of the closed-form
+    // `P` mark of the same row (the P marks were drawn first and the • over them).
+    let mut near = 0;
+    for line in s.lines() {
+        let chars: Vec<char> = line.chars().collect();
+        if let Some(k) = chars.iter().position(|c| *c == 'P') {
+            if chars[k.saturating_sub(1)..(k + 2).min(chars.len())].contains(&'•') {
+                near += 1;
+            }
+        } else if chars.contains(&'•') {
+            near += 1;
+        }
+    }
+    assert!(near >= 10, "{near}: {s}");
+    a.handle(Action::PlaneCurves);
+    assert!(!a.shared.show_plane_curves && a.shared.plane_curves.is_none());
+}

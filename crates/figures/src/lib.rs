@@ -44,6 +44,7 @@
 
 pub mod basins;
 pub mod classes;
+pub mod curves;
 pub mod diagram;
 pub mod lyapunov;
 pub mod phase;

@@ -103,6 +103,9 @@ pub enum FigureName {
     /// A two-parameter map: `plane`'s flags (--table, --x PARAM:LO..HI, --y PARAM:LO..HI, ...), the pixels as --pixels WxH.
     #[command(allow_negative_numbers = true)]
     Plane(Box<FigurePlaneArgs>),
+    /// Two-parameter bifurcation curves alone: `curves`' flags (--table, --x alpha:LO..HI, --y r:LO..HI or d:LO..HI, ...).
+    #[command(allow_negative_numbers = true)]
+    Curves(Box<CurvesSpecArgs>),
 }
 
 impl FigureName {
@@ -123,6 +126,7 @@ impl FigureName {
             FigureName::Lyapunov(_) => "lyapunov",
             FigureName::Basins(_) => "basins",
             FigureName::Plane(_) => "plane",
+            FigureName::Curves(_) => "curves",
         }
     }
 }

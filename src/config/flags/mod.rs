@@ -266,6 +266,18 @@ pub struct ContinueArgs {
 /// `bouncemap curves`.
 #[derive(Args, Debug, Clone)]
 pub struct CurvesArgs {
+    #[command(flatten)]
+    pub spec: CurvesSpecArgs,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    pub format: Format,
+    #[command(flatten)]
+    pub output: OutArgs,
+}
+
+/// The plane and the seeds of `curves` (and `figure curves`).
+#[derive(Args, Debug, Clone)]
+pub struct CurvesSpecArgs {
     /// Table shape: sine, quad (= fd:0), cubic (= fd:1), fd:D with D in [0, 1], or
     /// PATH.toml; with a d axis, fd (the family) or fd:D, D the value the curves are
     /// started from.
@@ -291,11 +303,6 @@ pub struct CurvesArgs {
     /// spread over its window; valid 1 to 64 (1: the starting value only).
     #[arg(long, default_value_t = rules::CURVE_SEEDS.default as usize, value_parser = rules::CURVE_SEEDS.whole::<usize>(), value_name = "N")]
     pub seeds: usize,
-    /// Output format.
-    #[arg(long, value_enum, default_value_t = Format::Text)]
-    pub format: Format,
-    #[command(flatten)]
-    pub output: OutArgs,
 }
 
 /// `bouncemap cascade`.

@@ -64,6 +64,11 @@ pub struct FigurePlaneArgs {
     /// Pixels along x × along y, e.g. 400x200; at most 4000 per side and 10⁶ in all.
     #[arg(long, default_value = "400x200", value_parser = parse_plane_size, value_name = "WxH")]
     pub pixels: (usize, usize),
+    /// Also draw the two-parameter curves (as `bouncemap curves`) of every branch of the
+    /// (1, 1) solution up to period P over the pixels, with their codimension-two points;
+    /// the axes must be alpha and r or d; P valid 1 to 4096.
+    #[arg(long, value_parser = rules::CONTINUE_MAX_PERIOD.whole::<usize>(), value_name = "P")]
+    pub curves: Option<usize>,
 }
 
 /// `bouncemap plane`.

@@ -37,6 +37,7 @@ pub mod legend;
 pub mod parameters;
 pub mod phase_plot;
 pub mod plane;
+pub mod plane_curves;
 pub mod presets;
 pub mod shared;
 pub mod stability;
@@ -55,6 +56,7 @@ use diagram::Diagram;
 use parameters::Parameters;
 use phase_plot::PhasePlot;
 use plane::PlanePanel;
+use plane_curves::PlaneCurves;
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::text::Line;
@@ -79,6 +81,8 @@ registry! {
     Stability   => stability:  Stability,    slot Some(Slot::Stability), new |_| Stability::default();
     /// The continued branches ([`Shared::branches`]), drawn by the diagram.
     Branches    => branches:   Branches,     slot None,                  new |_| Branches::default();
+    /// The two-parameter curves ([`Shared::plane_curves`]), drawn by the plane view.
+    PlaneCurves => plane_curves: PlaneCurves, slot None,               new |_| PlaneCurves::default();
 }
 
 /// The workers of the terminal application: their messages are [`Msg`]s.

@@ -2,7 +2,10 @@
 //! α across and D (an fd:D table) or r (any other table) up, every pixel coloured by
 //! the class of its orbit as the engine's plane job streams it coarse to fine (a pixel
 //! not yet computed shows the coarser one whose block it lies in), with the analytic
-//! curves over it (α_birth `B`, α_PD `P`, border collision `C`), axes with tick labels,
+//! curves over it (α_birth `B`, α_PD `P`, border collision `C`) and, switched on with
+//! their key, the two-parameter curves of every branch ([`super::plane_curves`]: `•`
+//! period doubling, `×` border collision, `:` grazing, `◉` codimension two), axes with
+//! tick labels,
 //! the legend in the bottom border and a cursor. Moving the cursor moves the
 //! application's α and D (or r), so the phase plot, stability and bounce panels follow;
 //! Enter keeps that point and brings the diagram back, sweeping α there.
@@ -168,7 +171,29 @@ impl PlanePanel {
             spans.push(Span::styled(m.to_string(), curve_style()));
             spans.push(Span::raw(format!("{short} ")));
         }
+        if shared.show_plane_curves {
+            match &shared.plane_curves {
+                Some(Ok(_)) => {
+                    for (m, name) in [("•", "PD"), ("×", "BC"), ("◉", "codim2")] {
+                        spans.push(Span::styled(m.to_string(), curve_style()));
+                        spans.push(Span::raw(format!("{name} ")));
+                    }
+                }
+                Some(Err(_)) => spans.push(Span::raw("curves: none ")),
+                None => spans.push(Span::raw("curves… ")),
+            }
+        }
         Line::from(spans)
+    }
+}
+
+/// The mark of a two-parameter curve's kind.
+pub fn curve_mark(kind: &bouncemap_engine::orbits::curves::CurveKind) -> &'static str {
+    use bouncemap_engine::orbits::curves::CurveKind;
+    match kind {
+        CurveKind::PeriodDoubling => "•",
+        CurveKind::BorderCollision { .. } => "×",
+        CurveKind::Grazing | CurveKind::Fold => ":",
     }
 }
 
@@ -355,6 +380,52 @@ impl Component for PlanePanel {
                             style.add_modifier(Modifier::BOLD),
                         );
                     }
+                }
+            }
+        }
+        // The two-parameter curves, when on: a mark per cell a curve passes through.
+        if let (true, Some(Ok(c))) = (app.show_plane_curves, &app.plane_curves) {
+            let (w, h) = (plot.width as f64, plot.height as f64);
+            let cell = |a: f64, q: f64| -> Option<(u16, u16)> {
+                let fx = (a - spec.x.lo) / (spec.x.hi - spec.x.lo);
+                let fy = (q - spec.y.lo) / (spec.y.hi - spec.y.lo);
+                if !((0.0..=1.0).contains(&fx) && (0.0..=1.0).contains(&fy)) {
+                    return None;
+                }
+                let col = ((fx * w) as u16).min(plot.width.saturating_sub(1));
+                let row = plot.height - 1 - ((fy * h) as u16).min(plot.height.saturating_sub(1));
+                Some((plot.x + col, plot.y + row))
+            };
+            let mut mark = |x: u16, y: u16, m: &str| {
+                let style = match (colour, buf.cell((x, y))) {
+                    (true, Some(under)) => {
+                        Style::new().bg(under.bg).fg(ratatui::style::Color::Black)
+                    }
+                    _ => Style::new(),
+                };
+                buf.set_string(x, y, m, style.add_modifier(Modifier::BOLD));
+            };
+            for cv in &c.curves {
+                let m = curve_mark(&cv.kind);
+                for seg in cv.points.windows(2) {
+                    let (a, b) = (&seg[0], &seg[1]);
+                    // Enough samples that no cell along the segment is skipped.
+                    let span_x = ((b.alpha - a.alpha) / (spec.x.hi - spec.x.lo) * w).abs();
+                    let span_y = ((b.p - a.p) / (spec.y.hi - spec.y.lo) * h).abs();
+                    let n = (2.0 * span_x.max(span_y)).ceil().clamp(1.0, 4000.0) as usize;
+                    for i in 0..=n {
+                        let t = i as f64 / n as f64;
+                        if let Some((x, y)) =
+                            cell(a.alpha + t * (b.alpha - a.alpha), a.p + t * (b.p - a.p))
+                        {
+                            mark(x, y, m);
+                        }
+                    }
+                }
+            }
+            for p2 in &c.codim2 {
+                if let Some((x, y)) = cell(p2.alpha, p2.p) {
+                    mark(x, y, "◉");
                 }
             }
         }

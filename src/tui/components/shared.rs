@@ -60,6 +60,11 @@ pub struct Shared {
     pub stepped: Option<(f64, f64)>,
     /// The continued branches of the current α window (None while they compute, or
     /// when the diagram sweeps r or D).
+    /// The two-parameter curves over the plane view (None while they compute or when
+    /// off) and whether they are shown ([`super::plane_curves`]).
+    pub plane_curves: Option<Result<bouncemap_engine::orbits::curves::Curves, String>>,
+    /// Whether the plane view draws the two-parameter curves.
+    pub show_plane_curves: bool,
     pub branches: Option<Result<Skeleton, String>>,
     /// The continued branch nearest the diagram's cursor (its index) and its cycle at
     /// the cursor's α, while the diagram has the focus.
@@ -91,6 +96,8 @@ impl Shared {
             orbits: None,
             stepped: None,
             branches: None,
+            plane_curves: None,
+            show_plane_curves: false,
             under_cursor: None,
             at_cursor: None,
             show_times: true,

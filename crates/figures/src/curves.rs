@@ -1,0 +1,224 @@
+//! `figure curves`: two-parameter bifurcation curves as a figure, the picture a paper
+//! shows: every curve a line, its kind the pattern (period doubling solid, border
+//! collision dashed, grazing dotted), its cycle's period the colour (the diagram's
+//! period colours); the codimension-two points marked with open circles. [`layers`]
+//! gives the same lines for drawing over a plane (`figure plane --curves`), in black.
+
+use super::classes::Class;
+use super::diagram::param_label;
+use super::{Axis, Color, Corner, Dash, Figure, Layer, Legend, Marker, Panel, Swatch};
+use bouncemap_engine::error::fmt_value as shortest;
+use bouncemap_engine::grid::SweepParam;
+use bouncemap_engine::orbits::curves::{CurveKind, Curves, Plane};
+
+/// The pattern of a curve's kind.
+pub fn dash(kind: &CurveKind) -> Dash {
+    match kind {
+        CurveKind::PeriodDoubling => Dash::Solid,
+        CurveKind::BorderCollision { .. } => Dash::Dashed,
+        CurveKind::Grazing | CurveKind::Fold => Dash::Dotted,
+    }
+}
+
+/// The colour of a cycle of n impacts: the diagram's period colours for 1, 2, 4 and 8,
+/// the colour of "another period" beyond.
+pub fn period_colour(n: usize) -> Color {
+    let class = match n {
+        1 => Class::Period1,
+        2 => Class::Period2,
+        4 => Class::Period4,
+        8 => Class::Period8,
+        _ => Class::Periodic,
+    };
+    let (r, g, b) = class.rgb();
+    Color(r, g, b)
+}
+
+fn kind_text(kind: &CurveKind) -> &'static str {
+    match kind {
+        CurveKind::PeriodDoubling => "period doubling",
+        CurveKind::BorderCollision { .. } => "border collision",
+        CurveKind::Grazing => "grazing",
+        CurveKind::Fold => "fold",
+    }
+}
+
+/// The curves as layers in a plot with α on x (or on y when `alpha_on_x` is false), and
+/// their legend entries: one line layer per curve, coloured by period (or all in
+/// `colour`), and one marker layer for the codimension-two points.
+pub fn layers(
+    c: &Curves,
+    alpha_on_x: bool,
+    colour: Option<Color>,
+) -> (Vec<Layer>, Vec<(Swatch, String)>) {
+    let place = |alpha: f64, p: f64| if alpha_on_x { [alpha, p] } else { [p, alpha] };
+    let mut out = Vec::new();
+    let mut kinds: Vec<&'static str> = Vec::new();
+    let mut periods: Vec<usize> = Vec::new();
+    for (i, cv) in c.curves.iter().enumerate() {
+        let line: Vec<[f64; 2]> = cv.points.iter().map(|q| place(q.alpha, q.p)).collect();
+        if line.len() < 2 {
+            continue;
+        }
+        out.push(Layer::Lines {
+            name: format!("curve {i}: {} of ({}, {})", cv.kind.as_str(), cv.n, cv.k),
+            lines: vec![line],
+            color: colour.unwrap_or_else(|| period_colour(cv.n)),
+            dash: dash(&cv.kind),
+            width: 1.0,
+        });
+        if !kinds.contains(&kind_text(&cv.kind)) {
+            kinds.push(kind_text(&cv.kind));
+        }
+        if !periods.contains(&cv.n) {
+            periods.push(cv.n);
+        }
+    }
+    let mut entries: Vec<(Swatch, String)> = Vec::new();
+    let ink = colour.unwrap_or(Color::BLACK);
+    for (kind, d) in [
+        ("period doubling", Dash::Solid),
+        ("border collision", Dash::Dashed),
+        ("grazing", Dash::Dotted),
+    ] {
+        if kinds.contains(&kind) {
+            // Over a plane, beside the closed-form lines: say these are continued.
+            let text = match colour {
+                Some(_) => format!("{kind} (continued)"),
+                None => kind.to_string(),
+            };
+            entries.push((Swatch::line(ink, d), text));
+        }
+    }
+    if colour.is_none() {
+        periods.sort_unstable();
+        for n in periods {
+            let impacts = if n == 1 { "impact" } else { "impacts" };
+            entries.push((
+                Swatch::band(period_colour(n)),
+                format!("cycle of {n} {impacts}"),
+            ));
+        }
+    }
+    if !c.codim2.is_empty() {
+        out.push(Layer::Markers {
+            name: "codimension-two points".into(),
+            points: c.codim2.iter().map(|p| place(p.alpha, p.p)).collect(),
+            marker: Marker::Circle,
+            color: ink,
+        });
+        entries.push((
+            Swatch::marker(ink, Marker::Circle),
+            "codimension-two point".into(),
+        ));
+    }
+    (out, entries)
+}
+
+/// The curves of `plane` alone: α across, the second parameter up.
+pub fn curves_figure(plane: &Plane, c: &Curves, max_period: usize) -> Figure {
+    let mut panel = Panel::new(
+        Axis::new(param_label(SweepParam::Alpha), plane.alpha.0, plane.alpha.1),
+        Axis::new(param_label(plane.second), plane.window.0, plane.window.1),
+    );
+    let (layers, entries) = layers(c, true, None);
+    panel.layers = layers;
+    if !entries.is_empty() {
+        let points: Vec<[f64; 2]> = c
+            .curves
+            .iter()
+            .flat_map(|cv| cv.points.iter())
+            .map(|q| [panel.x.fraction(q.alpha), panel.y.fraction(q.p)])
+            .collect();
+        let corner = freest_corner(&points, [0.45, 0.1 + 0.075 * entries.len() as f64]);
+        panel.legends.push(Legend { corner, entries });
+    }
+    let (family, fixed) = match plane.second {
+        SweepParam::D => ("$F_D$".to_string(), format!("r = {}", shortest(plane.r))),
+        _ => (super::diagram::table_title(&plane.table), String::new()),
+    };
+    panel.title = Some(family);
+    let pd_border = c
+        .codim2
+        .iter()
+        .filter(|p| p.kind.as_str() == "pd_border")
+        .count();
+    let mut caption = format!(
+        "Two-parameter bifurcation curves of the cycles reached from the (1, 1) solution up to period {max_period}{}: each line is where the cycle's multiplier is \u{2212}1 (period doubling), one of its impacts is at a breakpoint of the table (border collision) or a flight touches the table (grazing), followed by continuation with the cycle solved exactly at every point.",
+        if fixed.is_empty() {
+            String::new()
+        } else {
+            format!(", {fixed}")
+        }
+    );
+    if !c.codim2.is_empty() {
+        caption.push_str(&format!(
+            " Circles: codimension-two points ({pd_border} where a period doubling reaches a breakpoint)."
+        ));
+    }
+    Figure {
+        name: "curves".into(),
+        panels: vec![panel],
+        columns: 1,
+        caption: vec![caption],
+        size: (5.0, 3.6),
+    }
+}
+
+/// The corner whose box of `size` (fractions of the plot) holds the fewest of `points`
+/// (fractions of the plot); ties go to the bottom right, top left, top right, bottom
+/// left in that order.
+pub fn freest_corner(points: &[[f64; 2]], size: [f64; 2]) -> Corner {
+    let inside = |c: Corner, p: &[f64; 2]| {
+        let x = match c {
+            Corner::TopLeft | Corner::BottomLeft => p[0] <= size[0],
+            _ => p[0] >= 1.0 - size[0],
+        };
+        let y = match c {
+            Corner::TopLeft | Corner::TopRight => p[1] >= 1.0 - size[1],
+            _ => p[1] <= size[1],
+        };
+        x && y
+    };
+    [
+        Corner::BottomRight,
+        Corner::TopLeft,
+        Corner::TopRight,
+        Corner::BottomLeft,
+    ]
+    .into_iter()
+    .min_by_key(|&c| points.iter().filter(|p| inside(c, p)).count())
+    .unwrap_or(Corner::BottomRight)
+}
+
+/// Draw `c` over a figure's first panel (a plane's pixels) in black, its entries added
+/// to the legend of lines if there is one, else as a legend in the freest corner.
+pub fn overlay(fig: &mut Figure, c: &Curves, alpha_on_x: bool) {
+    let Some(panel) = fig.panels.first_mut() else {
+        return;
+    };
+    let (layers, entries) = layers(c, alpha_on_x, Some(Color::BLACK));
+    panel.layers.extend(layers);
+    if entries.is_empty() {
+        return;
+    }
+    if let Some(l) = panel
+        .legends
+        .iter_mut()
+        .find(|l| l.entries.iter().any(|(s, _)| s.line.is_some()))
+    {
+        l.entries.extend(entries);
+        return;
+    }
+    let used: Vec<Corner> = panel.legends.iter().map(|l| l.corner).collect();
+    let corner = [
+        Corner::TopLeft,
+        Corner::TopRight,
+        Corner::BottomLeft,
+        Corner::BottomRight,
+    ]
+    .into_iter()
+    .find(|c| !used.contains(c))
+    .unwrap_or(Corner::TopLeft);
+    panel.legends.push(Legend { corner, entries });
+}
