@@ -3,7 +3,7 @@
 # the paper's fidelity (Fig. 3 and 4: 1000 values per diagram, T = 5·10⁶, last 100
 # events). Builds the release binary first. On an idle 2-core machine Fig. 3 takes about
 # a minute and Fig. 4 about five (values that never settle run the whole transient);
-# the (α, D) plane after them, about 6 s.
+# the (α, D) plane after them, about 6 s, and its two-parameter curves, under a second.
 set -eu
 cd "$(dirname "$0")/../.."
 cargo build --release --locked
@@ -13,4 +13,5 @@ bouncemap figure fig2 --dpi 200 --out docs/figures/fig2.png
 bouncemap figure fig3 --dpi 200 --out docs/figures/fig3.png
 bouncemap figure fig4 --dpi 200 --out docs/figures/fig4.png
 bouncemap figure fig5 --dpi 200 --out docs/figures/fig5.png
-bouncemap figure plane --x alpha:0.45..0.60 --y d:0..1 --r 0.8 --pixels 400x200 --dpi 200 --out docs/figures/plane.png
+bouncemap figure plane --x alpha:0.45..0.60 --y d:0..1 --r 0.8 --pixels 400x200 --curves 8 --dpi 200 --out docs/figures/plane.png
+bouncemap figure curves --table fd --x alpha:0.45..0.7 --y d:0..1 --max-period 16 --dpi 200 --out docs/figures/curves.png

@@ -168,9 +168,11 @@ pub fn compute(plane: &Plane, at: f64, args: &CurvesSpecArgs) -> Result<Curves, 
     curves(plane, seeds).map_err(InputError::from)
 }
 
+/// A number as every csv field prints it: the shortest exact form (exponent form for
+/// very small and very large magnitudes); empty for none.
 fn num(x: f64) -> String {
     if x.is_finite() {
-        format!("{x}")
+        bouncemap_engine::error::fmt_value(x)
     } else {
         String::new()
     }
@@ -178,9 +180,7 @@ fn num(x: f64) -> String {
 
 fn impact_of(c: &Curve) -> (String, String) {
     match c.kind {
-        CurveKind::BorderCollision { impact, breakpoint } => {
-            (impact.to_string(), format!("{breakpoint}"))
-        }
+        CurveKind::BorderCollision { impact, breakpoint } => (impact.to_string(), num(breakpoint)),
         _ => (String::new(), String::new()),
     }
 }
