@@ -1,17 +1,21 @@
 //! `bouncemap bench`: measurements on this machine, printed as a table (or json).
 //!
 //! * Solver throughput: events per second of the exact and the grid solver on the same
-//!   orbits (period-1, period-2, chaotic, sticking on F_D; period-1 on the sine; the
+//!   orbits (period-1, period-2, irregular sticking beyond double precision, sticking
+//!   on F_D; period-1 on the sine; the
 //!   median of five alternating rounds per solver), each with its accuracy against an
 //!   independent reference: the closed-form (1, 1) fixed point; the (2, 2) cycle solved
 //!   by Newton's method on its four defining equations ([`orbits::two_cycle`]);
-//!   for chaotic and sticking orbits, one step of each solver from the same exact
+//!   for the irregular and sticking orbits, one step of each solver from the same exact
 //!   states, counting steps that land more than 10⁻⁶ apart (missed or misplaced
 //!   impacts).
 //! * Sweep timings with the exact solver on all cores: the coarse pass of a Fig. 3
 //!   panel, cancel-to-idle latency, and a panel at a reduced transient with the
 //!   breakdown of where the events go; `--panel NAME` times a full panel at the paper's
 //!   fidelity.
+//! * Two-parameter curves: every curve up to period 16 of the F_D (α, D) plane and of
+//!   the sine's (α, r) plane (`bouncemap curves` with its default seeds), the median of
+//!   three runs each.
 
 use crate::config::flags::{BenchArgs, BenchFormat};
 use crate::config::presets::preset;
@@ -59,8 +63,10 @@ const CASES: [Case; 5] = [
         r: 0.8,
         reference: Reference::TwoCycle,
     },
+    // A long stick–release cycle whose length double precision cannot decide: many
+    // chattering sequences and irregular flights (not chaos: both exponents are −∞).
     Case {
-        name: "chaotic",
+        name: "irregular",
         table: "fd:0.1",
         alpha: 0.60,
         r: 0.8,
@@ -124,6 +130,8 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         Some((name, spec)) => Some((name.clone(), time_panel(spec, &executor)?)),
         None => None,
     };
+    let curve_runs = if args.quick { 1 } else { 3 };
+    let curve_rows = curve_timings(curve_runs)?;
     let date = today();
     let mut out = Sink::stdout();
     let written = (|| -> anyhow::Result<()> {
@@ -151,7 +159,10 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
                     )?;
                 }
                 writeln!(out)?;
-                writeln!(out, "targets: exact/grid >= 10 on period-1, >= 4 chaotic")?;
+                writeln!(
+                    out,
+                    "targets: exact/grid >= 10 on period-1, >= 4 irregular (chattering, sticking)"
+                )?;
                 writeln!(out)?;
                 writeln!(
                 out,
@@ -174,6 +185,20 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
                 "  estimated full panel at T = 5e6 (unsettled values scale with T): {:.0} s  (target 60 s)",
                 est
             )?;
+                writeln!(out)?;
+                let runs = if curve_runs == 1 {
+                    "one run".to_string()
+                } else {
+                    format!("median of {curve_runs} runs")
+                };
+                writeln!(out, "two-parameter curves up to period {CURVES_PERIOD} (`curves`, default seeds), {runs}:")?;
+                for c in &curve_rows {
+                    writeln!(
+                        out,
+                        "  {:<44} {:>3} curves {:>3} codim-2  {:.3} s  (target: seconds)",
+                        c.plane, c.curves, c.codim2, c.median
+                    )?;
+                }
                 if let Some((name, f)) = &full {
                     print_panel(
                         &mut out,
@@ -201,6 +226,10 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
                     "cancel_ms": cancel.as_secs_f64() * 1e3,
                     "panel_reduced": panel_json(&reduced_run, reduced_t),
                     "panel_full_estimate_s": estimate_full(&reduced_run, reduced_t, sweep::PAPER_TRANSIENT),
+                    "curves": curve_rows.iter().map(|c| serde_json::json!({
+                        "plane": c.plane, "max_period": CURVES_PERIOD, "curves": c.curves,
+                        "codim2": c.codim2, "median_s": c.median,
+                    })).collect::<Vec<_>>(),
                     "panel_full": full.as_ref().map(|(n, f)| {
                         let mut j = panel_json(f, sweep::PAPER_TRANSIENT);
                         j["preset"] = serde_json::Value::String(n.clone());
@@ -213,6 +242,73 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         Ok(())
     })();
     out.end(written)
+}
+
+/// Doubled branches are followed up to this period in the curves' timing.
+const CURVES_PERIOD: usize = 16;
+
+/// The timing of one plane's two-parameter curves.
+struct CurveRow {
+    plane: &'static str,
+    curves: usize,
+    codim2: usize,
+    median: f64,
+}
+
+/// Every curve up to [`CURVES_PERIOD`] of the F_D (α, D) plane and the sine's (α, r)
+/// plane, each timed `runs` times (the median).
+fn curve_timings(runs: usize) -> Result<Vec<CurveRow>, InputError> {
+    use bouncemap_engine::grid::SweepParam;
+    use bouncemap_engine::orbits::curves::{curves, Plane, Seeds};
+    let planes = [
+        (
+            "fd: alpha 0.4..0.7, D 0..1 (r = 0.8)",
+            Plane {
+                table: bouncemap_engine::Table::fd(1.0)?,
+                r: 0.8,
+                alpha: (0.4, 0.7),
+                second: SweepParam::D,
+                window: (0.0, 1.0),
+            },
+            1.0,
+        ),
+        (
+            "sine: alpha 0.01..0.5, r 0.2..0.95",
+            Plane {
+                table: bouncemap_engine::Table::sine(),
+                r: 0.8,
+                alpha: (0.01, 0.5),
+                second: SweepParam::R,
+                window: (0.2, 0.95),
+            },
+            0.8,
+        ),
+    ];
+    let mut out = Vec::new();
+    for (name, plane, at) in planes {
+        let seeds = Seeds::FromFixed {
+            k: 1,
+            max_period: CURVES_PERIOD,
+            at,
+            count: crate::config::rules::CURVE_SEEDS.default as usize,
+        };
+        let mut times = Vec::new();
+        let mut found = None;
+        for _ in 0..runs.max(1) {
+            let t = Instant::now();
+            found = Some(curves(&plane, seeds)?);
+            times.push(t.elapsed().as_secs_f64());
+        }
+        times.sort_by(f64::total_cmp);
+        let found = found.expect("at least one run");
+        out.push(CurveRow {
+            plane: name,
+            curves: found.curves.len(),
+            codim2: found.codim2.len(),
+            median: times[times.len() / 2],
+        });
+    }
+    Ok(out)
 }
 
 /// Measured run of a whole panel.
