@@ -338,7 +338,7 @@ fn build(
                 figure::curves::overlay(&mut fig, &found, alpha_on_x);
                 if let Some(c) = fig.caption.first_mut() {
                     c.push_str(&format!(
-                        " Black lines over the pixels: the two-parameter curves of the cycles up to period {} (solid: period doubling, dashed: border collision, dotted: grazing; circles: codimension-two points), as `bouncemap curves` gives them.",
+                        " Black lines over the pixels: the two-parameter curves of the cycles up to period {} (solid: period doubling, dash-dotted: fold, dashed: border collision, dotted: grazing; circles: codimension-two points), as `bouncemap curves` gives them.",
                         seeds.max_period
                     ));
                 }

@@ -155,7 +155,9 @@ impl Action {
             Action::ToggleBasins => "basins of attraction in place of the phase plot (and back)",
             Action::TableView => "the table: F, F′, F″ with breakpoints, t̂* and release phases",
             Action::TogglePlane => "the (α, D) or (α, r) plane in place of the diagram (and back)",
-            Action::PlaneCurves => "plane: two-parameter curves (PD, BC, grazing) over it, on/off",
+            Action::PlaneCurves => {
+                "plane: two-parameter curves (PD, fold, BC, grazing) over it, on/off"
+            }
             Action::Legend => "what every mark, line and colour on the screen means",
             Action::Presets => "presets: the paper's figures",
             Action::Export => "export the diagram (csv and text; the name is typed)",

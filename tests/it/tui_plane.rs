@@ -274,7 +274,7 @@ fn the_curves_key_draws_the_two_parameter_curves_over_the_plane() {
     let mut buf = Buffer::empty(Rect::new(0, 0, pane.right(), pane.bottom()));
     a.panels.plane.draw(&a.shared, pane, &mut buf);
     let s = crate::tui_common::buffer_text(&buf);
-    assert!(s.contains("•PD ×BC ◉codim2"), "{s}");
+    assert!(s.contains("•PD ~F ×BC ◉codim2"), "{s}");
     // On most rows the (1, 1) PD curve's mark sits within a column of the closed-form
     // `P` mark of the same row (the P marks were drawn first and the • over them).
     let mut near = 0;

@@ -1,6 +1,6 @@
 //! `figure curves`: two-parameter bifurcation curves as a figure, the picture a paper
-//! shows: every curve a line, its kind the pattern (period doubling solid, border
-//! collision dashed, grazing dotted), its cycle's period the colour (the diagram's
+//! shows: every curve a line, its kind the pattern (period doubling solid, fold
+//! dash-dotted, border collision dashed, grazing dotted), its cycle's period the colour (the diagram's
 //! period colours); the codimension-two points marked with open circles. [`layers`]
 //! gives the same lines for drawing over a plane (`figure plane --curves`), in black.
 
@@ -16,7 +16,8 @@ pub fn dash(kind: &CurveKind) -> Dash {
     match kind {
         CurveKind::PeriodDoubling => Dash::Solid,
         CurveKind::BorderCollision { .. } => Dash::Dashed,
-        CurveKind::Grazing | CurveKind::Fold => Dash::Dotted,
+        CurveKind::Grazing => Dash::Dotted,
+        CurveKind::Fold => Dash::DashDot,
     }
 }
 
@@ -78,6 +79,7 @@ pub fn layers(
     let ink = colour.unwrap_or(Color::BLACK);
     for (kind, d) in [
         ("period doubling", Dash::Solid),
+        ("fold", Dash::DashDot),
         ("border collision", Dash::Dashed),
         ("grazing", Dash::Dotted),
     ] {
@@ -144,7 +146,7 @@ pub fn curves_figure(plane: &Plane, c: &Curves, max_period: usize) -> Figure {
         .filter(|p| p.kind.as_str() == "pd_border")
         .count();
     let mut caption = format!(
-        "Two-parameter bifurcation curves of the cycles reached from the (1, 1) solution up to period {max_period}{}: each line is where the cycle's multiplier is \u{2212}1 (period doubling), one of its impacts is at a breakpoint of the table (border collision) or a flight touches the table (grazing), followed by continuation with the cycle solved exactly at every point.",
+        "Two-parameter bifurcation curves of the cycles reached from the (1, 1) solution up to period {max_period}{}: each line is where a multiplier of the cycle is \u{2212}1 (period doubling) or +1 (fold), one of its impacts is at a breakpoint of the table (border collision) or a flight touches the table (grazing), followed by continuation with the cycle solved exactly at every point.",
         if fixed.is_empty() {
             String::new()
         } else {

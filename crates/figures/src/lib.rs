@@ -106,6 +106,8 @@ pub enum Dash {
     Solid,
     Dashed,
     Dotted,
+    /// Dash and dot alternating.
+    DashDot,
 }
 
 /// One series of a panel.

@@ -4,7 +4,7 @@
 //! not yet computed shows the coarser one whose block it lies in), with the analytic
 //! curves over it (α_birth `B`, α_PD `P`, border collision `C`) and, switched on with
 //! their key, the two-parameter curves of every branch ([`super::plane_curves`]: `•`
-//! period doubling, `×` border collision, `:` grazing, `◉` codimension two), axes with
+//! period doubling, `~` fold, `×` border collision, `:` grazing, `◉` codimension two), axes with
 //! tick labels,
 //! the legend in the bottom border and a cursor. Moving the cursor moves the
 //! application's α and D (or r), so the phase plot, stability and bounce panels follow;
@@ -174,7 +174,7 @@ impl PlanePanel {
         if shared.show_plane_curves {
             match &shared.plane_curves {
                 Some(Ok(_)) => {
-                    for (m, name) in [("•", "PD"), ("×", "BC"), ("◉", "codim2")] {
+                    for (m, name) in [("•", "PD"), ("~", "F"), ("×", "BC"), ("◉", "codim2")] {
                         spans.push(Span::styled(m.to_string(), curve_style()));
                         spans.push(Span::raw(format!("{name} ")));
                     }
@@ -193,7 +193,8 @@ pub fn curve_mark(kind: &bouncemap_engine::orbits::curves::CurveKind) -> &'stati
     match kind {
         CurveKind::PeriodDoubling => "•",
         CurveKind::BorderCollision { .. } => "×",
-        CurveKind::Grazing | CurveKind::Fold => ":",
+        CurveKind::Fold => "~",
+        CurveKind::Grazing => ":",
     }
 }
 

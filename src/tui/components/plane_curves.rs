@@ -1,4 +1,4 @@
-//! The two-parameter curves over the plane view: the period doublings, border
+//! The two-parameter curves over the plane view: the period doublings, folds, border
 //! collisions and grazings of every branch of the (1, k) solution up to period
 //! [`MAX_PERIOD`], followed over the plane's (α, D) or (α, r) window as
 //! `bouncemap curves` follows them, computed in the background when switched on and
@@ -38,7 +38,7 @@ impl Component for PlaneCurves {
         if shared.show_plane_curves {
             shared.effect(Effect::Start(Self::TARGET));
             shared.say(
-                format!("plane: two-parameter curves of the branches up to period {MAX_PERIOD} (• period doubling, × border collision, : grazing, ◉ codimension two), computing…"),
+                format!("plane: two-parameter curves of the branches up to period {MAX_PERIOD} (• period doubling, ~ fold, × border collision, : grazing, ◉ codimension two), computing…"),
                 false,
             );
         } else {
@@ -103,7 +103,7 @@ impl Component for PlaneCurves {
         }
         let text = match &msg {
             Ok(c) => format!(
-                "plane: {} two-parameter curves, {} codimension-two points (• PD, × BC, : grazing, ◉ codim 2)",
+                "plane: {} two-parameter curves, {} codimension-two points (• PD, ~ fold, × BC, : grazing, ◉ codim 2)",
                 c.curves.len(),
                 c.codim2.len()
             ),

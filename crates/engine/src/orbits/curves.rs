@@ -14,7 +14,7 @@
 //! A codimension-one point of an (n, k) cycle is a zero of one scalar condition G on the
 //! cycle solved at (α, p):
 //! * period doubling: G = 1 + tr M + det M, det M = r²ⁿ (a multiplier −1);
-//! * fold: G = 1 − tr M + det M (a multiplier +1);
+//! * fold: G = 1 − tr M + det M (a multiplier +1; solved with the cycle, below);
 //! * border collision: G = the signed phase distance of one impact to one breakpoint
 //!   where f'' jumps;
 //! * grazing: G = the smallest interior height of the ball above the table over the
@@ -41,11 +41,10 @@
 //! * on a border-collision curve, the other impacts' distances to the breakpoints: two
 //!   border collisions at once.
 //!
-//! Fold curves are not followed: the cycle is solved at fixed (α, p) by Newton's
-//! method on the map, and that is singular where a multiplier is +1 (a fold needs the
-//! extended system with the cycle's equations, which this module does not build). The
-//! one-parameter continuation locates folds, and the (1, k) birth curves are closed
-//! forms ([`crate::plane::curves`]).
+//! Fold curves are the exception: at a fold M − I is singular, so the cycle cannot be
+//! solved at fixed (α, p); there the corrector solves the extended system (the cycle's
+//! two equations and the fold condition in α, p, t₀, v₀, with the arclength
+//! condition), the map's own derivatives giving the cycle equations' columns.
 //!
 //! A fold and a period doubling cannot meet on a cycle of this map: at a multiplier −1
 //! the other is −r²ⁿ, never +1 for r < 1, so no such point is looked for.
@@ -442,9 +441,8 @@ pub struct Curves {
     pub curves: Vec<Curve>,
     /// Codimension-two points located on them.
     pub codim2: Vec<Codim2>,
-    /// Special points that were not followed, with the reason: folds (below), or a seed
-    /// the corrector could not solve (a grazing cycle that cannot be solved at the
-    /// grazing itself).
+    /// Special points that were not followed, with the reason (a seed the corrector
+    /// could not solve, e.g. a grazing cycle that cannot be solved at the grazing).
     pub skipped: Vec<(Special, String)>,
 }
 
@@ -522,13 +520,6 @@ pub fn curves(plane: &Plane, seeds: Seeds) -> Result<Curves, EngineError> {
                         .push((s.clone(), format!("more than {MAX_CURVES} curves")));
                     continue;
                 }
-                if kind == CurveKind::Fold {
-                    out.skipped.push((
-                        s.clone(),
-                        "fold curves are not followed: the cycle is solved at fixed (α, p) by Newton's method, which is singular at a fold (a multiplier +1)".into(),
-                    ));
-                    continue;
-                }
                 let index = out.curves.len();
                 match follow(plane, kind, s, p, index) {
                     Ok((curve, codim2)) => {
@@ -540,7 +531,59 @@ pub fn curves(plane: &Plane, seeds: Seeds) -> Result<Curves, EngineError> {
             }
         }
     }
+    dedupe(&mut out, 1e-4 * plane.scale());
     Ok(out)
+}
+
+/// Drop a curve that another of the same kind and cycle covers (seeded at two values of
+/// the second parameter, the shorter may be a piece of the longer): every tenth of its
+/// points lies within `tol` of the other. Its codimension-two points go to the other.
+fn dedupe(out: &mut Curves, tol: f64) {
+    let n = out.curves.len();
+    let mut into: Vec<Option<usize>> = vec![None; n];
+    for i in 0..n {
+        for j in 0..n {
+            let (a, b) = (&out.curves[i], &out.curves[j]);
+            if i == j
+                || into[j].is_some()
+                || a.n != b.n
+                || a.k != b.k
+                || a.kind.as_str() != b.kind.as_str()
+                || (b.points.len(), j) < (a.points.len(), i)
+            {
+                continue;
+            }
+            let step = (a.points.len() / 10).max(1);
+            if a.points
+                .iter()
+                .step_by(step)
+                .all(|q| b.passes_near(q.alpha, q.p, tol))
+            {
+                into[i] = Some(j);
+                break;
+            }
+        }
+    }
+    let mut index = vec![0usize; n];
+    let mut kept = 0;
+    for i in 0..n {
+        if into[i].is_none() {
+            index[i] = kept;
+            kept += 1;
+        }
+    }
+    for p in &mut out.codim2 {
+        let mut c = p.curve;
+        while let Some(j) = into[c] {
+            c = j;
+        }
+        p.curve = index[c];
+    }
+    let mut i = 0;
+    out.curves.retain(|_| {
+        i += 1;
+        into[i - 1].is_none()
+    });
 }
 
 /// The cycle and the condition at a point of the plane.
@@ -611,13 +654,15 @@ impl Tracer<'_> {
                     continue;
                 }
             }
-            *g = match (valid(plus), valid(minus)) {
-                (true, true) => {
-                    (self.eval(plus, &e.pt)?.g - self.eval(minus, &e.pt)?.g) / (2.0 * h)
-                }
-                (true, false) => (self.eval(plus, &e.pt)?.g - e.g) / h,
-                (false, true) => (e.g - self.eval(minus, &e.pt)?.g) / h,
-                (false, false) => return Err(PassError::BadLaunch),
+            // Central where the cycle exists on both sides; one-sided at the end of the
+            // parameter's range (D = 0 or 1) or where the cycle ends on one side (at a
+            // grazing the flight would cross the table beyond the curve).
+            let at = |y: [f64; 2]| valid(y).then(|| self.eval(y, &e.pt).ok()).flatten();
+            *g = match (at(plus), at(minus)) {
+                (Some(p), Some(m)) => (p.g - m.g) / (2.0 * h),
+                (Some(p), None) => (p.g - e.g) / h,
+                (None, Some(m)) => (e.g - m.g) / h,
+                (None, None) => return Err(PassError::NoConvergence),
             };
         }
         if !(grad[0].is_finite() && grad[1].is_finite()) || grad == [0.0, 0.0] {
@@ -629,37 +674,140 @@ impl Tracer<'_> {
     /// Newton's method on (G = 0, c·y = d) from `y`.
     fn correct(
         &self,
-        mut y: [f64; 2],
+        y: [f64; 2],
         c: [f64; 2],
         d: f64,
         guess: &CyclePoint,
     ) -> Result<(Eval, [f64; 2]), PassError> {
-        let mut guess = guess.clone();
-        for _it in 0..20 {
-            let e = self.eval(y, &guess)?;
+        if self.kind == CurveKind::Fold {
+            return self.correct_fold(y, c, d, guess);
+        }
+        let mut e = self.eval(y, guess)?;
+        for _ in 0..20 {
             let grad = self.gradient(&e)?;
             let a = [grad, c];
-            let b = [e.g, c[0] * y[0] + c[1] * y[1] - d];
+            let b = [e.g, c[0] * e.y[0] + c[1] * e.y[1] - d];
             let step = solve(a, b).ok_or(PassError::NoConvergence)?;
-            y = [y[0] - step[0], y[1] - step[1]];
-            guess = e.pt;
             let size = step[0].abs().max(step[1].abs());
             if !size.is_finite() || size > 0.5 {
                 return Err(PassError::NoConvergence);
             }
+            // Backtracking: where the full step leaves the cycle's domain (a grazing or
+            // a vanishing impact velocity beyond the curve), shorter ones approach the
+            // curve from its own side.
+            let mut lambda = 1.0;
+            let next = loop {
+                let yn = [e.y[0] - lambda * step[0], e.y[1] - lambda * step[1]];
+                match self.eval(yn, &e.pt) {
+                    Ok(n) => break n,
+                    Err(err) if lambda < 1e-3 => return Err(err),
+                    Err(_) => lambda *= 0.5,
+                }
+            };
+            e = next;
             // Converged when the step is at rounding level, or when both equations
             // already hold to it (at a border the gradient has a kink, and Newton's
-            // method creeps the last digits).
-            // The cycle is solved to about 1e-14, so G is known to about 1e-13: the
-            // point is taken to 1e-12.
-            let tiny = 1e-12 * (1.0 + y[0].abs().max(y[1].abs()));
-            if size < tiny || (e.g.abs() < 1e-12 && b[1].abs() < tiny) {
-                let e = self.eval(y, &guess)?;
+            // method creeps the last digits). The cycle is solved to about 1e-14, so G
+            // is known to about 1e-13: the point is taken to 1e-12.
+            let tiny = 1e-12 * (1.0 + e.y[0].abs().max(e.y[1].abs()));
+            let held = e.g.abs() < 1e-12 && (c[0] * e.y[0] + c[1] * e.y[1] - d).abs() < tiny;
+            if lambda * size < tiny || held {
                 if e.g.abs() > CONDITION_TOLERANCE {
                     return Err(PassError::NoConvergence);
                 }
                 let grad = self.gradient(&e)?;
                 return Ok((e, grad));
+            }
+        }
+        Err(PassError::NoConvergence)
+    }
+
+    /// The fold's extended system at x = (α, p, t₀, v₀): the cycle's residual
+    /// (tₙ − t₀ − k, vₙ − v₀) and 1 − tr M + r²ⁿ, with the pass.
+    fn fold_system(&self, x: [f64; 4]) -> Result<([f64; 3], super::periodic::Pass), PassError> {
+        let sys = self
+            .plane
+            .system(x[0], x[1])
+            .map_err(|_| PassError::BadLaunch)?;
+        let mut map = map_for(&sys);
+        let p = pass(&mut map, x[2], x[3], self.n, self.k)?;
+        let tr = p.monodromy[0][0] + p.monodromy[1][1];
+        let g = 1.0 - tr + sys.r().powi(2 * self.n as i32);
+        Ok(([p.residual[0], p.residual[1], g], p))
+    }
+
+    /// Newton's method on the fold's extended system (the cycle's equations and the
+    /// fold condition, in α, p, t₀, v₀) with c·(α, p) = d: at a fold the cycle cannot
+    /// be solved at fixed parameters (M − I is singular), so it is solved with them.
+    /// The map's own derivatives give the cycle equations' columns in α, t₀ and v₀;
+    /// forward differences give the p column and the fold condition's row.
+    fn correct_fold(
+        &self,
+        y: [f64; 2],
+        c: [f64; 2],
+        d: f64,
+        guess: &CyclePoint,
+    ) -> Result<(Eval, [f64; 2]), PassError> {
+        let mut x = [y[0], y[1], guess.t0, guess.velocities[0]];
+        let jacobian = |x: [f64; 4], f: [f64; 3], p: &super::periodic::Pass| {
+            let m = p.monodromy;
+            let mut j = [
+                [p.alpha_column[0], 0.0, m[0][0] - 1.0, m[0][1]],
+                [p.alpha_column[1], 0.0, m[1][0], m[1][1] - 1.0],
+                [0.0; 4],
+            ];
+            for col in 0..4 {
+                let h = 1e-7 * (1.0 + x[col].abs());
+                let mut xp = x;
+                xp[col] += h;
+                let (fp, _) = self.fold_system(xp)?;
+                j[2][col] = (fp[2] - f[2]) / h;
+                if col == 1 {
+                    j[0][1] = (fp[0] - f[0]) / h;
+                    j[1][1] = (fp[1] - f[1]) / h;
+                }
+            }
+            Ok::<_, PassError>(j)
+        };
+        for _ in 0..30 {
+            let (f, p) = self.fold_system(x)?;
+            let j = jacobian(x, f, &p)?;
+            let a = [j[0], j[1], j[2], [c[0], c[1], 0.0, 0.0]];
+            let b = [f[0], f[1], f[2], c[0] * x[0] + c[1] * x[1] - d];
+            let step = solve(a, b).ok_or(PassError::NoConvergence)?;
+            let size = step.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            if !size.is_finite() || size > 0.5 {
+                return Err(PassError::NoConvergence);
+            }
+            for i in 0..4 {
+                x[i] -= step[i];
+            }
+            if size < 1e-12 * (1.0 + x[3].abs()) {
+                let (f, p) = self.fold_system(x)?;
+                if f[2].abs() > CONDITION_TOLERANCE {
+                    return Err(PassError::NoConvergence);
+                }
+                let sys = self
+                    .plane
+                    .system(x[0], x[1])
+                    .map_err(|_| PassError::BadLaunch)?;
+                let pt = super::periodic::accept(&sys, [x[0], x[2], x[3]], self.n, self.k, &p)?;
+                // The curve's tangent in (α, p): the null vector of the extended
+                // system's Jacobian, normalised on (α, p); returned as the gradient it is
+                // orthogonal to.
+                let j = jacobian(x, f, &p)?;
+                let a = [j[0], j[1], j[2], [1.0, 0.0, 0.0, 0.0]];
+                let a2 = [j[0], j[1], j[2], [0.0, 1.0, 0.0, 0.0]];
+                let t = solve(a, [0.0, 0.0, 0.0, 1.0])
+                    .filter(|t| t.iter().all(|v| v.is_finite()))
+                    .or_else(|| solve(a2, [0.0, 0.0, 0.0, 1.0]))
+                    .ok_or(PassError::NoConvergence)?;
+                let e = Eval {
+                    y: [x[0], x[1]],
+                    pt,
+                    g: f[2],
+                };
+                return Ok((e, [t[1], -t[0]]));
             }
         }
         Err(PassError::NoConvergence)
@@ -879,6 +1027,10 @@ impl Tracer<'_> {
                         if self.border_end(prev.as_ref(), &cur, index, codim2) {
                             return (out, CurveEnd::Border);
                         }
+                        // Stopped on the window's edge itself: it left the window.
+                        if on_edge(self.plane, [cur.alpha, cur.p]) {
+                            return (out, CurveEnd::Window);
+                        }
                         return (out, CurveEnd::from_error(e));
                     }
                 }
@@ -1033,6 +1185,13 @@ impl Tracer<'_> {
 enum Watch {
     /// An impact crossed a breakpoint on a curve that cannot cross one.
     Crossed,
+}
+
+/// Whether y lies on the window's boundary (to 1e-9 of its size).
+fn on_edge(plane: &Plane, y: [f64; 2]) -> bool {
+    let tol = 1e-9 * plane.scale();
+    let w = [plane.alpha, plane.window];
+    (0..2).any(|i| (y[i] - w[i].0).abs() <= tol || (y[i] - w[i].1).abs() <= tol)
 }
 
 fn near_edge(plane: &Plane, y: [f64; 2]) -> bool {

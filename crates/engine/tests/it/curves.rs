@@ -361,3 +361,59 @@ fn supercritical_flips_give_a_stable_doubled_orbit() {
     }
     assert!(checked >= 5);
 }
+
+/// The sine's (α, r) plane: the (1, 1) fold curve is the closed-form birth of the
+/// (1, 1) pair (where the stable one is born, by a multiplier +1), and on the (1, 1)
+/// grazing curve the flight's lowest interior height above the table, found on a dense
+/// grid of the flight (a second method), is zero to 1e-9.
+#[test]
+fn fold_and_grazing_curves_of_the_sine() {
+    let plane = Plane {
+        table: Table::sine(),
+        r: 0.8,
+        alpha: (0.005, 0.5),
+        second: SweepParam::R,
+        window: (0.2, 0.95),
+    };
+    let c = curves(
+        &plane,
+        Seeds::FromFixed {
+            k: 1,
+            max_period: 1,
+            at: 0.8,
+            count: 5,
+        },
+    )
+    .unwrap();
+    let fold = of(&c, "fold", 1);
+    assert_eq!(fold.len(), 1);
+    assert!(fold[0].points.len() >= 50);
+    for q in &fold[0].points {
+        let w = stability_window(&Table::sine(), q.p, 1).unwrap().unwrap();
+        assert!(
+            (q.alpha - w.alpha_birth).abs() < 1e-10,
+            "r = {}: fold at {}, birth {}",
+            q.p,
+            q.alpha,
+            w.alpha_birth
+        );
+        // A multiplier +1: (1 − λ₁)(1 − λ₂) = 0.
+        assert!(q.cycle.fold_test().abs() < 1e-9);
+    }
+    let graze = of(&c, "grazing", 1);
+    assert_eq!(graze.len(), 1, "one (1, 1) grazing curve");
+    assert!(graze[0].points.len() >= 50);
+    for q in graze[0].points.iter().step_by(5) {
+        let sys = System::new(Table::sine(), q.alpha, q.p).unwrap();
+        let (ph, v, tau) = (q.cycle.phases[0], q.cycle.velocities[0], q.cycle.flights[0]);
+        let f0 = sys.f(ph);
+        let lowest = (1..200_000)
+            .map(|j| {
+                let s = tau * j as f64 / 200_000.0;
+                f0 + v * s - 0.5 * s * s - sys.f((ph + s).rem_euclid(1.0))
+            })
+            .fold(f64::INFINITY, f64::min);
+        // The grid's minimum is above the true one by at most (Δs)² |g''| / 8.
+        assert!(lowest.abs() < 1e-9, "r = {}: lowest {lowest:e}", q.p);
+    }
+}

@@ -274,6 +274,7 @@ fn dasharray(d: Dash) -> &'static str {
         Dash::Solid => "",
         Dash::Dashed => " stroke-dasharray=\"3.2 1.8\"",
         Dash::Dotted => " stroke-dasharray=\"0.1 1.5\" stroke-linecap=\"round\"",
+        Dash::DashDot => " stroke-dasharray=\"3.2 1.4 0.1 1.4\" stroke-linecap=\"round\"",
     }
 }
 
