@@ -417,3 +417,152 @@ fn fold_and_grazing_curves_of_the_sine() {
         assert!(lowest.abs() < 1e-9, "r = {}: lowest {lowest:e}", q.p);
     }
 }
+
+/// The repository's example table file, `assets/tables/quintic.toml`: two quintic
+/// pieces, C² everywhere.
+fn quintic() -> Table {
+    Table::piecewise(
+        "quintic kick",
+        &[
+            (0.0, vec![0.0, 1.5, 0.0, 50.0, -210.9375, 214.84375]),
+            (
+                0.4,
+                vec![
+                    1.7407407407407407,
+                    -12.851851851851851,
+                    58.333333333333336,
+                    -121.29629629629629,
+                    108.79629629629629,
+                    -34.72222222222222,
+                ],
+            ),
+        ],
+    )
+    .unwrap()
+}
+
+/// How far an orbit started next to the (n, n) cycle of the curve point `q`, at α a
+/// little past its period doubling on the side where the cycle is unstable, ends from
+/// the cycle: the largest phase distance of its last 200 impacts to the nearest of the
+/// cycle's impact phases.
+fn drift_past_the_flip(table: &Table, q: &CurvePoint, delta: f64) -> f64 {
+    let n = q.cycle.n;
+    let side = [1.0, -1.0]
+        .into_iter()
+        .find(|s| {
+            let sys = System::new(table.clone(), q.alpha + s * delta, q.p).unwrap();
+            bouncemap_engine::orbits::periodic::cycle(
+                &sys,
+                n,
+                q.cycle.k,
+                q.cycle.t0,
+                q.cycle.velocities[0],
+            )
+            .is_ok_and(|c| !c.stable)
+        })
+        .expect("the cycle is unstable on one side");
+    let sys = System::new(table.clone(), q.alpha + side * delta, q.p).unwrap();
+    let cyc = bouncemap_engine::orbits::periodic::cycle(
+        &sys,
+        n,
+        q.cycle.k,
+        q.cycle.t0,
+        q.cycle.velocities[0],
+    )
+    .unwrap();
+    let st = State::launch(&sys, 0, cyc.phases[0] + 1e-5, cyc.velocities[0], 0.0).unwrap();
+    let mut map = ImpactMap::new(sys, Solver::Exact, st);
+    let mut phases = Vec::new();
+    for _ in 0..20_000 {
+        match map.step() {
+            Ok(e) => phases.push(e.phase),
+            Err(_) => return f64::INFINITY,
+        }
+    }
+    phases[phases.len() - 200..]
+        .iter()
+        .map(|&ph| {
+            cyc.phases
+                .iter()
+                .map(|&c| (ph - c).rem_euclid(1.0).min((c - ph).rem_euclid(1.0)))
+                .fold(f64::INFINITY, f64::min)
+        })
+        .fold(0.0, f64::max)
+}
+
+/// The flip's criticality against simulation where both kinds occur: on the (2, 2)
+/// period-doubling curve of the quintic table over (α, r), supercritical near r = 0.5
+/// and subcritical near r = 0.97 with a degenerate flip between. Just past each
+/// supercritical doubling the orbit started next to the (2, 2) cycle stays within a
+/// distance that halves when Δα is quartered (the doubled cycle, ∝ √Δα); just past each
+/// subcritical one it leaves the cycle's neighbourhood.
+#[test]
+fn subcritical_flips_lose_the_orbit_and_supercritical_ones_keep_it() {
+    let table = quintic();
+    let plane = Plane {
+        table: table.clone(),
+        r: 0.8,
+        alpha: (0.005, 1.5),
+        second: SweepParam::R,
+        window: (0.1, 0.98),
+    };
+    let c = curves(
+        &plane,
+        Seeds::FromFixed {
+            k: 1,
+            max_period: 4,
+            at: 0.8,
+            count: 5,
+        },
+    )
+    .unwrap();
+    let (mut sup, mut sub) = (0, 0);
+    for (i, cv) in c.curves.iter().enumerate() {
+        if cv.n != 2 || cv.kind.as_str() != "period_doubling" {
+            continue;
+        }
+        for q in cv.points.iter().step_by(4) {
+            let Some(kind) = q.criticality.and_then(|c| c.supercritical()) else {
+                continue;
+            };
+            let d1 = drift_past_the_flip(&table, q, 1e-4);
+            if kind {
+                let d2 = drift_past_the_flip(&table, q, 2.5e-5);
+                assert!(
+                    d1 < 0.05 && (d1 / d2 - 2.0).abs() < 0.3,
+                    "supercritical at α = {}, r = {}: drifts {d1}, {d2}",
+                    q.alpha,
+                    q.p
+                );
+                sup += 1;
+            } else {
+                assert!(
+                    d1 > 0.1,
+                    "subcritical at α = {}, r = {}: drift {d1}",
+                    q.alpha,
+                    q.p
+                );
+                sub += 1;
+            }
+        }
+        // Where the criticality changes sign on this curve, a degenerate flip is
+        // reported between.
+        let signs: Vec<bool> = cv
+            .points
+            .iter()
+            .filter_map(|q| q.criticality.and_then(|c| c.supercritical()))
+            .collect();
+        if signs.windows(2).any(|w| w[0] != w[1]) {
+            assert!(
+                c.codim2
+                    .iter()
+                    .any(|p| p.curve == i && p.kind == Codim2Kind::DegenerateFlip),
+                "curve {i} changes criticality without a degenerate flip"
+            );
+        }
+    }
+    assert!(
+        sup >= 10 && sub >= 1,
+        "checked {sup} supercritical, {sub} subcritical"
+    );
+}
