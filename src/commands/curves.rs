@@ -193,6 +193,7 @@ fn describe(kind: &CurveKind) -> String {
             format!("border collision (BC) of impact {impact} at phase {breakpoint}")
         }
         CurveKind::Grazing => "grazing (G)".into(),
+        CurveKind::StickingOnset => "onset of sticking (S)".into(),
     }
 }
 

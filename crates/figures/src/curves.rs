@@ -16,7 +16,7 @@ pub fn dash(kind: &CurveKind) -> Dash {
     match kind {
         CurveKind::PeriodDoubling => Dash::Solid,
         CurveKind::BorderCollision { .. } => Dash::Dashed,
-        CurveKind::Grazing => Dash::Dotted,
+        CurveKind::Grazing | CurveKind::StickingOnset => Dash::Dotted,
         CurveKind::Fold => Dash::DashDot,
     }
 }
@@ -40,6 +40,7 @@ fn kind_text(kind: &CurveKind) -> &'static str {
         CurveKind::PeriodDoubling => "period doubling",
         CurveKind::BorderCollision { .. } => "border collision",
         CurveKind::Grazing => "grazing",
+        CurveKind::StickingOnset => "onset of sticking",
         CurveKind::Fold => "fold",
     }
 }

@@ -194,7 +194,7 @@ pub fn curve_mark(kind: &bouncemap_engine::orbits::curves::CurveKind) -> &'stati
         CurveKind::PeriodDoubling => "•",
         CurveKind::BorderCollision { .. } => "×",
         CurveKind::Fold => "~",
-        CurveKind::Grazing => ":",
+        CurveKind::Grazing | CurveKind::StickingOnset => ":",
     }
 }
 

@@ -18,7 +18,9 @@
 //! * border collision: G = the signed phase distance of one impact to one breakpoint
 //!   where f'' jumps;
 //! * grazing: G = the smallest interior height of the ball above the table over the
-//!   cycle's flights.
+//!   cycle's flights;
+//! * onset of sticking: G = the smallest relative impact velocity of the cycle (a
+//!   landing turning tangential).
 //!
 //! The cycle is solved exactly at each (α, p) by Newton's method on the map
 //! ([`periodic::cycle`], re-verified by the 1e-11 return), warm-started from the
@@ -178,6 +180,9 @@ pub enum CurveKind {
     },
     /// A flight touches the table at an interior point.
     Grazing,
+    /// An impact's relative velocity reaches zero: the landing becomes tangential, and
+    /// beyond it the ball chatters and sticks.
+    StickingOnset,
 }
 
 impl CurveKind {
@@ -188,6 +193,7 @@ impl CurveKind {
             CurveKind::Fold => "fold",
             CurveKind::BorderCollision { .. } => "border_collision",
             CurveKind::Grazing => "grazing",
+            CurveKind::StickingOnset => "sticking_onset",
         }
     }
 
@@ -198,6 +204,7 @@ impl CurveKind {
             CurveKind::Fold => "F",
             CurveKind::BorderCollision { .. } => "BC",
             CurveKind::Grazing => "G",
+            CurveKind::StickingOnset => "S",
         }
     }
 
@@ -210,6 +217,7 @@ impl CurveKind {
                 .phases
                 .get(impact)
                 .map_or(f64::NAN, |&ph| signed_distance(ph, breakpoint)),
+            CurveKind::StickingOnset => pt.min_impact_speed,
             CurveKind::Grazing => {
                 let g = min_interior_gap(sys, pt).0;
                 if g.is_finite() {
@@ -485,10 +493,12 @@ pub fn curves(plane: &Plane, seeds: Seeds) -> Result<Curves, EngineError> {
         };
         for b in &found {
             let ends = [&b.begin, &b.end];
-            let specials =
-                b.specials.iter().chain(ends.into_iter().filter(|s| {
-                    matches!(s.kind, Kind::BorderCollision | Kind::Grazing | Kind::Fold)
-                }));
+            let specials = b.specials.iter().chain(ends.into_iter().filter(|s| {
+                matches!(
+                    s.kind,
+                    Kind::BorderCollision | Kind::Grazing | Kind::Fold | Kind::StickingOnset
+                )
+            }));
             for s in specials {
                 let kind = match s.kind {
                     Kind::PeriodDoubling => CurveKind::PeriodDoubling,
@@ -498,6 +508,7 @@ pub fn curves(plane: &Plane, seeds: Seeds) -> Result<Curves, EngineError> {
                         breakpoint: s.phase,
                     },
                     Kind::Grazing => CurveKind::Grazing,
+                    Kind::StickingOnset => CurveKind::StickingOnset,
                     _ => continue,
                 };
                 // A doubled branch's birth is its parent's period doubling.
@@ -1071,7 +1082,7 @@ impl Tracer<'_> {
         codim2.push(Codim2 {
             kind: match self.kind {
                 CurveKind::Fold => Codim2Kind::FoldBorder,
-                CurveKind::Grazing => Codim2Kind::GrazingBorder,
+                CurveKind::Grazing | CurveKind::StickingOnset => Codim2Kind::GrazingBorder,
                 CurveKind::BorderCollision { .. } => Codim2Kind::DoubleBorder,
                 CurveKind::PeriodDoubling => Codim2Kind::PdBorder,
             },
