@@ -80,6 +80,14 @@ pub fn plane_spec_from(
             crate::output::text::escape(args.table.trim())
         )));
     }
+    // A D given with the table would be replaced by the axis's: say so instead of
+    // dropping it.
+    if has_d && args.table.trim() != "fd" {
+        return Err(InputError(format!(
+            "--table {}: D is an axis of the plane, so the table's own D would be ignored: valid --table fd",
+            crate::output::text::escape(args.table.trim())
+        )));
+    }
     let table = table.load()?;
     let mut spec = PlaneSpec::new(
         table,

@@ -225,7 +225,7 @@ fn check_value(v: &PartValue, want: f64, keep: usize) -> Result<(), String> {
                 let same_attractor = rows.iter().find(|x| x.attractor == r.attractor);
                 let a0 = same_attractor.unwrap_or(r0);
                 if (r.period, r.table_periods, r.status, r.sticking)
-                    != (a0.period, a0.table_periods, a0.status, r0.sticking)
+                    != (a0.period, a0.table_periods, a0.status, a0.sticking)
                     || r.value.to_bits() != r0.value.to_bits()
                     || r.lyapunov.is_some() != r0.lyapunov.is_some()
                     || r.attractor.is_some() != r0.attractor.is_some()

@@ -393,3 +393,39 @@ fn a_slurm_array_task_computes_its_part() {
     // 23 × 9 = 207 pixels, 69 of them in the part.
     assert!(text.contains("\n# pixels 69\n"), "{text}");
 }
+
+/// A d axis takes the F_D family: another table, or an F_D table with its own D (which
+/// the axis would replace), is refused with one line naming the valid form.
+#[test]
+fn a_d_axis_takes_the_family_not_one_table() {
+    for table in ["fd:0.1", "cubic", "sine"] {
+        let (code, _, err) = crate::cli::run(&[
+            "plane",
+            "--table",
+            table,
+            "--x",
+            "alpha:0.45..0.6",
+            "--y",
+            "d:0..1",
+            "--size",
+            "4x4",
+        ]);
+        assert_eq!(code, 2, "{table}: {err}");
+        assert_eq!(err.trim().lines().count(), 1, "{err}");
+        assert!(err.contains("valid --table fd"), "{table}: {err}");
+    }
+    let (code, _, err) = crate::cli::run(&[
+        "plane",
+        "--table",
+        "fd",
+        "--x",
+        "alpha:0.45..0.6",
+        "--y",
+        "d:0..1",
+        "--size",
+        "4x4",
+        "--format",
+        "csv",
+    ]);
+    assert_eq!(code, 0, "{err}");
+}

@@ -258,3 +258,66 @@ fn resting_values_are_reported_in_csv() {
     let last = *data(&csv).last().unwrap();
     assert!(last.ends_with(",resting,true,,"), "{last}");
 }
+
+/// With several starts each attractor's rows say whether that attractor sticks: at
+/// α = 0.47 on F_1 the stable (1, 1) solution (no stick) coexists with a sticking cycle,
+/// and the file still verifies (`merge` reads it back).
+#[test]
+fn with_several_starts_sticking_is_each_attractors() {
+    let out = tmp("starts-sticking.csv");
+    let o = bouncemap(&[
+        "sweep",
+        "--table",
+        "fd:1",
+        "--alpha",
+        "0.47..0.48",
+        "--steps",
+        "2",
+        "--starts",
+        "4",
+        "--transient",
+        "5000",
+        "--format",
+        "csv",
+        "--out",
+        &out,
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = std::fs::read_to_string(&out).unwrap();
+    let rows = data(&text);
+    let header: Vec<&str> = rows[0].split(',').collect();
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let (kind, period, sticking, attractor) = (
+        col("kind"),
+        col("period"),
+        col("sticking"),
+        col("attractor"),
+    );
+    let mut seen = [false; 2];
+    // Per (value, attractor): whether any of its rows is a stick or a release.
+    let mut groups: std::collections::BTreeMap<(String, String), (bool, Vec<String>)> =
+        Default::default();
+    for r in &rows[1..] {
+        let f: Vec<&str> = r.split(',').collect();
+        let g = groups
+            .entry((f[0].to_string(), f[attractor].to_string()))
+            .or_default();
+        g.0 |= f[kind] != "impact";
+        g.1.push(f[sticking].to_string());
+        if f[period] == "1" {
+            seen[0] = true;
+        }
+    }
+    for ((value, a), (sticks, flags)) in &groups {
+        let want = if *sticks { "true" } else { "false" };
+        assert!(
+            flags.iter().all(|s| s == want),
+            "value {value}, attractor {a}: sticking {flags:?}"
+        );
+        seen[1] |= *sticks;
+    }
+    assert!(seen[0] && seen[1], "both a (1, 1) and a sticking attractor");
+    let merged = tmp("starts-sticking-merged.csv");
+    let o = bouncemap(&["merge", &out, "--out", &merged]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}

@@ -139,7 +139,8 @@ impl From<&Outcome> for Status {
 /// has one row with empty phase, v and kind. The second column is named after the
 /// swept parameter ([`SweepRow::header`]). With `--lyapunov` a `lyapunov` column
 /// follows, with several starts an `attractor` column (the attractor's number at this
-/// value, 1 = largest basin; period, table_periods and status are then the attractor's).
+/// value, 1 = largest basin; period, table_periods, status and sticking are then the
+/// attractor's).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SweepRow {
@@ -214,7 +215,8 @@ impl SweepRow {
                    o: &Outcome,
                    l: Option<f64>,
                    precision: Option<Precision>,
-                   a: Option<usize>| {
+                   a: Option<usize>,
+                   sticking: bool| {
             let resolved = precision.map(|p| p.resolved);
             let claimed = resolved != Some(false);
             SweepRow {
@@ -226,7 +228,7 @@ impl SweepRow {
                 period: o.period().filter(|_| claimed),
                 table_periods: o.table_periods().filter(|_| claimed),
                 status: o.into(),
-                sticking: r.sticking,
+                sticking,
                 resolved,
                 growth_decades: precision
                     .filter(|p| p.impacts > 0)
@@ -239,7 +241,23 @@ impl SweepRow {
             let mut out = Vec::new();
             for (n, a) in r.attractors.iter().enumerate() {
                 let pts = &r.points[a.points.clone()];
-                let row = |p| row(p, &a.outcome, a.lyapunov, a.precision, Some(n + 1));
+                // Each attractor's own: a sticking or resting one, a stick or release
+                // among its points, or an exponent of −∞.
+                use bouncemap_engine::attractors::Kind as A;
+                use bouncemap_engine::map::EventKind;
+                let sticking = matches!(a.kind, A::Sticking | A::Resting)
+                    || pts.iter().any(|p| p.kind != EventKind::Impact)
+                    || a.lyapunov == Some(f64::NEG_INFINITY);
+                let row = |p| {
+                    row(
+                        p,
+                        &a.outcome,
+                        a.lyapunov,
+                        a.precision,
+                        Some(n + 1),
+                        sticking,
+                    )
+                };
                 if pts.is_empty() {
                     out.push(row(None));
                 }
@@ -248,7 +266,16 @@ impl SweepRow {
             return out;
         }
         let attractor = several.then_some(1);
-        let row = |p| row(p, &r.outcome, r.lyapunov, r.precision, attractor);
+        let row = |p| {
+            row(
+                p,
+                &r.outcome,
+                r.lyapunov,
+                r.precision,
+                attractor,
+                r.sticking,
+            )
+        };
         if r.points.is_empty() {
             vec![row(None)]
         } else {
