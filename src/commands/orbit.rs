@@ -21,15 +21,19 @@ pub fn run(args: &OrbitArgs) -> anyhow::Result<()> {
     let mut map = ImpactMap::new(sys, args.solver.into(), state);
     let mut out = Sink::stdout();
     let mut halt = None;
-    for i in 0..args.skip {
-        // A reader that went away ends a long silent stretch too.
-        if i % (1 << 20) == 0 {
-            check_stdout()?;
+    // A reader that went away ends a long silent stretch too: checked between chunks,
+    // so the loop over events is the map's step alone.
+    let mut left = args.skip;
+    'skip: while left > 0 {
+        check_stdout()?;
+        let chunk = left.min(1 << 20);
+        for _ in 0..chunk {
+            if let Err(h) = map.step() {
+                halt = Some(h);
+                break 'skip;
+            }
         }
-        if let Err(h) = map.step() {
-            halt = Some(h);
-            break;
-        }
+        left -= chunk;
     }
     let written = (|| -> anyhow::Result<()> {
         let mut records = Records::new(&mut out, args.format, &map)?;

@@ -1,0 +1,609 @@
+//! Two-parameter bifurcation curves: the period doublings, folds, border collisions and
+//! grazings of an (n, k) cycle followed through the plane of α and a second parameter
+//! (r, or D of the F_D family), with the codimension-two points met on the way.
+//!
+//! # For front ends
+//! [`curves`] takes a [`Plane`] (the table, r, the α window and the second parameter's
+//! window) and a [`Seeds`] choice, runs the one-parameter continuation
+//! ([`continuation::branches`]) at each seed value of the second parameter, and follows
+//! every special point it finds (PD, fold, border collision, grazing) as a curve
+//! ([`Curve`]: its points, how each end came about, the flip's criticality along a PD
+//! curve). The codimension-two points ([`Codim2`]) are located on the curves.
+//!
+//! # Method
+//! A codimension-one point of an (n, k) cycle is a zero of one scalar condition G on the
+//! cycle solved at (α, p):
+//! * period doubling: G = 1 + tr M + det M, det M = r²ⁿ (a multiplier −1);
+//! * fold: G = 1 − tr M + det M (a multiplier +1; solved with the cycle, below);
+//! * border collision: G = the signed phase distance of one impact to one breakpoint
+//!   where f'' jumps;
+//! * grazing: G = the smallest interior height of the ball above the table over the
+//!   cycle's flights;
+//! * onset of sticking: G = the smallest relative impact velocity of the cycle (a
+//!   landing turning tangential).
+//!
+//! The cycle is solved exactly at each (α, p) by Newton's method on the map
+//! ([`periodic::cycle`], re-verified by the 1e-11 return), warm-started from the
+//! previous point, so the curve G(α, p) = 0 is a curve in the plane. It is followed by
+//! pseudo-arclength continuation: a predictor along the tangent (orthogonal to ∇G, by
+//! central differences of G with the cycle re-solved) and Newton's method on
+//! (G = 0, τ·(y − y₀) = h). Every accepted point has |G| below [`CONDITION_TOLERANCE`]
+//! (its value is kept as the evidence). A step the corrector cannot take, or one whose
+//! cycle jumped (an impact phase or velocity moving far more than the step), is halved;
+//! below the smallest step the curve ends with the reason the cycle gives (grazing, a
+//! stick, no convergence). Where a step would leave the window, the point on the window's
+//! edge is solved instead and the curve ends there.
+//!
+//! Between accepted points the test functions of the codimension-two points are watched
+//! for a sign change and the crossing is located by a bracketed root in the arclength:
+//! * on a PD or fold curve, every impact's distance to every breakpoint: the point hits
+//!   the border. There f'' jumps, so the multipliers jump and the curve ends: its
+//!   continuation on the far side is another curve (if any);
+//! * on a PD curve, the flip's criticality coefficient c (below): a degenerate flip;
+//! * on a border-collision curve, the other impacts' distances to the breakpoints: two
+//!   border collisions at once.
+//!
+//! Fold curves are the exception: at a fold M − I is singular, so the cycle cannot be
+//! solved at fixed (α, p); there the corrector solves the extended system (the cycle's
+//! two equations and the fold condition in α, p, t₀, v₀, with the arclength
+//! condition), the map's own derivatives giving the cycle equations' columns.
+//!
+//! A fold and a period doubling cannot meet on a cycle of this map: at a multiplier −1
+//! the other is −r²ⁿ, never +1 for r < 1, so no such point is looked for.
+//!
+//! # The flip's criticality
+//! On a PD curve the n-fold map P, with A = DP, Aq = −q, Aᵀp = −p, ⟨p, q⟩ = 1,
+//! B and C its second and third derivatives, has the normal form η ↦ −η + c η³ with
+//!
+//!   c = ⟨p, C(q, q, q)⟩/6 + ⟨p, B(q, (I − A)⁻¹ B(q, q))⟩/2
+//!
+//! (Kuznetsov, *Elements of Applied Bifurcation Theory*, §5.4). c > 0: supercritical, the
+//! doubled cycle is born stable on the side where the cycle is unstable; c < 0:
+//! subcritical, it is born unstable on the stable side and the orbit jumps away. B and C
+//! are central differences of P along q and w = (I − A)⁻¹B(q, q) at two step sizes, h
+//! = 2·10⁻³ and 10⁻³, extrapolated; three times their difference (or the rounding error
+//! of a third difference, if larger) is the reported error, and where |c| does not exceed it the sign is
+//! undecided (e.g. near a border, or where f''' = 0 makes c vanish).
+//!
+//! # Files
+//! * this file: the plane, the kinds of curves and of codimension-two points, the
+//!   seeds, [`curves`] and the merging of curves found twice;
+//! * [`trace`]: following one curve (the corrector, the fold's extended system, the
+//!   test functions watched between points, the ends);
+//! * [`criticality`](mod@criticality): the flip's normal-form coefficient.
+
+mod criticality;
+mod trace;
+
+pub use criticality::criticality;
+
+use super::continuation::{branches, Kind, Options, Special, Start};
+use super::events::jump_phases;
+use super::periodic::{min_interior_gap, CyclePoint, PassError};
+use crate::error::EngineError;
+use crate::grid::SweepParam;
+use crate::system::System;
+use crate::table::Table;
+use crate::time::signed_distance;
+use trace::follow;
+
+/// An accepted curve point satisfies its condition to this.
+pub const CONDITION_TOLERANCE: f64 = 1e-9;
+/// A curve that cannot go on with an impact this close to a breakpoint (in phase)
+/// ends at that border.
+pub const BORDER_REACH: f64 = 1e-5;
+/// Steps per direction of one curve.
+pub const MAX_STEPS: usize = 2000;
+
+/// The plane the curves live in: α on one axis, r or D on the other.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Plane {
+    /// The table (for `second` = D, an F_D table: its D is replaced).
+    pub table: Table,
+    /// r (replaced when `second` is r).
+    pub r: f64,
+    /// The α window.
+    pub alpha: (f64, f64),
+    /// The second parameter: [`SweepParam::R`] or [`SweepParam::D`].
+    pub second: SweepParam,
+    /// Its window.
+    pub window: (f64, f64),
+}
+
+impl Plane {
+    /// Check the plane: windows ordered and inside the parameters' ranges, D only for an
+    /// F_D table.
+    pub fn check(&self) -> Result<(), EngineError> {
+        let bad = EngineError::Inconsistent;
+        if self.second == SweepParam::Alpha {
+            return Err(bad(
+                "the second parameter of a curve must be r or d, not alpha".into(),
+            ));
+        }
+        if self.second == SweepParam::D && self.table.d().is_none() {
+            return Err(bad(format!(
+                "d is a parameter of the fd:D tables only, and the table is {}",
+                self.table.name()
+            )));
+        }
+        for (lim, (lo, hi)) in [
+            (crate::limits::ALPHA, self.alpha),
+            (self.second.limit(), self.window),
+        ] {
+            lim.check(lo)?;
+            lim.check(hi)?;
+            if lo.partial_cmp(&hi) != Some(std::cmp::Ordering::Less) {
+                return Err(bad(format!("the {} window needs LO < HI", lim.name)));
+            }
+        }
+        Ok(())
+    }
+
+    /// The system at (α, p).
+    pub fn system(&self, alpha: f64, p: f64) -> Result<System, EngineError> {
+        match self.second {
+            SweepParam::D => System::new(Table::fd(p)?, alpha, self.r),
+            _ => System::new(self.table.clone(), alpha, p),
+        }
+    }
+
+    /// The phases where f'' jumps anywhere on the plane: for F_D, those of D = 0, ½
+    /// and `p` (F_1 is C² at ½, the others are not).
+    fn jumps(&self, p: f64) -> Vec<f64> {
+        let mut out = match self.second {
+            SweepParam::D => [0.0, 0.5, p]
+                .iter()
+                .filter_map(|&d| Table::fd(d).ok())
+                .flat_map(|t| jump_phases(&t))
+                .collect(),
+            _ => jump_phases(&self.table),
+        };
+        out.sort_by(f64::total_cmp);
+        out.dedup();
+        out
+    }
+
+    fn inside(&self, y: [f64; 2]) -> bool {
+        y[0] >= self.alpha.0
+            && y[0] <= self.alpha.1
+            && y[1] >= self.window.0
+            && y[1] <= self.window.1
+    }
+
+    fn scale(&self) -> f64 {
+        (self.alpha.1 - self.alpha.0).hypot(self.window.1 - self.window.0)
+    }
+}
+
+/// What a curve follows.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum CurveKind {
+    /// A multiplier −1.
+    PeriodDoubling,
+    /// A multiplier +1.
+    Fold,
+    /// Impact `impact` (0 = the launch's) at the breakpoint `breakpoint`.
+    BorderCollision {
+        /// Which impact of the cycle.
+        impact: usize,
+        /// The breakpoint's phase.
+        breakpoint: f64,
+    },
+    /// A flight touches the table at an interior point.
+    Grazing,
+    /// An impact's relative velocity reaches zero: the landing becomes tangential, and
+    /// beyond it the ball chatters and sticks.
+    StickingOnset,
+}
+
+impl CurveKind {
+    /// Name in every output format.
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            CurveKind::PeriodDoubling => "period_doubling",
+            CurveKind::Fold => "fold",
+            CurveKind::BorderCollision { .. } => "border_collision",
+            CurveKind::Grazing => "grazing",
+            CurveKind::StickingOnset => "sticking_onset",
+        }
+    }
+
+    /// Short label (as in the one-parameter diagrams).
+    pub fn label(&self) -> &'static str {
+        match self {
+            CurveKind::PeriodDoubling => "PD",
+            CurveKind::Fold => "F",
+            CurveKind::BorderCollision { .. } => "BC",
+            CurveKind::Grazing => "G",
+            CurveKind::StickingOnset => "S",
+        }
+    }
+
+    /// The condition G at a cycle of `sys` (NaN where it is not defined).
+    pub fn condition(&self, sys: &System, pt: &CyclePoint) -> f64 {
+        match *self {
+            CurveKind::PeriodDoubling => pt.pd_test(),
+            CurveKind::Fold => pt.fold_test(),
+            CurveKind::BorderCollision { impact, breakpoint } => pt
+                .phases
+                .get(impact)
+                .map_or(f64::NAN, |&ph| signed_distance(ph, breakpoint)),
+            CurveKind::StickingOnset => pt.min_impact_speed,
+            CurveKind::Grazing => {
+                let g = min_interior_gap(sys, pt).0;
+                if g.is_finite() {
+                    g
+                } else {
+                    f64::NAN
+                }
+            }
+        }
+    }
+}
+
+/// The flip's normal-form coefficient at a period-doubling point, with its error.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Criticality {
+    /// c of η ↦ −η + c η³ (q normalised to unit length).
+    pub c: f64,
+    /// Three times |c(h) − c(h/2)| of the two difference steps, or the rounding
+    /// error of the third difference if larger.
+    pub error: f64,
+}
+
+impl Criticality {
+    /// Some(true) supercritical, Some(false) subcritical, None where |c| ≤ its error.
+    pub fn supercritical(&self) -> Option<bool> {
+        (self.c.abs() > self.error).then_some(self.c > 0.0)
+    }
+
+    /// `supercritical`, `subcritical` or `undecided`.
+    pub fn as_str(&self) -> &'static str {
+        match self.supercritical() {
+            Some(true) => "supercritical",
+            Some(false) => "subcritical",
+            None => "undecided",
+        }
+    }
+}
+
+/// One accepted point of a curve.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CurvePoint {
+    /// α.
+    pub alpha: f64,
+    /// The second parameter.
+    pub p: f64,
+    /// The cycle there.
+    pub cycle: CyclePoint,
+    /// The condition's value there (the evidence: |G| ≤ [`CONDITION_TOLERANCE`]).
+    pub condition: f64,
+    /// On a PD curve: the flip's criticality.
+    pub criticality: Option<Criticality>,
+}
+
+/// How one end of a curve came about.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum CurveEnd {
+    /// It reached the window's edge.
+    Window,
+    /// The point reached a breakpoint (a PD or fold curve ends where its point collides
+    /// with the border: the multipliers jump there).
+    Border,
+    /// The cycle grazes (a flight touches the table).
+    Grazing,
+    /// A stick or a vanishing impact velocity inside the cycle.
+    Sticking,
+    /// Came back to its start: a closed curve.
+    Closed,
+    /// The corrector could not go on, with no sign of the above.
+    NoConvergence,
+    /// The step bound [`MAX_STEPS`] was reached.
+    StepLimit,
+}
+
+impl CurveEnd {
+    /// Name in every output format.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            CurveEnd::Window => "window",
+            CurveEnd::Border => "border_collision",
+            CurveEnd::Grazing => "grazing",
+            CurveEnd::Sticking => "sticking",
+            CurveEnd::Closed => "closed",
+            CurveEnd::NoConvergence => "no_convergence",
+            CurveEnd::StepLimit => "step_limit",
+        }
+    }
+
+    fn from_error(e: PassError) -> CurveEnd {
+        match e {
+            PassError::Grazing { .. } => CurveEnd::Grazing,
+            PassError::Stick { .. } | PassError::Halt => CurveEnd::Sticking,
+            _ => CurveEnd::NoConvergence,
+        }
+    }
+}
+
+/// What happens at a codimension-two point.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Codim2Kind {
+    /// A period-doubling point reaches a breakpoint.
+    PdBorder,
+    /// A fold point reaches a breakpoint.
+    FoldBorder,
+    /// Two impacts of the cycle on breakpoints at once.
+    DoubleBorder,
+    /// The flip's criticality coefficient changes sign: the doubling turns from
+    /// supercritical to subcritical.
+    DegenerateFlip,
+    /// A grazing cycle's impact reaches a breakpoint.
+    GrazingBorder,
+}
+
+impl Codim2Kind {
+    /// Name in every output format.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Codim2Kind::PdBorder => "pd_border",
+            Codim2Kind::FoldBorder => "fold_border",
+            Codim2Kind::DoubleBorder => "double_border",
+            Codim2Kind::DegenerateFlip => "degenerate_flip",
+            Codim2Kind::GrazingBorder => "grazing_border",
+        }
+    }
+
+    /// In words.
+    pub fn describe(self) -> &'static str {
+        match self {
+            Codim2Kind::PdBorder => "period doubling at a breakpoint",
+            Codim2Kind::FoldBorder => "fold at a breakpoint",
+            Codim2Kind::DoubleBorder => "two impacts at breakpoints",
+            Codim2Kind::DegenerateFlip => "degenerate flip (criticality changes sign)",
+            Codim2Kind::GrazingBorder => "grazing at a breakpoint",
+        }
+    }
+}
+
+/// A codimension-two point on a curve.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Codim2 {
+    /// What happens there.
+    pub kind: Codim2Kind,
+    /// The curve it was found on (index into the returned list).
+    pub curve: usize,
+    /// α.
+    pub alpha: f64,
+    /// The second parameter.
+    pub p: f64,
+    /// The curve's own condition there.
+    pub condition: f64,
+    /// The second condition there (the located test function: a phase distance, or c).
+    pub second_condition: f64,
+    /// The impact and the breakpoint concerned (border kinds).
+    pub impact: Option<(usize, f64)>,
+}
+
+/// One curve of an (n, k) cycle.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Curve {
+    /// What it follows.
+    pub kind: CurveKind,
+    /// Impacts per cycle.
+    pub n: usize,
+    /// Table periods per cycle.
+    pub k: u32,
+    /// Points in order along the curve.
+    pub points: Vec<CurvePoint>,
+    /// How it ends at its first and at its last point.
+    pub ends: [CurveEnd; 2],
+    /// The seed: (α, p) of the special point it was started from.
+    pub seed: [f64; 2],
+}
+
+impl Curve {
+    /// Whether the curve passes within `tol` (in the plane's units) of (α, p).
+    pub fn passes_near(&self, alpha: f64, p: f64, tol: f64) -> bool {
+        let d = |a: &CurvePoint| (a.alpha - alpha).hypot(a.p - p);
+        self.points.iter().any(|q| d(q) <= tol)
+            || self.points.windows(2).any(|w| {
+                // Distance to the segment.
+                let (ax, ay, bx, by) = (w[0].alpha, w[0].p, w[1].alpha, w[1].p);
+                let (dx, dy) = (bx - ax, by - ay);
+                let l2 = dx * dx + dy * dy;
+                if l2 == 0.0 {
+                    return false;
+                }
+                let t = (((alpha - ax) * dx + (p - ay) * dy) / l2).clamp(0.0, 1.0);
+                (ax + t * dx - alpha).hypot(ay + t * dy - p) <= tol
+            })
+    }
+}
+
+/// Where the curves start.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Seeds {
+    /// Every special point of every branch reached from the (1, k) solution by the
+    /// one-parameter continuation in α, up to `max_period`, at the second parameter's
+    /// value `at` and (for `count` > 1) at `count` more values spread evenly over its
+    /// window, ends included.
+    FromFixed {
+        /// k of the (1, k) solution.
+        k: u32,
+        /// No doubled branch beyond this period.
+        max_period: usize,
+        /// The second parameter's value for a single seed.
+        at: f64,
+        /// How many values of the second parameter to seed at.
+        count: usize,
+    },
+    /// One (n, k) cycle near the launch (t̂₀, v₀) at α = LO of the window and p = `at`:
+    /// its branch's special points are followed.
+    Point {
+        /// Impacts per cycle.
+        n: usize,
+        /// Table periods per cycle.
+        k: u32,
+        /// Launch phase guess.
+        t0: f64,
+        /// Launch velocity guess.
+        v0: f64,
+        /// The second parameter's value.
+        at: f64,
+    },
+}
+
+/// The curves and their codimension-two points.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Curves {
+    /// Every curve followed.
+    pub curves: Vec<Curve>,
+    /// Codimension-two points located on them.
+    pub codim2: Vec<Codim2>,
+    /// Special points that were not followed, with the reason (a seed the corrector
+    /// could not solve, e.g. a grazing cycle that cannot be solved at the grazing).
+    pub skipped: Vec<(Special, String)>,
+}
+
+/// At most this many curves.
+pub const MAX_CURVES: usize = 256;
+
+/// Follow every curve reachable from `seeds` in `plane`.
+pub fn curves(plane: &Plane, seeds: Seeds) -> Result<Curves, EngineError> {
+    plane.check()?;
+    let mut out = Curves {
+        curves: Vec::new(),
+        codim2: Vec::new(),
+        skipped: Vec::new(),
+    };
+    let values: Vec<f64> = match seeds {
+        Seeds::FromFixed { at, count, .. } if count <= 1 => vec![at],
+        Seeds::FromFixed { at, count, .. } => std::iter::once(at)
+            .chain((0..count).map(|i| {
+                plane.window.0 + (plane.window.1 - plane.window.0) * i as f64 / (count - 1) as f64
+            }))
+            .collect(),
+        Seeds::Point { at, .. } => vec![at],
+    };
+    for p in values {
+        plane.second.limit().check(p)?;
+        let (table, r) = match plane.second {
+            SweepParam::D => (Table::fd(p)?, plane.r),
+            _ => (plane.table.clone(), p),
+        };
+        let (start, max_period) = match seeds {
+            Seeds::FromFixed { k, max_period, .. } => (Start::Fixed { k }, max_period),
+            Seeds::Point { n, k, t0, v0, .. } => (Start::Point { n, k, t0, v0 }, n),
+        };
+        let opts = Options {
+            max_period,
+            ..Options::default()
+        };
+        let Ok(found) = branches(&table, r, plane.alpha, start, opts) else {
+            continue;
+        };
+        for b in &found {
+            let ends = [&b.begin, &b.end];
+            let specials = b.specials.iter().chain(ends.into_iter().filter(|s| {
+                matches!(
+                    s.kind,
+                    Kind::BorderCollision | Kind::Grazing | Kind::Fold | Kind::StickingOnset
+                )
+            }));
+            for s in specials {
+                let kind = match s.kind {
+                    Kind::PeriodDoubling => CurveKind::PeriodDoubling,
+                    Kind::Fold => CurveKind::Fold,
+                    Kind::BorderCollision => CurveKind::BorderCollision {
+                        impact: s.impact,
+                        breakpoint: s.phase,
+                    },
+                    Kind::Grazing => CurveKind::Grazing,
+                    Kind::StickingOnset => CurveKind::StickingOnset,
+                    _ => continue,
+                };
+                // A doubled branch's birth is its parent's period doubling.
+                if s.kind == Kind::PeriodDoubling && s.point.n != b.n {
+                    continue;
+                }
+                // Within the chord error of the largest step of a curve already found.
+                let tol = 1e-4 * plane.scale();
+                let same = |c: &Curve| {
+                    c.n == s.point.n
+                        && c.k == s.point.k
+                        && c.kind.as_str() == kind.as_str()
+                        && c.passes_near(s.alpha, p, tol)
+                };
+                if out.curves.iter().any(same) {
+                    continue;
+                }
+                if out.curves.len() >= MAX_CURVES {
+                    out.skipped
+                        .push((s.clone(), format!("more than {MAX_CURVES} curves")));
+                    continue;
+                }
+                let index = out.curves.len();
+                match follow(plane, kind, s, p, index) {
+                    Ok((curve, codim2)) => {
+                        out.curves.push(curve);
+                        out.codim2.extend(codim2);
+                    }
+                    Err(why) => out.skipped.push((s.clone(), why)),
+                }
+            }
+        }
+    }
+    dedupe(&mut out, 1e-4 * plane.scale());
+    Ok(out)
+}
+
+/// Drop a curve that another of the same kind and cycle covers (seeded at two values of
+/// the second parameter, the shorter may be a piece of the longer): every tenth of its
+/// points lies within `tol` of the other. Its codimension-two points go to the other.
+fn dedupe(out: &mut Curves, tol: f64) {
+    let n = out.curves.len();
+    let mut into: Vec<Option<usize>> = vec![None; n];
+    for i in 0..n {
+        for j in 0..n {
+            let (a, b) = (&out.curves[i], &out.curves[j]);
+            if i == j
+                || into[j].is_some()
+                || a.n != b.n
+                || a.k != b.k
+                || a.kind.as_str() != b.kind.as_str()
+                || (b.points.len(), j) < (a.points.len(), i)
+            {
+                continue;
+            }
+            let step = (a.points.len() / 10).max(1);
+            if a.points
+                .iter()
+                .step_by(step)
+                .all(|q| b.passes_near(q.alpha, q.p, tol))
+            {
+                into[i] = Some(j);
+                break;
+            }
+        }
+    }
+    let mut index = vec![0usize; n];
+    let mut kept = 0;
+    for i in 0..n {
+        if into[i].is_none() {
+            index[i] = kept;
+            kept += 1;
+        }
+    }
+    for p in &mut out.codim2 {
+        let mut c = p.curve;
+        while let Some(j) = into[c] {
+            c = j;
+        }
+        p.curve = index[c];
+    }
+    let mut i = 0;
+    out.curves.retain(|_| {
+        i += 1;
+        into[i - 1].is_none()
+    });
+}

@@ -1,0 +1,631 @@
+//! Following one two-parameter curve: the corrector on one condition of the exactly
+//! solved cycle (with backtracking toward the side where the cycle exists), the fold's
+//! extended system, the predictor steps and their halving, the window's edges, and the
+//! test functions of the codimension-two points watched between consecutive points.
+
+use super::criticality::criticality;
+use super::{
+    Codim2, Codim2Kind, Curve, CurveEnd, CurveKind, CurvePoint, Plane, BORDER_REACH,
+    CONDITION_TOLERANCE, MAX_STEPS,
+};
+use crate::linalg::solve;
+use crate::orbits::continuation::Special;
+use crate::orbits::periodic::{self, cycle, map_for, pass, CyclePoint, PassError};
+use crate::orbits::roots::bracketed_root_nan;
+use crate::time::signed_distance;
+
+/// The cycle and the condition at a point of the plane.
+#[derive(Clone, Debug)]
+struct Eval {
+    y: [f64; 2],
+    pt: CyclePoint,
+    g: f64,
+}
+
+struct Tracer<'a> {
+    plane: &'a Plane,
+    kind: CurveKind,
+    n: usize,
+    k: u32,
+    jumps: Vec<f64>,
+}
+
+impl Tracer<'_> {
+    fn eval(&self, y: [f64; 2], guess: &CyclePoint) -> Result<Eval, PassError> {
+        let sys = self
+            .plane
+            .system(y[0], y[1])
+            .map_err(|_| PassError::BadLaunch)?;
+        let pt = cycle(&sys, self.n, self.k, guess.t0, guess.velocities[0])?;
+        // The same cycle, not another one nearby: the launch moved continuously.
+        let moved = signed_distance(pt.phases[0], guess.phases[0]).abs().max(
+            (pt.velocities[0] - guess.velocities[0]).abs() / (1.0 + guess.velocities[0].abs()),
+        );
+        if moved > 0.05 {
+            return Err(PassError::NoConvergence);
+        }
+        let g = self.kind.condition(&sys, &pt);
+        if !g.is_finite() {
+            return Err(PassError::NoConvergence);
+        }
+        Ok(Eval { y, pt, g })
+    }
+
+    /// ∇G by central differences, the cycle re-solved at each.
+    fn gradient(&self, e: &Eval) -> Result<[f64; 2], PassError> {
+        let mut grad = [0.0; 2];
+        for (i, g) in grad.iter_mut().enumerate() {
+            let h = 1e-7 * (1.0 + e.y[i].abs());
+            let mut plus = e.y;
+            let mut minus = e.y;
+            plus[i] += h;
+            minus[i] -= h;
+            // One-sided at the end of the parameter's range (D = 0 or 1).
+            let valid = |y: [f64; 2]| self.plane.system(y[0], y[1]).is_ok();
+            // A border collision's condition has its kink on the curve itself (f''
+            // jumps where the impact crosses the breakpoint): its slope is taken on
+            // the point's side, or Newton's method converges only linearly.
+            if matches!(self.kind, CurveKind::BorderCollision { .. }) && e.g != 0.0 {
+                let same = |y: [f64; 2]| -> Result<Option<f64>, PassError> {
+                    if !valid(y) {
+                        return Ok(None);
+                    }
+                    let gy = self.eval(y, &e.pt)?.g;
+                    Ok(((gy < 0.0) == (e.g < 0.0) && gy != 0.0).then_some(gy))
+                };
+                if let Some(gp) = same(plus)? {
+                    *g = (gp - e.g) / h;
+                    continue;
+                }
+                if let Some(gm) = same(minus)? {
+                    *g = (e.g - gm) / h;
+                    continue;
+                }
+            }
+            // Central where the cycle exists on both sides; one-sided at the end of the
+            // parameter's range (D = 0 or 1) or where the cycle ends on one side (at a
+            // grazing the flight would cross the table beyond the curve).
+            let at = |y: [f64; 2]| valid(y).then(|| self.eval(y, &e.pt).ok()).flatten();
+            *g = match (at(plus), at(minus)) {
+                (Some(p), Some(m)) => (p.g - m.g) / (2.0 * h),
+                (Some(p), None) => (p.g - e.g) / h,
+                (None, Some(m)) => (e.g - m.g) / h,
+                (None, None) => return Err(PassError::NoConvergence),
+            };
+        }
+        if !(grad[0].is_finite() && grad[1].is_finite()) || grad == [0.0, 0.0] {
+            return Err(PassError::NoConvergence);
+        }
+        Ok(grad)
+    }
+
+    /// Newton's method on (G = 0, c·y = d) from `y`.
+    fn correct(
+        &self,
+        y: [f64; 2],
+        c: [f64; 2],
+        d: f64,
+        guess: &CyclePoint,
+    ) -> Result<(Eval, [f64; 2]), PassError> {
+        if self.kind == CurveKind::Fold {
+            return self.correct_fold(y, c, d, guess);
+        }
+        let mut e = self.eval(y, guess)?;
+        for _ in 0..20 {
+            let grad = self.gradient(&e)?;
+            let a = [grad, c];
+            let b = [e.g, c[0] * e.y[0] + c[1] * e.y[1] - d];
+            let step = solve(a, b).ok_or(PassError::NoConvergence)?;
+            let size = step[0].abs().max(step[1].abs());
+            if !size.is_finite() || size > 0.5 {
+                return Err(PassError::NoConvergence);
+            }
+            // Backtracking: where the full step leaves the cycle's domain (a grazing or
+            // a vanishing impact velocity beyond the curve), shorter ones approach the
+            // curve from its own side.
+            let mut lambda = 1.0;
+            let next = loop {
+                let yn = [e.y[0] - lambda * step[0], e.y[1] - lambda * step[1]];
+                match self.eval(yn, &e.pt) {
+                    Ok(n) => break n,
+                    Err(err) if lambda < 1e-3 => return Err(err),
+                    Err(_) => lambda *= 0.5,
+                }
+            };
+            e = next;
+            // Converged when the step is at rounding level, or when both equations
+            // already hold to it (at a border the gradient has a kink, and Newton's
+            // method creeps the last digits). The cycle is solved to about 1e-14, so G
+            // is known to about 1e-13: the point is taken to 1e-12.
+            let tiny = 1e-12 * (1.0 + e.y[0].abs().max(e.y[1].abs()));
+            let held = e.g.abs() < 1e-12 && (c[0] * e.y[0] + c[1] * e.y[1] - d).abs() < tiny;
+            if lambda * size < tiny || held {
+                if e.g.abs() > CONDITION_TOLERANCE {
+                    return Err(PassError::NoConvergence);
+                }
+                let grad = self.gradient(&e)?;
+                return Ok((e, grad));
+            }
+        }
+        Err(PassError::NoConvergence)
+    }
+
+    /// The fold's extended system at x = (α, p, t₀, v₀): the cycle's residual
+    /// (tₙ − t₀ − k, vₙ − v₀) and 1 − tr M + r²ⁿ, with the pass.
+    fn fold_system(&self, x: [f64; 4]) -> Result<([f64; 3], periodic::Pass), PassError> {
+        let sys = self
+            .plane
+            .system(x[0], x[1])
+            .map_err(|_| PassError::BadLaunch)?;
+        let mut map = map_for(&sys);
+        let p = pass(&mut map, x[2], x[3], self.n, self.k)?;
+        let tr = p.monodromy[0][0] + p.monodromy[1][1];
+        let g = 1.0 - tr + sys.r().powi(2 * self.n as i32);
+        Ok(([p.residual[0], p.residual[1], g], p))
+    }
+
+    /// Newton's method on the fold's extended system (the cycle's equations and the
+    /// fold condition, in α, p, t₀, v₀) with c·(α, p) = d: at a fold the cycle cannot
+    /// be solved at fixed parameters (M − I is singular), so it is solved with them.
+    /// The map's own derivatives give the cycle equations' columns in α, t₀ and v₀;
+    /// forward differences give the p column and the fold condition's row.
+    fn correct_fold(
+        &self,
+        y: [f64; 2],
+        c: [f64; 2],
+        d: f64,
+        guess: &CyclePoint,
+    ) -> Result<(Eval, [f64; 2]), PassError> {
+        let mut x = [y[0], y[1], guess.t0, guess.velocities[0]];
+        let jacobian = |x: [f64; 4], f: [f64; 3], p: &periodic::Pass| {
+            let m = p.monodromy;
+            let mut j = [
+                [p.alpha_column[0], 0.0, m[0][0] - 1.0, m[0][1]],
+                [p.alpha_column[1], 0.0, m[1][0], m[1][1] - 1.0],
+                [0.0; 4],
+            ];
+            for col in 0..4 {
+                let h = 1e-7 * (1.0 + x[col].abs());
+                let mut xp = x;
+                xp[col] += h;
+                let (fp, _) = self.fold_system(xp)?;
+                j[2][col] = (fp[2] - f[2]) / h;
+                if col == 1 {
+                    j[0][1] = (fp[0] - f[0]) / h;
+                    j[1][1] = (fp[1] - f[1]) / h;
+                }
+            }
+            Ok::<_, PassError>(j)
+        };
+        for _ in 0..30 {
+            let (f, p) = self.fold_system(x)?;
+            let j = jacobian(x, f, &p)?;
+            let a = [j[0], j[1], j[2], [c[0], c[1], 0.0, 0.0]];
+            let b = [f[0], f[1], f[2], c[0] * x[0] + c[1] * x[1] - d];
+            let step = solve(a, b).ok_or(PassError::NoConvergence)?;
+            let size = step.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            if !size.is_finite() || size > 0.5 {
+                return Err(PassError::NoConvergence);
+            }
+            for i in 0..4 {
+                x[i] -= step[i];
+            }
+            if size < 1e-12 * (1.0 + x[3].abs()) {
+                let (f, p) = self.fold_system(x)?;
+                if f[2].abs() > CONDITION_TOLERANCE {
+                    return Err(PassError::NoConvergence);
+                }
+                let sys = self
+                    .plane
+                    .system(x[0], x[1])
+                    .map_err(|_| PassError::BadLaunch)?;
+                let pt = periodic::accept(&sys, [x[0], x[2], x[3]], self.n, self.k, &p)?;
+                // The curve's tangent in (α, p): the null vector of the extended
+                // system's Jacobian, normalised on (α, p); returned as the gradient it is
+                // orthogonal to.
+                let j = jacobian(x, f, &p)?;
+                let a = [j[0], j[1], j[2], [1.0, 0.0, 0.0, 0.0]];
+                let a2 = [j[0], j[1], j[2], [0.0, 1.0, 0.0, 0.0]];
+                let t = solve(a, [0.0, 0.0, 0.0, 1.0])
+                    .filter(|t| t.iter().all(|v| v.is_finite()))
+                    .or_else(|| solve(a2, [0.0, 0.0, 0.0, 1.0]))
+                    .ok_or(PassError::NoConvergence)?;
+                let e = Eval {
+                    y: [x[0], x[1]],
+                    pt,
+                    g: f[2],
+                };
+                return Ok((e, [t[1], -t[0]]));
+            }
+        }
+        Err(PassError::NoConvergence)
+    }
+
+    /// Distances of every impact to every breakpoint, except the curve's own.
+    fn border_tests(&self, pt: &CyclePoint) -> Vec<f64> {
+        let own = match self.kind {
+            CurveKind::BorderCollision { impact, breakpoint } => Some((impact, breakpoint)),
+            _ => None,
+        };
+        let mut out = Vec::with_capacity(pt.n * self.jumps.len());
+        for (i, &ph) in pt.phases.iter().enumerate() {
+            for &b in &self.jumps {
+                out.push(if own == Some((i, b)) {
+                    1.0
+                } else {
+                    signed_distance(ph, b)
+                });
+            }
+        }
+        out
+    }
+
+    fn point(&self, e: Eval) -> CurvePoint {
+        let criticality = (self.kind == CurveKind::PeriodDoubling)
+            .then(|| self.plane.system(e.y[0], e.y[1]).ok())
+            .flatten()
+            .and_then(|sys| criticality(&sys, &e.pt));
+        CurvePoint {
+            alpha: e.y[0],
+            p: e.y[1],
+            cycle: e.pt,
+            condition: e.g,
+            criticality,
+        }
+    }
+}
+
+fn tangent(grad: [f64; 2], along: [f64; 2]) -> [f64; 2] {
+    let s = grad[0].hypot(grad[1]);
+    let t = [-grad[1] / s, grad[0] / s];
+    if t[0] * along[0] + t[1] * along[1] < 0.0 {
+        [-t[0], -t[1]]
+    } else {
+        t
+    }
+}
+
+/// Follow one curve from the special point `s` found at second parameter `p`.
+pub(super) fn follow(
+    plane: &Plane,
+    kind: CurveKind,
+    s: &Special,
+    p: f64,
+    index: usize,
+) -> Result<(Curve, Vec<Codim2>), String> {
+    let jumps = plane.jumps(p);
+    // Launch the cycle from its impact farthest from every breakpoint: at a launch on a
+    // border the cycle's Jacobian jumps with f'' and Newton's method creeps.
+    let clearance = |ph: f64| {
+        jumps
+            .iter()
+            .map(|&b| signed_distance(ph, b).abs())
+            .fold(f64::INFINITY, f64::min)
+    };
+    let n = s.point.n;
+    let launch = (0..n)
+        .max_by(|&a, &b| clearance(s.point.phases[a]).total_cmp(&clearance(s.point.phases[b])))
+        .unwrap_or(0);
+    let kind = match kind {
+        CurveKind::BorderCollision { impact, breakpoint } => CurveKind::BorderCollision {
+            impact: (impact + n - launch) % n,
+            breakpoint,
+        },
+        other => other,
+    };
+    let guess = if launch == 0 {
+        s.point.clone()
+    } else {
+        let sys = plane.system(s.alpha, p).map_err(|e| e.to_string())?;
+        cycle(
+            &sys,
+            n,
+            s.point.k,
+            s.point.phases[launch],
+            s.point.velocities[launch],
+        )
+        .map_err(|e| format!("the cycle could not be relaunched ({})", e.as_str()))?
+    };
+    let tr = Tracer {
+        plane,
+        kind,
+        n,
+        k: s.point.k,
+        jumps,
+    };
+    // The seed: solve G = 0 in α at fixed p.
+    let (e0, grad0) = tr
+        .correct([s.alpha, p], [0.0, 1.0], p, &guess)
+        .map_err(|e| format!("the seed could not be solved on the curve ({})", e.as_str()))?;
+    let y0 = e0.y;
+    let first = tr.point(e0);
+    let mut halves: Vec<(Vec<CurvePoint>, CurveEnd)> = Vec::new();
+    let mut codim2 = Vec::new();
+    let t0 = tangent(grad0, [0.0, 1.0]);
+    for dir in [1.0, -1.0] {
+        let tau = [dir * t0[0], dir * t0[1]];
+        let (pts, end) = tr.run(first.clone(), tau, index, &mut codim2, y0);
+        halves.push((pts, end));
+    }
+    let (back, back_end) = halves.pop().expect("two directions");
+    let (fwd, fwd_end) = halves.pop().expect("two directions");
+    let closed = fwd_end == CurveEnd::Closed;
+    // A closed curve was found whole going forward: the backward half repeats it.
+    let mut points: Vec<CurvePoint> = if closed {
+        Vec::new()
+    } else {
+        back.into_iter().rev().collect()
+    };
+    points.push(first);
+    points.extend(fwd);
+    let ends = if closed {
+        [CurveEnd::Closed, CurveEnd::Closed]
+    } else {
+        [back_end, fwd_end]
+    };
+    Ok((
+        Curve {
+            kind,
+            n: tr.n,
+            k: tr.k,
+            points,
+            ends,
+            seed: [s.alpha, p],
+        },
+        codim2,
+    ))
+}
+
+impl Tracer<'_> {
+    /// One direction of a curve from `start` (not included in the result).
+    fn run(
+        &self,
+        start: CurvePoint,
+        tau0: [f64; 2],
+        index: usize,
+        codim2: &mut Vec<Codim2>,
+        origin: [f64; 2],
+    ) -> (Vec<CurvePoint>, CurveEnd) {
+        let scale = self.plane.scale();
+        let h_max = 0.005 * scale;
+        let h_min = 1e-9 * scale;
+        let mut h = 0.25 * h_max;
+        let mut out: Vec<CurvePoint> = Vec::new();
+        let mut cur = start;
+        let mut prev: Option<CurvePoint> = None;
+        let mut tau = tau0;
+        let mut travelled = 0.0;
+        for _ in 0..MAX_STEPS {
+            let y = [cur.alpha, cur.p];
+            let pred = [y[0] + h * tau[0], y[1] + h * tau[1]];
+            let step = if self.plane.inside(pred) {
+                self.correct(pred, tau, tau[0] * y[0] + tau[1] * y[1] + h, &cur.cycle)
+            } else {
+                // Solve the point on the window's edge the step crosses.
+                let (axis, bound) = self.edge(y, pred);
+                let mut c = [0.0; 2];
+                c[axis] = 1.0;
+                let mut start = pred;
+                start[axis] = bound;
+                match self.correct(start, c, bound, &cur.cycle) {
+                    Ok((e, _)) if self.plane.inside(e.y) || near_edge(self.plane, e.y) => {
+                        let next = self.point(e);
+                        match self.watch(&cur, &next, tau, index, codim2) {
+                            Some(Watch::Crossed) => Err(PassError::NoConvergence),
+                            None => {
+                                out.push(next);
+                                return (out, CurveEnd::Window);
+                            }
+                        }
+                    }
+                    Ok(_) | Err(_) => Err(PassError::NoConvergence),
+                }
+            };
+            match step {
+                Ok((e, grad)) => {
+                    let next = self.point(e);
+                    if let Some(Watch::Crossed) = self.watch(&cur, &next, tau, index, codim2) {
+                        h *= 0.5;
+                        if h < h_min {
+                            return match self.border_end(prev.as_ref(), &cur, index, codim2) {
+                                true => (out, CurveEnd::Border),
+                                false => (out, CurveEnd::NoConvergence),
+                            };
+                        }
+                        continue;
+                    }
+                    travelled += (next.alpha - cur.alpha).hypot(next.p - cur.p);
+                    tau = tangent(grad, tau);
+                    prev = Some(std::mem::replace(&mut cur, next));
+                    out.push(cur.clone());
+                    // Back at the start: a closed curve.
+                    if travelled > 4.0 * h_max
+                        && (cur.alpha - origin[0]).hypot(cur.p - origin[1]) < 0.5 * h
+                    {
+                        return (out, CurveEnd::Closed);
+                    }
+                    h = (h * 1.5).min(h_max);
+                }
+                Err(e) => {
+                    h *= 0.5;
+                    if h < h_min {
+                        // Approaching a breakpoint, a PD, fold or grazing curve cannot
+                        // cross it (its condition is another function beyond): the
+                        // steps shrink toward the codimension-two point there.
+                        if self.border_end(prev.as_ref(), &cur, index, codim2) {
+                            return (out, CurveEnd::Border);
+                        }
+                        // Stopped on the window's edge itself: it left the window.
+                        if on_edge(self.plane, [cur.alpha, cur.p]) {
+                            return (out, CurveEnd::Window);
+                        }
+                        return (out, CurveEnd::from_error(e));
+                    }
+                }
+            }
+        }
+        (out, CurveEnd::StepLimit)
+    }
+
+    /// Where a curve stops short of a breakpoint (another impact within
+    /// [`BORDER_REACH`] of one, closing in): the codimension-two point,
+    /// by linear extrapolation of that impact's distance over the last two points. The
+    /// evidence kept is the last accepted point's: its condition, and its distance to
+    /// the border (the extrapolation's length is of that order, its error of its
+    /// square).
+    fn border_end(
+        &self,
+        prev: Option<&CurvePoint>,
+        cur: &CurvePoint,
+        index: usize,
+        codim2: &mut Vec<Codim2>,
+    ) -> bool {
+        let Some(prev) = prev else { return false };
+        let nb = self.jumps.len().max(1);
+        let tc = self.border_tests(&cur.cycle);
+        let tp = self.border_tests(&prev.cycle);
+        let Some((j, &dc)) = tc
+            .iter()
+            .enumerate()
+            .min_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))
+        else {
+            return false;
+        };
+        let dp = tp[j];
+        if dc.abs() > BORDER_REACH || dp.abs() <= dc.abs() || (dp < 0.0) != (dc < 0.0) {
+            return false;
+        }
+        let s = dc / (dp - dc);
+        codim2.push(Codim2 {
+            kind: match self.kind {
+                CurveKind::Fold => Codim2Kind::FoldBorder,
+                CurveKind::Grazing | CurveKind::StickingOnset => Codim2Kind::GrazingBorder,
+                CurveKind::BorderCollision { .. } => Codim2Kind::DoubleBorder,
+                CurveKind::PeriodDoubling => Codim2Kind::PdBorder,
+            },
+            curve: index,
+            alpha: cur.alpha + s * (cur.alpha - prev.alpha),
+            p: cur.p + s * (cur.p - prev.p),
+            condition: cur.condition,
+            second_condition: dc,
+            impact: Some((j / nb, self.jumps[j % nb])),
+        });
+        true
+    }
+
+    /// The window edge crossed going from `y` (inside) to `pred` (outside).
+    fn edge(&self, y: [f64; 2], pred: [f64; 2]) -> (usize, f64) {
+        let w = [self.plane.alpha, self.plane.window];
+        let mut best = (0, w[0].0, f64::INFINITY);
+        for axis in 0..2 {
+            for bound in [w[axis].0, w[axis].1] {
+                let d = pred[axis] - y[axis];
+                if d == 0.0 {
+                    continue;
+                }
+                let t = (bound - y[axis]) / d;
+                if (0.0..=1.0).contains(&t) && t < best.2 {
+                    best = (axis, bound, t);
+                }
+            }
+        }
+        (best.0, best.1)
+    }
+
+    /// Watch the test functions between `a` and `b` (consecutive points): locate the
+    /// first sign change, record the codimension-two point, and return the point where
+    /// the curve must end if it does (a PD or fold point at a border).
+    fn watch(
+        &self,
+        a: &CurvePoint,
+        b: &CurvePoint,
+        tau: [f64; 2],
+        index: usize,
+        codim2: &mut Vec<Codim2>,
+    ) -> Option<Watch> {
+        let ta = self.border_tests(&a.cycle);
+        let tb = self.border_tests(&b.cycle);
+        let nb = self.jumps.len().max(1);
+        let h = tau[0] * (b.alpha - a.alpha) + tau[1] * (b.p - a.p);
+        // The curve at arclength s from a.
+        let at = |s: f64| -> Option<CurvePoint> {
+            let y = [a.alpha + s * tau[0], a.p + s * tau[1]];
+            self.correct(y, tau, tau[0] * a.alpha + tau[1] * a.p + s, &a.cycle)
+                .ok()
+                .map(|(e, _)| self.point(e))
+        };
+        for (j, (&ga, &gb)) in ta.iter().zip(&tb).enumerate() {
+            if (ga < 0.0) == (gb < 0.0) || (ga - gb).abs() > 0.5 {
+                continue;
+            }
+            // Past a breakpoint f'' differs: a PD, fold or grazing condition is another
+            // function there, and a point beyond is on another curve. The step is
+            // refused, and the shrinking steps close in on the border ([`border_end`]).
+            if !matches!(self.kind, CurveKind::BorderCollision { .. }) {
+                return Some(Watch::Crossed);
+            }
+            let (impact, bp) = (j / nb, self.jumps[j % nb]);
+            let test = |q: &CurvePoint| signed_distance(q.cycle.phases[impact], bp);
+            let mut g = |s: f64| at(s).map_or(f64::NAN, |q| test(&q));
+            let s = bracketed_root_nan(&mut g, 0.0, h, ga, gb)?;
+            let q = at(s)?;
+            let kind = Codim2Kind::DoubleBorder;
+            let second = test(&q);
+            // Located only where the corrector worked up to the crossing.
+            if second.abs() <= CONDITION_TOLERANCE {
+                codim2.push(Codim2 {
+                    kind,
+                    curve: index,
+                    alpha: q.alpha,
+                    p: q.p,
+                    condition: q.condition,
+                    second_condition: second,
+                    impact: Some((impact, bp)),
+                });
+            }
+        }
+        if let (Some(ca), Some(cb)) = (a.criticality, b.criticality) {
+            if ca.supercritical().is_some()
+                && cb.supercritical().is_some()
+                && ca.supercritical() != cb.supercritical()
+            {
+                let mut g = |s: f64| at(s).and_then(|q| q.criticality).map_or(f64::NAN, |c| c.c);
+                if let Some(s) = bracketed_root_nan(&mut g, 0.0, h, ca.c, cb.c) {
+                    if let Some(q) = at(s) {
+                        codim2.push(Codim2 {
+                            kind: Codim2Kind::DegenerateFlip,
+                            curve: index,
+                            alpha: q.alpha,
+                            p: q.p,
+                            condition: q.condition,
+                            second_condition: q.criticality.map_or(f64::NAN, |c| c.c),
+                            impact: None,
+                        });
+                    }
+                }
+            }
+        }
+        None
+    }
+}
+
+/// What the watch between two points saw that stops the step.
+enum Watch {
+    /// An impact crossed a breakpoint on a curve that cannot cross one.
+    Crossed,
+}
+
+/// Whether y lies on the window's boundary (to 1e-9 of its size).
+fn on_edge(plane: &Plane, y: [f64; 2]) -> bool {
+    let tol = 1e-9 * plane.scale();
+    let w = [plane.alpha, plane.window];
+    (0..2).any(|i| (y[i] - w[i].0).abs() <= tol || (y[i] - w[i].1).abs() <= tol)
+}
+
+fn near_edge(plane: &Plane, y: [f64; 2]) -> bool {
+    let tol = 1e-9 * plane.scale();
+    y[0] >= plane.alpha.0 - tol
+        && y[0] <= plane.alpha.1 + tol
+        && y[1] >= plane.window.0 - tol
+        && y[1] <= plane.window.1 + tol
+}
