@@ -22,6 +22,18 @@ use std::io::Write;
 
 pub fn run(args: &PlaneArgs) -> anyhow::Result<()> {
     let spec = config::plane::plane_spec(args)?;
+    // The two-parameter curves go over the text picture only: the csv and json files
+    // are the pixels (their numbers come from `bouncemap curves`).
+    let two_parameter = match args.curves {
+        Some(_) if resume::part_layout(args.format).is_some() => {
+            return Err(InputError(
+                "--curves: the curves are drawn over the braille picture: valid with --format braille (their numbers: bouncemap curves)".into(),
+            )
+            .into())
+        }
+        Some(p) => Some((config::plane::plane_curves(&spec)?, p)),
+        None => None,
+    };
     if args.run.check.check {
         return check(args, &spec);
     }
@@ -33,6 +45,21 @@ pub fn run(args: &PlaneArgs) -> anyhow::Result<()> {
     let mut sink = Sink::open(args.part.output.out.as_deref()).map_err(InputError)?;
     let plane = compute(&spec, &Executor::new(threads)?)?;
     let curves = curves(&spec);
+    let two_parameter = match two_parameter {
+        Some(((cplane, at), max_period)) => {
+            let seeds = bouncemap_engine::orbits::curves::Seeds::FromFixed {
+                k: 1,
+                max_period,
+                at,
+                count: config::rules::CURVE_SEEDS.default as usize,
+            };
+            Some(
+                bouncemap_engine::orbits::curves::curves(&cplane, seeds)
+                    .map_err(InputError::from)?,
+            )
+        }
+        None => None,
+    };
     let write = |sink: &mut Sink| -> anyhow::Result<()> {
         match resume::part_layout(args.format) {
             Some(layout) => {
@@ -64,6 +91,7 @@ pub fn run(args: &PlaneArgs) -> anyhow::Result<()> {
                     &spec,
                     &plane,
                     curves.as_ref(),
+                    two_parameter.as_ref(),
                     &title(&spec),
                     w as usize,
                     h as usize,

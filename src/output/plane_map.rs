@@ -9,6 +9,7 @@
 
 use super::classes::{of_pixel, Class};
 use super::text::significant;
+use bouncemap_engine::orbits::curves::{CurveKind, Curves as TwoParameterCurves};
 use bouncemap_engine::plane::{Curves, Plane, PlaneSpec};
 
 /// The glyph of each class, from sparse to dense: period 1 lightest, chaos solid.
@@ -45,6 +46,9 @@ pub enum Cell {
     Class(Option<Class>),
     /// Curve number `n` of [`CURVE_MARKS`] (over the class beneath).
     Curve(usize, Option<Class>),
+    /// A two-parameter curve's mark ([`curve_mark`], `◉` a codimension-two point)
+    /// over the class beneath.
+    Mark(char, Option<Class>),
 }
 
 impl Cell {
@@ -55,13 +59,14 @@ impl Cell {
             Cell::Class(Some(c)) => glyph(c),
             Cell::Class(None) => NO_LANDING,
             Cell::Curve(n, _) => CURVE_MARKS[n].0,
+            Cell::Mark(m, _) => m,
         }
     }
 
     /// The class beneath (for its colour).
     pub fn class(self) -> Option<Class> {
         match self {
-            Cell::Class(c) | Cell::Curve(_, c) => c,
+            Cell::Class(c) | Cell::Curve(_, c) | Cell::Mark(_, c) => c,
             Cell::Empty => None,
         }
     }
@@ -118,6 +123,69 @@ pub fn cells(
         }
     }
     out
+}
+
+/// The mark of a two-parameter curve's kind (the plane view and the text picture).
+pub fn curve_mark(kind: &CurveKind) -> char {
+    match kind {
+        CurveKind::PeriodDoubling => '•',
+        CurveKind::Fold => '~',
+        CurveKind::BorderCollision { .. } => '×',
+        CurveKind::Grazing | CurveKind::StickingOnset => '¦',
+    }
+}
+
+/// The marks of the two-parameter curves and what they mean, for legends.
+pub const CURVE2_LEGEND: &str =
+    "• period doubling  ~ fold  × border collision  ¦ grazing  ◉ codimension two";
+
+/// Mark the two-parameter curves `c` on a `cells` picture of `spec`: every cell a
+/// curve passes through (sampled finer than a cell along each segment), and `◉` at
+/// each codimension-two point.
+pub fn mark_curves(grid: &mut [Vec<Cell>], spec: &PlaneSpec, c: &TwoParameterCurves) {
+    let rows = grid.len();
+    let cols = grid.first().map_or(0, Vec::len);
+    if rows == 0 || cols == 0 {
+        return;
+    }
+    let alpha_on_x = spec.x.param == bouncemap_engine::grid::SweepParam::Alpha;
+    let cell = |a: f64, q: f64| -> Option<(usize, usize)> {
+        let (x, y) = if alpha_on_x { (a, q) } else { (q, a) };
+        let fx = (x - spec.x.lo) / (spec.x.hi - spec.x.lo);
+        let fy = (y - spec.y.lo) / (spec.y.hi - spec.y.lo);
+        if !((0.0..=1.0).contains(&fx) && (0.0..=1.0).contains(&fy)) {
+            return None;
+        }
+        let col = ((fx * cols as f64) as usize).min(cols - 1);
+        let row = rows - 1 - ((fy * rows as f64) as usize).min(rows - 1);
+        Some((row, col))
+    };
+    let mut put = |r: usize, c: usize, m: char| grid[r][c] = Cell::Mark(m, grid[r][c].class());
+    for cv in &c.curves {
+        let m = curve_mark(&cv.kind);
+        for seg in cv.points.windows(2) {
+            let (a, b) = (&seg[0], &seg[1]);
+            let n = 2 * (cols.max(rows)) + 2;
+            // Segments are short: a few samples per cell at most.
+            let span = ((b.alpha - a.alpha).abs() / (spec.x.hi - spec.x.lo).abs().max(1e-300)
+                + (b.p - a.p).abs() / (spec.y.hi - spec.y.lo).abs().max(1e-300))
+                * n as f64;
+            let steps = (span.ceil() as usize).clamp(1, 4 * n);
+            for i in 0..=steps {
+                let t = i as f64 / steps as f64;
+                if let Some((r, col)) =
+                    cell(a.alpha + t * (b.alpha - a.alpha), a.p + t * (b.p - a.p))
+                {
+                    put(r, col, m);
+                }
+            }
+        }
+    }
+    for p in &c.codim2 {
+        if let Some((r, col)) = cell(p.alpha, p.p) {
+            put(r, col, '◉');
+        }
+    }
 }
 
 /// Tick labels of an axis: (position in 0..len, text) at both ends and the middle.
@@ -187,10 +255,12 @@ const RESET: &str = "\x1b[0m";
 /// are the text's size in characters. With `colour`, every cell is two pixels (upper
 /// and lower half block) in the classes' 256 colours (ANSI escapes), the curves' marks
 /// over them; without, one glyph per cell.
+#[allow(clippy::too_many_arguments)]
 pub fn lines(
     spec: &PlaneSpec,
     plane: &Plane,
     curves: Option<&Curves>,
+    two_parameter: Option<&TwoParameterCurves>,
     title: &str,
     width: usize,
     height: usize,
@@ -198,8 +268,11 @@ pub fn lines(
 ) -> Vec<String> {
     let margin = 10;
     let cols = width.saturating_sub(margin + 1).max(4);
-    let rows = height.saturating_sub(6).max(4);
-    let grid = cells(spec, plane, curves, cols, rows);
+    let rows = height.saturating_sub(6).max(4) - usize::from(two_parameter.is_some());
+    let mut grid = cells(spec, plane, curves, cols, rows);
+    if let Some(c) = two_parameter {
+        mark_curves(&mut grid, spec, c);
+    }
     let halves = colour.then(|| half_cells(plane, cols, rows));
     let yt = ticks(spec.y.hi, spec.y.lo, rows);
     let mut out = vec![title.to_string()];
@@ -219,11 +292,9 @@ pub fn lines(
                 .iter()
                 .zip(&h[r])
                 .map(|(cell, (top, bottom))| match cell {
-                    Cell::Curve(n, _) => format!(
-                        "{}\x1b[1;30m{}{RESET}",
-                        ansi(48, *bottom),
-                        CURVE_MARKS[*n].0
-                    ),
+                    Cell::Curve(..) | Cell::Mark(..) => {
+                        format!("{}\x1b[1;30m{}{RESET}", ansi(48, *bottom), cell.glyph())
+                    }
                     _ if top.is_none() && bottom.is_none() => " ".into(),
                     _ => format!("{}{}▀{RESET}", ansi(38, *top), ansi(48, *bottom)),
                 })
@@ -257,6 +328,9 @@ pub fn lines(
         out.push(legend().pop().unwrap_or_default());
     } else {
         out.extend(legend());
+    }
+    if two_parameter.is_some() {
+        out.push(format!("two-parameter curves: {CURVE2_LEGEND}"));
     }
     out
 }

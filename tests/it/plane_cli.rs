@@ -429,3 +429,60 @@ fn a_d_axis_takes_the_family_not_one_table() {
     ]);
     assert_eq!(code, 0, "{err}");
 }
+
+/// `plane --format braille --curves P` marks the two-parameter curves on the text
+/// picture, with their legend; the files (csv, json) refuse it in one line.
+#[test]
+fn the_text_picture_marks_the_two_parameter_curves() {
+    let (code, out, err) = crate::cli::run(&[
+        "plane",
+        "--table",
+        "fd",
+        "--x",
+        "alpha:0.45..0.62",
+        "--y",
+        "d:0..1",
+        "--size",
+        "60x20",
+        "--format",
+        "braille",
+        "--width",
+        "80",
+        "--height",
+        "30",
+        "--curves",
+        "4",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        out.contains("two-parameter curves: • period doubling"),
+        "{out}"
+    );
+    // The (1, 1) period doubling on most rows, and codimension-two points.
+    let rows_with_pd = out
+        .lines()
+        .filter(|l| l.contains('│') && l.contains('•'))
+        .count();
+    assert!(rows_with_pd >= 15, "{rows_with_pd}: {out}");
+    assert!(out.contains('◉') && out.contains('×'), "{out}");
+    let (code, _, err) = crate::cli::run(&[
+        "plane",
+        "--table",
+        "fd",
+        "--x",
+        "alpha:0.45..0.62",
+        "--y",
+        "d:0..1",
+        "--size",
+        "6x4",
+        "--format",
+        "csv",
+        "--curves",
+        "4",
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("--curves") && err.trim().lines().count() == 1,
+        "{err}"
+    );
+}

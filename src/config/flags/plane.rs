@@ -93,6 +93,11 @@ pub struct PlaneArgs {
     /// Output format.
     #[arg(long, value_enum, default_value_t = PlaneFormat::Csv)]
     pub format: PlaneFormat,
+    /// With --format braille: also mark the two-parameter curves (as `bouncemap
+    /// curves`) of every branch of the (1, 1) solution up to period P over the picture;
+    /// the axes must be alpha and r or d; P valid 1 to 4096.
+    #[arg(long, value_parser = rules::CONTINUE_MAX_PERIOD.whole::<usize>(), value_name = "P")]
+    pub curves: Option<usize>,
     #[command(flatten)]
     pub part: PartArgs,
     #[command(flatten)]

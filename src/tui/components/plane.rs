@@ -4,7 +4,7 @@
 //! not yet computed shows the coarser one whose block it lies in), with the analytic
 //! curves over it (α_birth `B`, α_PD `P`, border collision `C`) and, switched on with
 //! their key, the two-parameter curves of every branch ([`super::plane_curves`]: `•`
-//! period doubling, `~` fold, `×` border collision, `:` grazing, `◉` codimension two), axes with
+//! period doubling, `~` fold, `×` border collision, `¦` grazing, `◉` codimension two), axes with
 //! tick labels,
 //! the legend in the bottom border and a cursor. Moving the cursor moves the
 //! application's α and D (or r), so the phase plot, stability and bounce panels follow;
@@ -184,17 +184,6 @@ impl PlanePanel {
             }
         }
         Line::from(spans)
-    }
-}
-
-/// The mark of a two-parameter curve's kind.
-pub fn curve_mark(kind: &bouncemap_engine::orbits::curves::CurveKind) -> &'static str {
-    use bouncemap_engine::orbits::curves::CurveKind;
-    match kind {
-        CurveKind::PeriodDoubling => "•",
-        CurveKind::BorderCollision { .. } => "×",
-        CurveKind::Fold => "~",
-        CurveKind::Grazing | CurveKind::StickingOnset => ":",
     }
 }
 
@@ -407,7 +396,7 @@ impl Component for PlanePanel {
                 buf.set_string(x, y, m, style.add_modifier(Modifier::BOLD));
             };
             for cv in &c.curves {
-                let m = curve_mark(&cv.kind);
+                let m = plane_map::curve_mark(&cv.kind).to_string();
                 for seg in cv.points.windows(2) {
                     let (a, b) = (&seg[0], &seg[1]);
                     // Enough samples that no cell along the segment is skipped.
@@ -419,7 +408,7 @@ impl Component for PlanePanel {
                         if let Some((x, y)) =
                             cell(a.alpha + t * (b.alpha - a.alpha), a.p + t * (b.p - a.p))
                         {
-                            mark(x, y, m);
+                            mark(x, y, &m);
                         }
                     }
                 }

@@ -38,7 +38,7 @@ impl Component for PlaneCurves {
         if shared.show_plane_curves {
             shared.effect(Effect::Start(Self::TARGET));
             shared.say(
-                format!("plane: two-parameter curves of the branches up to period {MAX_PERIOD} (• period doubling, ~ fold, × border collision, : grazing, ◉ codimension two), computing…"),
+                format!("plane: two-parameter curves of the branches up to period {MAX_PERIOD} (• period doubling, ~ fold, × border collision, ¦ grazing, ◉ codimension two), computing…"),
                 false,
             );
         } else {
@@ -103,7 +103,7 @@ impl Component for PlaneCurves {
         }
         let text = match &msg {
             Ok(c) => format!(
-                "plane: {} two-parameter curves, {} codimension-two points (• PD, ~ fold, × BC, : grazing, ◉ codim 2)",
+                "plane: {} two-parameter curves, {} codimension-two points (• PD, ~ fold, × BC, ¦ grazing, ◉ codim 2)",
                 c.curves.len(),
                 c.codim2.len()
             ),
