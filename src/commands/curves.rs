@@ -159,11 +159,20 @@ pub fn run(cli: &CurvesArgs) -> anyhow::Result<()> {
 
 /// The curves of `plane` that `args` ask for, started at `at`.
 pub fn compute(plane: &Plane, at: f64, args: &CurvesSpecArgs) -> Result<Curves, InputError> {
-    let seeds = Seeds::FromFixed {
-        k: args.k,
-        max_period: args.max_period,
-        at,
-        count: args.seeds,
+    let seeds = match (args.n, args.t0, args.v0) {
+        (Some(n), Some(t0), Some(v0)) => Seeds::Point {
+            n,
+            k: args.k,
+            t0,
+            v0,
+            at,
+        },
+        _ => Seeds::FromFixed {
+            k: args.k,
+            max_period: args.max_period,
+            at,
+            count: args.seeds,
+        },
     };
     curves(plane, seeds).map_err(InputError::from)
 }
@@ -207,16 +216,23 @@ fn text(
     let y = plane.second.as_str();
     writeln!(
         out,
-        "table {}  r {}  alpha {}..{}  {y} {}..{}  (1, {}) branches up to period {}, started at {y} = {at}{}",
+        "table {}  r {}  alpha {}..{}  {y} {}..{}  {}, started at {y} = {at}{}",
         if y == "d" { "fd" } else { plane.table.name() },
-        if y == "r" { "axis".to_string() } else { format!("{}", plane.r) },
+        if y == "r" {
+            "axis".to_string()
+        } else {
+            format!("{}", plane.r)
+        },
         plane.alpha.0,
         plane.alpha.1,
         plane.window.0,
         plane.window.1,
-        args.k,
-        args.max_period,
-        if args.seeds > 1 {
+        match (args.n, args.t0, args.v0) {
+            (Some(n), Some(t0), Some(v0)) =>
+                format!("the ({n}, {}) branch near t0 = {t0}, v0 = {v0}", args.k),
+            _ => format!("(1, {}) branches up to period {}", args.k, args.max_period),
+        },
+        if args.seeds > 1 && args.n.is_none() {
             format!(" and at {} values over the window", args.seeds)
         } else {
             String::new()

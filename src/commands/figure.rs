@@ -122,6 +122,9 @@ pub fn run(args: &FigureArgs) -> anyhow::Result<()> {
                     k: 1,
                     max_period: p,
                     seeds: config::rules::CURVE_SEEDS.default as usize,
+                    n: None,
+                    t0: None,
+                    v0: None,
                 };
                 Some((plane, at, seeds))
             }

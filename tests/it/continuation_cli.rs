@@ -305,3 +305,67 @@ fn curves_refuse_bad_planes_with_one_line() {
         assert!(err.contains(needle), "{a:?}: {err}");
     }
 }
+
+/// `curves --n 2 --k 2 --t0 --v0` from `two-cycle`'s (2, 2) cycle follows that branch's
+/// curves only: its period-doubling curve reaches D = 1 at the cascade's α₂ there.
+#[test]
+fn curves_from_an_explicit_cycle_follow_its_branch() {
+    let tc = json(&[
+        "two-cycle",
+        "--table",
+        "fd:1",
+        "--alpha",
+        "0.52",
+        "--format",
+        "json",
+    ]);
+    let (t0, v0) = (
+        format!("{}", f(&tc["two_cycle"]["phase0"])),
+        format!("{}", f(&tc["two_cycle"]["v0"])),
+    );
+    let v = json(&[
+        "curves",
+        "--table",
+        "fd:1",
+        "--x",
+        "alpha:0.52..0.7",
+        "--y",
+        "d:0..1",
+        "--n",
+        "2",
+        "--k",
+        "2",
+        "--t0",
+        &t0,
+        "--v0",
+        &v0,
+        "--seeds",
+        "1",
+        "--format",
+        "json",
+    ]);
+    let curves = v["curves"].as_array().unwrap();
+    assert!(
+        curves.iter().all(|c| c["n"] == 2),
+        "only the (2, 2) branch's curves"
+    );
+    let pd = curves
+        .iter()
+        .find(|c| c["kind"] == "period_doubling")
+        .unwrap();
+    let at_one = pd["points"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|q| f(&q["d"]) == 1.0)
+        .expect("a point at D = 1");
+    let cascade = json(&[
+        "cascade", "--table", "fd:1", "--depth", "2", "--format", "json",
+    ]);
+    let alpha2 = f(&cascade["alphas"][1]);
+    assert!(
+        (f(&at_one["alpha"]) - alpha2).abs() < 1e-9,
+        "{} vs {alpha2}",
+        at_one["alpha"]
+    );
+}

@@ -303,6 +303,16 @@ pub struct CurvesSpecArgs {
     /// spread over its window; valid 1 to 64 (1: the starting value only).
     #[arg(long, default_value_t = rules::CURVE_SEEDS.default as usize, value_parser = rules::CURVE_SEEDS.whole::<usize>(), value_name = "N")]
     pub seeds: usize,
+    /// Instead of the (1, k) branches: the branch of the (n, k) cycle near the launch
+    /// (--t0, --v0), guessed at alpha = LO and the starting value; valid 1 to 1024.
+    #[arg(long, value_parser = rules::CYCLE_N.whole::<usize>(), value_name = "N", requires_all = ["t0", "v0"])]
+    pub n: Option<usize>,
+    /// The guess's launch phase t̂0 in [0, 1).
+    #[arg(long, value_parser = rules::T0.real(), value_name = "PHASE", requires = "n")]
+    pub t0: Option<f64>,
+    /// The guess's launch velocity v0 (right after an impact), in [-7300, 7300].
+    #[arg(long, value_parser = rules::V0.real(), value_name = "V", allow_hyphen_values = true, requires = "n")]
+    pub v0: Option<f64>,
 }
 
 /// `bouncemap cascade`.
