@@ -12,12 +12,14 @@ use crate::linalg::solve;
 use crate::orbits::continuation::Special;
 use crate::orbits::periodic::{self, cycle, map_for, pass, CyclePoint, PassError};
 use crate::orbits::roots::bracketed_root_nan;
+use crate::system::System;
 use crate::time::signed_distance;
 
 /// The cycle and the condition at a point of the plane.
 #[derive(Clone, Debug)]
 struct Eval {
     y: [f64; 2],
+    sys: System,
     pt: CyclePoint,
     g: f64,
 }
@@ -48,7 +50,7 @@ impl Tracer<'_> {
         if !g.is_finite() {
             return Err(PassError::NoConvergence);
         }
-        Ok(Eval { y, pt, g })
+        Ok(Eval { y, sys, pt, g })
     }
 
     /// ∇G by central differences, the cycle re-solved at each.
@@ -60,7 +62,6 @@ impl Tracer<'_> {
             let mut minus = e.y;
             plus[i] += h;
             minus[i] -= h;
-            // One-sided at the end of the parameter's range (D = 0 or 1).
             let valid = |y: [f64; 2]| self.plane.system(y[0], y[1]).is_ok();
             // A border collision's condition has its kink on the curve itself (f''
             // jumps where the impact crosses the breakpoint): its slope is taken on
@@ -232,6 +233,7 @@ impl Tracer<'_> {
                     .ok_or(PassError::NoConvergence)?;
                 let e = Eval {
                     y: [x[0], x[1]],
+                    sys,
                     pt,
                     g: f[2],
                 };
@@ -262,9 +264,8 @@ impl Tracer<'_> {
 
     fn point(&self, e: Eval) -> CurvePoint {
         let criticality = (self.kind == CurveKind::PeriodDoubling)
-            .then(|| self.plane.system(e.y[0], e.y[1]).ok())
-            .flatten()
-            .and_then(|sys| criticality(&sys, &e.pt));
+            .then(|| criticality(&e.sys, &e.pt))
+            .flatten();
         CurvePoint {
             alpha: e.y[0],
             p: e.y[1],
@@ -398,42 +399,36 @@ impl Tracer<'_> {
         for _ in 0..MAX_STEPS {
             let y = [cur.alpha, cur.p];
             let pred = [y[0] + h * tau[0], y[1] + h * tau[1]];
-            let step = if self.plane.inside(pred) {
-                self.correct(pred, tau, tau[0] * y[0] + tau[1] * y[1] + h, &cur.cycle)
+            // The arclength condition, or, where the step would leave the window, the
+            // point on the window's edge it crosses.
+            let (start, c, d, at_edge) = if self.plane.inside(pred) {
+                (pred, tau, tau[0] * y[0] + tau[1] * y[1] + h, false)
             } else {
-                // Solve the point on the window's edge the step crosses.
                 let (axis, bound) = self.edge(y, pred);
                 let mut c = [0.0; 2];
                 c[axis] = 1.0;
                 let mut start = pred;
                 start[axis] = bound;
-                match self.correct(start, c, bound, &cur.cycle) {
-                    Ok((e, _)) if self.plane.inside(e.y) || near_edge(self.plane, e.y) => {
-                        let next = self.point(e);
-                        match self.watch(&cur, &next, tau, index, codim2) {
-                            Some(Watch::Crossed) => Err(PassError::NoConvergence),
-                            None => {
-                                out.push(next);
-                                return (out, CurveEnd::Window);
-                            }
-                        }
-                    }
-                    Ok(_) | Err(_) => Err(PassError::NoConvergence),
-                }
+                (start, c, bound, true)
             };
-            match step {
-                Ok((e, grad)) => {
-                    let next = self.point(e);
-                    if let Some(Watch::Crossed) = self.watch(&cur, &next, tau, index, codim2) {
-                        h *= 0.5;
-                        if h < h_min {
-                            return match self.border_end(prev.as_ref(), &cur, index, codim2) {
-                                true => (out, CurveEnd::Border),
-                                false => (out, CurveEnd::NoConvergence),
-                            };
-                        }
-                        continue;
+            // A step is refused where its point left the window or an impact crossed a
+            // breakpoint the curve cannot cross.
+            let step = self.correct(start, c, d, &cur.cycle).and_then(|(e, grad)| {
+                let lost = at_edge && !near_edge(self.plane, e.y);
+                let next = (!lost).then(|| self.point(e));
+                match next {
+                    Some(next) if !self.crosses_border(&cur, &next, tau, index, codim2) => {
+                        Ok((next, grad))
                     }
+                    _ => Err(PassError::NoConvergence),
+                }
+            });
+            match step {
+                Ok((next, _)) if at_edge => {
+                    out.push(next);
+                    return (out, CurveEnd::Window);
+                }
+                Ok((next, grad)) => {
                     travelled += (next.alpha - cur.alpha).hypot(next.p - cur.p);
                     tau = tangent(grad, tau);
                     prev = Some(std::mem::replace(&mut cur, next));
@@ -532,17 +527,18 @@ impl Tracer<'_> {
         (best.0, best.1)
     }
 
-    /// Watch the test functions between `a` and `b` (consecutive points): locate the
-    /// first sign change, record the codimension-two point, and return the point where
-    /// the curve must end if it does (a PD or fold point at a border).
-    fn watch(
+    /// Watch the test functions between `a` and `b` (consecutive points): locate each
+    /// sign change and record its codimension-two point. True where an impact crossed a
+    /// breakpoint on a curve that cannot cross one (all but border collisions): the
+    /// step is then refused.
+    fn crosses_border(
         &self,
         a: &CurvePoint,
         b: &CurvePoint,
         tau: [f64; 2],
         index: usize,
         codim2: &mut Vec<Codim2>,
-    ) -> Option<Watch> {
+    ) -> bool {
         let ta = self.border_tests(&a.cycle);
         let tb = self.border_tests(&b.cycle);
         let nb = self.jumps.len().max(1);
@@ -562,19 +558,19 @@ impl Tracer<'_> {
             // function there, and a point beyond is on another curve. The step is
             // refused, and the shrinking steps close in on the border ([`border_end`]).
             if !matches!(self.kind, CurveKind::BorderCollision { .. }) {
-                return Some(Watch::Crossed);
+                return true;
             }
             let (impact, bp) = (j / nb, self.jumps[j % nb]);
             let test = |q: &CurvePoint| signed_distance(q.cycle.phases[impact], bp);
             let mut g = |s: f64| at(s).map_or(f64::NAN, |q| test(&q));
-            let s = bracketed_root_nan(&mut g, 0.0, h, ga, gb)?;
-            let q = at(s)?;
-            let kind = Codim2Kind::DoubleBorder;
+            let Some(q) = bracketed_root_nan(&mut g, 0.0, h, ga, gb).and_then(at) else {
+                continue;
+            };
             let second = test(&q);
             // Located only where the corrector worked up to the crossing.
             if second.abs() <= CONDITION_TOLERANCE {
                 codim2.push(Codim2 {
-                    kind,
+                    kind: Codim2Kind::DoubleBorder,
                     curve: index,
                     alpha: q.alpha,
                     p: q.p,
@@ -605,14 +601,8 @@ impl Tracer<'_> {
                 }
             }
         }
-        None
+        false
     }
-}
-
-/// What the watch between two points saw that stops the step.
-enum Watch {
-    /// An impact crossed a breakpoint on a curve that cannot cross one.
-    Crossed,
 }
 
 /// Whether y lies on the window's boundary (to 1e-9 of its size).
