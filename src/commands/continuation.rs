@@ -14,8 +14,8 @@ use std::io::{self, Write};
 
 pub fn run(args: &ContinueArgs) -> anyhow::Result<()> {
     let table = args.table.load()?;
-    let start = match (args.from, args.n, args.t0, args.v0) {
-        (_, Some(n), Some(t0), Some(v0)) => Start::Point {
+    let start = match (args.from, args.guess.cycle()) {
+        (_, Some((n, t0, v0))) => Start::Point {
             n,
             k: args.k,
             t0,

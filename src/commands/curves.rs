@@ -159,8 +159,8 @@ pub fn run(cli: &CurvesArgs) -> anyhow::Result<()> {
 
 /// The curves of `plane` that `args` ask for, started at `at`.
 pub fn compute(plane: &Plane, at: f64, args: &CurvesSpecArgs) -> Result<Curves, InputError> {
-    let seeds = match (args.n, args.t0, args.v0) {
-        (Some(n), Some(t0), Some(v0)) => Seeds::Point {
+    let seeds = match args.guess.cycle() {
+        Some((n, t0, v0)) => Seeds::Point {
             n,
             k: args.k,
             t0,
@@ -227,12 +227,11 @@ fn text(
         plane.alpha.1,
         plane.window.0,
         plane.window.1,
-        match (args.n, args.t0, args.v0) {
-            (Some(n), Some(t0), Some(v0)) =>
-                format!("the ({n}, {}) branch near t0 = {t0}, v0 = {v0}", args.k),
+        match args.guess.cycle() {
+            Some((n, t0, v0)) => format!("the ({n}, {}) branch near t0 = {t0}, v0 = {v0}", args.k),
             _ => format!("(1, {}) branches up to period {}", args.k, args.max_period),
         },
-        if args.seeds > 1 && args.n.is_none() {
+        if args.seeds > 1 && args.guess.n.is_none() {
             format!(" and at {} values over the window", args.seeds)
         } else {
             String::new()

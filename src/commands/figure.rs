@@ -122,9 +122,7 @@ pub fn run(args: &FigureArgs) -> anyhow::Result<()> {
                     k: 1,
                     max_period: p,
                     seeds: config::rules::CURVE_SEEDS.default as usize,
-                    n: None,
-                    t0: None,
-                    v0: None,
+                    guess: Default::default(),
                 };
                 Some((plane, at, seeds))
             }

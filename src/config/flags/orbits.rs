@@ -1,0 +1,216 @@
+//! The periodic-orbit commands' flags: `fixed`, `two-cycle`, `continue`, `curves`,
+//! `cascade` and `scaling`, and the (n, k) cycle guess `continue` and `curves` share.
+
+use super::*;
+
+/// `bouncemap fixed`.
+#[derive(Args, Debug, Clone)]
+pub struct FixedArgs {
+    #[command(flatten)]
+    pub system: SystemArgs,
+    /// Periods per bounce of the (1, k) solution; valid 1 to 100.
+    #[arg(long, default_value_t = rules::K.default as u32, value_parser = rules::K.whole::<u32>(), value_name = "K")]
+    pub k: u32,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    pub format: Format,
+}
+
+/// `bouncemap two-cycle`.
+#[derive(Args, Debug, Clone)]
+pub struct TwoCycleArgs {
+    #[command(flatten)]
+    pub system: SystemArgs,
+    /// k of the (1, k) solution the (2, 2k) one surrounds; valid 1 to 100.
+    #[arg(long, default_value_t = rules::K.default as u32, value_parser = rules::K.whole::<u32>(), value_name = "K")]
+    pub k: u32,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    pub format: Format,
+}
+
+/// Where `continue` starts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum FromArg {
+    /// The (1, k) solution with f'' < 0.
+    Fixed,
+    /// The (2, 2k) solution born at the (1, k) one's period doubling.
+    TwoCycle,
+}
+
+/// `bouncemap continue`.
+#[derive(Args, Debug, Clone)]
+pub struct ContinueArgs {
+    /// Table shape: sine, quad (= fd:0), cubic (= fd:1), fd:D with D in [0, 1], or PATH.toml.
+    #[arg(long, default_value = rules::DEFAULT_TABLE, value_parser = TableSpec::parse, value_name = "TABLE")]
+    pub table: TableSpec,
+    /// Coefficient of restitution r; valid (0, 1).
+    #[arg(long, default_value_t = rules::R.default, value_parser = rules::R.real(), value_name = "R")]
+    pub r: f64,
+    /// The α window LO..HI, each in (0, 1000], LO < HI.
+    #[arg(long, value_parser = parse_alpha_window, value_name = "LO..HI")]
+    pub alpha: (f64, f64),
+    /// Start on the (1, k) solution or on the (2, 2k) one [default: fixed].
+    #[arg(long, value_enum, conflicts_with_all = ["n", "t0", "v0"])]
+    pub from: Option<FromArg>,
+    /// k: of the (1, k) solution with --from, of the (n, k) cycle with --n; valid 1 to 100.
+    #[arg(long, default_value_t = rules::K.default as u32, value_parser = rules::K.whole::<u32>(), value_name = "K")]
+    pub k: u32,
+    #[command(flatten)]
+    pub guess: CycleGuessArgs,
+    /// No doubled branch is started beyond this period; valid 1 to 4096.
+    #[arg(long, default_value_t = rules::CONTINUE_MAX_PERIOD.default as usize, value_parser = rules::CONTINUE_MAX_PERIOD.whole::<usize>(), value_name = "P")]
+    pub max_period: usize,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    pub format: Format,
+}
+
+/// `bouncemap curves`.
+#[derive(Args, Debug, Clone)]
+pub struct CurvesArgs {
+    #[command(flatten)]
+    pub spec: CurvesSpecArgs,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    pub format: Format,
+    #[command(flatten)]
+    pub output: OutArgs,
+}
+
+/// The plane and the seeds of `curves` (and `figure curves`).
+#[derive(Args, Debug, Clone)]
+pub struct CurvesSpecArgs {
+    /// Table shape: sine, quad (= fd:0), cubic (= fd:1), fd:D with D in [0, 1], or
+    /// PATH.toml; with a d axis, fd (the family) or fd:D, D the value the curves are
+    /// started from.
+    #[arg(long, default_value = rules::DEFAULT_TABLE, value_name = "TABLE")]
+    pub table: String,
+    /// The horizontal axis: alpha:LO..HI.
+    #[arg(long, value_name = "alpha:LO..HI")]
+    pub x: String,
+    /// The vertical axis, the second parameter: r:LO..HI or d:LO..HI.
+    #[arg(long, value_name = "PARAM:LO..HI")]
+    pub y: String,
+    /// Coefficient of restitution r; valid (0, 1). With an r axis, the value the
+    /// curves are started from.
+    #[arg(long, default_value_t = rules::R.default, value_parser = rules::R.real(), value_name = "R")]
+    pub r: f64,
+    /// k of the (1, k) solution whose branches are followed; valid 1 to 100.
+    #[arg(long, default_value_t = rules::K.default as u32, value_parser = rules::K.whole::<u32>(), value_name = "K")]
+    pub k: u32,
+    /// No doubled branch is started beyond this period; valid 1 to 4096.
+    #[arg(long, default_value_t = rules::CONTINUE_MAX_PERIOD.default as usize, value_parser = rules::CONTINUE_MAX_PERIOD.whole::<usize>(), value_name = "P")]
+    pub max_period: usize,
+    /// Besides the starting value, seed at this many values of the second parameter
+    /// spread over its window; valid 1 to 64 (1: the starting value only).
+    #[arg(long, default_value_t = rules::CURVE_SEEDS.default as usize, value_parser = rules::CURVE_SEEDS.whole::<usize>(), value_name = "N")]
+    pub seeds: usize,
+    #[command(flatten)]
+    pub guess: CycleGuessArgs,
+}
+
+/// An (n, k) cycle to start on instead of the (1, k) solution (`continue`, `curves`):
+/// n with a guess of its launch, at α = LO (and, for `curves`, the starting value of
+/// the second parameter); k is the command's --k.
+#[derive(Args, Debug, Clone, Default)]
+pub struct CycleGuessArgs {
+    /// Impacts of the (n, k) cycle to start on (with --t0 and --v0, a guess at α = LO);
+    /// valid 1 to 1024.
+    #[arg(long, value_parser = rules::CYCLE_N.whole::<usize>(), value_name = "N", requires_all = ["t0", "v0"])]
+    pub n: Option<usize>,
+    /// The guess's launch phase t̂0 in [0, 1).
+    #[arg(long, value_parser = rules::T0.real(), value_name = "PHASE", requires = "n")]
+    pub t0: Option<f64>,
+    /// The guess's launch velocity v0 (right after an impact), in [-7300, 7300].
+    #[arg(long, value_parser = rules::V0.real(), value_name = "V", allow_hyphen_values = true, requires = "n")]
+    pub v0: Option<f64>,
+}
+
+impl CycleGuessArgs {
+    /// (n, t̂0, v0) when a cycle was given.
+    pub fn cycle(&self) -> Option<(usize, f64, f64)> {
+        Some((self.n?, self.t0?, self.v0?))
+    }
+}
+
+/// `bouncemap cascade`.
+#[derive(Args, Debug, Clone)]
+pub struct CascadeArgs {
+    /// Table shape: sine, quad (= fd:0), cubic (= fd:1), fd:D with D in [0, 1], or PATH.toml.
+    #[arg(long, default_value = rules::DEFAULT_TABLE, value_parser = TableSpec::parse, value_name = "TABLE", conflicts_with = "d")]
+    pub table: TableSpec,
+    /// Coefficient of restitution r; valid (0, 1).
+    #[arg(long, default_value_t = rules::R.default, value_parser = rules::R.real(), value_name = "R")]
+    pub r: f64,
+    /// k of the (1, k) solution the cascade starts from; valid 1 to 100.
+    #[arg(long, default_value_t = rules::K.default as u32, value_parser = rules::K.whole::<u32>(), value_name = "K")]
+    pub k: u32,
+    /// Period doublings looked for; valid 1 to 12.
+    #[arg(long, default_value_t = rules::DEPTH.default as usize, value_parser = rules::DEPTH.whole::<usize>(), value_name = "N")]
+    pub depth: usize,
+    /// A family of fd:D tables instead of --table: LO..HI:N, N equally spaced D in
+    /// [0, 1] (one row per D).
+    #[arg(long, value_parser = parse_d_family, value_name = "LO..HI:N")]
+    pub d: Option<DFamily>,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    pub format: Format,
+}
+
+/// `bouncemap scaling`.
+#[derive(Args, Debug, Clone)]
+pub struct ScalingArgs {
+    #[arg(
+        long,
+        default_value = "0.001,0.01,0.1",
+        value_parser = parse_d_list,
+        value_name = "D",
+        help = "Values of D for F_D: a list (0.001,0.01,0.1) or a log-spaced range LO..HI[:N] (default N = 13); each in (0, 1]"
+    )]
+    pub d: DList,
+    /// Coefficient of restitution r; valid (0, 1).
+    #[arg(long, default_value_t = rules::R.default, value_parser = rules::R.real(), value_name = "R")]
+    pub r: f64,
+    /// k of the (1, k) solution; valid 1 to 100.
+    #[arg(long, default_value_t = rules::K.default as u32, value_parser = rules::K.whole::<u32>(), value_name = "K")]
+    pub k: u32,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    pub format: Format,
+}
+
+/// The D values of `scaling --d`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DList(pub Vec<f64>);
+
+/// `--d`: `D1,D2,...` or `LO..HI[:N]`, every D in (0, 1].
+pub fn parse_d_list(s: &str) -> Result<DList, String> {
+    let one = |t: &str| rules::SCALING_D.parse(t).map_err(|e| format!("D: {e}"));
+    let s = s.trim();
+    if let Some((lo, rest)) = s.split_once("..") {
+        let (hi, n) = match rest.split_once(':') {
+            Some((h, n)) => (
+                h,
+                rules::D_POINTS
+                    .parse(n)
+                    .map_err(|e| format!("point count: {e}"))? as usize,
+            ),
+            None => (rest, rules::D_POINTS.default as usize),
+        };
+        let (lo, hi) = (one(lo)?, one(hi)?);
+        if lo >= hi {
+            return Err(format!(
+                "range {lo}..{hi} is empty: valid LO..HI with LO < HI"
+            ));
+        }
+        return Ok(DList(bouncemap_engine::orbits::scaling::log_spaced(
+            lo, hi, n,
+        )));
+    }
+    let v: Vec<f64> = s
+        .split(',')
+        .map(|t| one(t.trim()))
+        .collect::<Result<_, _>>()?;
+    Ok(DList(v))
+}
