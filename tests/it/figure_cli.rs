@@ -6,14 +6,14 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-fn bouncemap(args: &[&str]) -> Output {
+pub(crate) fn bouncemap(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_bouncemap"))
         .args(args)
         .output()
         .expect("the binary runs")
 }
 
-fn ok(o: &Output) {
+pub(crate) fn ok(o: &Output) {
     assert!(
         o.status.success(),
         "failed: {}",
@@ -21,27 +21,27 @@ fn ok(o: &Output) {
     );
 }
 
-fn dir(name: &str) -> PathBuf {
+pub(crate) fn dir(name: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("bouncemap-figure-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&d);
     std::fs::create_dir_all(&d).unwrap();
     d
 }
 
-fn s(p: &Path) -> &str {
+pub(crate) fn s(p: &Path) -> &str {
     p.to_str().unwrap()
 }
 
 /// A decoded PNG: width, height, pixels per metre, RGB rows.
-struct Image {
-    width: u32,
+pub(crate) struct Image {
+    pub(crate) width: u32,
     height: u32,
     per_metre: Option<u32>,
     rgb: Vec<u8>,
 }
 
 impl Image {
-    fn read(path: &Path) -> Image {
+    pub(crate) fn read(path: &Path) -> Image {
         let bytes = std::fs::read(path).unwrap();
         assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n", "the PNG signature");
         let mut reader = png::Decoder::new(std::io::Cursor::new(bytes))
@@ -203,12 +203,12 @@ fn fig3_quick_is_valid_svg_with_six_panels_and_text_as_text() {
     std::fs::remove_dir_all(&d).unwrap();
 }
 
-fn json(path: &Path) -> serde_json::Value {
+pub(crate) fn json(path: &Path) -> serde_json::Value {
     serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
 }
 
 /// The points of the series called `name` in a figure's data.
-fn series<'a>(data: &'a serde_json::Value, name: &str) -> &'a Vec<serde_json::Value> {
+pub(crate) fn series<'a>(data: &'a serde_json::Value, name: &str) -> &'a Vec<serde_json::Value> {
     data["panels"]
         .as_array()
         .unwrap()
@@ -636,207 +636,5 @@ fn the_quick_plane_figure_is_at_most_100_by_50_pixels_and_2e4_periods() {
         caption.contains("up to 2\u{b7}10\u{2074} table periods"),
         "{caption}"
     );
-    std::fs::remove_dir_all(&d).unwrap();
-}
-
-/// Whether `basins` at (α, D) finds a stable (2, 2) cycle and another attractor beside
-/// it: the coexistence that lets a pixel started near the (1, 1) solution end elsewhere
-/// where the (2, 2) cycle is stable.
-fn two_two_coexists(alpha: f64, d: f64) -> bool {
-    let table = format!("fd:{d}");
-    let a = format!("{alpha}");
-    let o = bouncemap(&[
-        "basins", "--table", &table, "--alpha", &a, "--grid", "60x30", "--format", "json",
-    ]);
-    ok(&o);
-    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
-    let att = v["attractors"].as_array().unwrap();
-    att.len() >= 2
-        && att
-            .iter()
-            .any(|x| x["kind"] == "periodic" && x["events"] == 2 && x["periods"] == 2)
-}
-
-/// `figure plane --curves`: the period-2 pixels of the (α, D) plane lie between the
-/// curves drawn for them. On every row, between the last period-1 pixel and the first
-/// (2, 2) curve (its period doubling or its border collision) after it, every pixel
-/// further than a pixel and a half from the curve is period 2, or `basins` there finds
-/// the (2, 2) cycle coexisting with the attractor the pixel's start went to; within five pixels beyond the curve no pixel is period 2 (or
-/// `basins` confirms a coexisting one).
-#[test]
-fn the_period_two_region_of_the_plane_lies_between_its_curves() {
-    let d = dir("plane-curves");
-    let (out, data) = (d.join("p.svg"), d.join("p.json"));
-    let (nx, ny) = (120usize, 41usize);
-    let pixels = format!("{nx}x{ny}");
-    ok(&bouncemap(&[
-        "figure",
-        "plane",
-        "--table",
-        "fd",
-        "--x",
-        "alpha:0.45..0.62",
-        "--y",
-        "d:0..1",
-        "--pixels",
-        &pixels,
-        "--curves",
-        "4",
-        "--out",
-        s(&out),
-        "--data",
-        s(&data),
-    ]));
-    let fig = json(&data);
-    let all = fig["panels"][0]["series"].as_array().unwrap();
-    let dx = 0.17 / (nx - 1) as f64;
-    // Every pixel's class by (column, row).
-    let mut class = vec![String::new(); nx * ny];
-    for sr in all.iter().filter(|s| s["kind"] == "cells") {
-        for p in sr["points"].as_array().unwrap() {
-            let (a, dv) = (p[0].as_f64().unwrap(), p[1].as_f64().unwrap());
-            let (i, j) = (
-                ((a - 0.45) / dx).round() as usize,
-                (dv * (ny - 1) as f64).round() as usize,
-            );
-            class[i * ny + j] = sr["name"].as_str().unwrap().to_string();
-        }
-    }
-    // The curves of the (2, 2) cycle, as polylines.
-    let curves2: Vec<Vec<(f64, f64)>> = all
-        .iter()
-        .filter(|s| s["name"].as_str().unwrap_or("").ends_with("of (2, 2)"))
-        .flat_map(|s| s["lines"].as_array().unwrap().iter())
-        .map(|l| {
-            l.as_array()
-                .unwrap()
-                .iter()
-                .map(|p| (p[0].as_f64().unwrap(), p[1].as_f64().unwrap()))
-                .collect()
-        })
-        .collect();
-    assert!(curves2.len() >= 2, "the (2, 2) PD and BC curves");
-    let at = |i: usize, j: usize| class[i * ny + j].as_str();
-    let (mut rows, mut confirmed) = (0, 0);
-    for j in 0..ny {
-        let dval = j as f64 / (ny - 1) as f64;
-        let alpha = |i: usize| 0.45 + i as f64 * dx;
-        let Some(last1) = (0..nx).filter(|&i| at(i, j) == "period-1").max() else {
-            continue;
-        };
-        let crossing = curves2
-            .iter()
-            .flat_map(|l| l.windows(2))
-            .filter(|w| (w[0].1 - dval) * (w[1].1 - dval) <= 0.0 && w[0].1 != w[1].1)
-            .map(|w| w[0].0 + (dval - w[0].1) / (w[1].1 - w[0].1) * (w[1].0 - w[0].0))
-            .filter(|&a| a > alpha(last1))
-            .fold(f64::INFINITY, f64::min);
-        if !crossing.is_finite() {
-            continue;
-        }
-        // Between the (1, 1) PD (one pixel of slack after it) and the curve.
-        for i in (last1 + 2)..nx {
-            if alpha(i) > crossing - 1.5 * dx {
-                break;
-            }
-            if at(i, j) != "period-2" {
-                assert!(
-                    two_two_coexists(alpha(i), dval),
-                    "D = {dval}, α = {}: {} where the (2, 2) cycle is stable (curve at {crossing}), and basins finds no coexistence",
-                    alpha(i),
-                    at(i, j)
-                );
-                confirmed += 1;
-            }
-        }
-        // Just beyond the curve the (2, 2) cycle is unstable or gone: no period 2.
-        for i in 0..nx {
-            let a = alpha(i);
-            if a > crossing + 1.5 * dx && a <= crossing + 6.0 * dx && at(i, j) == "period-2" {
-                assert!(
-                    two_two_coexists(a, dval),
-                    "D = {dval}, α = {a}: period 2 beyond the (2, 2) curve at {crossing}"
-                );
-                confirmed += 1;
-            }
-        }
-        rows += 1;
-    }
-    assert!(rows >= 30, "only {rows} rows with a period-2 run");
-    assert!(confirmed <= 20, "{confirmed} pixels needed basins");
-    std::fs::remove_dir_all(&d).unwrap();
-}
-
-/// `figure curves` draws what `curves` computes: one line per curve (the same points)
-/// and a circle per codimension-two point; a plane without an α axis is refused for
-/// `figure plane --curves`.
-#[test]
-fn the_curves_figure_draws_what_curves_computes() {
-    let d = dir("curves");
-    let (out, data) = (d.join("c.png"), d.join("c.json"));
-    let flags = [
-        "--table",
-        "fd",
-        "--x",
-        "alpha:0.45..0.7",
-        "--y",
-        "d:0..1",
-        "--max-period",
-        "4",
-    ];
-    let mut fa = vec!["figure", "curves"];
-    fa.extend_from_slice(&flags);
-    fa.extend_from_slice(&["--out", s(&out), "--data", s(&data)]);
-    ok(&bouncemap(&fa));
-    assert!(Image::read(&out).width > 100);
-    let mut ca = vec!["curves"];
-    ca.extend_from_slice(&flags);
-    ca.extend_from_slice(&["--format", "json"]);
-    let o = bouncemap(&ca);
-    ok(&o);
-    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
-    let fig = json(&data);
-    let all = fig["panels"][0]["series"].as_array().unwrap();
-    let curves = v["curves"].as_array().unwrap();
-    for (i, c) in curves.iter().enumerate() {
-        let name = format!(
-            "curve {i}: {} of ({}, {})",
-            c["kind"].as_str().unwrap(),
-            c["n"],
-            c["k"]
-        );
-        let line = &all.iter().find(|s| s["name"] == name.as_str()).unwrap()["lines"][0];
-        let pts = c["points"].as_array().unwrap();
-        assert_eq!(line.as_array().unwrap().len(), pts.len(), "{name}");
-        assert_eq!(line[0][0].as_f64(), pts[0]["alpha"].as_f64());
-        assert_eq!(line[0][1].as_f64(), pts[0]["d"].as_f64());
-    }
-    assert_eq!(
-        series(&fig, "codimension-two points").len(),
-        v["codim2"].as_array().unwrap().len()
-    );
-    let o = bouncemap(&[
-        "figure",
-        "plane",
-        "--table",
-        "fd",
-        "--x",
-        "r:0.5..0.9",
-        "--y",
-        "d:0..1",
-        "--alpha",
-        "0.5",
-        "--curves",
-        "4",
-        "--out",
-        s(&d.join("p.png")),
-    ]);
-    assert_eq!(o.status.code(), Some(2));
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(
-        err.contains("--curves") && err.trim().lines().count() == 1,
-        "{err}"
-    );
-    assert!(!d.join("p.png").exists());
     std::fs::remove_dir_all(&d).unwrap();
 }

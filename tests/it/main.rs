@@ -7,6 +7,7 @@ mod attractors_cli;
 mod cli;
 mod cli_orbit;
 mod continuation_cli;
+mod curves_cli;
 mod docs;
 mod figure_cli;
 mod generated_docs;
