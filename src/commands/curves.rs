@@ -18,7 +18,7 @@ pub fn run(cli: &CurvesArgs) -> anyhow::Result<()> {
     let args = &cli.spec;
     let (plane, at) = curves_plane(args)?;
     let mut out = Sink::open(cli.output.out.as_deref()).map_err(InputError)?;
-    let found = compute(&plane, at, args)?;
+    let found = curves(&plane, seeds(args, at)).map_err(InputError::from)?;
     let y = plane.second.as_str();
     let written = (|| -> anyhow::Result<()> {
         match cli.format {
@@ -157,9 +157,10 @@ pub fn run(cli: &CurvesArgs) -> anyhow::Result<()> {
     out.end(written)
 }
 
-/// The curves of `plane` that `args` ask for, started at `at`.
-pub fn compute(plane: &Plane, at: f64, args: &CurvesSpecArgs) -> Result<Curves, InputError> {
-    let seeds = match args.guess.cycle() {
+/// The seeds `args` ask for, started at `at`: the (1, k) branches, or one (n, k)
+/// cycle's.
+pub fn seeds(args: &CurvesSpecArgs, at: f64) -> Seeds {
+    match args.guess.cycle() {
         Some((n, t0, v0)) => Seeds::Point {
             n,
             k: args.k,
@@ -167,14 +168,13 @@ pub fn compute(plane: &Plane, at: f64, args: &CurvesSpecArgs) -> Result<Curves, 
             v0,
             at,
         },
-        _ => Seeds::FromFixed {
+        None => Seeds::FromFixed {
             k: args.k,
             max_period: args.max_period,
             at,
             count: args.seeds,
         },
-    };
-    curves(plane, seeds).map_err(InputError::from)
+    }
 }
 
 /// A number as every csv field prints it: the shortest exact form (exponent form for

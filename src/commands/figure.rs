@@ -10,13 +10,14 @@
 
 use super::drive::drive_job;
 use super::progress::Progress;
-use crate::config::flags::{CurvesSpecArgs, FigureArgs, FigureName};
+use crate::config::flags::{FigureArgs, FigureName};
 use crate::config::presets::preset;
 use crate::config::{self, InputError};
 use crate::output::sink::AtomicFile;
 use bouncemap_engine::attractors::basins::BasinSpec;
 use bouncemap_engine::grid::Shard;
 use bouncemap_engine::jobs::{Control, Executor, Progress as JobProgress};
+use bouncemap_engine::orbits::curves::curves;
 use bouncemap_engine::orbits::scaling::{log_spaced, scaling_row, ScalingRow};
 use bouncemap_engine::plane::PlaneSpec;
 use bouncemap_engine::sweep::{self, SweepSpec};
@@ -109,23 +110,10 @@ pub fn run(args: &FigureArgs) -> anyhow::Result<()> {
     let curves_task = match &args.name {
         FigureName::Curves(a) => {
             let (plane, at) = config::plane::curves_plane(a)?;
-            Some((plane, at, (**a).clone()))
+            Some((plane, super::curves::seeds(a, at)))
         }
         FigureName::Plane(a) => match (a.curves, &plane_spec) {
-            (Some(p), Some(spec)) => {
-                let (plane, at) = config::plane::plane_curves(spec)?;
-                let seeds = CurvesSpecArgs {
-                    table: spec.table.name().to_string(),
-                    x: String::new(),
-                    y: String::new(),
-                    r: spec.r,
-                    k: 1,
-                    max_period: p,
-                    seeds: config::rules::CURVE_SEEDS.default as usize,
-                    guess: Default::default(),
-                };
-                Some((plane, at, seeds))
-            }
+            (Some(p), Some(spec)) => Some(config::plane::plane_curves(spec, 1, p, None)?),
             _ => None,
         },
         _ => None,
@@ -252,9 +240,11 @@ pub fn fig5_d() -> Vec<f64> {
 
 /// The figure `name`; `specs` are the checked sweep of `diagram` and `lyapunov`, the
 /// checked grid of `basins` and the checked plane of `plane`.
-/// What `figure curves` and `figure plane --curves` follow: the plane, the starting
-/// value of its second parameter, and the seeds.
-type CurvesTask = (bouncemap_engine::orbits::curves::Plane, f64, CurvesSpecArgs);
+/// What `figure curves` and `figure plane --curves` follow: the plane and the seeds.
+type CurvesTask = (
+    bouncemap_engine::orbits::curves::Plane,
+    bouncemap_engine::orbits::curves::Seeds,
+);
 
 fn build(
     name: &FigureName,
@@ -331,16 +321,16 @@ fn build(
         FigureName::Plane(_) => {
             let spec = plane_spec.expect("the plane was checked first");
             let plane = super::plane::compute(&spec, executor)?;
-            let curves = bouncemap_engine::plane::curves(&spec);
-            let mut fig = figure::plane::plane_figure(&spec, plane.pixels(), curves.as_ref());
-            if let Some((cplane, at, seeds)) = curves_task {
-                let found = super::curves::compute(&cplane, at, &seeds)?;
+            let analytic = bouncemap_engine::plane::curves(&spec);
+            let mut fig = figure::plane::plane_figure(&spec, plane.pixels(), analytic.as_ref());
+            if let Some((cplane, seeds)) = curves_task {
+                let found = curves(&cplane, seeds).map_err(InputError::from)?;
                 let alpha_on_x = spec.x.param == bouncemap_engine::grid::SweepParam::Alpha;
                 figure::curves::overlay(&mut fig, &found, alpha_on_x);
                 if let Some(c) = fig.caption.first_mut() {
                     c.push_str(&format!(
-                        " Black lines over the pixels: the two-parameter curves of the cycles up to period {} (solid: period doubling, dash-dotted: fold, dashed: border collision, dotted: grazing; circles: codimension-two points), as `bouncemap curves` gives them.",
-                        seeds.max_period
+                        " Black lines over the pixels: the two-parameter curves of the cycles up to period {} (solid: period doubling, dash-dotted: fold, dashed: border collision, dotted: grazing; circles: codimension-two points), as the curves command gives them.",
+                        seeds.max_period()
                     ));
                 }
             }
@@ -352,12 +342,12 @@ fn build(
             Ok(figure::basins::basins_figure(&spec, &basins))
         }
         FigureName::Curves(_) => {
-            let (plane, at, seeds) = curves_task.expect("the curves' plane was checked first");
-            let found = super::curves::compute(&plane, at, &seeds)?;
+            let (plane, seeds) = curves_task.expect("the curves' plane was checked first");
+            let found = curves(&plane, seeds).map_err(InputError::from)?;
             Ok(figure::curves::curves_figure(
                 &plane,
                 &found,
-                seeds.max_period,
+                seeds.max_period(),
             ))
         }
         FigureName::Diagram(_) => {

@@ -31,7 +31,7 @@ pub fn run(args: &PlaneArgs) -> anyhow::Result<()> {
             )
             .into())
         }
-        Some(p) => Some((config::plane::plane_curves(&spec)?, p)),
+        Some(p) => Some(config::plane::plane_curves(&spec, 1, p, None)?),
         None => None,
     };
     if args.run.check.check {
@@ -46,18 +46,9 @@ pub fn run(args: &PlaneArgs) -> anyhow::Result<()> {
     let plane = compute(&spec, &Executor::new(threads)?)?;
     let curves = curves(&spec);
     let two_parameter = match two_parameter {
-        Some(((cplane, at), max_period)) => {
-            let seeds = bouncemap_engine::orbits::curves::Seeds::FromFixed {
-                k: 1,
-                max_period,
-                at,
-                count: config::rules::CURVE_SEEDS.default as usize,
-            };
-            Some(
-                bouncemap_engine::orbits::curves::curves(&cplane, seeds)
-                    .map_err(InputError::from)?,
-            )
-        }
+        Some((cplane, seeds)) => Some(
+            bouncemap_engine::orbits::curves::curves(&cplane, seeds).map_err(InputError::from)?,
+        ),
         None => None,
     };
     let write = |sink: &mut Sink| -> anyhow::Result<()> {

@@ -192,12 +192,24 @@ pub fn curves_plane(
     Ok((plane, at))
 }
 
-/// The plane of two-parameter curves that covers a `plane`'s picture (`--curves`): α on
-/// one axis and r or d on the other, started at the plane's r (an r axis) or its
-/// table's D (a d axis), or the middle of the window when that lies outside it.
+/// The two-parameter curves that cover a plane's picture (`plane --curves`, `figure
+/// plane --curves`, the plane view's curves): the plane of α on one axis and r or d on
+/// the other, and the seeds of `curves`' defaults for the (1, k) branches up to
+/// `max_period`, started at `current` (the application's own D or r), else at the
+/// plane's r (an r axis) or its table's D (a d axis), whichever lies in the window,
+/// else at the window's middle.
 pub fn plane_curves(
     spec: &PlaneSpec,
-) -> Result<(bouncemap_engine::orbits::curves::Plane, f64), InputError> {
+    k: u32,
+    max_period: usize,
+    current: Option<f64>,
+) -> Result<
+    (
+        bouncemap_engine::orbits::curves::Plane,
+        bouncemap_engine::orbits::curves::Seeds,
+    ),
+    InputError,
+> {
     let (alpha, other) = match (spec.x.param, spec.y.param) {
         (SweepParam::Alpha, p) if p != SweepParam::Alpha => (spec.x, spec.y),
         (p, SweepParam::Alpha) if p != SweepParam::Alpha => (spec.y, spec.x),
@@ -207,15 +219,15 @@ pub fn plane_curves(
             ))
         }
     };
-    let current = match other.param {
+    let own = match other.param {
         SweepParam::D => spec.table.d().unwrap_or(rules::D.default),
         _ => spec.r,
     };
-    let at = if (other.lo..=other.hi).contains(&current) {
-        current
-    } else {
-        0.5 * (other.lo + other.hi)
-    };
+    let at = [current, Some(own)]
+        .into_iter()
+        .flatten()
+        .find(|v| (other.lo..=other.hi).contains(v))
+        .unwrap_or(0.5 * (other.lo + other.hi));
     let plane = bouncemap_engine::orbits::curves::Plane {
         table: spec.table.clone(),
         r: spec.r,
@@ -224,5 +236,11 @@ pub fn plane_curves(
         window: (other.lo, other.hi),
     };
     plane.check()?;
-    Ok((plane, at))
+    let seeds = bouncemap_engine::orbits::curves::Seeds::FromFixed {
+        k,
+        max_period,
+        at,
+        count: rules::CURVE_SEEDS.default as usize,
+    };
+    Ok((plane, seeds))
 }

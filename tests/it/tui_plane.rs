@@ -254,13 +254,7 @@ fn the_curves_key_draws_the_two_parameter_curves_over_the_plane() {
     assert!(fx.contains(&Effect::Start(Target::PlaneCurves)), "{fx:?}");
     // What the background work computes, delivered as the worker would.
     let spec = bouncemap::tui::components::plane::plane_spec(&a.shared.params, (2, 2));
-    let (plane, at) = bouncemap::config::plane::plane_curves(&spec).unwrap();
-    let seeds = bouncemap_engine::orbits::curves::Seeds::FromFixed {
-        k: 1,
-        max_period: 4,
-        at,
-        count: 3,
-    };
+    let (plane, seeds) = bouncemap::config::plane::plane_curves(&spec, 1, 4, None).unwrap();
     let found = bouncemap_engine::orbits::curves::curves(&plane, seeds).unwrap();
     assert!(found
         .curves

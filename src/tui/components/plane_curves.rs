@@ -11,14 +11,12 @@ use super::{Component, Effect, Registered, Shared, Workers};
 use crate::tui::keymap::Action;
 use crate::tui::params::ParamId;
 use bouncemap_engine::grid::SweepParam;
-use bouncemap_engine::orbits::curves::{curves, Seeds};
+use bouncemap_engine::orbits::curves::curves;
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 
 /// Doubled branches are followed up to this period.
 pub const MAX_PERIOD: usize = 16;
-/// Values of the second parameter the curves are seeded at, besides the current one.
-pub const SEEDS: usize = 5;
 
 /// The background curves.
 #[derive(Default)]
@@ -63,35 +61,25 @@ impl Component for PlaneCurves {
             return;
         }
         let spec = plane_spec(&shared.params, (2, 2));
-        let k = shared.params.k;
-        shared.plane_curves = None;
-        let (plane, at) = match crate::config::plane::plane_curves(&spec) {
-            Ok(p) => p,
-            Err(e) => {
-                shared.plane_curves = Some(Err(e.to_string()));
-                self.pending = false;
-                return;
-            }
-        };
         // Started from the application's own D (or r) where it lies in the window.
-        let current = match plane.second {
+        let current = match spec.y.param {
             SweepParam::D => shared.params.table().d(),
             _ => Some(shared.params.r),
         };
-        let at = current
-            .filter(|c| (plane.window.0..=plane.window.1).contains(c))
-            .unwrap_or(at);
-        let gen = workers.spawn(Self::ADDRESS, "plane-curves", move |t| {
-            if !t.wait_if_paused() {
-                return;
-            }
-            let seeds = Seeds::FromFixed {
-                k,
-                max_period: MAX_PERIOD,
-                at,
-                count: SEEDS,
+        shared.plane_curves = None;
+        let (plane, seeds) =
+            match crate::config::plane::plane_curves(&spec, shared.params.k, MAX_PERIOD, current) {
+                Ok(p) => p,
+                Err(e) => {
+                    shared.plane_curves = Some(Err(e.to_string()));
+                    self.pending = false;
+                    return;
+                }
             };
-            t.send(curves(&plane, seeds).map_err(|e| e.to_string()));
+        let gen = workers.spawn(Self::ADDRESS, "plane-curves", move |t| {
+            if t.wait_if_paused() {
+                t.send(curves(&plane, seeds).map_err(|e| e.to_string()));
+            }
         });
         self.gen = gen;
         self.pending = true;

@@ -453,6 +453,16 @@ pub enum Seeds {
     },
 }
 
+impl Seeds {
+    /// The longest cycle followed: `max_period`, or the cycle's n.
+    pub fn max_period(&self) -> usize {
+        match *self {
+            Seeds::FromFixed { max_period, .. } => max_period,
+            Seeds::Point { n, .. } => n,
+        }
+    }
+}
+
 /// The curves and their codimension-two points.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Curves {
