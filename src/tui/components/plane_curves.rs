@@ -36,7 +36,7 @@ impl Component for PlaneCurves {
         if shared.show_plane_curves {
             shared.effect(Effect::Start(Self::TARGET));
             shared.say(
-                format!("plane: two-parameter curves of the branches up to period {MAX_PERIOD} (• period doubling, ~ fold, × border collision, ¦ grazing, ◉ codimension two), computing…"),
+                format!("curves: • PD ~ fold × BC ¦ grazing ◉ codim-2; computing those of the branches up to period {MAX_PERIOD}…"),
                 false,
             );
         } else {
@@ -91,7 +91,7 @@ impl Component for PlaneCurves {
         }
         let text = match &msg {
             Ok(c) => format!(
-                "plane: {} two-parameter curves, {} codimension-two points (• PD, ~ fold, × BC, ¦ grazing, ◉ codim 2)",
+                "curves: • PD ~ fold × BC ¦ grazing ◉ codim-2; {} two-parameter curves, {} codimension-two points",
                 c.curves.len(),
                 c.codim2.len()
             ),
