@@ -31,6 +31,10 @@ use std::process::ExitCode;
 /// (one line naming the problem and the valid range), 1 for anything else; a closed
 /// output pipe ends quietly with 0.
 pub fn main() -> ExitCode {
+    if let Some(msg) = non_utf8_argument(std::env::args_os().skip(1)) {
+        output::to_stderr(&format!("{msg}\n"));
+        return ExitCode::from(2);
+    }
     let cli = match config::flags::Cli::try_parse() {
         Ok(c) => c,
         Err(e) => match e.kind() {
@@ -92,6 +96,33 @@ pub fn main() -> ExitCode {
             ExitCode::from(code)
         }
     }
+}
+
+/// The refusal of the first argument that is not UTF-8 text, naming its flag (every
+/// value, paths included, is text: names are shown in outputs and file headers).
+fn non_utf8_argument(args: impl Iterator<Item = std::ffi::OsString>) -> Option<String> {
+    let mut previous: Option<String> = None;
+    for a in args {
+        match a.to_str() {
+            Some(t) => previous = Some(t.to_string()),
+            None => {
+                let lossy = a.to_string_lossy();
+                // `--out=PATH`, `--out PATH`, or a positional argument.
+                let (flag, value) = match lossy.split_once('=') {
+                    Some((f, v)) if f.starts_with("--") => (f.to_string(), v),
+                    _ => match previous {
+                        Some(p) if p.starts_with('-') && !p.contains('=') => (p, &*lossy),
+                        _ => ("an argument".to_string(), &*lossy),
+                    },
+                };
+                let shown = output::text::quoted(value);
+                return Some(format!(
+                    "error: {flag}: {shown} is not UTF-8 text: valid a value (or a path) in UTF-8"
+                ));
+            }
+        }
+    }
+    None
 }
 
 /// The help or version text on stdout (in colour on a terminal); a failed write is

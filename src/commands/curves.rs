@@ -10,7 +10,10 @@ use crate::config::InputError;
 use crate::output::records::csv_writer;
 use crate::output::sink::Sink;
 use crate::output::Format;
-use bouncemap_engine::orbits::curves::{curves, Codim2, Curve, CurveKind, Curves, Plane, Seeds};
+use super::progress::Progress;
+use bouncemap_engine::orbits::curves::{
+    curves_with_progress, Codim2, Curve, CurveKind, Curves, Plane, Seeds,
+};
 use serde_json::json;
 use std::io::{self, Write};
 
@@ -18,7 +21,8 @@ pub fn run(cli: &CurvesArgs) -> anyhow::Result<()> {
     let args = &cli.spec;
     let (plane, at) = curves_plane(args)?;
     let mut out = Sink::open(cli.output.out.as_deref()).map_err(InputError)?;
-    let found = curves(&plane, seeds(args, at)).map_err(InputError::from)?;
+    let found = follow_with_progress(&plane, seeds(args, at), &title(&plane, at, args))
+        .map_err(InputError::from)?;
     let y = plane.second.as_str();
     let written = (|| -> anyhow::Result<()> {
         match cli.format {
@@ -97,7 +101,7 @@ pub fn run(cli: &CurvesArgs) -> anyhow::Result<()> {
             }
             Format::Json => {
                 let doc = json!({
-                    "table": plane.table.name(),
+                    "table": table_label(&plane),
                     "r": args.r,
                     "alpha": [plane.alpha.0, plane.alpha.1],
                     "second": y,
@@ -140,6 +144,10 @@ pub fn run(cli: &CurvesArgs) -> anyhow::Result<()> {
                         "impact": p.impact.map(|x| x.0),
                         "breakpoint": p.impact.map(|x| x.1),
                     })).collect::<Vec<_>>(),
+                    "unseeded": found.unseeded.iter().map(|(p, why)| json!({
+                        y: p,
+                        "reason": why,
+                    })).collect::<Vec<_>>(),
                     "skipped": found.skipped.iter().map(|(s, why)| json!({
                         "kind": s.kind.as_str(),
                         "n": s.point.n,
@@ -155,6 +163,69 @@ pub fn run(cli: &CurvesArgs) -> anyhow::Result<()> {
         Ok(())
     })();
     out.end(written)
+}
+
+/// The curves of `seeds`, with a start line and progress on stderr (per seed value,
+/// and the curves found so far): a long search is never silent.
+fn follow_with_progress(
+    plane: &Plane,
+    seeds: Seeds,
+    title: &str,
+) -> Result<Curves, bouncemap_engine::EngineError> {
+    use bouncemap_engine::jobs::Progress as JobProgress;
+    let started = std::time::Instant::now();
+    let mut progress: Option<Progress> = None;
+    let mut last = JobProgress {
+        done: 0,
+        total: 0,
+        events: 0,
+        elapsed: Default::default(),
+    };
+    let found = curves_with_progress(plane, seeds, &mut |p| {
+        last = JobProgress {
+            done: p.seeds_done,
+            total: p.seeds,
+            events: 0,
+            elapsed: started.elapsed(),
+        };
+        let shown =
+            progress.get_or_insert_with(|| Progress::start_units("curves", "seed values", p.seeds, title));
+        shown.update_noting(&last, &format!(", {} curves", p.curves));
+    });
+    if let Some(p) = progress {
+        p.finish(&last);
+    }
+    found
+}
+
+/// The run in one line, for the log's first line.
+fn title(plane: &Plane, at: f64, args: &CurvesSpecArgs) -> String {
+    format!(
+        "table {}, alpha {}..{}, {} {}..{}, started at {} = {at}, {}",
+        table_label(plane),
+        plane.alpha.0,
+        plane.alpha.1,
+        plane.second.as_str(),
+        plane.window.0,
+        plane.window.1,
+        plane.second.as_str(),
+        match args.guess.cycle() {
+            Some((n, t0, v0)) => format!("the ({n}, {}) branch near t0 = {t0}, v0 = {v0}", args.k),
+            _ => format!(
+                "(1, {}) branches up to period {}, {} seed values",
+                args.k, args.max_period, args.seeds
+            ),
+        }
+    )
+}
+
+/// The table as every format names it: with a d axis the F_D family, `fd` (its D is
+/// the axis), else the table's own name.
+fn table_label(plane: &Plane) -> &str {
+    match plane.second {
+        bouncemap_engine::grid::SweepParam::D => "fd",
+        _ => plane.table.name(),
+    }
 }
 
 /// The seeds `args` ask for, started at `at`: the (1, k) branches, or one (n, k)
@@ -217,7 +288,7 @@ fn text(
     writeln!(
         out,
         "table {}  r {}  alpha {}..{}  {y} {}..{}  {}, started at {y} = {at}{}",
-        if y == "d" { "fd" } else { plane.table.name() },
+        table_label(plane),
         if y == "r" {
             "axis".to_string()
         } else {
@@ -297,6 +368,9 @@ fn text(
         for p in &found.codim2 {
             text_codim2(out, found, p, y)?;
         }
+    }
+    for (p, why) in &found.unseeded {
+        writeln!(out, "no branch at {y} = {p}: {why}")?;
     }
     for (s, why) in &found.skipped {
         writeln!(

@@ -140,15 +140,16 @@ pub fn run(args: &FigureArgs) -> anyhow::Result<()> {
     let shown = file.path().display().to_string();
     file.write_all(&bytes)
         .map_err(|e| anyhow::anyhow!("cannot write {shown}: {e}"))?;
-    file.commit()?;
+    let mut files = vec![file];
     if let Some(mut d) = data {
         let shown = d.path().display().to_string();
         serde_json::to_writer(&mut d, &fig.data())
             .map_err(|e| anyhow::anyhow!("cannot write {shown}: {e}"))?;
         writeln!(d).map_err(|e| anyhow::anyhow!("cannot write {shown}: {e}"))?;
-        d.commit()?;
+        files.push(d);
     }
-    Ok(())
+    // The picture and its data together, or neither.
+    AtomicFile::commit_all(files)
 }
 
 /// A sweep at the lower fidelity of `--quick`.

@@ -34,6 +34,7 @@ use std::io::Write;
 /// written (the old one stays) and exits with 128 + the signal's number.
 pub fn run(cmd: Command) -> anyhow::Result<()> {
     crate::output::sink::clean_up_on_signals()?;
+    progress::check_environment()?;
     match cmd {
         Command::Orbit(a) => orbit::run(&a),
         Command::Fixed(a) => fixed::run(&a),
@@ -52,8 +53,13 @@ pub fn run(cmd: Command) -> anyhow::Result<()> {
         Command::Completions(a) => {
             use clap::CommandFactory;
             let mut cmd = crate::config::flags::Cli::command();
-            clap_complete::generate(a.shell, &mut cmd, "bouncemap", &mut std::io::stdout());
-            Ok(())
+            // Generated into memory, then written as every command's output is: a reader
+            // that goes away ends it quietly, a full disk is one line.
+            let mut text = Vec::new();
+            clap_complete::generate(a.shell, &mut cmd, "bouncemap", &mut text);
+            let mut out = Sink::stdout();
+            let written = out.write_all(&text).map_err(anyhow::Error::from);
+            out.end(written)
         }
         Command::GenerateDocs(a) => {
             for path in crate::docs::write_all(&a.dir)? {

@@ -7,14 +7,41 @@
 //! only errors. [`Progress::bar`] draws only the bar and says nothing in a batch log
 //! (figures).
 
+use crate::config::rules::PROGRESS_EVERY;
+use crate::config::InputError;
 use crate::output::sink::streams_to_program;
 use crate::output::to_stderr;
 use bouncemap_engine::jobs::Progress as JobProgress;
 use std::io::IsTerminal;
 use std::time::{Duration, Instant};
 
-/// Interval of the log lines when stderr is not a terminal.
-pub const LOG_EVERY: Duration = Duration::from_secs(30);
+/// Interval of the log lines when stderr is not a terminal, unless
+/// `BOUNCEMAP_PROGRESS_EVERY` says otherwise.
+pub const LOG_EVERY: Duration = Duration::from_secs(PROGRESS_EVERY.default as u64);
+
+/// The interval `BOUNCEMAP_PROGRESS_EVERY` sets, checked once by [`check_environment`].
+static EVERY: std::sync::OnceLock<Duration> = std::sync::OnceLock::new();
+
+/// Read and check `BOUNCEMAP_PROGRESS_EVERY` (seconds between the lines of a batch
+/// log): a value that is not a number in range is bad input, refused before any work.
+pub fn check_environment() -> Result<(), InputError> {
+    let every = match std::env::var_os("BOUNCEMAP_PROGRESS_EVERY") {
+        None => LOG_EVERY,
+        Some(v) => {
+            let text = v.to_string_lossy();
+            let secs = PROGRESS_EVERY
+                .parse(&text)
+                .map_err(|e| InputError(format!("BOUNCEMAP_PROGRESS_EVERY: {e}")))?;
+            Duration::from_secs_f64(secs)
+        }
+    };
+    let _ = EVERY.set(every);
+    Ok(())
+}
+
+fn every() -> Duration {
+    *EVERY.get().unwrap_or(&LOG_EVERY)
+}
 
 /// Progress reporting for one computation.
 pub struct Progress {
@@ -45,11 +72,7 @@ impl Progress {
         spec: &str,
     ) -> Progress {
         let terminal = std::io::stderr().is_terminal();
-        let every = std::env::var("BOUNCEMAP_PROGRESS_EVERY")
-            .ok()
-            .and_then(|s| s.parse::<f64>().ok())
-            .filter(|s| *s > 0.0 && s.is_finite())
-            .map_or(LOG_EVERY, Duration::from_secs_f64);
+        let every = every();
         let log = !streams_to_program();
         if !terminal && log {
             let argv: Vec<String> = std::env::args().map(|a| shell_word(&a)).collect();
@@ -76,7 +99,7 @@ impl Progress {
             unit: "values",
             terminal: std::io::stderr().is_terminal(),
             log: false,
-            every: LOG_EVERY,
+            every: every(),
             last: Instant::now(),
             drawn: false,
         }
@@ -89,6 +112,11 @@ impl Progress {
 
     /// Report `p` if it is time to.
     pub fn update(&mut self, p: &JobProgress) {
+        self.update_noting(p, "");
+    }
+
+    /// [`Self::update`] with `note` (what has been found so far) after the numbers.
+    pub fn update_noting(&mut self, p: &JobProgress, note: &str) {
         let now = Instant::now();
         if self.terminal {
             // At most ten redraws a second.
@@ -104,7 +132,7 @@ impl Progress {
                 String::new()
             };
             to_stderr(&format!(
-                "\r\x1b[2K{} [{}{}] {}/{} {}{rate}  {:.0} s",
+                "\r\x1b[2K{} [{}{}] {}/{} {}{rate}{note}  {:.0} s",
                 self.what,
                 "#".repeat(filled),
                 "-".repeat(width - filled),
@@ -116,7 +144,10 @@ impl Progress {
             self.drawn = true;
         } else if self.log && now.duration_since(self.last) >= self.every {
             self.last = now;
-            to_stderr(&format!("bouncemap: {}\n", line(&self.what, self.unit, p)));
+            to_stderr(&format!(
+                "bouncemap: {}{note}\n",
+                line(&self.what, self.unit, p)
+            ));
         }
     }
 
@@ -149,12 +180,16 @@ fn line(what: &str, unit: &str, p: &JobProgress) -> String {
     } else {
         String::new()
     };
+    let events = if p.events > 0 {
+        format!(", {:.2} M events/s", p.events_per_second() / 1e6)
+    } else {
+        String::new()
+    };
     format!(
-        "{what} {}/{} {unit} ({:.1}%) in {secs:.0} s, {rate:.1} {unit}/s, {:.2} M events/s{left}",
+        "{what} {}/{} {unit} ({:.1}%) in {secs:.0} s, {rate:.1} {unit}/s{events}{left}",
         p.done,
         p.total,
         100.0 * p.fraction(),
-        p.events_per_second() / 1e6
     )
 }
 

@@ -62,6 +62,14 @@ pub fn already_written<K: FileKind>(
         // Not there, or not a regular file (a directory, a device: the output's own
         // rules decide), or this run's own part damaged: computed.
         Err(why) if !regular(path) || own_output::<K>(path, layout, header, shard) => {
+            // A path the output cannot be written to (a directory, a FIFO nobody reads)
+            // is refused now, before saying it will be computed.
+            if std::fs::symlink_metadata(path).is_ok() && !regular(path) {
+                drop(
+                    crate::output::sink::AtomicFile::create(path)
+                        .map_err(|e| InputError(format!("--out: {e}")))?,
+                );
+            }
             to_stderr(&format!("bouncemap: --resume: {why}; computing it\n"));
             Ok(false)
         }

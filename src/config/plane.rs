@@ -171,19 +171,23 @@ pub fn curves_plane(
                 d
             }
         }
-        _ => {
-            if args.r < y.lo || args.r > y.hi {
+        _ => match args.r {
+            Some(r) if r < y.lo || r > y.hi => {
                 return Err(InputError(format!(
-                    "--r {}: outside the r window {}..{}: valid an r in the window, where the curves start",
-                    args.r, y.lo, y.hi
+                    "--r {r}: outside the r window {}..{}: valid an r in the window, where the curves start (or none: the window's middle)",
+                    y.lo, y.hi
                 )));
             }
-            args.r
-        }
+            Some(r) => r,
+            None => 0.5 * (y.lo + y.hi),
+        },
     };
     let plane = bouncemap_engine::orbits::curves::Plane {
         table: table.load()?,
-        r: args.r,
+        r: match y.param {
+            SweepParam::R => at,
+            _ => args.r.unwrap_or(rules::R.default),
+        },
         alpha: (x.lo, x.hi),
         second: y.param,
         window: (y.lo, y.hi),

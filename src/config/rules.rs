@@ -286,6 +286,22 @@ pub const DPI: Rule = rule(
     300.0,
 );
 
+/// Seconds between the progress lines of a batch log (`BOUNCEMAP_PROGRESS_EVERY`).
+pub const PROGRESS_EVERY: Rule = rule(
+    "BOUNCEMAP_PROGRESS_EVERY",
+    "progress interval",
+    Limit {
+        name: "BOUNCEMAP_PROGRESS_EVERY",
+        lo: 0.001,
+        hi: 86400.0,
+        lo_open: false,
+        hi_open: false,
+        whole: false,
+        text: "seconds in [0.001, 86400]",
+    },
+    30.0,
+);
+
 const COUNT: Limit = Limit {
     name: "count",
     lo: 0.0,
@@ -373,6 +389,7 @@ mod tests {
             STARTS,
             FIG_SIDE,
             DPI,
+            PROGRESS_EVERY,
         ] {
             assert!(r.limit.contains(r.default), "{}", r.key);
         }

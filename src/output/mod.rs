@@ -12,6 +12,8 @@
 //!   quietly, any other write error fails it) or a file written atomically (temporary,
 //!   then rename), and the `--out` rule (never an input of the run). Notes and
 //!   progress go to stderr through [`to_stderr`], which never fails.
+//! * [`signals`]: the signals that end a process, answered by the headless commands
+//!   (temporaries removed) and the terminal application (terminal restored).
 //! * [`hitgrid`]: the one hit-count grid behind every text picture; [`diagram`]: its
 //!   text form with axes and labels (`sweep --format braille`).
 //! * [`basin_map`]: a basin picture on character cells, and each attractor's texture
@@ -33,6 +35,7 @@ pub mod part_file;
 pub mod plane_file;
 pub mod plane_map;
 pub mod records;
+pub mod signals;
 pub mod sink;
 pub mod sweep_file;
 pub mod text;

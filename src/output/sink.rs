@@ -4,8 +4,8 @@
 //! * A file is written to a temporary file in the same directory and renamed into place
 //!   only when complete ([`Sink::finish`]): an interrupted run, a second process writing
 //!   the same path, or a failed write leaves whatever was there before untouched and no
-//!   temporary behind (it is removed when the sink is dropped unfinished, and on
-//!   SIGTERM, SIGINT or SIGHUP by [`clean_up_on_signals`]). A path that exists and is
+//!   temporary behind (it is removed when the sink is dropped unfinished, and on every
+//!   signal that ends the process by [`clean_up_on_signals`]). A path that exists and is
 //!   not a regular file (a device such as /dev/null or /dev/full, a FIFO) is written
 //!   directly.
 //! * The `--out` rule ([`AtomicFile::create`]): an output is never a file this run read
@@ -97,11 +97,15 @@ fn real_path(path: &Path) -> PathBuf {
     }
 }
 
-/// On SIGTERM, SIGINT or SIGHUP: remove every temporary file being written, then exit
-/// with 128 + the signal's number (as a shell expects). For the headless commands.
+/// On any signal that ends the process: remove every temporary file being written,
+/// then end as that signal asks: SIGTERM, SIGINT or SIGHUP exit with 128 + the signal's
+/// number (as a shell expects), every other one ([`super::signals::ending`]: SIGQUIT,
+/// SIGUSR1, ...) by its default action. For the headless commands.
 pub fn clean_up_on_signals() -> io::Result<()> {
     use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
-    let mut signals = signal_hook::iterator::Signals::new([SIGTERM, SIGINT, SIGHUP])?;
+    let mut wanted = vec![SIGTERM, SIGINT, SIGHUP];
+    wanted.extend(super::signals::ending());
+    let mut signals = signal_hook::iterator::Signals::new(wanted)?;
     std::thread::Builder::new()
         .name("signals".into())
         .spawn(move || {
@@ -113,6 +117,10 @@ pub fn clean_up_on_signals() -> io::Result<()> {
                 {
                     let _ = std::fs::remove_file(p);
                 }
+                if [SIGTERM, SIGINT, SIGHUP].contains(&sig) {
+                    std::process::exit(128 + sig);
+                }
+                super::signals::die_by(sig);
                 std::process::exit(128 + sig);
             }
         })?;
@@ -182,6 +190,11 @@ impl AtomicFile {
                     "{shown}: it is {input}, an input of this run: valid a file that is none of its inputs"
                 ));
             }
+            if !writable(path) {
+                return Err(format!(
+                    "cannot replace {shown}: it is read-only for this user: valid a file you may write (or a new path)"
+                ));
+            }
         }
         let real = real_path(path);
         {
@@ -214,6 +227,10 @@ impl AtomicFile {
             {
                 Ok(f) => {
                     register(&temp);
+                    // A file replaced keeps its permissions; a new one gets the umask's.
+                    if let Ok(meta) = std::fs::metadata(&target) {
+                        let _ = f.set_permissions(meta.permissions());
+                    }
                     return Ok(AtomicFile {
                         target,
                         temp: Some(temp),
@@ -236,25 +253,61 @@ impl AtomicFile {
 
     /// Flush, sync and rename into place. A failure names the file (status 1) and
     /// leaves the old file as it was.
-    pub fn commit(mut self) -> anyhow::Result<()> {
-        let shown = shown_path(&self.target);
-        let fail = |e: io::Error| anyhow::anyhow!("cannot write {shown}: {e}");
-        self.out.flush().map_err(fail)?;
-        if let Some(temp) = self.temp.take() {
-            let result = self
-                .out
-                .get_ref()
-                .sync_all()
-                .and_then(|_| std::fs::rename(&temp, &self.target));
-            if let Err(e) = result {
-                let _ = std::fs::remove_file(&temp);
-                unregister(&temp);
-                return Err(fail(e));
-            }
-            unregister(&temp);
+    pub fn commit(self) -> anyhow::Result<()> {
+        Self::commit_all(vec![self])
+    }
+
+    /// Put several files of one run into place together: every one is flushed and
+    /// synced first, and only when all of them are complete are they renamed. A
+    /// failure (a full disk while finishing any of them) names the file and leaves
+    /// every old file as it was.
+    pub fn commit_all(mut files: Vec<AtomicFile>) -> anyhow::Result<()> {
+        for f in &mut files {
+            f.complete()?;
+        }
+        for f in &mut files {
+            f.place()?;
         }
         Ok(())
     }
+
+    /// Flush and sync the temporary (or flush a file written directly).
+    fn complete(&mut self) -> anyhow::Result<()> {
+        let shown = shown_path(&self.target);
+        let fail = |e: io::Error| anyhow::anyhow!("cannot write {shown}: {e}");
+        self.out.flush().map_err(fail)?;
+        if self.temp.is_some() {
+            self.out.get_ref().sync_all().map_err(fail)?;
+        }
+        Ok(())
+    }
+
+    /// Rename the completed temporary into place.
+    fn place(&mut self) -> anyhow::Result<()> {
+        if let Some(temp) = self.temp.take() {
+            let result = std::fs::rename(&temp, &self.target);
+            unregister(&temp);
+            if let Err(e) = result {
+                let _ = std::fs::remove_file(&temp);
+                return Err(anyhow::anyhow!(
+                    "cannot write {}: {e}",
+                    shown_path(&self.target)
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Whether this process may write the existing file `path` (its permissions and the
+/// effective user, as `open` would judge them).
+fn writable(path: &Path) -> bool {
+    use std::os::unix::ffi::OsStrExt;
+    let Ok(c) = std::ffi::CString::new(path.as_os_str().as_bytes()) else {
+        return true;
+    };
+    // SAFETY: faccessat on a NUL-terminated path of our own.
+    unsafe { libc::faccessat(libc::AT_FDCWD, c.as_ptr(), libc::W_OK, libc::AT_EACCESS) == 0 }
 }
 
 impl Write for AtomicFile {

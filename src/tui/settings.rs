@@ -32,6 +32,7 @@ use crate::config::display::ColorChoice;
 use crate::config::files::{read_text, SMALL_FILE};
 use crate::config::rules;
 use crate::output::hitgrid::Marker;
+use crate::output::text::shortest;
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -139,11 +140,11 @@ impl Config {
                 }
             };
             push(ParamId::Table, d.table);
-            push(ParamId::D, d.d.map(|x| x.to_string()));
-            push(ParamId::R, d.r.map(|x| x.to_string()));
+            push(ParamId::D, d.d.map(shortest));
+            push(ParamId::R, d.r.map(shortest));
             push(ParamId::K, d.k.map(|x| x.to_string()));
-            push(ParamId::Alpha, d.alpha.map(|x| x.to_string()));
-            push(ParamId::T0, d.t0.map(|x| x.to_string()));
+            push(ParamId::Alpha, d.alpha.map(shortest));
+            push(ParamId::T0, d.t0.map(shortest));
             push(ParamId::Start, d.start);
             for (id, v) in [
                 (ParamId::V0, d.v0),
@@ -153,7 +154,7 @@ impl Config {
                 match v {
                     None => {}
                     Some(toml::Value::String(s)) => push(id, Some(s)),
-                    Some(toml::Value::Float(x)) => push(id, Some(x.to_string())),
+                    Some(toml::Value::Float(x)) => push(id, Some(shortest(x))),
                     Some(toml::Value::Integer(x)) => push(id, Some(x.to_string())),
                     Some(_) => {
                         return Err(format!("defaults.{}: valid {}", key_of(id), id.range()))
@@ -191,7 +192,7 @@ impl Config {
             p.set_text(*id, text).map_err(|e| {
                 // The message starts with the row's label; the file's key is named instead.
                 let detail = e.strip_prefix(&format!("{}: ", id.label())).unwrap_or(&e);
-                format!("defaults.{} = {text}: {detail}", key_of(*id))
+                format!("defaults.{} = {}: {detail}", key_of(*id), shown_value(text))
             })?;
         }
         if let Some((lo, hi)) = self.sweep {
@@ -203,13 +204,25 @@ impl Config {
                 && next.validate(ParamId::Lo).is_ok();
             if !ok {
                 return Err(format!(
-                    "defaults.sweep = [{lo}, {hi}]: valid [from, to] with from < to, both in {}",
+                    "defaults.sweep = [{}, {}]: valid [from, to] with from < to, both in {}",
+                    shortest(lo),
+                    shortest(hi),
                     rules::ALPHA.limit.text
                 ));
             }
             *p = next;
         }
         Ok(())
+    }
+}
+
+/// A value from the file as a refusal shows it: as written if short, else quoted and
+/// cut (the refusal stays one short line).
+fn shown_value(text: &str) -> String {
+    if text.chars().count() <= crate::output::text::QUOTED_MAX && !text.chars().any(char::is_control) {
+        text.to_string()
+    } else {
+        crate::output::text::quoted(text)
     }
 }
 

@@ -135,7 +135,8 @@ pub fn draw_synced(term: &mut Term, f: impl FnOnce(&mut ratatui::Frame)) -> io::
 /// The one handler of the signals that end the application. Returns the stop signal
 /// received, if any: 0 until SIGTERM, SIGHUP or SIGINT arrives, then that signal's
 /// number (the event loop answers it). Every other signal whose default action ends the
-/// process ([`ENDING`]) restores the terminal in its handler and then takes that action.
+/// process ([`crate::output::signals::ending`]) restores the terminal in its handler and
+/// then takes that action.
 pub fn signal_flag() -> io::Result<Arc<AtomicUsize>> {
     let flag = Arc::new(AtomicUsize::new(0));
     for sig in [
@@ -145,60 +146,17 @@ pub fn signal_flag() -> io::Result<Arc<AtomicUsize>> {
     ] {
         signal_hook::flag::register_usize(sig, flag.clone(), sig as usize)?;
     }
-    for sig in ending_signals() {
+    for sig in crate::output::signals::ending() {
         // SAFETY: the action calls only async-signal-safe functions (atomics, write,
         // tcsetattr, sigaction, pthread_sigmask, raise).
         unsafe {
             signal_hook::low_level::register(sig, move || {
                 restore_in_handler();
-                die_by(sig);
+                crate::output::signals::die_by(sig);
             })?;
         }
     }
     Ok(flag)
-}
-
-/// Signals whose default action ends the process, other than the three the event loop
-/// answers, the program's own faults and SIGPIPE (ignored by the Rust runtime).
-pub const ENDING: [libc::c_int; 13] = [
-    libc::SIGQUIT,
-    libc::SIGABRT,
-    libc::SIGUSR1,
-    libc::SIGUSR2,
-    libc::SIGALRM,
-    libc::SIGVTALRM,
-    libc::SIGPROF,
-    libc::SIGIO,
-    libc::SIGPWR,
-    libc::SIGSTKFLT,
-    libc::SIGXCPU,
-    libc::SIGXFSZ,
-    libc::SIGSYS,
-];
-
-/// [`ENDING`] and the real-time signals (whose default action ends the process too).
-fn ending_signals() -> Vec<libc::c_int> {
-    let mut v = ENDING.to_vec();
-    v.extend(libc::SIGRTMIN()..=libc::SIGRTMAX());
-    v
-}
-
-/// End the process by `sig`'s default action (as the shell expects: status 128 + its
-/// number, a core where SIGQUIT or SIGABRT leave one), from inside its handler: the
-/// default disposition back, the signal unblocked, raised again.
-fn die_by(sig: libc::c_int) {
-    // SAFETY: sigaction, pthread_sigmask and raise are async-signal-safe; the structures
-    // are our own.
-    unsafe {
-        let mut action: libc::sigaction = std::mem::zeroed();
-        action.sa_sigaction = libc::SIG_DFL;
-        libc::sigaction(sig, &action, std::ptr::null_mut());
-        let mut set: libc::sigset_t = std::mem::zeroed();
-        libc::sigemptyset(&mut set);
-        libc::sigaddset(&mut set, sig);
-        libc::pthread_sigmask(libc::SIG_UNBLOCK, &set, std::ptr::null_mut());
-        libc::raise(sig);
-    }
 }
 
 /// [`restore`] as a signal handler may do it: one write of the restoring sequences and

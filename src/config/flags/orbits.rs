@@ -92,10 +92,10 @@ pub struct CurvesSpecArgs {
     /// The vertical axis, the second parameter: r:LO..HI or d:LO..HI.
     #[arg(long, value_name = "PARAM:LO..HI")]
     pub y: String,
-    /// Coefficient of restitution r; valid (0, 1). With an r axis, the value the
-    /// curves are started from.
-    #[arg(long, default_value_t = rules::R.default, value_parser = rules::R.real(), value_name = "R")]
-    pub r: f64,
+    /// Coefficient of restitution r; valid (0, 1) [default: 0.8]. With an r axis, the
+    /// value the curves are started from (default: the window's middle).
+    #[arg(long, value_parser = rules::R.real(), value_name = "R")]
+    pub r: Option<f64>,
     /// k of the (1, k) solution whose branches are followed; valid 1 to 100.
     #[arg(long, default_value_t = rules::K.default as u32, value_parser = rules::K.whole::<u32>(), value_name = "K")]
     pub k: u32,

@@ -473,6 +473,20 @@ pub struct Curves {
     /// Special points that were not followed, with the reason (a seed the corrector
     /// could not solve, e.g. a grazing cycle that cannot be solved at the grazing).
     pub skipped: Vec<(Special, String)>,
+    /// Values of the second parameter where no branch could be started, with the
+    /// reason (e.g. a guess near which there is no cycle).
+    pub unseeded: Vec<(f64, String)>,
+}
+
+/// How far [`curves_with_progress`] has got.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct CurvesProgress {
+    /// Seed values of the second parameter whose branches are all followed.
+    pub seeds_done: usize,
+    /// Seed values in all.
+    pub seeds: usize,
+    /// Curves followed so far.
+    pub curves: usize,
 }
 
 /// At most this many curves.
@@ -480,11 +494,21 @@ pub const MAX_CURVES: usize = 256;
 
 /// Follow every curve reachable from `seeds` in `plane`.
 pub fn curves(plane: &Plane, seeds: Seeds) -> Result<Curves, EngineError> {
+    curves_with_progress(plane, seeds, &mut |_| {})
+}
+
+/// [`curves`], telling `report` after each seed value's branches and after each curve.
+pub fn curves_with_progress(
+    plane: &Plane,
+    seeds: Seeds,
+    report: &mut dyn FnMut(CurvesProgress),
+) -> Result<Curves, EngineError> {
     plane.check()?;
     let mut out = Curves {
         curves: Vec::new(),
         codim2: Vec::new(),
         skipped: Vec::new(),
+        unseeded: Vec::new(),
     };
     let values: Vec<f64> = match seeds {
         Seeds::FromFixed { at, count, .. } if count <= 1 => vec![at],
@@ -495,7 +519,14 @@ pub fn curves(plane: &Plane, seeds: Seeds) -> Result<Curves, EngineError> {
             .collect(),
         Seeds::Point { at, .. } => vec![at],
     };
-    for p in values {
+    let total = values.len();
+    for (done, p) in values.into_iter().enumerate() {
+        let mut progress = CurvesProgress {
+            seeds_done: done,
+            seeds: total,
+            curves: out.curves.len(),
+        };
+        report(progress);
         plane.second.limit().check(p)?;
         let (table, r) = match plane.second {
             SweepParam::D => (Table::fd(p)?, plane.r),
@@ -509,8 +540,12 @@ pub fn curves(plane: &Plane, seeds: Seeds) -> Result<Curves, EngineError> {
             max_period,
             ..Options::default()
         };
-        let Ok(found) = branches(&table, r, plane.alpha, start, opts) else {
-            continue;
+        let found = match branches(&table, r, plane.alpha, start, opts) {
+            Ok(found) => found,
+            Err(e) => {
+                out.unseeded.push((p, e.to_string()));
+                continue;
+            }
         };
         for b in &found {
             let ends = [&b.begin, &b.end];
@@ -560,9 +595,16 @@ pub fn curves(plane: &Plane, seeds: Seeds) -> Result<Curves, EngineError> {
                     }
                     Err(why) => out.skipped.push((s.clone(), why)),
                 }
+                progress.curves = out.curves.len();
+                report(progress);
             }
         }
     }
+    report(CurvesProgress {
+        seeds_done: total,
+        seeds: total,
+        curves: out.curves.len(),
+    });
     dedupe(&mut out, 1e-4 * plane.scale());
     Ok(out)
 }
