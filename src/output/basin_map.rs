@@ -1,6 +1,6 @@
 //! A basin picture on a grid of character cells, and what each attractor looks like in
-//! it: its texture (a braille pattern that tells attractors apart without colour) and
-//! its legend line; its number and name are the figures' ([`numbers`], [`describe`],
+//! it: its texture (a braille pattern, or with another marker a block or a shape, that
+//! tells attractors apart without colour) and its legend line; its number and name are the figures' ([`numbers`], [`describe`],
 //! [`exponent`] from `bouncemap_figures::basins`, re-exported here). Used by `basins
 //! --format braille` and by the terminal application's basins panel.
 //!
@@ -8,17 +8,37 @@
 //! (while the picture fills in, a point not yet computed takes the label of the coarser
 //! point whose block it lies in).
 
+use super::hitgrid::Marker;
 use super::text::significant;
 use bouncemap_engine::attractors::basins::Basins;
 use bouncemap_engine::attractors::Registry;
 pub use bouncemap_figures::basins::{describe, exponent, numbers};
 
-/// Textures for attractor numbers 1, 2, … (the last repeats beyond).
+/// Textures for attractor numbers 1, 2, … (the last repeats beyond), in braille.
 pub const TEXTURES: [char; 8] = ['⣿', '⠶', '⢕', '⡇', '⠉', '⣀', '⠑', '⠂'];
+/// The same in block elements (`--marker halfblock`).
+pub const BLOCK_TEXTURES: [char; 8] = ['█', '▓', '▒', '░', '▚', '▞', '▄', '▀'];
+/// The same in geometric shapes (`--marker dot`).
+pub const DOT_TEXTURES: [char; 8] = ['●', '◆', '■', '▲', '○', '◇', '□', '△'];
 
-/// The texture of the attractor shown as number `number` (1-based).
+/// The textures a plot drawn with `marker` uses (no braille unless it is braille).
+pub fn textures(marker: Marker) -> &'static [char; 8] {
+    match marker {
+        Marker::Braille => &TEXTURES,
+        Marker::HalfBlock => &BLOCK_TEXTURES,
+        Marker::Dot => &DOT_TEXTURES,
+    }
+}
+
+/// The braille texture of the attractor shown as number `number` (1-based).
 pub fn texture(number: usize) -> char {
-    TEXTURES[number.saturating_sub(1).min(TEXTURES.len() - 1)]
+    texture_in(Marker::Braille, number)
+}
+
+/// The texture of attractor `number` (1-based) among `marker`'s.
+pub fn texture_in(marker: Marker, number: usize) -> char {
+    let t = textures(marker);
+    t[number.saturating_sub(1).min(t.len() - 1)]
 }
 
 /// One legend line: texture, number, kind and period, exponent, basin share.
@@ -139,10 +159,17 @@ mod tests {
 
     #[test]
     fn textures_are_distinct() {
-        let mut t = TEXTURES.to_vec();
-        t.sort();
-        t.dedup();
-        assert_eq!(t.len(), TEXTURES.len());
+        for set in [TEXTURES, BLOCK_TEXTURES, DOT_TEXTURES] {
+            let mut t = set.to_vec();
+            t.sort();
+            t.dedup();
+            assert_eq!(t.len(), TEXTURES.len());
+        }
+        for m in [Marker::HalfBlock, Marker::Dot] {
+            assert!(textures(m)
+                .iter()
+                .all(|c| !('\u{2800}'..='\u{28ff}').contains(c)));
+        }
         assert_eq!(texture(1), '⣿');
         assert_eq!(texture(100), '⠂');
     }

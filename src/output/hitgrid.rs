@@ -49,6 +49,26 @@ impl Marker {
             Marker::Dot => (1, 1),
         }
     }
+
+    /// `text` as a plot drawn with this marker shows it: each braille sample in it (a
+    /// legend's "⣿ dots", "⠤ line") becomes that marker's glyph for as many dots (a
+    /// full cell, or a line), so no braille is shown unless the marker is braille.
+    pub fn samples(self, text: &str) -> String {
+        text.chars()
+            .map(|c| match (self, c as u32) {
+                (Marker::Braille, _) | (_, 0..=0x2800) | (_, 0x2900..) => c,
+                (m, code) => {
+                    let full = (code - 0x2800).count_ones() >= 6;
+                    match (m, full) {
+                        (Marker::HalfBlock, true) => '█',
+                        (Marker::HalfBlock, false) => '▀',
+                        (_, true) => '●',
+                        (_, false) => '•',
+                    }
+                }
+            })
+            .collect()
+    }
 }
 
 /// A closed interval of plot coordinates.

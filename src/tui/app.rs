@@ -9,11 +9,14 @@
 //! key's effect can be tested directly.
 
 use super::components::presets::PresetPicker;
-use super::components::{help, legend, status, table_view, too_small, Msg, Panels, Workers};
+use super::components::shared::LOG_LEN;
+use super::components::{
+    help, legend, messages, status, table_view, too_small, Msg, Panels, Workers,
+};
 pub use super::components::{Effect, Overlay, Shared, Target};
 use super::export::free_name;
 use super::keymap::{Action, Keymap};
-use super::layout::{layout, Slot};
+use super::layout::{layout, left_out_note, narrow, Slot, BOTTOM, FULL_W};
 use super::params::{ParamId, Params};
 use super::theme::Theme;
 use crate::output::hitgrid::Marker;
@@ -88,13 +91,15 @@ impl App {
             return;
         }
         match self.shared.overlay {
-            Overlay::Help | Overlay::Legend => {
+            Overlay::Help | Overlay::Legend | Overlay::Messages => {
                 match action {
                     Action::Up => self.help_scroll = self.help_scroll.saturating_sub(1),
-                    Action::Down => self.help_scroll = (self.help_scroll + 1).min(60),
-                    Action::Help | Action::Legend | Action::Cancel | Action::Enter => {
-                        self.shared.overlay = Overlay::None
-                    }
+                    Action::Down => self.help_scroll = (self.help_scroll + 1).min(LOG_LEN * 4),
+                    Action::Help
+                    | Action::Legend
+                    | Action::Messages
+                    | Action::Cancel
+                    | Action::Enter => self.shared.overlay = Overlay::None,
                     _ => {}
                 }
                 return;
@@ -134,6 +139,12 @@ impl App {
                 self.shared.overlay = Overlay::Legend;
                 self.help_scroll = 0;
             }
+            Action::Messages => {
+                self.shared.overlay = Overlay::Messages;
+                // The newest messages are at the end: start there.
+                self.help_scroll = LOG_LEN * 4;
+            }
+            Action::CyclePanels => self.cycle_panels(),
             Action::TableView => self.shared.overlay = Overlay::Table,
             Action::Presets => self.shared.overlay = Overlay::Presets { selected: 0 },
             Action::Export | Action::ExportView => {
@@ -155,6 +166,26 @@ impl App {
         self.announce();
     }
 
+    /// Under [`FULL_W`] columns: leave out the next bottom panel instead (the one left
+    /// out comes back), and say which.
+    fn cycle_panels(&mut self) {
+        let key = self.shared.keymap.hint(Action::CyclePanels);
+        if !self.shared.narrow {
+            self.shared.say(
+                format!("{key}: all three bottom panels fit at this width (it cycles them under {FULL_W} columns)"),
+                false,
+            );
+            return;
+        }
+        let i = BOTTOM
+            .iter()
+            .position(|s| *s == self.shared.left_out)
+            .unwrap_or(0);
+        self.shared.left_out = BOTTOM[(i + 1) % BOTTOM.len()];
+        let note = left_out_note(self.shared.left_out, &key);
+        self.shared.say(note, false);
+    }
+
     /// Move the focus to the next (or previous) slot of the focus ring.
     fn move_focus(&mut self, next: bool) {
         let ring = self.panels.focus_ring();
@@ -169,23 +200,20 @@ impl App {
         self.panels.focus_moved();
     }
 
-    /// A typed character while editing a parameter or an export's file name (Enter
-    /// commits, Esc cancels).
-    pub fn edit_key(&mut self, key: crossterm::event::KeyCode) {
-        use crossterm::event::KeyCode;
+    /// A typed key while editing a parameter or an export's file name (Enter commits,
+    /// Esc cancels; [`super::line_edit`]).
+    pub fn edit_key(&mut self, key: impl Into<crossterm::event::KeyEvent>) {
+        use super::line_edit::{edit, Edit};
+        let key = key.into();
         self.shared.dirty = true;
         if let Some(name) = self.export_name.as_mut() {
-            match key {
-                KeyCode::Char(c) if name.chars().count() < 200 => name.push(c),
-                KeyCode::Backspace => {
-                    name.pop();
-                }
-                KeyCode::Esc => self.export_name = None,
-                KeyCode::Enter => {
+            match edit(name, key, 200) {
+                Edit::Typing => {}
+                Edit::Cancel => self.export_name = None,
+                Edit::Commit => {
                     self.export_pending = self.export_name.take();
                     self.shared.effect(Effect::Export);
                 }
-                _ => {}
             }
             return;
         }
@@ -281,7 +309,15 @@ impl App {
     /// Size the panels to the layout of a `w × h` screen (before sweeps ask for the
     /// diagram's width, and before drawing).
     pub fn set_size(&mut self, area: Rect) {
-        if let Some(p) = layout(area) {
+        let was = self.shared.narrow;
+        self.shared.narrow = narrow(area.width);
+        if self.shared.narrow && !was && layout(area, self.shared.left_out).is_some() {
+            // Whatever a narrow screen leaves out is announced, with the key.
+            let key = self.shared.keymap.hint(Action::CyclePanels);
+            let note = left_out_note(self.shared.left_out, &key);
+            self.shared.say(note, false);
+        }
+        if let Some(p) = layout(area, self.shared.left_out) {
             self.panels.set_panes(&p, &mut self.shared);
         }
     }
@@ -291,7 +327,7 @@ impl App {
         let area = frame.area();
         let buf = frame.buffer_mut();
         let s = &self.shared;
-        let Some(p) = layout(area) else {
+        let Some(p) = layout(area, s.left_out) else {
             too_small::draw(s, area, buf);
             return;
         };
@@ -301,6 +337,7 @@ impl App {
         match s.overlay {
             Overlay::Help => help::draw(s, self.help_scroll, area, buf),
             Overlay::Legend => legend::draw(s, self.help_scroll, area, buf),
+            Overlay::Messages => messages::draw(s, self.help_scroll, area, buf),
             Overlay::Table => table_view::draw(s, area, buf),
             Overlay::Presets { selected } => self.presets.draw(s, selected, area, buf),
             Overlay::None => {}

@@ -37,6 +37,8 @@ pub enum Action {
     TableView,
     TogglePlane,
     PlaneCurves,
+    CyclePanels,
+    Messages,
     Legend,
     Presets,
     Export,
@@ -46,7 +48,7 @@ pub enum Action {
 
 impl Action {
     /// Every action, in help order.
-    pub const ALL: [Action; 33] = [
+    pub const ALL: [Action; 35] = [
         Action::Up,
         Action::Down,
         Action::Left,
@@ -72,12 +74,14 @@ impl Action {
         Action::TableView,
         Action::TogglePlane,
         Action::PlaneCurves,
+        Action::CyclePanels,
         Action::Presets,
         Action::Export,
         Action::ExportView,
         Action::Pause,
         Action::Suspend,
         Action::Legend,
+        Action::Messages,
         Action::Help,
         Action::Quit,
     ];
@@ -113,6 +117,8 @@ impl Action {
             Action::TableView => "table_view",
             Action::TogglePlane => "plane",
             Action::PlaneCurves => "plane_curves",
+            Action::CyclePanels => "cycle_panels",
+            Action::Messages => "messages",
             Action::Legend => "legend",
             Action::Presets => "presets",
             Action::Export => "export",
@@ -158,6 +164,10 @@ impl Action {
             Action::PlaneCurves => {
                 "plane: two-parameter curves (PD, fold, BC, grazing) over it, on/off"
             }
+            Action::CyclePanels => {
+                "under 100 columns: show the bottom panel left out (phase, stability, bounce)"
+            }
+            Action::Messages => "the messages so far, each in full (the status line cuts them)",
             Action::Legend => "what every mark, line and colour on the screen means",
             Action::Presets => "presets: the paper's figures",
             Action::Export => "export the diagram (csv and text; the name is typed)",
@@ -372,6 +382,8 @@ impl Default for Keymap {
             (Key::ch(' '), Action::Pause),
             (Key::ch('?'), Action::Help),
             (Key::ch('l'), Action::Legend),
+            (Key::ch('L'), Action::Messages),
+            (Key::ch('o'), Action::CyclePanels),
             (Key::plain(Tab), Action::NextPanel),
             (Key::plain(BackTab), Action::PrevPanel),
             (Key::plain(Up), Action::Up),

@@ -1,10 +1,10 @@
 //! Where each panel goes: the screen's slots (parameters, diagram, phase plot,
 //! stability, bounce, status line), reflowing from 120×40 down to 80×24; below that the
 //! too-small message replaces everything. Under [`FULL_W`] columns the bottom row keeps
-//! the phase plot and the stability panel at readable widths and leaves the bounce panel
-//! out (its slot has no area; stepping still moves the phase plot's ▣), rather than
-//! squeezing three panels into plots a few columns wide. Which panel takes which slot
-//! is the panel registry's (`components`).
+//! two of its three panels at readable widths rather than squeezing three into plots a
+//! few columns wide: the one left out (`left_out` of [`layout`], the bounce panel
+//! unless a key chose another) has no area, and the panels say so ([`left_out_note`]). Which
+//! panel takes which slot is the panel registry's (`components`).
 
 use ratatui::layout::{Constraint, Layout, Rect};
 
@@ -48,8 +48,38 @@ impl Panes {
     }
 }
 
-/// Split the screen. None when it is too small.
-pub fn layout(area: Rect) -> Option<Panes> {
+/// The bottom row's slots, in order: the one left out at narrow widths cycles
+/// through them.
+pub const BOTTOM: [Slot; 3] = [Slot::Phase, Slot::Stability, Slot::Bounce];
+
+/// Whether a screen `width` columns wide leaves one of the bottom panels out.
+pub fn narrow(width: u16) -> bool {
+    width < FULL_W
+}
+
+/// What a panel's name is in messages.
+pub fn slot_name(slot: Slot) -> &'static str {
+    match slot {
+        Slot::Params => "parameters panel",
+        Slot::Diagram => "diagram",
+        Slot::Phase => "phase plot",
+        Slot::Stability => "stability panel",
+        Slot::Bounce => "bounce panel",
+    }
+}
+
+/// The note that says which bottom panel a narrow screen leaves out, and the key
+/// (`key`) that brings it back.
+pub fn left_out_note(left_out: Slot, key: &str) -> String {
+    format!(
+        "{} left out: {key} shows it (two bottom panels fit under {FULL_W} columns)",
+        slot_name(left_out)
+    )
+}
+
+/// Split the screen, leaving `left_out` (one of [`BOTTOM`]) out of a narrow bottom
+/// row. None when it is too small.
+pub fn layout(area: Rect, left_out: Slot) -> Option<Panes> {
     if area.width < MIN_W || area.height < MIN_H {
         return None;
     }
@@ -60,7 +90,7 @@ pub fn layout(area: Rect) -> Option<Panes> {
     let pw = if area.width >= 110 { 30 } else { 26 };
     let [params, diagram] =
         Layout::horizontal([Constraint::Length(pw), Constraint::Min(0)]).areas(top);
-    let [phase, stability, bounce] = if area.width >= FULL_W {
+    let [phase, stability, bounce] = if !narrow(area.width) {
         Layout::horizontal([
             Constraint::Ratio(1, 3),
             Constraint::Ratio(1, 3),
@@ -68,9 +98,18 @@ pub fn layout(area: Rect) -> Option<Panes> {
         ])
         .areas(bottom)
     } else {
-        let [phase, stability] =
+        // The two shown in their order, the third with no area.
+        let [a, b] =
             Layout::horizontal([Constraint::Ratio(1, 2), Constraint::Ratio(1, 2)]).areas(bottom);
-        [phase, stability, Rect::new(bottom.right(), bottom.y, 0, 0)]
+        let none = Rect::new(bottom.right(), bottom.y, 0, 0);
+        let mut shown = [a, b].into_iter();
+        BOTTOM.map(|s| {
+            if s == left_out {
+                none
+            } else {
+                shown.next().unwrap_or(none)
+            }
+        })
     };
     Some(Panes {
         params,

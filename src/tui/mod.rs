@@ -8,7 +8,8 @@
 //!   work and drawing; [`layout`]: the slots the panels take.
 //! * [`params`]: the editable values (checked by the shared rules); [`keymap`]: keys →
 //!   actions, and the help overlay generated from the same table; [`settings`]: the
-//!   config file.
+//!   config file; [`line_edit`]: the typed line of the parameter editor and the export
+//!   prompt.
 //! * [`runtime`]: the event loop; [`input`]: keys, mouse and terminal signals, parsed
 //!   here; [`workers`]: background work, latest-wins, on the engine's executor or
 //!   threads of its own, its results typed; [`analysis`]: the orbit analysis the
@@ -29,6 +30,7 @@ pub mod export;
 pub mod input;
 pub mod keymap;
 pub mod layout;
+pub mod line_edit;
 pub mod params;
 pub mod plot;
 pub mod runtime;

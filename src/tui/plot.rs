@@ -76,7 +76,8 @@ pub struct Axes<'a> {
 }
 
 /// Draw a y axis (labels on the left, `label_w` wide) and an x axis (labels on the
-/// last row, both ends labelled where they fit) around a plot, with the axes' names:
+/// last row: both ends always, [`end_labels`], and the ticks between that fit) around a
+/// plot, with the axes' names:
 /// the y name in the label column beside the plot's middle (or the nearest row free of
 /// tick labels), the x name at the left end of the x axis's row. Returns the plot area
 /// inside.
@@ -156,7 +157,22 @@ pub fn draw_axes(
     } else {
         x.span()
     };
-    let mut free_from = plot.x;
+    // Both ends first, each with the decimals the window's span needs (a zoomed
+    // window shows where it is), then the ticks between that do not touch them.
+    let (left, right) = end_labels(x.lo, x.hi);
+    let (lw, rw) = (left.chars().count() as u16, right.chars().count() as u16);
+    let right_at = (plot.x + plot.width).saturating_sub(rw);
+    let ends_fit = lw + 1 + rw <= plot.width;
+    if ends_fit {
+        buf.set_string(plot.x, row, &left, style);
+        buf.set_string(right_at, row, &right, style);
+    }
+    let mut free_from = if ends_fit { plot.x + lw + 1 } else { plot.x };
+    let stop = if ends_fit {
+        right_at.saturating_sub(1)
+    } else {
+        plot.x + plot.width
+    };
     for t in xt {
         let col =
             plot.x + ((x.frac(t) * (plot.width as f64 - 1.0)).round() as u16).min(plot.width - 1);
@@ -167,7 +183,7 @@ pub fn draw_axes(
             .saturating_sub(w / 2)
             .max(plot.x)
             .min((plot.x + plot.width).saturating_sub(w));
-        if start < free_from {
+        if start < free_from || start + w > stop {
             continue;
         }
         buf.set_string(start, row, &s, style);
@@ -176,10 +192,61 @@ pub fn draw_axes(
     plot
 }
 
+/// The labels of an axis's two ends, `lo` and `hi`: as few decimals as show both to a
+/// thousandth of the span (0.45 and 0.60 for 0.45..0.6; 0.55123 and 0.56340 for a zoom
+/// to 0.551234..0.5634; 0.0 and 1.0 for 0..1), so a zoomed window says where it is.
+pub fn end_labels(lo: f64, hi: f64) -> (String, String) {
+    let tol = (hi - lo).abs() * 1e-3;
+    let fits = |x: f64, d: i32| {
+        let p = 10f64.powi(d);
+        ((x * p).round() / p - x).abs() <= tol
+    };
+    let dec = (1..=10).find(|&d| fits(lo, d) && fits(hi, d)).unwrap_or(10) as usize;
+    (format!("{lo:.dec$}"), format!("{hi:.dec$}"))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::config::display::ColorMode;
+
+    #[test]
+    fn both_ends_of_the_x_axis_are_labelled_in_any_window() {
+        let theme = Theme::new(ColorMode::None);
+        for (lo, hi, width) in [
+            (0.45, 0.6, 80u16),
+            (0.551_234, 0.563_4, 60),
+            (0.5061, 0.506_235, 40),
+            (0.45, 0.6, 200),
+        ] {
+            let area = Rect::new(0, 0, width, 6);
+            let mut buf = Buffer::empty(area);
+            let axes = Axes {
+                x: Range::new(lo, hi),
+                y: Range::new(0.0, 1.0),
+                x_name: "α",
+                y_name: "t̂",
+            };
+            draw_axes(area, &mut buf, axes, 5, &theme);
+            let row: String = (0..width)
+                .map(|c| buf[(c, 5)].symbol().to_string())
+                .collect();
+            let (l, r) = end_labels(lo, hi);
+            assert_ne!(l, r);
+            assert!(
+                row[..].contains(&l) && row.trim_end().ends_with(&r),
+                "{row:?}"
+            );
+            let at = |x: &str| row.find(x).unwrap();
+            assert!(at(&l) < at(&r));
+        }
+        assert_eq!(end_labels(0.45, 0.6), ("0.45".into(), "0.60".into()));
+        assert_eq!(
+            end_labels(0.551234, 0.5634),
+            ("0.55123".into(), "0.56340".into())
+        );
+        assert_eq!(end_labels(0.0, 1.0), ("0.0".into(), "1.0".into()));
+    }
 
     #[test]
     fn render_writes_one_glyph_per_lit_cell_with_density_levels() {

@@ -125,7 +125,7 @@ fn handle_key(app: &mut App, k: KeyEvent) {
         return;
     }
     if app.editing() {
-        app.edit_key(k.code);
+        app.edit_key(k);
     } else if let Some(a) = app.shared.keymap.action(&k) {
         app.handle(a);
     }
@@ -194,7 +194,7 @@ fn apply(e: Effect, app: &mut App, workers: &Workers, term: &mut Term) -> anyhow
                     Err(e) => (e, true),
                 }
             };
-            app.shared.message = Some(msg);
+            app.shared.say(msg.0, msg.1);
         }
         Effect::Suspend => suspend(app, term)?,
     }

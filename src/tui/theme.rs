@@ -4,7 +4,22 @@
 
 use crate::config::display::ColorMode;
 use crate::output::classes::Class;
+use bouncemap_figures::basins as attractor_palette;
 use ratatui::style::{Color, Modifier, Style};
+
+/// The attractors' colours among the 16 system colours: the nearest hue of each of the
+/// figures' palette ([`attractor_palette::PALETTE`]: blue, orange, green, red, purple,
+/// brown, pink, light blue).
+const ATTRACTOR_16: [Color; 8] = [
+    Color::LightBlue,
+    Color::Yellow,
+    Color::Green,
+    Color::Red,
+    Color::Magenta,
+    Color::LightYellow,
+    Color::LightMagenta,
+    Color::Cyan,
+];
 
 /// Styles for one colour mode.
 #[derive(Clone, Debug)]
@@ -130,8 +145,8 @@ impl Theme {
     }
 
     /// A class of orbit in the diagram: the one palette of figures and screen
-    /// ([`Class::rgb_on_dark`] in truecolour, [`Class::ansi256`] in 256 colours; the
-    /// nearest of the 16 system colours otherwise). Without colour the classes differ by
+    /// ([`Class::rgb`] in truecolour, [`Class::ansi256`] in 256 colours; the system
+    /// colour of the nearest hue in 16). Without colour the classes differ by
     /// modifiers: period 1 bold, 2 plain, 4 underlined, 8 underlined bold, other cycles
     /// italic, sticking bold italic (dim where its length is beyond double precision),
     /// chaos dim, unresolved dim italic.
@@ -158,34 +173,23 @@ impl Theme {
             Class::Periodic => Color::Magenta,
             Class::Sticking => Color::Blue,
             Class::StickingUnresolved => Color::LightBlue,
-            Class::Chaotic => Color::White,
+            Class::Chaotic => Color::Gray,
             Class::Unresolved => Color::LightYellow,
         };
-        self.fg(c16, c.ansi256(), c.rgb_on_dark())
+        self.fg(c16, c.ansi256(), c.rgb())
     }
 
     /// The colour of attractor number `n` (0-based) in the basins panel and the
-    /// all-attractors diagram; None without colour.
+    /// all-attractors diagram: the figures' palette ([`attractor_palette`]); None
+    /// without colour.
     pub fn attractor_color(&self, n: usize) -> Option<Color> {
-        const P16: [Color; 6] = [
-            Color::LightCyan,
-            Color::Yellow,
-            Color::LightMagenta,
-            Color::LightGreen,
-            Color::LightRed,
-            Color::LightBlue,
-        ];
-        const P256: [u8; 6] = [51, 226, 207, 84, 209, 111];
-        const RGB: [(u8, u8, u8); 6] = [
-            (80, 220, 255),
-            (250, 230, 60),
-            (255, 90, 220),
-            (90, 230, 120),
-            (255, 140, 80),
-            (130, 170, 255),
-        ];
-        let i = n % P16.len();
-        self.pick(P16[i], P256[i], RGB[i])
+        let bouncemap_figures::Color(r, g, b) = attractor_palette::colour(n + 1);
+        let i = n % ATTRACTOR_16.len();
+        self.pick(
+            ATTRACTOR_16[i],
+            crate::output::classes::nearest_xterm((r, g, b)),
+            (r, g, b),
+        )
     }
 
     /// Attractor number `n` (0-based): its colour, or without colour a modifier
@@ -207,9 +211,14 @@ impl Theme {
         }
     }
 
-    /// Resting and escaping starts in the basins panel.
+    /// Resting and escaping starts in the basins panel: the figures' colour for them.
     pub fn nowhere(&self) -> Option<Color> {
-        self.pick(Color::DarkGray, 238, (68, 68, 68))
+        let bouncemap_figures::Color(r, g, b) = attractor_palette::REST;
+        self.pick(
+            Color::DarkGray,
+            crate::output::classes::nearest_xterm((r, g, b)),
+            (r, g, b),
+        )
     }
 
     /// The ball's flight in the bounce panel.
@@ -221,6 +230,18 @@ impl Theme {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn attractors_have_the_figures_colours() {
+        assert_eq!(ATTRACTOR_16.len(), attractor_palette::PALETTE.len());
+        let t = Theme::new(ColorMode::TrueColor);
+        for n in 0..10 {
+            let bouncemap_figures::Color(r, g, b) = attractor_palette::colour(n + 1);
+            assert_eq!(t.attractor_color(n), Some(Color::Rgb(r, g, b)));
+        }
+        let c = Class::Chaotic.rgb();
+        assert_eq!(t.class(Class::Chaotic).fg, Some(Color::Rgb(c.0, c.1, c.2)));
+    }
 
     #[test]
     fn no_color_theme_uses_no_colours() {

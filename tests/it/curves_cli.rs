@@ -100,7 +100,7 @@ fn curves_refuse_bad_planes_with_one_line() {
             "outside the d window",
         ),
         (
-            &["--x", "alpha:0.4..0.7", "--y", "r:0.2..0.5"][..],
+            &["--x", "alpha:0.4..0.7", "--y", "r:0.2..0.5", "--r", "0.8"][..],
             "outside the r window",
         ),
         (

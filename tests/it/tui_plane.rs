@@ -73,16 +73,19 @@ fn the_plane_view_shows_classes_curves_axes_and_legend() {
     let p = a.panels.plane.view.picture.as_ref().unwrap();
     assert!(p.complete());
     // The plane's pane alone (the other panels have their own snapshots).
-    let pane = bouncemap::tui::layout::layout(Rect::new(0, 0, 120, 40))
-        .unwrap()
-        .diagram;
+    let pane = bouncemap::tui::layout::layout(
+        Rect::new(0, 0, 120, 40),
+        bouncemap::tui::layout::Slot::Bounce,
+    )
+    .unwrap()
+    .diagram;
     let mut buf = Buffer::empty(Rect::new(0, 0, pane.right(), pane.bottom()));
     a.panels.plane.draw(&a.shared, pane, &mut buf);
     let s = crate::tui_common::buffer_text(&buf);
     assert!(s.contains("Plane α×D T=3000 · done 1.5s"), "{s}");
     assert!(s.contains("·1 :2 +4 *8 #n ▒stick ░stick? █chaos"), "{s}");
     assert!(
-        s.contains("0.450") && s.contains("1.0┤") && s.contains("0.0┤"),
+        s.contains("0.45 ") && s.contains("1.0┤") && s.contains("0.0┤"),
         "{s}"
     );
     // The α_PD curve lies on the boundary between period 1 (·) and what follows it.
@@ -262,9 +265,12 @@ fn the_curves_key_draws_the_two_parameter_curves_over_the_plane() {
         .any(|c| c.n == 1 && c.kind.as_str() == "period_doubling"));
     a.panels.plane_curves.gen = 3;
     a.receive(Msg::PlaneCurves(3, Ok(found)));
-    let pane = bouncemap::tui::layout::layout(Rect::new(0, 0, 120, 40))
-        .unwrap()
-        .diagram;
+    let pane = bouncemap::tui::layout::layout(
+        Rect::new(0, 0, 120, 40),
+        bouncemap::tui::layout::Slot::Bounce,
+    )
+    .unwrap()
+    .diagram;
     let mut buf = Buffer::empty(Rect::new(0, 0, pane.right(), pane.bottom()));
     a.panels.plane.draw(&a.shared, pane, &mut buf);
     let s = crate::tui_common::buffer_text(&buf);

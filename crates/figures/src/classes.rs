@@ -15,7 +15,7 @@
 //!
 //! The palette is Okabe and Ito's, which stays apart for colour-blind readers, one
 //! colour per class in the figures, the text pictures and the terminal application
-//! alike ([`Class::rgb`], [`Class::rgb_on_dark`], [`Class::ansi256`]).
+//! alike ([`Class::rgb`], and [`Class::ansi256`] its nearest of 256).
 
 use bouncemap_engine::attractors::{Kind, CHAOS_FLOOR};
 use bouncemap_engine::plane::Pixel;
@@ -106,7 +106,10 @@ impl Class {
         }
     }
 
-    /// Its colour on a light background (the figures): Okabe and Ito's palette.
+    /// Its colour, the same in the figures (white paper), the text pictures and the
+    /// terminal (a dark background): Okabe and Ito's palette, which stays apart for
+    /// colour-blind readers, with the hues that vanish on one of the two backgrounds
+    /// (black, yellow) replaced by a grey and a dark yellow legible on both.
     pub fn rgb(self) -> (u8, u8, u8) {
         match self {
             Class::Period1 => (86, 180, 233),             // sky blue
@@ -114,30 +117,18 @@ impl Class {
             Class::Period4 => (0, 158, 115),              // bluish green
             Class::Period8 => (213, 94, 0),               // vermillion
             Class::Periodic => (204, 121, 167),           // reddish purple
-            Class::Sticking => (0, 114, 178),             // blue
-            Class::StickingUnresolved => (120, 170, 215), // pale blue
-            Class::Chaotic => (40, 40, 40),               // black
+            Class::Sticking => (30, 130, 210),            // blue
+            Class::StickingUnresolved => (140, 180, 220), // pale blue
+            Class::Chaotic => (150, 150, 150),            // grey
             Class::Unresolved => (190, 170, 0),           // dark yellow
         }
     }
 
-    /// Its colour on a dark background (the terminal): the same hues, with the neutral
-    /// and yellow classes light instead of dark, and the blues lifted to stay visible.
-    pub fn rgb_on_dark(self) -> (u8, u8, u8) {
-        match self {
-            Class::Sticking => (40, 140, 220),
-            Class::StickingUnresolved => (150, 190, 230),
-            Class::Chaotic => (235, 235, 235),
-            Class::Unresolved => (240, 228, 66),
-            c => c.rgb(),
-        }
-    }
-
     /// Its colour among the 256 of a terminal: the nearest of the xterm colour cube and
-    /// grey ramp to [`Self::rgb_on_dark`] (the terminal application's 256-colour mode
-    /// and the coloured text pictures).
+    /// grey ramp to [`Self::rgb`] (the terminal application's 256-colour mode and the
+    /// coloured text pictures).
     pub fn ansi256(self) -> u8 {
-        nearest_xterm(self.rgb_on_dark())
+        nearest_xterm(self.rgb())
     }
 
     /// The class named `name` (as [`Self::name`] writes it).

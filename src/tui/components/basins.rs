@@ -10,7 +10,7 @@
 
 use super::grid_picture::{draw_halves, GridPicture};
 use super::{panel, Component, Effect, JobMsg, Registered, Shared, Workers};
-use crate::output::basin_map::{self, describe, exponent, numbers, texture};
+use crate::output::basin_map::{self, describe, exponent, numbers, texture_in};
 use crate::output::hitgrid::Range;
 use crate::tui::keymap::Action;
 use crate::tui::layout::plot_area_within;
@@ -66,12 +66,15 @@ fn plot_rect(pane: Rect) -> Rect {
 }
 
 impl BasinsPanel {
-    /// The colour of attractor `id` (resting and escaping starts in grey).
-    fn color(&self, shared: &Shared, id: u32) -> Option<Color> {
+    /// The colour of attractor `id` (by its number, as the figures colour it: 1 = the
+    /// largest basin; resting and escaping starts in the figures' grey).
+    fn color(&self, shared: &Shared, id: u32, number: &[usize]) -> Option<Color> {
         let reg = self.view.picture.as_ref()?.registry();
         match reg.attractors().get(id as usize)?.kind {
             Kind::Resting | Kind::Escaping => shared.theme.nowhere(),
-            _ => shared.theme.attractor_color(id as usize),
+            _ => shared
+                .theme
+                .attractor_color(number.get(id as usize)?.saturating_sub(1)),
         }
     }
 
@@ -163,7 +166,8 @@ impl Component for BasinsPanel {
         let colour = app.theme.attractor_color(0).is_some();
         let halves = colour
             && draw_halves(plot, b.grid(), buf, |i, j| {
-                b.preview_label(i, j).and_then(|l| self.color(app, l))
+                b.preview_label(i, j)
+                    .and_then(|l| self.color(app, l, &number))
             });
         if !halves {
             let cells = basin_map::cells(b, plot.width as usize, plot.height as usize);
@@ -174,7 +178,7 @@ impl Component for BasinsPanel {
                         buf.set_string(
                             plot.x + c as u16,
                             plot.y + r as u16,
-                            texture(n).to_string(),
+                            texture_in(app.marker, n).to_string(),
                             app.theme.attractor(n - 1),
                         );
                     }
@@ -192,11 +196,12 @@ impl Component for BasinsPanel {
                 let swatch = if colour {
                     Span::styled(
                         "██",
-                        Style::new().fg(self.color(app, id as u32).unwrap_or(Color::Reset)),
+                        Style::new()
+                            .fg(self.color(app, id as u32, &number).unwrap_or(Color::Reset)),
                     )
                 } else {
                     Span::styled(
-                        format!("{}{}", texture(n), texture(n)),
+                        format!("{0}{0}", texture_in(app.marker, n)),
                         app.theme.attractor(n - 1),
                     )
                 };

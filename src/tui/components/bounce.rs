@@ -10,6 +10,7 @@
 use super::{panel, Component, NoWork, Shared};
 use crate::output::hitgrid::Marker;
 use crate::tui::keymap::Action;
+use crate::tui::layout::Slot;
 use crate::tui::params::{ParamId, Params, Touch};
 use crate::tui::plot::canvas_marker;
 use bouncemap_engine::{Event, EventKind, Halt, ImpactMap, Mode, Solver, State, System};
@@ -129,6 +130,16 @@ impl Component for Bounce {
             _ => return false,
         }
         shared.stepped = self.stepped();
+        // A narrow screen that left this panel out shows it now, in the phase plot's
+        // place (the ▣ there marks the same state), and says how to go back.
+        if shared.narrow && shared.left_out == Slot::Bounce {
+            shared.left_out = Slot::Phase;
+            let key = shared.keymap.hint(Action::CyclePanels);
+            shared.say(
+                format!("bounce panel shown, phase plot left out: {key} cycles them (two bottom panels fit under {} columns)", crate::tui::layout::FULL_W),
+                false,
+            );
+        }
         true
     }
 

@@ -3,7 +3,7 @@
 //! their own styles so the legend shows them as the diagram does.
 
 use super::Shared;
-use crate::output::basin_map::TEXTURES;
+use crate::output::basin_map::textures;
 use crate::output::classes::Class;
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
@@ -154,13 +154,14 @@ pub fn lines(app: &Shared) -> Vec<Line<'static>> {
     for (heading, rows) in SECTIONS {
         out.push(Line::styled(format!(" {heading}"), app.theme.focus()));
         for (sym, meaning) in rows.iter() {
+            let sym = app.marker.samples(sym);
             out.push(Line::from(vec![
                 Span::styled(format!("   {sym:<9} "), app.theme.mark2()),
                 Span::raw(meaning.to_string()),
             ]));
         }
     }
-    let t: String = TEXTURES.iter().take(4).collect();
+    let t: String = textures(app.marker).iter().take(4).collect();
     out.push(Line::styled(
         format!(" basins textures without colour: {t} … = attractors 1, 2, 3, 4 …"),
         app.theme.dim(),

@@ -21,8 +21,8 @@
 //! panel while shown, `focusable` if it takes the arrow keys), its `mod` line and its
 //! line in the registry, and, if a key shows it, an [`crate::tui::keymap::Action`]. A
 //! grid picture filling in coarse to fine is a [`grid_picture::GridPicture`].
-//! Draw-only pieces (the status line, the help, legend, preset and table overlays, the
-//! too-small message) are plain functions.
+//! Draw-only pieces (the status line, the help, legend, messages, preset and table
+//! overlays, the too-small message) are plain functions.
 
 #[macro_use]
 mod registry;
@@ -34,6 +34,7 @@ pub mod diagram;
 pub mod grid_picture;
 pub mod help;
 pub mod legend;
+pub mod messages;
 pub mod parameters;
 pub mod phase_plot;
 pub mod plane;

@@ -38,19 +38,17 @@ impl Parameters {
         ParamId::ALL[self.selected]
     }
 
-    /// A typed character while editing (Enter commits, Esc cancels).
-    pub fn edit_key(&mut self, key: crossterm::event::KeyCode, shared: &mut Shared) {
-        use crossterm::event::KeyCode;
+    /// A typed key while editing (Enter commits, Esc cancels;
+    /// [`crate::tui::line_edit`]).
+    pub fn edit_key(&mut self, key: crossterm::event::KeyEvent, shared: &mut Shared) {
+        use crate::tui::line_edit::{edit, Edit};
         let Some(buf) = self.editing.as_mut() else {
             return;
         };
-        match key {
-            KeyCode::Char(c) if buf.chars().count() < 64 => buf.push(c),
-            KeyCode::Backspace => {
-                buf.pop();
-            }
-            KeyCode::Esc => self.editing = None,
-            KeyCode::Enter => {
+        match edit(buf, key, 64) {
+            Edit::Typing => {}
+            Edit::Cancel => self.editing = None,
+            Edit::Commit => {
                 let text = self.editing.take().unwrap_or_default();
                 if text.trim().is_empty() {
                     return;
@@ -60,7 +58,6 @@ impl Parameters {
                 let r = shared.params.set_text(id, &text);
                 shared.after_change(id, r, &before);
             }
-            _ => {}
         }
     }
 }

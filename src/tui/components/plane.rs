@@ -221,6 +221,19 @@ impl Component for PlanePanel {
             }
             return true;
         }
+        if action == Action::PlaneCurves && !self.view.shown {
+            // The curves are drawn over the plane only: say so rather than switch
+            // something that does not show.
+            let (plane, curves) = (
+                shared.keymap.hint(Action::TogglePlane),
+                shared.keymap.hint(Action::PlaneCurves),
+            );
+            shared.say(
+                format!("{curves}: the two-parameter curves are drawn over the plane view: {plane} shows it, then {curves}"),
+                false,
+            );
+            return true;
+        }
         if !self.view.shown || shared.focus != Slot::Diagram {
             return false;
         }

@@ -22,6 +22,8 @@ pub enum Overlay {
     None,
     Help,
     Legend,
+    /// Every message so far, in full.
+    Messages,
     /// The table view: F, F′, F″ over one period.
     Table,
     Presets {
@@ -40,6 +42,9 @@ pub enum Effect {
     Suspend,
 }
 
+/// Messages the log keeps.
+pub const LOG_LEN: usize = 200;
+
 /// What every panel may read and change.
 pub struct Shared {
     pub params: Params,
@@ -51,6 +56,13 @@ pub struct Shared {
     pub overlay: Overlay,
     /// A one-line message (refusal, export result); true if it is an error.
     pub message: Option<(String, bool)>,
+    /// Every message so far (the latest [`LOG_LEN`]), for the messages overlay: the
+    /// status line cuts a long one.
+    pub log: std::collections::VecDeque<(String, bool)>,
+    /// Under [`crate::tui::layout::FULL_W`] columns: the bottom panel left out.
+    pub left_out: Slot,
+    /// Whether the screen is narrow (one bottom panel left out).
+    pub narrow: bool,
     pub paused: bool,
     /// Something changed on screen since the last frame.
     pub dirty: bool,
@@ -91,6 +103,9 @@ impl Shared {
             focus: Slot::Params,
             overlay: Overlay::None,
             message: None,
+            log: Default::default(),
+            left_out: Slot::Bounce,
+            narrow: false,
             paused: false,
             dirty: true,
             orbits: None,
@@ -113,9 +128,17 @@ impl Shared {
         }
     }
 
-    /// A message for the user; `error` shows it as a refusal.
+    /// A message for the user; `error` shows it as a refusal. It is kept in the log
+    /// (the messages overlay shows it whole).
     pub fn say(&mut self, text: impl Into<String>, error: bool) {
-        self.message = Some((text.into(), error));
+        let text = text.into();
+        if self.log.back() != Some(&(text.clone(), error)) {
+            if self.log.len() == LOG_LEN {
+                self.log.pop_front();
+            }
+            self.log.push_back((text.clone(), error));
+        }
+        self.message = Some((text, error));
     }
 
     /// The outcome of changing row `id` (its result, and the parameters before):

@@ -41,10 +41,13 @@ pub fn draw(
         return;
     }
     if let Some((msg, err)) = &app.message {
-        // The message has the rest of the line; cut with an ellipsis if it must be.
+        // The message has the rest of the line; cut with an ellipsis and the key of
+        // the messages overlay (which shows it whole) if it must be.
         let room = (area.width as usize).saturating_sub(params.chars().count() + 2);
         let text: String = if msg.chars().count() > room {
-            msg.chars().take(room.saturating_sub(1)).collect::<String>() + "…"
+            let more = format!("… ({} more)", app.keymap.hint(Action::Messages));
+            let keep = room.saturating_sub(more.chars().count());
+            msg.chars().take(keep).collect::<String>() + &more
         } else {
             msg.clone()
         };

@@ -1,7 +1,8 @@
 //! The table view (key `T`): the current table's F, F′ and F″ over one period, as the
-//! paper's Fig. 2 draws F_D, with its breakpoints (┆), the phases t̂* of the (1, k)
-//! solutions (◆ stable, ◇ unstable), the sticking threshold F″ = −1/α (dashed) and the
-//! release phases (R), where a ball riding on the table leaves it. Draw-only.
+//! paper's Fig. 2 draws F_D, with its breakpoints (┆, where F″ jumps), the phases t̂* of
+//! the (1, k) solutions (◆ stable, ◇ unstable), the sticking threshold F″ = −1/α
+//! (dashed) and the release phases (R), where a ball riding on the table leaves it.
+//! Draw-only.
 
 use super::Shared;
 use crate::tui::params::fmt_num;
@@ -60,7 +61,9 @@ pub fn draw(app: &Shared, area: Rect, buf: &mut Buffer) {
         .border_style(app.theme.focus())
         .title(title)
         .title_bottom(Line::styled(
-            " ┆ breakpoint  ◆ ◇ t̂* of (1,k) stable, unstable  ⠒ ⠒ F″ = −1/α  R release ",
+            app.marker.samples(
+                " ┆ breakpoint (F″ jumps)  ◆ ◇ t̂* of (1,k) stable, unstable  ⠒ ⠒ F″ = −1/α  R release ",
+            ),
             app.theme.dim(),
         ));
     let inner = block.inner(r);
@@ -86,9 +89,9 @@ pub fn draw(app: &Shared, area: Rect, buf: &mut Buffer) {
         Some(Ok(i)) => i.fixed.iter().map(|f| (f.phase, f.stable)).collect(),
         _ => Vec::new(),
     };
-    let breaks: Vec<f64> = sys
-        .table()
-        .breakpoints()
+    // Where f'' jumps (a piece boundary across which the table is one polynomial, as
+    // F_1's at ½, is none).
+    let breaks: Vec<f64> = bouncemap_engine::orbits::events::jump_phases(sys.table())
         .into_iter()
         .filter(|&b| b > 0.0 && b < 1.0)
         .collect();

@@ -10,6 +10,7 @@
 
 mod branch_layer;
 pub mod colouring;
+mod eta;
 mod navigation;
 pub mod readout;
 pub mod strip;
@@ -30,7 +31,6 @@ use ratatui::layout::Rect;
 use ratatui::style::Style;
 use ratatui::widgets::{Paragraph, Widget, Wrap};
 use std::time::Instant;
-use strip::{STRIP_FROM, STRIP_ROWS};
 
 /// Width of the y tick labels.
 const LABEL_W: u16 = 5;
@@ -40,16 +40,17 @@ pub const ALL_STARTS: usize = 8;
 /// The diagram's inner area split into the plot with its axes and the Lyapunov strip
 /// (when there is room for both).
 pub fn split(inner: Rect) -> (Rect, Option<Rect>) {
-    if inner.height < STRIP_FROM {
+    let rows = strip::rows(inner.height);
+    if rows == 0 {
         return (inner, None);
     }
     let main = Rect {
-        height: inner.height - STRIP_ROWS,
+        height: inner.height - rows,
         ..inner
     };
     let strip = Rect {
         y: inner.y + main.height,
-        height: STRIP_ROWS,
+        height: rows,
         ..inner
     };
     (main, Some(strip))
@@ -131,6 +132,8 @@ pub struct Diagram {
     pub all_attractors: bool,
     /// Label counts per cell of `grid`.
     pub labels: LabelGrid,
+    /// The recent rate of values finished, for the time left.
+    eta: eta::Eta,
 }
 
 impl Diagram {
@@ -164,6 +167,7 @@ impl Diagram {
             color_by: ColorBy::Class,
             all_attractors: false,
             labels: LabelGrid::default(),
+            eta: eta::Eta::default(),
         }
     }
 
@@ -218,6 +222,7 @@ impl Diagram {
         self.elapsed = 0.0;
         self.started = Some(Instant::now());
         self.status = SweepStatus::Running;
+        self.eta.reset();
         self.rebin(shared);
     }
 
@@ -268,6 +273,7 @@ impl Diagram {
         if let Some(s) = self.started {
             self.elapsed = s.elapsed().as_secs_f64();
         }
+        self.eta.sample(self.elapsed, self.values_done);
         if rebin {
             self.rebin(shared);
         }
@@ -496,12 +502,20 @@ impl Component for Diagram {
         let mut left = title(self, app, true);
         let mut right = String::new();
         if with_readout {
-            right = readout::text(self, app);
+            // The readout's value and orbit class come before the title's words: a
+            // narrow panel shortens the title, then drops the readout's later parts.
             let w = |s: &str| ratatui::text::Line::from(s).width();
-            if w(&left) + w(&right) > width {
+            let full = readout::text(self, app, usize::MAX);
+            if w(&left) + w(&full) > width {
                 left = title(self, app, false);
             }
-            right = fit(&right, width.saturating_sub(w(&left) + 1));
+            let mut room = width.saturating_sub(w(&left) + 1);
+            let core = w(&readout::parts(self, app)[0]) + 2;
+            if room < core {
+                left = progress_only(self, app);
+                room = width.saturating_sub(w(&left) + 1);
+            }
+            right = readout::text(self, app, room);
         }
         let mut block =
             panel(app, left, focused).title_bottom(colouring::legend(self.color_by, &app.theme));
@@ -601,7 +615,7 @@ impl Component for Diagram {
 }
 
 fn gauge(frac: f64, w: usize) -> String {
-    let full = (frac.clamp(0.0, 1.0) * w as f64).round() as usize;
+    let full = (frac.clamp(0.0, 1.0) * w as f64).floor() as usize;
     format!("{}{}", "█".repeat(full), "░".repeat(w - full))
 }
 
@@ -661,9 +675,12 @@ pub fn title(d: &Diagram, app: &Shared, long: bool) -> String {
                 "paused".into()
             } else if !app.show_times {
                 String::new()
-            } else if frac > 0.02 && d.elapsed > 2.0 {
-                // The time left at the rate so far, once there is a rate to go by.
-                let left = d.elapsed * (1.0 - frac) / frac;
+            } else if let Some(left) = d
+                .started
+                .and_then(|s| d.eta.left(s.elapsed().as_secs_f64(), d.values_total))
+            {
+                // The time left at the rate of the last seconds (the values still
+                // running are the slow ones).
                 format!(
                     "{} pts/s, ~{} left",
                     compact(d.sweep_rate()),
@@ -672,14 +689,26 @@ pub fn title(d: &Diagram, app: &Shared, long: bool) -> String {
             } else {
                 format!("{} pts/s", compact(d.sweep_rate()))
             };
+            // Rounded down: 100% only once every value is done.
             format!(
                 "{head}{} {:>3}% {} pts, {state} ",
                 gauge(frac, 10),
-                (frac * 100.0).round() as u32,
+                (frac * 100.0).floor() as u32,
                 compact(d.plotted as f64)
             )
         }
         SweepStatus::Idle | SweepStatus::Unavailable(_) => head,
+    }
+}
+
+/// The title at its shortest: the sweep's progress alone.
+fn progress_only(d: &Diagram, app: &Shared) -> String {
+    let frac = d.values_done as f64 / d.values_total.max(1) as f64;
+    match d.status {
+        SweepStatus::Done => " done ".into(),
+        SweepStatus::Running if app.paused => " paused ".into(),
+        SweepStatus::Running => format!(" {:>3}% ", (frac * 100.0).floor() as u32),
+        _ => " ".into(),
     }
 }
 

@@ -70,28 +70,53 @@ pub fn evidence(d: &Diagram, app: &Shared) -> Option<String> {
     ))
 }
 
-/// The readout text.
-pub fn text(d: &Diagram, app: &Shared) -> String {
+/// The readout's parts, most important first: the value under the cursor (the
+/// nearest value's own parameter, the one its status is of, as the stability panel
+/// says it) with what it does, its exponent, the height under the cursor and the mark.
+/// A narrow panel drops parts from the end, never the orbit's class.
+pub fn parts(d: &Diagram, app: &Shared) -> Vec<String> {
     let sym = Params::symbol(app.params.param);
-    let nearest = nearest(d);
-    let what = nearest.map_or(String::new(), |r| {
-        let l = match r.lyapunov {
-            Some(x) if x == f64::NEG_INFINITY => " λ=-inf".to_string(),
-            Some(x) => format!(" λ={}", fmt_num((x * 1e4).round() / 1e4)),
-            None => String::new(),
-        };
-        format!(" {}{l}", status(r))
-    });
+    let mut out = Vec::new();
+    match nearest(d) {
+        Some(r) => {
+            out.push(format!("{sym}={} {}", fmt_num(r.value), status(r)));
+            if let Some(x) = r.lyapunov {
+                out.push(if x == f64::NEG_INFINITY {
+                    "λ=-inf".to_string()
+                } else {
+                    format!("λ={}", fmt_num((x * 1e4).round() / 1e4))
+                });
+            }
+        }
+        None => out.push(format!("{sym}={}", fmt_num(d.cursor))),
+    }
     let axis = match d.axis {
         Axis::Phase => "t̂",
         Axis::Velocity => "v",
     };
-    let mark = d.mark.map_or(String::new(), |(m, _)| {
-        format!(" · mark {sym}={}", fmt_num(m))
-    });
-    format!(
-        " {sym}={}{what} · {axis}={}{mark} ",
-        fmt_num(d.cursor),
-        fmt_num(d.ycursor)
-    )
+    out.push(format!("· {axis}={}", fmt_num(d.ycursor)));
+    if let Some((m, _)) = d.mark {
+        out.push(format!("· mark {sym}={}", fmt_num(m)));
+    }
+    out
+}
+
+/// The readout in at most `width` columns: as many of [`parts`] as fit, in order (the
+/// first is cut with an ellipsis only if it alone does not fit).
+pub fn text(d: &Diagram, app: &Shared, width: usize) -> String {
+    let w = |s: &str| ratatui::text::Line::from(s).width();
+    let mut out = String::from(" ");
+    for (i, p) in parts(d, app).into_iter().enumerate() {
+        let sep = if i == 0 { "" } else { " " };
+        if w(&out) + w(sep) + w(&p) + 1 > width {
+            if i == 0 {
+                return super::fit(&format!(" {p} "), width);
+            }
+            break;
+        }
+        out.push_str(sep);
+        out.push_str(&p);
+    }
+    out.push(' ');
+    out
 }

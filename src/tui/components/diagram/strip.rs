@@ -10,10 +10,22 @@ use bouncemap_engine::sweep::ValueResult;
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 
-/// Rows of the strip.
+/// Rows of the strip where the diagram has room.
 pub const STRIP_ROWS: u16 = 3;
-/// The diagram needs this many inner rows before it gives some to the strip.
-pub const STRIP_FROM: u16 = 12;
+/// The diagram needs this many inner rows before it gives [`STRIP_ROWS`] to the
+/// strip; from [`STRIP_MIN_FROM`] (the smallest screen's 11) it gives two.
+pub const STRIP_FROM: u16 = 14;
+/// Below this many inner rows there is no strip (never on a screen of 24 rows or more).
+pub const STRIP_MIN_FROM: u16 = 10;
+
+/// Rows of the strip under a diagram of `inner` rows.
+pub fn rows(inner: u16) -> u16 {
+    match inner {
+        i if i >= STRIP_FROM => STRIP_ROWS,
+        i if i >= STRIP_MIN_FROM => 2,
+        _ => 0,
+    }
+}
 
 /// The exponent range shown: at least [-0.1, 0.1], at most down to -1.5.
 fn y_range(slots: &[Option<ValueResult>]) -> Range {
@@ -94,6 +106,7 @@ pub fn draw(
     }
     // The strip's name in the gutter, on a row without a tick label.
     let taken = [plot.y, plot.y + plot.height - 1, zero_row];
+    // (Without such a row the caption below names the strip.)
     if let Some(r) = (plot.y..plot.y + plot.height).find(|r| !taken.contains(r)) {
         let name = "λ₁";
         let w = ratatui::text::Line::from(name).width() as u16;
