@@ -323,19 +323,22 @@ fn build(
             let spec = plane_spec.expect("the plane was checked first");
             let plane = super::plane::compute(&spec, executor)?;
             let analytic = bouncemap_engine::plane::curves(&spec);
-            let mut fig = figure::plane::plane_figure(&spec, plane.pixels(), analytic.as_ref());
-            if let Some((cplane, seeds)) = curves_task {
-                let found = curves(&cplane, seeds).map_err(InputError::from)?;
-                let alpha_on_x = spec.x.param == bouncemap_engine::grid::SweepParam::Alpha;
-                figure::curves::overlay(&mut fig, &found, alpha_on_x);
-                if let Some(c) = fig.caption.first_mut() {
-                    c.push_str(&format!(
-                        " Black lines over the pixels: the two-parameter curves of the cycles up to period {} (solid: period doubling, dash-dotted: fold, dashed: border collision, dotted: grazing; circles: codimension-two points), as the curves command gives them.",
-                        seeds.max_period()
-                    ));
-                }
-            }
-            Ok(fig)
+            let found = match &curves_task {
+                Some((cplane, seeds)) => Some((
+                    curves(cplane, *seeds).map_err(InputError::from)?,
+                    seeds.max_period(),
+                )),
+                None => None,
+            };
+            Ok(figure::plane::plane_figure(
+                &spec,
+                plane.pixels(),
+                analytic.as_ref(),
+                found.as_ref().map(|(c, p)| figure::plane::Continued {
+                    curves: c,
+                    max_period: *p,
+                }),
+            ))
         }
         FigureName::Basins(_) => {
             let spec = basin_spec.expect("the basins' grid was checked first");

@@ -95,6 +95,12 @@ const fn rule(key: &'static str, label: &'static str, limit: Limit, default: f64
 
 /// The table when none is given.
 pub const DEFAULT_TABLE: &str = "fd:0.1";
+/// Pixels of a plane when none are asked for (`plane --size`, `figure plane --size`,
+/// the terminal application's exported plane).
+pub const PLANE_SIZE: &str = "400x200";
+/// Starts of a basin picture when none are asked for (`basins --grid`, `figure basins
+/// --grid`, the terminal application's exported basins).
+pub const BASINS_GRID: &str = "200x100";
 
 /// Amplitude α.
 pub const ALPHA: Rule = rule("alpha", "α", limits::ALPHA, 0.45);

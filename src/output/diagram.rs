@@ -76,6 +76,12 @@ impl BrailleDiagram {
             }
         };
         let start = match spec.warm {
+            // Several starts per value look for every attractor (they are cold).
+            _ if spec.starts > 1 => format!(
+                "every value from {} starts (one {at}, the others spread over t0 in [0, 1), w0 in [0, {}]), every attractor found drawn",
+                spec.starts,
+                spec.w_max.map_or("W".to_string(), shortest)
+            ),
             Warm::Off => format!("every value started {at}"),
             Warm::Forward => format!("each value from the one below, the first {at}"),
             Warm::Backward => format!("each value from the one above, the first {at}"),

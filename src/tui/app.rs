@@ -44,6 +44,29 @@ pub struct App {
     pub export_pending: Option<String>,
     /// Whether the export being named also writes the view as figures (`E`).
     pub export_view: bool,
+    /// The resolution of `E`'s plane and basins figures (`[export]` in the config).
+    pub export_sizes: ExportSizes,
+}
+
+/// The resolution of `E`'s plane and basins figures, computed for the export.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ExportSizes {
+    /// Pixels along α and along the other axis.
+    pub plane: (usize, usize),
+    /// Starts along t̂0 and along w0.
+    pub basins: (usize, usize),
+}
+
+impl Default for ExportSizes {
+    /// The commands' defaults (`plane --size`, `basins --grid`).
+    fn default() -> Self {
+        use crate::config::flags::{parse_grid, parse_plane_size};
+        use crate::config::rules::{BASINS_GRID, PLANE_SIZE};
+        ExportSizes {
+            plane: parse_plane_size(PLANE_SIZE).expect("the default plane size parses"),
+            basins: parse_grid(BASINS_GRID).expect("the default basins grid parses"),
+        }
+    }
 }
 
 impl App {
@@ -65,6 +88,7 @@ impl App {
             export_name: None,
             export_pending: None,
             export_view: false,
+            export_sizes: ExportSizes::default(),
         }
     }
 
@@ -333,7 +357,9 @@ impl App {
         };
         self.panels.draw(s, &p, buf);
         let computing = self.panels.computing(s);
-        status::draw(s, self.export_name.as_deref(), &computing, p.status, buf);
+        let note = super::export::prompt_note(self.export_view, &self.panels);
+        let prompt = self.export_name.as_deref().map(|n| (n, note.as_str()));
+        status::draw(s, prompt, &computing, p.status, buf);
         match s.overlay {
             Overlay::Help => help::draw(s, self.help_scroll, area, buf),
             Overlay::Legend => legend::draw(s, self.help_scroll, area, buf),

@@ -3,22 +3,28 @@
 //! the format of `bouncemap sweep` (the run's specification and provenance, the same
 //! rows with period, status and exponent; its values are those the diagram holds so
 //! far), and `NAME.txt`, the diagram as `sweep --format braille` draws it (title with
-//! the window, axes, labels). Both written atomically; an existing file is never
-//! replaced.
+//! the window and the starts, axes, labels).
 //!
 //! `E` writes the same two files and the current view as figures beside them (default
 //! name `bouncemap-view-N`): `NAME-diagram.svg/.png` (the diagram over its zoom window,
-//! the parameters in the caption) and `NAME-phase.svg/.png` (the phase plot), and with
-//! the basins panel or the plane view shown and complete `NAME-basins.svg/.png` or
-//! `NAME-plane.svg/.png`, drawn by [`bouncemap_figures`] and written by
-//! [`crate::output::figure_file`]. The files are named here once, for the default names
-//! and for writing.
+//! coloured as the screen colours it, the parameters and the starts in the caption)
+//! and `NAME-phase.svg/.png` (the phase plot); with the plane view or the basins shown,
+//! `NAME-plane.svg/.png` or `NAME-basins.svg/.png` at the export's own resolution
+//! (computed in the background by [`super::components::view_export`], with the
+//! two-parameter curves `C` shows). The files written at once are written together
+//! (all or none); an existing file is never replaced. The files are named here once,
+//! for the default names, the prompt and writing.
 
-use super::components::{Panels, Shared};
+use super::app::ExportSizes;
+use super::components::plane_curves::MAX_PERIOD;
+use super::components::view_export::{PictureExport, Request};
+use super::components::{Effect, Panels, Registered, Shared};
 use crate::output::diagram::BrailleDiagram;
 use crate::output::records::SweepHeader;
 use crate::output::sink::{free_stem, AtomicFile};
 use crate::output::sweep_file::{Layout, SweepWriter};
+use bouncemap_engine::attractors::basins::Basins;
+use bouncemap_engine::plane::Plane;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
@@ -26,16 +32,40 @@ use std::path::{Path, PathBuf};
 const FILES: [&str; 2] = [".csv", ".txt"];
 /// The ends of the figures `E` writes besides them, always (the diagram, the phase plot).
 const VIEW: [&str; 4] = ["-diagram.svg", "-diagram.png", "-phase.svg", "-phase.png"];
+/// The ends of the figures of the views that may be shown.
+const PLANE: [&str; 2] = ["-plane.svg", "-plane.png"];
+const BASINS: [&str; 2] = ["-basins.svg", "-basins.png"];
 
 /// The default name of an export in `dir`: the first `bouncemap-diagram-N` (`e`) or,
 /// with `view`, `bouncemap-view-N` (`E`) with none of its files taken.
 pub fn free_name(dir: &Path, view: bool) -> String {
     if view {
-        let ends: Vec<&str> = FILES.iter().chain(&VIEW).copied().collect();
+        let ends: Vec<&str> = FILES
+            .iter()
+            .chain(&VIEW)
+            .chain(&PLANE)
+            .chain(&BASINS)
+            .copied()
+            .collect();
         free_stem(dir, "bouncemap-view", &ends)
     } else {
         free_stem(dir, "bouncemap-diagram", &FILES)
     }
+}
+
+/// What the export being named will write, for the prompt: the ends added to the name.
+pub fn prompt_note(view: bool, panels: &Panels) -> String {
+    if !view {
+        return ".csv and .txt are added".into();
+    }
+    let mut ends = vec![".csv", ".txt", "-diagram.svg/.png", "-phase.svg/.png"];
+    if panels.plane.view.shown {
+        ends.push("-plane.svg/.png");
+    }
+    if panels.basins.view.shown {
+        ends.push("-basins.svg/.png");
+    }
+    format!("{} are added", ends.join(", "))
 }
 
 /// `stem` with `ext` appended (the stem may hold dots).
@@ -45,54 +75,40 @@ fn with(stem: &Path, ext: &str) -> PathBuf {
     PathBuf::from(s)
 }
 
-/// `stem.csv` and `stem.txt`.
-fn paths(stem: &Path) -> (PathBuf, PathBuf) {
-    (with(stem, FILES[0]), with(stem, FILES[1]))
-}
-
-/// The files `E` writes for `stem`, besides the csv and the text: the diagram, the
-/// phase plot, and the basins and the plane when they are shown with a complete
-/// picture.
-pub fn view_paths(stem: &Path, basins: bool, plane: bool) -> Vec<PathBuf> {
-    let mut ends = VIEW.to_vec();
-    if basins {
-        ends.extend(["-basins.svg", "-basins.png"]);
-    }
-    if plane {
-        ends.extend(["-plane.svg", "-plane.png"]);
-    }
-    ends.iter().map(|e| with(stem, e)).collect()
-}
-
-/// `E`: the csv and the text of [`export`], and the diagram and the phase plot as
-/// SVG and PNG. Returns every path written.
-pub fn export_view(shared: &Shared, panels: &Panels, stem: &Path) -> Result<Vec<PathBuf>, String> {
-    use crate::output::figure_file;
-    use bouncemap_figures::{self as figure, DiagramAxis, ImageFormat, DEFAULT_DPI};
-    let b = &panels.basins.view;
-    let basins = match (b.shown, &b.spec, &b.picture) {
-        (true, Some(spec), Some(pic)) if pic.complete() => {
-            Some(figure::basins::basins_figure(spec, pic))
-        }
-        _ => None,
-    };
-    let pl = &panels.plane;
-    let plane = match (pl.view.shown, &pl.view.spec, &pl.view.picture) {
-        (true, Some(spec), Some(pic)) if pic.complete() => Some(figure::plane::plane_figure(
-            spec,
-            pic.pixels(),
-            pl.curves.as_ref(),
-        )),
-        _ => None,
-    };
-    let views = view_paths(stem, basins.is_some(), plane.is_some());
-    if let Some(p) = views.iter().find(|p| p.exists()) {
-        return Err(format!(
+/// Refuse an export whose files exist (each one is kept).
+fn none_taken(paths: &[PathBuf]) -> Result<(), String> {
+    match paths.iter().find(|p| p.exists()) {
+        Some(p) => Err(format!(
             "export: {} exists and is kept; type another name",
             p.display()
-        ));
+        )),
+        None => Ok(()),
     }
-    let (csv, txt) = export(shared, panels, stem)?;
+}
+
+/// `E`: the csv and the text of [`export`], the diagram and the phase plot as SVG and
+/// PNG, written together; and the plane's or the basins' figures asked of their
+/// export panels (at `sizes`). Returns the message naming every file.
+pub fn export_view(
+    shared: &mut Shared,
+    panels: &mut Panels,
+    sizes: ExportSizes,
+    stem: &Path,
+) -> Result<String, String> {
+    use bouncemap_figures::{self as figure, DiagramAxis, ImageFormat, DEFAULT_DPI};
+    let plane = panels.plane.view.shown;
+    let basins = panels.basins.view.shown;
+    let views: Vec<PathBuf> = VIEW.iter().map(|e| with(stem, e)).collect();
+    let mut later: Vec<PathBuf> = Vec::new();
+    if plane {
+        later.extend(PLANE.iter().map(|e| with(stem, e)));
+    }
+    if basins {
+        later.extend(BASINS.iter().map(|e| with(stem, e)));
+    }
+    none_taken(&views)?;
+    none_taken(&later)?;
+    let mut files = diagram_files(shared, panels, stem)?;
     let d = &panels.diagram;
     let spec = d.running.clone().unwrap_or_else(|| d.sweep_spec(shared));
     let p = &shared.params;
@@ -104,7 +120,6 @@ pub fn export_view(shared: &Shared, panels: &Panels, stem: &Path) -> Result<Vec<
         n(p.r),
         p.k
     );
-    let caption = format!("{system}, start {}", p.start.key());
     let axis = match d.axis {
         crate::tui::components::diagram::Axis::Phase => DiagramAxis::Phase,
         crate::tui::components::diagram::Axis::Velocity => DiagramAxis::Velocity,
@@ -114,7 +129,8 @@ pub fn export_view(shared: &Shared, panels: &Panels, stem: &Path) -> Result<Vec<
         d.slots.iter().flatten(),
         Some((p.lo, p.hi)),
         axis,
-        &caption,
+        d.color_by,
+        &system,
     );
     let v0 = p.v0.map_or("f'(t̂0) + 0.5".to_string(), n);
     let phase = figure::phase_view(
@@ -125,29 +141,101 @@ pub fn export_view(shared: &Shared, panels: &Panels, stem: &Path) -> Result<Vec<
             panels.phase.points.len()
         ),
     );
-    let mut written = vec![csv, txt];
-    let mut figures = vec![
-        (&diagram, &views[0], &views[1]),
-        (&phase, &views[2], &views[3]),
-    ];
-    let mut next = 4;
-    for f in [&basins, &plane].into_iter().flatten() {
-        figures.push((f, &views[next], &views[next + 1]));
-        next += 2;
+    for (fig, paths) in [(&diagram, &views[0..2]), (&phase, &views[2..4])] {
+        for (path, format) in paths.iter().zip([ImageFormat::Svg, ImageFormat::Png]) {
+            let bytes = figure::render(fig, format, None, DEFAULT_DPI)
+                .map_err(|e| format!("export: {e}"))?;
+            files.push(write_file(path, &bytes)?);
+        }
     }
-    for (fig, svg, png) in figures {
-        figure_file::write(fig, svg, ImageFormat::Svg, None, DEFAULT_DPI)
-            .and_then(|_| figure_file::write(fig, png, ImageFormat::Png, None, DEFAULT_DPI))
-            .map_err(|e| format!("export: {e}"))?;
-        written.push(svg.clone());
-        written.push(png.clone());
+    let written: Vec<String> = files
+        .iter()
+        .map(|f| f.path().display().to_string())
+        .collect();
+    AtomicFile::commit_all(files).map_err(|e| format!("export: {e}"))?;
+    let mut msg = format!("export: wrote {}", written.join(", "));
+    // The views shown, at the export's resolution, in the background.
+    if plane {
+        msg.push_str(&ask_plane(shared, panels, sizes.plane, stem));
     }
-    Ok(written)
+    if basins {
+        msg.push_str(&ask_basins(shared, panels, sizes.basins, stem));
+    }
+    Ok(msg)
 }
 
-/// Write `stem.csv` and `stem.txt` (relative to the working directory). Returns the
-/// two paths.
-pub fn export(shared: &Shared, panels: &Panels, stem: &Path) -> Result<(PathBuf, PathBuf), String> {
+/// Ask for the plane's figure at `size` pixels, with the curves `C` shows; the words
+/// the message adds.
+fn ask_plane(
+    shared: &mut Shared,
+    panels: &mut Panels,
+    size: (usize, usize),
+    stem: &Path,
+) -> String {
+    let Some(mut spec) = panels.plane.view.spec.clone() else {
+        return "; no plane to export (it was refused)".into();
+    };
+    spec.x.n = size.0;
+    spec.y.n = size.1;
+    let (over, note) = match (&shared.plane_curves, shared.show_plane_curves) {
+        (Some(Ok(c)), true) => (Some((c.clone(), MAX_PERIOD)), ", with the curves"),
+        (None, true) => (None, ", without the curves (still computing)"),
+        _ => (None, ""),
+    };
+    let [svg, png] = PictureExport::<Plane>::paths(stem);
+    panels.plane_export.ask(Request {
+        stem: stem.to_path_buf(),
+        spec,
+        over,
+    });
+    shared.effect(Effect::Start(<PictureExport<Plane> as Registered>::TARGET));
+    format!(
+        "; computing {} and {} at {}×{} pixels{note}",
+        svg.display(),
+        png.display(),
+        size.0,
+        size.1
+    )
+}
+
+/// Ask for the basins' figure at `size` starts; the words the message adds.
+fn ask_basins(
+    shared: &mut Shared,
+    panels: &mut Panels,
+    size: (usize, usize),
+    stem: &Path,
+) -> String {
+    let Some(mut spec) = panels.basins.view.spec.clone() else {
+        return "; no basins to export (they were refused)".into();
+    };
+    spec.nx = size.0;
+    spec.ny = size.1;
+    let [svg, png] = PictureExport::<Basins>::paths(stem);
+    panels.basins_export.ask(Request {
+        stem: stem.to_path_buf(),
+        spec,
+        over: (),
+    });
+    shared.effect(Effect::Start(<PictureExport<Basins> as Registered>::TARGET));
+    format!(
+        "; computing {} and {} at {}×{} starts",
+        svg.display(),
+        png.display(),
+        size.0,
+        size.1
+    )
+}
+
+/// `path` written with `bytes`, to be committed with the others.
+fn write_file(path: &Path, bytes: &[u8]) -> Result<AtomicFile, String> {
+    let mut f = AtomicFile::create(path).map_err(|e| format!("export: {e}"))?;
+    f.write_all(bytes)
+        .map_err(|e| format!("export: cannot write {}: {e}", path.display()))?;
+    Ok(f)
+}
+
+/// `stem.csv` and `stem.txt`, written but not yet in place.
+fn diagram_files(shared: &Shared, panels: &Panels, stem: &Path) -> Result<Vec<AtomicFile>, String> {
     let d = &panels.diagram;
     if d.plotted == 0 {
         return Err("export: the diagram has no points yet".into());
@@ -155,15 +243,8 @@ pub fn export(shared: &Shared, panels: &Panels, stem: &Path) -> Result<(PathBuf,
     if stem.as_os_str().is_empty() {
         return Err("export: no file name given".into());
     }
-    let (csv, txt) = paths(stem);
-    for p in [&csv, &txt] {
-        if p.exists() {
-            return Err(format!(
-                "export: {} exists and is kept; type another name",
-                p.display()
-            ));
-        }
-    }
+    let (csv, txt) = (with(stem, FILES[0]), with(stem, FILES[1]));
+    none_taken(&[csv.clone(), txt.clone()])?;
     // The sweep the stored values come from (the screen may have changed since).
     let spec = d.running.clone().unwrap_or_else(|| d.sweep_spec(shared));
     let values: Vec<_> = d.slots.iter().flatten().collect();
@@ -183,7 +264,6 @@ pub fn export(shared: &Shared, panels: &Panels, stem: &Path) -> Result<(PathBuf,
         Ok(())
     })();
     written.map_err(|e| format!("export: cannot write {}: {e}", csv.display()))?;
-    f.commit().map_err(|e| format!("export: {e}"))?;
     // The text: as `sweep --format braille` draws it, at the diagram's size.
     let (w, h) = d.grid.size();
     let mut picture = BrailleDiagram::new(&spec, w.max(20) + 6, h.max(6) + 4);
@@ -192,9 +272,15 @@ pub fn export(shared: &Shared, panels: &Panels, stem: &Path) -> Result<(PathBuf,
     }
     let mut text = picture.lines(&spec).join("\n");
     text.push('\n');
-    let mut t = AtomicFile::create(&txt).map_err(|e| format!("export: {e}"))?;
-    t.write_all(text.as_bytes())
-        .map_err(|e| format!("export: cannot write {}: {e}", txt.display()))?;
-    t.commit().map_err(|e| format!("export: {e}"))?;
-    Ok((csv, txt))
+    let t = write_file(&txt, text.as_bytes())?;
+    Ok(vec![f, t])
+}
+
+/// `e`: write `stem.csv` and `stem.txt` (relative to the working directory) together.
+/// Returns the two paths.
+pub fn export(shared: &Shared, panels: &Panels, stem: &Path) -> Result<(PathBuf, PathBuf), String> {
+    let files = diagram_files(shared, panels, stem)?;
+    let paths = (files[0].path().to_path_buf(), files[1].path().to_path_buf());
+    AtomicFile::commit_all(files).map_err(|e| format!("export: {e}"))?;
+    Ok(paths)
 }

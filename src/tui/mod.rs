@@ -99,6 +99,12 @@ pub fn build_app(opts: &Options, config: &Config) -> Result<App, InputError> {
     let fps = opts.fps.or(config.fps).unwrap_or(rules::FPS.default as u32);
     let mut app = App::new(p, config.keymap.clone(), Theme::new(mode), marker, fps);
     app.mouse = opts.mouse || config.mouse.unwrap_or(false);
+    if let Some(s) = config.export_plane {
+        app.export_sizes.plane = s;
+    }
+    if let Some(s) = config.export_basins {
+        app.export_sizes.basins = s;
+    }
     Ok(app)
 }
 

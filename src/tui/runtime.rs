@@ -175,26 +175,16 @@ fn apply(e: Effect, app: &mut App, workers: &Workers, term: &mut Term) -> anyhow
             let name = app.export_pending.take().unwrap_or_default();
             let stem = std::path::Path::new(name.trim());
             let msg = if app.export_view {
-                match export_view(&app.shared, &app.panels, stem) {
-                    Ok(_) => (
-                        format!(
-                            "wrote {n}.csv, {n}.txt, {n}-diagram.svg/.png, {n}-phase.svg/.png",
-                            n = stem.display()
-                        ),
-                        false,
-                    ),
-                    Err(e) => (e, true),
-                }
+                let sizes = app.export_sizes;
+                export_view(&mut app.shared, &mut app.panels, sizes, stem)
             } else {
-                match export(&app.shared, &app.panels, stem) {
-                    Ok((c, t)) => (
-                        format!("exported {} and {}", c.display(), t.display()),
-                        false,
-                    ),
-                    Err(e) => (e, true),
-                }
+                export(&app.shared, &app.panels, stem)
+                    .map(|(c, t)| format!("export: wrote {} and {}", c.display(), t.display()))
             };
-            app.shared.say(msg.0, msg.1);
+            match msg {
+                Ok(m) => app.shared.say(m, false),
+                Err(e) => app.shared.say(e, true),
+            }
         }
         Effect::Suspend => suspend(app, term)?,
     }

@@ -21,6 +21,9 @@
 //! start = "near-fixed-point"   # or cold, warm, warm-backward
 //! transient = 20000
 //! keep = 100
+//! [export]             # E with the plane or the basins shown: their resolution
+//! plane = "400x200"     # pixels (as plane --size)
+//! basins = "200x100"    # starts (as basins --grid)
 //! [keys]
 //! step_one = "n"
 //! quit = ["q", "ctrl-c"]
@@ -45,7 +48,15 @@ struct File {
     marker: Option<String>,
     mouse: Option<bool>,
     defaults: Option<Defaults>,
+    export: Option<ExportSizes>,
     keys: Option<BTreeMap<String, OneOrMany>>,
+}
+
+#[derive(Deserialize, Default, Debug)]
+#[serde(deny_unknown_fields)]
+struct ExportSizes {
+    plane: Option<String>,
+    basins: Option<String>,
 }
 
 #[derive(Deserialize, Default, Debug)]
@@ -82,6 +93,9 @@ pub struct Config {
     /// (row, typed text) pairs applied to the default parameters in order.
     pub defaults: Vec<(ParamId, String)>,
     pub sweep: Option<(f64, f64)>,
+    /// `[export]`: the plane's pixels and the basins' starts of `E`'s figures.
+    pub export_plane: Option<(usize, usize)>,
+    pub export_basins: Option<(usize, usize)>,
     pub keymap: Keymap,
 }
 
@@ -162,6 +176,16 @@ impl Config {
                 }
             }
             c.sweep = d.sweep.map(|[a, b]| (a, b));
+        }
+        if let Some(e) = f.export {
+            use crate::config::flags::{parse_grid, parse_plane_size};
+            if let Some(t) = e.plane {
+                c.export_plane =
+                    Some(parse_plane_size(&t).map_err(|e| format!("export.plane: {e}"))?);
+            }
+            if let Some(t) = e.basins {
+                c.export_basins = Some(parse_grid(&t).map_err(|e| format!("export.basins: {e}"))?);
+            }
         }
         if let Some(keys) = f.keys {
             let mut config = Vec::new();

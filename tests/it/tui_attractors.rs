@@ -8,7 +8,7 @@ use bouncemap::config::display::ColorMode;
 use bouncemap::output::classes::Class;
 use bouncemap::output::hitgrid::Marker;
 use bouncemap::tui::app::{App, Effect};
-use bouncemap::tui::components::diagram::colouring::ColorBy;
+use bouncemap::tui::components::diagram::colouring::Colouring;
 use bouncemap::tui::components::diagram::ALL_STARTS;
 use bouncemap::tui::components::{Component, Target};
 use bouncemap::tui::components::{JobMsg, Msg, Workers};
@@ -105,7 +105,7 @@ fn period_colours_follow_the_class_of_each_value() {
     );
     // `c` switches to density colouring: no class colours left on the plot.
     key(&mut a, 'c');
-    assert_eq!(a.panels.diagram.color_by, ColorBy::Density);
+    assert_eq!(a.panels.diagram.color_by, Colouring::Density);
     let mut buf = Buffer::empty(area);
     a.panels.diagram.draw(&a.shared, area, &mut buf);
     assert!(!buf
@@ -179,7 +179,7 @@ fn all_attractors_key_runs_several_starts_and_colours_by_attractor() {
     assert!(!a.panels.diagram.all_attractors);
     key(&mut a, 'a');
     assert!(a.panels.diagram.all_attractors);
-    assert_eq!(a.panels.diagram.color_by, ColorBy::Attractor);
+    assert_eq!(a.panels.diagram.color_by, Colouring::Attractor);
     assert!(a.take_effects().contains(&Effect::Start(Target::Diagram)));
     let spec = a.panels.diagram.sweep_spec(&a.shared);
     assert_eq!(spec.starts, ALL_STARTS);
@@ -206,15 +206,15 @@ fn all_attractors_key_runs_several_starts_and_colours_by_attractor() {
     }
     // `c` cycles attractor → density → class → attractor.
     key(&mut a, 'c');
-    assert_eq!(a.panels.diagram.color_by, ColorBy::Density);
+    assert_eq!(a.panels.diagram.color_by, Colouring::Density);
     key(&mut a, 'c');
-    assert_eq!(a.panels.diagram.color_by, ColorBy::Class);
+    assert_eq!(a.panels.diagram.color_by, Colouring::Class);
     key(&mut a, 'c');
-    assert_eq!(a.panels.diagram.color_by, ColorBy::Attractor);
+    assert_eq!(a.panels.diagram.color_by, Colouring::Attractor);
     key(&mut a, 'a');
     assert!(!a.panels.diagram.all_attractors);
     assert_eq!(a.panels.diagram.sweep_spec(&a.shared).starts, 1);
-    assert_eq!(a.panels.diagram.color_by, ColorBy::Class);
+    assert_eq!(a.panels.diagram.color_by, Colouring::Class);
 }
 
 /// A basins panel filled from the engine's job, as the runtime would feed it.
@@ -307,9 +307,13 @@ fn the_new_keys_are_configurable_and_listed_in_the_help() {
         Keymap::default().action(&ev('B')),
         Some(Action::ToggleBasins)
     );
-    assert_eq!(Keymap::default().action(&ev('c')), Some(Action::ColorBy));
+    assert_eq!(Keymap::default().action(&ev('c')), Some(Action::Colouring));
     let help = Keymap::default().help();
-    for a in [Action::ColorBy, Action::AllAttractors, Action::ToggleBasins] {
+    for a in [
+        Action::Colouring,
+        Action::AllAttractors,
+        Action::ToggleBasins,
+    ] {
         assert!(help.iter().any(|(_, d)| *d == a.describe()), "{a}");
     }
     for name in ["color_by", "all_attractors", "basins"] {

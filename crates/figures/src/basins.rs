@@ -5,9 +5,7 @@
 //! how pictures number and name attractors ([`numbers`], [`describe`], [`exponent`]),
 //! which the text pictures and the terminal application share.
 
-use super::{
-    significant, Axis, Color, Corner, Figure, Layer, Legend, Marker, Panel, Swatch, COLUMN,
-};
+use super::{significant, Axis, Color, Corner, Figure, Layer, Legend, Marker, Panel, Swatch};
 use bouncemap_engine::attractors::basins::{BasinSpec, Basins};
 use bouncemap_engine::attractors::{Attractor, Kind, Registry};
 use bouncemap_engine::error::fmt_value as shortest;
@@ -136,7 +134,8 @@ pub fn basins_figure(spec: &BasinSpec, basins: &Basins) -> Figure {
         shortest(spec.sys.alpha()),
         shortest(spec.sys.r())
     ));
-    panel.legends.push(Legend {
+    // Beside the frame: a basin picture is full to every corner.
+    panel.beside.push(Legend {
         corner: Corner::TopRight,
         entries,
     });
@@ -148,6 +147,9 @@ pub fn basins_figure(spec: &BasinSpec, basins: &Basins) -> Figure {
             "Basins of attraction: each of {}\u{d7}{} starts leaves the table at phase $t\u{302}_0$ with relative velocity $w_0$ and is followed for up to {} table periods (early stop on cycles); its cell is coloured by the attractor it ends on, numbered from the largest basin down. Grey: starts that come to rest on the table or do not land. Circles: a point (after an impact) of each periodic attractor, itself a start in its basin.",
             spec.nx, spec.ny, spec.settle.transient
         )],
-        size: (COLUMN, 3.2),
+        size: (BASINS_WIDTH, 3.2),
     }
 }
+
+/// The width of a basins figure: a column's plot and the legend beside it.
+const BASINS_WIDTH: f64 = 5.6;

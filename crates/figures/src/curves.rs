@@ -193,35 +193,3 @@ pub fn freest_corner(points: &[[f64; 2]], size: [f64; 2]) -> Corner {
     .min_by_key(|&c| points.iter().filter(|p| inside(c, p)).count())
     .unwrap_or(Corner::BottomRight)
 }
-
-/// Draw `c` over a figure's first panel (a plane's pixels) in black, its entries added
-/// to the legend of lines if there is one, else as a legend in the freest corner.
-pub fn overlay(fig: &mut Figure, c: &Curves, alpha_on_x: bool) {
-    let Some(panel) = fig.panels.first_mut() else {
-        return;
-    };
-    let (layers, entries) = layers(c, alpha_on_x, Some(Color::BLACK));
-    panel.layers.extend(layers);
-    if entries.is_empty() {
-        return;
-    }
-    if let Some(l) = panel
-        .legends
-        .iter_mut()
-        .find(|l| l.entries.iter().any(|(s, _)| s.line.is_some()))
-    {
-        l.entries.extend(entries);
-        return;
-    }
-    let used: Vec<Corner> = panel.legends.iter().map(|l| l.corner).collect();
-    let corner = [
-        Corner::TopLeft,
-        Corner::TopRight,
-        Corner::BottomLeft,
-        Corner::BottomRight,
-    ]
-    .into_iter()
-    .find(|c| !used.contains(c))
-    .unwrap_or(Corner::TopLeft);
-    panel.legends.push(Legend { corner, entries });
-}

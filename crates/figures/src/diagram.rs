@@ -9,8 +9,13 @@
 //! where the paper shades its "inaccurate" region: here sticking is computed exactly,
 //! so the caption says sticking. Dashed lines mark t̂ = 0 and 1, the domain of t̂.
 
+use super::classes::{self, Class};
 use super::text::plain;
-use super::{fmt_count, Axis, Color, Dash, DensityGrid, Figure, Layer, Panel, COLUMN, FULL_WIDTH};
+use super::{
+    fmt_count, Axis, Color, Corner, Dash, DensityGrid, Figure, Layer, Legend, Marker, Panel,
+    Swatch, COLUMN, FULL_WIDTH,
+};
+use bouncemap_engine::error::fmt_value as shortest;
 use bouncemap_engine::grid::SweepParam;
 use bouncemap_engine::run::Outcome;
 use bouncemap_engine::sweep::{SweepSpec, ValueResult};
@@ -24,6 +29,121 @@ pub enum DiagramAxis {
     Phase,
     /// The ball's velocity after each event.
     Velocity,
+}
+
+/// What a diagram's colours show (the terminal's `c` key cycles them; an export draws
+/// what the screen shows).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Colouring {
+    /// The class of each value's orbit (period 1, 2, 4, 8, other, sticking, chaos):
+    /// [`Class::rgb`].
+    #[default]
+    Class,
+    /// With several starts: the attractor each point lies on (1 = largest basin), in
+    /// the basins' colours ([`crate::basins::colour`]).
+    Attractor,
+    /// Hit density only (the paper's black dots).
+    Density,
+}
+
+/// Attractors coloured apart (1 … 8, the eighth shared by the rest).
+pub const ATTRACTOR_LABELS: usize = 8;
+
+impl Colouring {
+    /// The next colouring (the `c` key): attractors only while all attractors are
+    /// shown.
+    pub fn next(self, all_attractors: bool) -> Colouring {
+        match (self, all_attractors) {
+            (Colouring::Class, true) => Colouring::Attractor,
+            (Colouring::Class, false) | (Colouring::Attractor, _) => Colouring::Density,
+            (Colouring::Density, _) => Colouring::Class,
+        }
+    }
+
+    /// The colour of label `l` under this colouring (a class's index, or an attractor's
+    /// rank from 0).
+    pub fn colour(self, l: usize) -> Color {
+        match self {
+            Colouring::Class => {
+                let (r, g, b) = Class::ALL[l.min(Class::ALL.len() - 1)].rgb();
+                Color(r, g, b)
+            }
+            Colouring::Attractor => crate::basins::colour(l + 1),
+            Colouring::Density => Color::BLACK,
+        }
+    }
+
+    /// What label `l` means, for a legend.
+    pub fn describe(self, l: usize) -> String {
+        match self {
+            Colouring::Class => Class::ALL[l.min(Class::ALL.len() - 1)]
+                .describe()
+                .to_string(),
+            Colouring::Attractor if l + 1 == ATTRACTOR_LABELS => {
+                format!("attractors {ATTRACTOR_LABELS} and beyond")
+            }
+            Colouring::Attractor if l == 0 => "attractor 1 (largest basin at its value)".into(),
+            Colouring::Attractor => format!("attractor {}", l + 1),
+            Colouring::Density => "events".into(),
+        }
+    }
+}
+
+/// The label of each of a value's points under `by` (None: drawn by density): its
+/// class's index, or (with several starts) its attractor's rank.
+pub fn point_labels(r: &ValueResult, by: Colouring) -> Vec<Option<u8>> {
+    let n = r.points.len();
+    if by == Colouring::Density {
+        return vec![None; n];
+    }
+    if r.attractors.is_empty() {
+        let l = match by {
+            Colouring::Class => classes::of_value(r).map(|c| c.index() as u8),
+            _ => Some(0),
+        };
+        return vec![l; n];
+    }
+    let mut out = vec![None; n];
+    for (rank, a) in r.attractors.iter().enumerate() {
+        let l = match by {
+            Colouring::Class => classes::of_attractor(a).map(|c| c.index() as u8),
+            _ => Some(rank.min(ATTRACTOR_LABELS - 1) as u8),
+        };
+        for slot in &mut out[a.points.clone()] {
+            *slot = l;
+        }
+    }
+    out
+}
+
+/// How the values of `spec` were started, in words: "each started near the (1, 1)
+/// solution", or with several starts "each from 8 starts: …" (the captions of the
+/// figures and the header of the text diagram say the same).
+pub fn starts_text(spec: &SweepSpec) -> String {
+    let first = if spec.initial.near_fixed_point {
+        "near the (1, 1) solution".to_string()
+    } else {
+        format!(
+            "at t\u{302}0 = {}{}",
+            spec.initial.t0,
+            match spec.initial.v0 {
+                Some(v) => format!(", v0 = {v}"),
+                None => String::new(),
+            }
+        )
+    };
+    if spec.starts > 1 {
+        let w = match spec.w_max {
+            Some(w) => shortest(w),
+            None => "W".into(),
+        };
+        format!(
+            "each from {} starts (one {first}, the others spread over t\u{302}0 \u{2208} [0, 1), w0 \u{2208} [0, {w}]), every attractor found drawn",
+            spec.starts
+        )
+    } else {
+        format!("each started {first}")
+    }
 }
 
 /// The swept parameter's symbol, in markup.
@@ -74,47 +194,68 @@ fn sticks(v: &ValueResult) -> bool {
 }
 
 /// One diagram panel: the values' points against the swept parameter over `window`
-/// (the sweep's window if None).
+/// (the sweep's window if None), coloured `by` (black dots for density), with a legend
+/// of the colours beside the frame.
 pub fn diagram_panel<'a>(
     spec: &SweepSpec,
     values: impl IntoIterator<Item = &'a ValueResult>,
     window: Option<(f64, f64)>,
     axis: DiagramAxis,
+    by: Colouring,
 ) -> Panel {
     let (lo, hi) = window.unwrap_or((spec.lo, spec.hi));
     let mut values: Vec<&ValueResult> = values.into_iter().collect();
     values.sort_by(|a, b| a.value.total_cmp(&b.value));
     let inside = |x: f64| x >= lo.min(hi) && x <= hi.max(lo);
-    let points: Vec<[f64; 2]> = values
-        .iter()
-        .filter(|v| inside(v.value))
-        .flat_map(|v| {
-            v.points.iter().map(move |p| {
-                [
-                    v.value,
-                    match axis {
-                        DiagramAxis::Phase => p.phase,
-                        DiagramAxis::Velocity => p.v,
-                    },
-                ]
-            })
-        })
-        .collect();
+    // The points of each label (the last: none, drawn black).
+    let labels = Class::ALL.len().max(ATTRACTOR_LABELS) + 1;
+    let mut points: Vec<Vec<[f64; 2]>> = vec![Vec::new(); labels];
+    for v in values.iter().filter(|v| inside(v.value)) {
+        for (p, l) in v.points.iter().zip(point_labels(v, by)) {
+            let y = match axis {
+                DiagramAxis::Phase => p.phase,
+                DiagramAxis::Velocity => p.v,
+            };
+            points[l.map_or(labels - 1, usize::from)].push([v.value, y]);
+        }
+    }
     let spans = sticking_spans(spec, values.iter().map(|v| (v.value, sticks(v))));
     let y = match axis {
         DiagramAxis::Phase => phase_axis(),
-        DiagramAxis::Velocity => Axis::around("$v$", points.iter().map(|p| p[1]), 0.05),
+        DiagramAxis::Velocity => Axis::around("$v$", points.iter().flatten().map(|p| p[1]), 0.05),
     };
     let name = match axis {
         DiagramAxis::Phase => "phase",
         DiagramAxis::Velocity => "v",
     };
-    let layer = Layer::Density {
-        name: name.into(),
-        points,
-        color: Color::BLACK,
-    };
-    panel_of(spec, (lo, hi), y, spans, axis, layer)
+    let mut layers = Vec::new();
+    let mut entries = Vec::new();
+    for (l, pts) in points.into_iter().enumerate() {
+        if pts.is_empty() {
+            continue;
+        }
+        let (color, label) = if l + 1 == labels || by == Colouring::Density {
+            (Color::BLACK, None)
+        } else {
+            (by.colour(l), Some(by.describe(l)))
+        };
+        if let Some(text) = label {
+            entries.push((Swatch::marker(color, Marker::Disc), text));
+        }
+        layers.push(Layer::Density {
+            name: format!("{name}{}", if layers.is_empty() { "" } else { "+" }),
+            points: pts,
+            color,
+        });
+    }
+    let mut panel = panel_of(spec, (lo, hi), y, spans, axis, layers);
+    if !entries.is_empty() {
+        panel.beside.push(Legend {
+            corner: Corner::TopRight,
+            entries,
+        });
+    }
+    panel
 }
 
 /// The phase axis of a diagram: t̂ ∈ [0, 1) with a margin.
@@ -130,7 +271,7 @@ fn panel_of(
     y: Axis,
     spans: Vec<[f64; 2]>,
     axis: DiagramAxis,
-    points: Layer,
+    points: Vec<Layer>,
 ) -> Panel {
     let mut panel = Panel::new(Axis::new(param_label(spec.param), lo, hi), y);
     if !spans.is_empty() {
@@ -149,7 +290,7 @@ fn panel_of(
             });
         }
     }
-    panel.layers.push(points);
+    panel.layers.extend(points);
     panel.title = Some(if spec.param == SweepParam::D {
         "$F_D$".to_string()
     } else {
@@ -285,7 +426,7 @@ impl Diagram {
             phase_axis(),
             spans,
             DiagramAxis::Phase,
-            layer,
+            vec![layer],
         )
     }
 }
@@ -302,18 +443,7 @@ pub fn spec_caption(spec: &SweepSpec) -> String {
         SweepParam::R => "r",
         SweepParam::D => "D",
     };
-    let start = if spec.initial.near_fixed_point {
-        "each started near the (1, 1) solution".to_string()
-    } else {
-        format!(
-            "each started at t\u{302}0 = {}{}",
-            spec.initial.t0,
-            match spec.initial.v0 {
-                Some(v) => format!(", v0 = {v}"),
-                None => String::new(),
-            }
-        )
-    };
+    let start = starts_text(spec);
     let warm = match spec.warm {
         bouncemap_engine::sweep::Warm::Off => "",
         _ => ", continued from its neighbour",
@@ -359,16 +489,18 @@ pub fn diagram_figure(name: &str, diagram: Diagram) -> Figure {
 }
 
 /// The terminal application's diagram as it is on screen: `values` over `window`
-/// (None: the sweep's), phase or velocity, with `caption` (plain text: the parameters)
-/// below it.
+/// (None: the sweep's), phase or velocity, coloured as the screen colours it `by`, with
+/// `caption` (plain text: the parameters) below it.
 pub fn diagram_view<'a>(
     spec: &SweepSpec,
     values: impl IntoIterator<Item = &'a ValueResult>,
     window: Option<(f64, f64)>,
     axis: DiagramAxis,
+    by: Colouring,
     caption: &str,
 ) -> Figure {
-    let panel = diagram_panel(spec, values, window, axis);
+    let panel = diagram_panel(spec, values, window, axis, by);
+    let wide = !panel.beside.is_empty();
     let mut lines = vec![plain(caption), spec_caption(spec)];
     if axis == DiagramAxis::Phase {
         lines.push(STICKING_NOTE.into());
@@ -378,7 +510,8 @@ pub fn diagram_view<'a>(
         panels: vec![panel],
         columns: 1,
         caption: lines,
-        size: (COLUMN, 2.9),
+        // Room for the colours' legend beside the frame.
+        size: (if wide { 5.4 } else { COLUMN }, 2.9),
     }
 }
 
@@ -460,7 +593,13 @@ mod tests {
         assert_eq!(spans.len(), 2);
         assert!((spans[0][0] - 0.25).abs() < 1e-12 && (spans[0][1] - 0.55).abs() < 1e-12);
         assert!((spans[1][0] - 0.75).abs() < 1e-12 && (spans[1][1] - 0.85).abs() < 1e-12);
-        let p = diagram_panel(&spec, &vals, Some((0.2, 0.6)), DiagramAxis::Phase);
+        let p = diagram_panel(
+            &spec,
+            &vals,
+            Some((0.2, 0.6)),
+            DiagramAxis::Phase,
+            Colouring::Density,
+        );
         let Some(Layer::Density { points, .. }) = p.layers.last() else {
             panic!("the points come last, on top")
         };

@@ -366,7 +366,12 @@ pub struct Panel {
     pub x: Axis,
     pub y: Axis,
     pub layers: Vec<Layer>,
+    /// Legends inside the frame, each in its corner.
     pub legends: Vec<Legend>,
+    /// Legends beside the frame, on its right, top down (their corner is not used):
+    /// for a legend that would hide data anywhere inside (a map's classes, the
+    /// colours of a dense diagram). The frame narrows to make room.
+    pub beside: Vec<Legend>,
 }
 
 impl Panel {
@@ -378,6 +383,7 @@ impl Panel {
             y,
             layers: Vec::new(),
             legends: Vec::new(),
+            beside: Vec::new(),
         }
     }
 }

@@ -21,8 +21,24 @@ pub fn colour(c: Class) -> Color {
 /// Where the ball never lands (or rests).
 const NO_LANDING_COLOUR: Color = Color(235, 235, 235);
 
-/// The figure of a complete plane.
-pub fn plane_figure(spec: &PlaneSpec, pixels: &[Option<Pixel>], curves: Option<&Curves>) -> Figure {
+/// The two-parameter curves drawn over a plane, with the period they were followed up
+/// to (the caption says it).
+pub struct Continued<'a> {
+    pub curves: &'a bouncemap_engine::orbits::curves::Curves,
+    pub max_period: usize,
+}
+
+/// The figure of a complete plane: its classes (their legend beside the frame, where
+/// it hides nothing) and, over the pixels, the continued two-parameter curves if given
+/// (they hold the analytic α_PD of (1, 1) and border collision of (2, 2), which are
+/// then not drawn twice), else the analytic curves.
+pub fn plane_figure(
+    spec: &PlaneSpec,
+    pixels: &[Option<Pixel>],
+    curves: Option<&Curves>,
+    continued: Option<Continued<'_>>,
+) -> Figure {
+    let curves = if continued.is_some() { None } else { curves };
     let step = |a: &bouncemap_engine::grid::Axis| {
         if a.n > 1 {
             (a.hi - a.lo) / (a.n - 1) as f64
@@ -134,19 +150,38 @@ pub fn plane_figure(spec: &PlaneSpec, pixels: &[Option<Pixel>], curves: Option<&
             drawn.push(text);
         }
     }
-    // The classes' legend (the larger) first, then the curves' in another corner.
+    if let Some(c) = &continued {
+        let alpha_on_x = spec.x.param == SweepParam::Alpha;
+        let (layers, entries) = super::curves::layers(c.curves, alpha_on_x, Some(Color::BLACK));
+        for q in c.curves.curves.iter().flat_map(|cv| cv.points.iter()) {
+            curve_points.push(if alpha_on_x {
+                [q.alpha, q.p]
+            } else {
+                [q.p, q.alpha]
+            });
+        }
+        panel.layers.extend(layers);
+        curve_entries.extend(entries);
+    }
+    // The classes' legend beside the frame (inside, any corner would hide a large
+    // stretch of the map); the curves' inside, where it hides least.
+    if !entries.is_empty() {
+        panel.beside.push(Legend {
+            corner: Corner::TopRight,
+            entries,
+        });
+    }
     let (nx, ny) = (spec.x.n.max(1), spec.y.n.max(1));
     let fractions = |p: &[f64; 2]| [panel.x.fraction(p[0]), panel.y.fraction(p[1])];
     let placed: Vec<([f64; 2], usize)> = placed.iter().map(|(p, k)| (fractions(p), *k)).collect();
     let curve_points: Vec<[f64; 2]> = curve_points.iter().map(fractions).collect();
-    let legends: Vec<_> = [entries, curve_entries]
-        .into_iter()
-        .filter(|e| !e.is_empty())
-        .collect();
-    let sizes: Vec<[f64; 2]> = legends.iter().map(|e| legend_size(e)).collect();
-    let corners = place(&sizes, &placed, &curve_points, nx.max(ny));
-    for (entries, corner) in legends.into_iter().zip(corners) {
-        panel.legends.push(Legend { corner, entries });
+    if !curve_entries.is_empty() {
+        let size = legend_size(&curve_entries);
+        let corner = place(&[size], &placed, &curve_points, nx.max(ny))[0];
+        panel.legends.push(Legend {
+            corner,
+            entries: curve_entries,
+        });
     }
     panel.title = Some(match (spec.x.param, spec.y.param) {
         (SweepParam::D, _) | (_, SweepParam::D) => "$F_D$".to_string(),
@@ -183,12 +218,18 @@ pub fn plane_figure(spec: &PlaneSpec, pixels: &[Option<Pixel>], curves: Option<&
     if !drawn.is_empty() {
         caption.push_str(&format!(" Lines (analytic): {}.", drawn.join("; ")));
     }
+    if let Some(c) = &continued {
+        caption.push_str(&format!(
+            " Black lines over the pixels: the two-parameter curves of the cycles up to period {} (solid: period doubling, dash-dotted: fold, dashed: border collision, dotted: grazing; circles: codimension-two points), as the curves command gives them; the (1, 1) period doubling among them is the analytic $\u{3b1}_{{PD}}$.",
+            c.max_period
+        ));
+    }
     Figure {
         name: "plane".into(),
         panels: vec![panel],
         columns: 1,
         caption: vec![caption],
-        size: (5.0, 3.4),
+        size: (6.6, 3.4),
     }
 }
 

@@ -432,7 +432,7 @@ pub struct BasinsSpecArgs {
     #[command(flatten)]
     pub system: SystemArgs,
     /// Starts along t̂0 × along w0, e.g. 200x100; at most 4000 per side and 10⁶ in all.
-    #[arg(long, default_value = "200x100", value_parser = parse_grid, value_name = "NXxNY")]
+    #[arg(long, default_value = rules::BASINS_GRID, value_parser = parse_grid, value_name = "NXxNY")]
     pub grid: (usize, usize),
     /// Top W of the launch velocities w0 = v0 − f'(t̂0) ∈ [0, W]; valid (0, 1000]
     /// [default: max(1, 2α·max|F'|), twice the table's largest velocity].

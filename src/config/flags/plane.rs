@@ -62,7 +62,7 @@ pub struct FigurePlaneArgs {
     #[command(flatten)]
     pub spec: PlaneSpecArgs,
     /// Pixels along x × along y, e.g. 400x200; at most 4000 per side and 10⁶ in all.
-    #[arg(long, default_value = "400x200", value_parser = parse_plane_size, value_name = "WxH")]
+    #[arg(long, default_value = rules::PLANE_SIZE, value_parser = parse_plane_size, value_name = "WxH")]
     pub pixels: (usize, usize),
     /// Also draw the two-parameter curves (as `bouncemap curves`) of every branch of the
     /// (1, 1) solution up to period P over the pixels, with their codimension-two points;
@@ -88,7 +88,7 @@ pub struct PlaneArgs {
     #[command(flatten)]
     pub spec: PlaneSpecArgs,
     /// Pixels along x × along y, e.g. 400x200; at most 4000 per side and 10⁶ in all.
-    #[arg(long, default_value = "400x200", value_parser = parse_plane_size, value_name = "WxH")]
+    #[arg(long, default_value = rules::PLANE_SIZE, value_parser = parse_plane_size, value_name = "WxH")]
     pub size: (usize, usize),
     /// Output format.
     #[arg(long, value_enum, default_value_t = PlaneFormat::Csv)]

@@ -45,6 +45,7 @@ pub mod stability;
 pub mod status;
 pub mod table_view;
 pub mod too_small;
+pub mod view_export;
 
 use super::keymap::Action;
 use super::layout::{Panes, Slot};
@@ -52,6 +53,8 @@ use super::params::ParamId;
 use super::workers;
 use basins::BasinsPanel;
 use bounce::Bounce;
+use bouncemap_engine::attractors::basins::Basins;
+use bouncemap_engine::plane::Plane;
 use branches::Branches;
 use diagram::Diagram;
 use parameters::Parameters;
@@ -64,6 +67,7 @@ use ratatui::text::Line;
 use ratatui::widgets::{Block, BorderType, Clear, Paragraph, Widget};
 pub use shared::{Effect, Overlay, Shared};
 use stability::Stability;
+use view_export::PictureExport;
 pub use workers::JobMsg;
 
 // The panels in routing order: actions are offered in this order, and a panel listed
@@ -84,6 +88,12 @@ registry! {
     Branches    => branches:   Branches,     slot None,                  new |_| Branches::default();
     /// The two-parameter curves ([`Shared::plane_curves`]), drawn by the plane view.
     PlaneCurves => plane_curves: PlaneCurves, slot None,               new |_| PlaneCurves::default();
+    /// `E`'s plane figure at the export's resolution ([`view_export`]).
+    PlaneExport => plane_export: PictureExport<Plane>, slot None,
+        new |_| PictureExport::new(<PictureExport<Plane> as Registered>::ADDRESS);
+    /// `E`'s basins figure at the export's resolution.
+    BasinsExport => basins_export: PictureExport<Basins>, slot None,
+        new |_| PictureExport::new(<PictureExport<Basins> as Registered>::ADDRESS);
 }
 
 /// The workers of the terminal application: their messages are [`Msg`]s.

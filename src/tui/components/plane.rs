@@ -264,7 +264,7 @@ impl Component for PlanePanel {
             | Action::ZoomBack
             | Action::MarkWindow
             | Action::ToggleAxis
-            | Action::ColorBy
+            | Action::Colouring
             | Action::AllAttractors => {}
             _ => return false,
         }

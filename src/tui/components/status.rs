@@ -11,11 +11,11 @@ use ratatui::layout::Rect;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Paragraph, Widget};
 
-/// Draw the status line: `prompt` is the export's file name being typed, `computing`
-/// what the panels are computing (in the registry's order).
+/// Draw the status line: `prompt` is the export's file name being typed and what will
+/// be added to it, `computing` what the panels are computing (in the registry's order).
 pub fn draw(
     app: &Shared,
-    prompt: Option<&str>,
+    prompt: Option<(&str, &str)>,
     computing: &[String],
     area: Rect,
     buf: &mut Buffer,
@@ -28,12 +28,12 @@ pub fn draw(
         fmt_num(p.r),
         p.k
     );
-    if let Some(name) = prompt {
+    if let Some((name, added)) = prompt {
         let line = Line::from(vec![
             Span::styled(" export to: ", app.theme.focus()),
             Span::styled(format!("{name}▏"), app.theme.selected()),
             Span::styled(
-                "  (.csv and .txt are added; Enter writes, Esc cancels)",
+                format!("  (Enter writes, Esc cancels; {added})"),
                 app.theme.dim(),
             ),
         ]);

@@ -5,7 +5,7 @@
 //! The look is a physics journal's: a closed frame per panel with ticks pointing in on
 //! all four sides (major and minor), tick labels outside, the axis label under the x
 //! axis and along the y axis, the panel letter above the frame's left, legends in a
-//! corner box, and a caption in small type below the panels. Dense point clouds are
+//! corner box (or beside the frame, where every corner would hide data), and a caption in small type below the panels. Dense point clouds are
 //! drawn as small dots whose opacities add up: a cell hit n times is as dark as n
 //! overlaid dots, 1 − (1 − a)ⁿ.
 
@@ -327,18 +327,75 @@ fn swatch(out: &mut String, s: &Swatch, x: f64, y: f64) {
     }
 }
 
-fn legend(out: &mut String, f: &Frame, l: &Legend) {
-    if l.entries.is_empty() {
-        return;
-    }
-    let inset = 3.5;
-    let widest = l
-        .entries
+/// The widest entry text of a legend, at [`LEGEND_FONT`].
+fn widest_entry(l: &Legend) -> f64 {
+    l.entries
         .iter()
         .map(|(_, t)| text::width(t, LEGEND_FONT))
-        .fold(0.0, f64::max);
+        .fold(0.0, f64::max)
+}
+
+/// A legend box's width at [`LEGEND_FONT`], in points.
+fn legend_width(l: &Legend) -> f64 {
+    3.0 + 14.0 + 3.0 + widest_entry(l) + 3.5
+}
+
+/// Room between a frame and the legends beside it.
+const BESIDE_GAP: f64 = 6.0;
+
+/// The room the legends beside a panel's frame take on its right.
+fn beside_width(p: &Panel) -> f64 {
+    p.beside
+        .iter()
+        .map(legend_width)
+        .fold(0.0, f64::max)
+        .max(0.0)
+        + if p.beside.is_empty() { 0.0 } else { BESIDE_GAP }
+}
+
+fn legend(out: &mut String, f: &Frame, l: &Legend) {
+    let inset = 3.5;
     // A legend wider than its frame gets smaller type (not below 5 pt).
     let room = (f.x1 - f.x0) - 2.0 * inset - 23.5;
+    let (x, y) = match l.corner {
+        Corner::TopLeft => (f.x0 + inset, f.y0 + inset),
+        Corner::TopRight => (f.x1 - inset, f.y0 + inset),
+        Corner::BottomLeft => (f.x0 + inset, f.y1 - inset),
+        Corner::BottomRight => (f.x1 - inset, f.y1 - inset),
+    };
+    let right = matches!(l.corner, Corner::TopRight | Corner::BottomRight);
+    let bottom = matches!(l.corner, Corner::BottomLeft | Corner::BottomRight);
+    legend_box(out, l, (x, y), (right, bottom), room);
+}
+
+/// The legends beside frame `f`, on its right, one under the other.
+fn legends_beside(out: &mut String, f: &Frame, p: &Panel) {
+    let mut y = f.y0;
+    for l in &p.beside {
+        y += legend_box(
+            out,
+            l,
+            (f.x1 + BESIDE_GAP, y),
+            (false, false),
+            f64::INFINITY,
+        ) + 4.0;
+    }
+}
+
+/// A legend's box with its corner at `at`: the box extends left of it where `anchor.0`
+/// (right-aligned), up where `anchor.1` (bottom-aligned); the type shrinks (not below
+/// 5 pt) to fit `room` points of text. Returns the box's height.
+fn legend_box(
+    out: &mut String,
+    l: &Legend,
+    at: (f64, f64),
+    anchor: (bool, bool),
+    room: f64,
+) -> f64 {
+    if l.entries.is_empty() {
+        return 0.0;
+    }
+    let widest = widest_entry(l);
     let size = if widest > room && widest > 0.0 {
         (LEGEND_FONT * room / widest).max(5.0)
     } else {
@@ -348,12 +405,8 @@ fn legend(out: &mut String, f: &Frame, l: &Legend) {
     let row = size * 1.35;
     let w = 3.0 + 14.0 + 3.0 + text_w + 3.5;
     let h = 2.0 + row * l.entries.len() as f64 + 1.0;
-    let (x, y) = match l.corner {
-        Corner::TopLeft => (f.x0 + inset, f.y0 + inset),
-        Corner::TopRight => (f.x1 - inset - w, f.y0 + inset),
-        Corner::BottomLeft => (f.x0 + inset, f.y1 - inset - h),
-        Corner::BottomRight => (f.x1 - inset - w, f.y1 - inset - h),
-    };
+    let x = if anchor.0 { at.0 - w } else { at.0 };
+    let y = if anchor.1 { at.1 - h } else { at.1 };
     let _ = writeln!(
         out,
         "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"#ffffff\" fill-opacity=\"0.88\" stroke=\"#a0a0a0\" stroke-width=\"0.4\"/>",
@@ -374,6 +427,7 @@ fn legend(out: &mut String, f: &Frame, l: &Legend) {
             false,
         ));
     }
+    h
 }
 
 /// The axes: frame, inward ticks on four sides, tick labels, axis labels.
@@ -527,7 +581,9 @@ pub fn to_svg(fig: &Figure, size: (f64, f64)) -> String {
             })
             .fold(RIGHT_MARGIN, f64::max)
     };
-    let frame_w = (cell_w - left - right(cell_w - left - RIGHT_MARGIN)).max(10.0);
+    // Legends beside the frames take their room from the frames' width.
+    let beside = fig.panels.iter().map(beside_width).fold(0.0, f64::max);
+    let frame_w = (cell_w - left - beside - right(cell_w - left - beside - RIGHT_MARGIN)).max(10.0);
 
     let mut out = String::new();
     let _ = writeln!(
@@ -577,6 +633,7 @@ pub fn to_svg(fig: &Figure, size: (f64, f64)) -> String {
         for l in &p.legends {
             legend(&mut out, &f, l);
         }
+        legends_beside(&mut out, &f, p);
         let head = f.y0 - 0.45 * LETTER_FONT;
         if let Some(letter) = &p.letter {
             out.push_str(&text_el(

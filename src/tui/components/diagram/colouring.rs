@@ -1,72 +1,22 @@
 //! The diagram's colour layer: for every character cell, how many points of each label
-//! it holds (a label is an orbit class, or an attractor's number at its value), so a
-//! cell is drawn in the style of its most frequent label; and the legend that says what
-//! the styles mean.
+//! it holds (a label is an orbit class, or an attractor's number at its value, as the
+//! figures label them: [`point_labels`]), so a cell is drawn in the style of its most
+//! frequent label; and the legend that says what the styles mean.
 
-use crate::output::classes::{self, Class};
+use crate::output::classes::Class;
 use crate::output::hitgrid::HitGrid;
 use crate::tui::theme::Theme;
-use bouncemap_engine::sweep::ValueResult;
+pub use bouncemap_figures::diagram::{point_labels, Colouring, ATTRACTOR_LABELS};
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::text::{Line, Span};
 
-/// Attractors coloured apart (1 … 8, the eighth shared by the rest).
-pub const ATTRACTORS: usize = 8;
 /// Labels a cell counts: every class, or the attractors.
-pub const LABELS: usize = if Class::ALL.len() > ATTRACTORS {
+pub const LABELS: usize = if Class::ALL.len() > ATTRACTOR_LABELS {
     Class::ALL.len()
 } else {
-    ATTRACTORS
+    ATTRACTOR_LABELS
 };
-
-/// What the diagram's colours show.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ColorBy {
-    /// The class of each value's orbit (period 1, 2, 4, 8, other, sticking, chaos).
-    Class,
-    /// With several starts: the attractor each point lies on (1 = largest basin).
-    Attractor,
-    /// Hit density, as without any classification.
-    Density,
-}
-
-impl ColorBy {
-    /// The next colouring (`c`): attractors only while all attractors are shown.
-    pub fn next(self, all_attractors: bool) -> ColorBy {
-        match (self, all_attractors) {
-            (ColorBy::Class, true) => ColorBy::Attractor,
-            (ColorBy::Class, false) | (ColorBy::Attractor, _) => ColorBy::Density,
-            (ColorBy::Density, _) => ColorBy::Class,
-        }
-    }
-}
-
-/// The label of each of a value's points under `by` (None: drawn by density).
-pub fn point_labels(r: &ValueResult, by: ColorBy) -> Vec<Option<u8>> {
-    let n = r.points.len();
-    if by == ColorBy::Density {
-        return vec![None; n];
-    }
-    if r.attractors.is_empty() {
-        let l = match by {
-            ColorBy::Class => classes::of_value(r).map(|c| c.index() as u8),
-            _ => Some(0),
-        };
-        return vec![l; n];
-    }
-    let mut out = vec![None; n];
-    for (rank, a) in r.attractors.iter().enumerate() {
-        let l = match by {
-            ColorBy::Class => classes::of_attractor(a).map(|c| c.index() as u8),
-            _ => Some(rank.min(ATTRACTORS - 1) as u8),
-        };
-        for slot in &mut out[a.points.clone()] {
-            *slot = l;
-        }
-    }
-    out
-}
 
 /// Label counts per character cell of a [`HitGrid`] of the same size.
 #[derive(Clone, Debug, Default)]
@@ -113,8 +63,8 @@ impl LabelGrid {
     }
 
     /// Restyle the lit cells of `plot` by their dominant label.
-    pub fn paint(&self, plot: Rect, buf: &mut Buffer, theme: &Theme, by: ColorBy) {
-        if by == ColorBy::Density {
+    pub fn paint(&self, plot: Rect, buf: &mut Buffer, theme: &Theme, by: Colouring) {
+        if by == Colouring::Density {
             return;
         }
         for r in 0..self.rows.min(plot.height) {
@@ -123,7 +73,7 @@ impl LabelGrid {
                     continue;
                 };
                 let style = match by {
-                    ColorBy::Class => theme.class(Class::ALL[l]),
+                    Colouring::Class => theme.class(Class::ALL[l]),
                     _ => theme.attractor(l),
                 };
                 if let Some(cell) = buf.cell_mut((plot.x + c, plot.y + r)) {
@@ -139,17 +89,17 @@ impl LabelGrid {
 }
 
 /// The legend of the colours (drawn in the diagram's bottom border).
-pub fn legend(by: ColorBy, theme: &Theme) -> Line<'static> {
+pub fn legend(by: Colouring, theme: &Theme) -> Line<'static> {
     let mut spans = vec![Span::styled(" ", theme.axis())];
     match by {
-        ColorBy::Class => {
+        Colouring::Class => {
             spans.push(Span::styled("period ", theme.axis()));
             for c in Class::ALL {
                 spans.push(Span::styled(c.label().to_string(), theme.class(c)));
                 spans.push(Span::styled(" ", theme.axis()));
             }
         }
-        ColorBy::Attractor => {
+        Colouring::Attractor => {
             spans.push(Span::styled("attractor ", theme.axis()));
             for n in 0..6 {
                 spans.push(Span::styled(format!("{}", n + 1), theme.attractor(n)));
@@ -157,7 +107,7 @@ pub fn legend(by: ColorBy, theme: &Theme) -> Line<'static> {
             }
             spans.push(Span::styled("(1 = largest basin) ", theme.axis()));
         }
-        ColorBy::Density => {
+        Colouring::Density => {
             spans.push(Span::styled("density ", theme.axis()));
             for (l, t) in ["sparse", "·", "·", "dense"].into_iter().enumerate() {
                 spans.push(Span::styled(t, theme.density(l)));

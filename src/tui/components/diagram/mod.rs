@@ -25,7 +25,7 @@ use crate::tui::params::{fmt_num, ParamId, Params, StartMode, Touch};
 use crate::tui::plot::{draw_axes, render, Axes};
 use bouncemap_engine::grid::SweepParam;
 use bouncemap_engine::sweep::{InitialSpec, SweepBatch, SweepJob, SweepSpec, ValueResult};
-use colouring::{point_labels, ColorBy, LabelGrid};
+use colouring::{point_labels, Colouring, LabelGrid};
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::style::Style;
@@ -127,7 +127,7 @@ pub struct Diagram {
     /// The sweep the stored results come from.
     pub running: Option<SweepSpec>,
     /// What the colours show.
-    pub color_by: ColorBy,
+    pub color_by: Colouring,
     /// Several starts per value, every attractor drawn.
     pub all_attractors: bool,
     /// Label counts per cell of `grid`.
@@ -164,7 +164,7 @@ impl Diagram {
             ),
             plot_area: Rect::default(),
             running: None,
-            color_by: ColorBy::Class,
+            color_by: Colouring::Class,
             all_attractors: false,
             labels: LabelGrid::default(),
             eta: eta::Eta::default(),
@@ -363,27 +363,27 @@ impl Component for Diagram {
                 self.rebin(shared);
                 self.ycursor = self.grid.y_range().lo + 0.5 * self.grid.y_range().span();
             }
-            Action::ColorBy => {
+            Action::Colouring => {
                 self.color_by = self.color_by.next(self.all_attractors);
                 self.rebin(shared);
                 let what = match self.color_by {
-                    ColorBy::Class => "colours: the class of each value's orbit",
-                    ColorBy::Attractor => "colours: the attractor (1 = largest basin)",
-                    ColorBy::Density => "colours: point density",
+                    Colouring::Class => "colours: the class of each value's orbit",
+                    Colouring::Attractor => "colours: the attractor (1 = largest basin)",
+                    Colouring::Density => "colours: point density",
                 };
                 shared.say(what, false);
             }
             Action::AllAttractors => {
                 self.all_attractors = !self.all_attractors;
                 if self.all_attractors {
-                    self.color_by = ColorBy::Attractor;
+                    self.color_by = Colouring::Attractor;
                     shared.say(
                         format!("all attractors: {ALL_STARTS} starts per value over the basin box"),
                         false,
                     );
                 } else {
-                    if self.color_by == ColorBy::Attractor {
-                        self.color_by = ColorBy::Class;
+                    if self.color_by == Colouring::Attractor {
+                        self.color_by = Colouring::Class;
                     }
                     shared.say("one start per value", false);
                 }
