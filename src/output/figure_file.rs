@@ -70,6 +70,7 @@ mod tests {
             &values,
             Some((0.5, 0.6)),
             DiagramAxis::Velocity,
+            bouncemap_figures::diagram::Colouring::Class,
             "fd:0.1  r = 0.8  zoom 0.5..0.6",
         );
         assert_eq!(fig.panels[0].x.lo, 0.5);

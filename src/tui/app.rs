@@ -14,7 +14,7 @@ use super::components::{
     help, legend, messages, status, table_view, too_small, Msg, Panels, Workers,
 };
 pub use super::components::{Effect, Overlay, Shared, Target};
-use super::export::free_name;
+use super::export::{free_name, ExportSizes};
 use super::keymap::{Action, Keymap};
 use super::layout::{layout, left_out_note, narrow, Slot, BOTTOM, FULL_W};
 use super::params::{ParamId, Params};
@@ -46,27 +46,6 @@ pub struct App {
     pub export_view: bool,
     /// The resolution of `E`'s plane and basins figures (`[export]` in the config).
     pub export_sizes: ExportSizes,
-}
-
-/// The resolution of `E`'s plane and basins figures, computed for the export.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct ExportSizes {
-    /// Pixels along α and along the other axis.
-    pub plane: (usize, usize),
-    /// Starts along t̂0 and along w0.
-    pub basins: (usize, usize),
-}
-
-impl Default for ExportSizes {
-    /// The commands' defaults (`plane --size`, `basins --grid`).
-    fn default() -> Self {
-        use crate::config::flags::{parse_grid, parse_plane_size};
-        use crate::config::rules::{BASINS_GRID, PLANE_SIZE};
-        ExportSizes {
-            plane: parse_plane_size(PLANE_SIZE).expect("the default plane size parses"),
-            basins: parse_grid(BASINS_GRID).expect("the default basins grid parses"),
-        }
-    }
 }
 
 impl App {
@@ -314,8 +293,11 @@ impl App {
         let d = &self.panels.diagram;
         let focused = self.shared.focus == Slot::Diagram
             && self.panels.in_slot(Slot::Diagram) == Some(Target::Diagram);
+        // At the value the readout describes (the nearest computed one), so the
+        // screen speaks of one α.
+        let at = super::components::diagram::readout::nearest(d).map_or(d.cursor, |r| r.value);
         self.shared.under_cursor = match &self.shared.branches {
-            Some(Ok(sk)) if focused => sk.under(d.cursor, d.ycursor, d.axis == Axis::Velocity),
+            Some(Ok(sk)) if focused => sk.under(at, d.ycursor, d.axis == Axis::Velocity),
             _ => None,
         };
         self.shared.at_cursor = focused

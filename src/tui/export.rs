@@ -15,7 +15,6 @@
 //! (all or none); an existing file is never replaced. The files are named here once,
 //! for the default names, the prompt and writing.
 
-use super::app::ExportSizes;
 use super::components::plane_curves::MAX_PERIOD;
 use super::components::view_export::{PictureExport, Request};
 use super::components::{Effect, Panels, Registered, Shared};
@@ -27,6 +26,27 @@ use bouncemap_engine::attractors::basins::Basins;
 use bouncemap_engine::plane::Plane;
 use std::io::Write;
 use std::path::{Path, PathBuf};
+
+/// The resolution of `E`'s plane and basins figures, computed for the export.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ExportSizes {
+    /// Pixels along α and along the other axis.
+    pub plane: (usize, usize),
+    /// Starts along t̂0 and along w0.
+    pub basins: (usize, usize),
+}
+
+impl Default for ExportSizes {
+    /// The commands' defaults (`plane --size`, `basins --grid`).
+    fn default() -> Self {
+        use crate::config::flags::{parse_grid, parse_plane_size};
+        use crate::config::rules::{BASINS_GRID, PLANE_SIZE};
+        ExportSizes {
+            plane: parse_plane_size(PLANE_SIZE).expect("the default plane size parses"),
+            basins: parse_grid(BASINS_GRID).expect("the default basins grid parses"),
+        }
+    }
+}
 
 /// The ends of the files `e` writes.
 const FILES: [&str; 2] = [".csv", ".txt"];

@@ -365,7 +365,8 @@ fn the_basins_panel_fills_in_and_restarts_with_real_workers() {
     workers.cancel_all();
 }
 
-/// `E` with the basins panel shown and complete also writes the basins as figures.
+/// `E` with the basins panel shown also writes the basins as figures, computed again at
+/// the export's resolution; the messages name every file.
 #[test]
 fn export_view_writes_the_basins_when_they_are_shown() {
     let mut a = cubic_app(ColorMode::None);
@@ -374,13 +375,24 @@ fn export_view_writes_the_basins_when_they_are_shown() {
     let dir = std::env::temp_dir().join(format!("bouncemap-basins-view-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let stem = dir.join("b");
-    let written = bouncemap::tui::export::export_view(&a.shared, &a.panels, &stem).unwrap();
-    let names: Vec<String> = written
-        .iter()
-        .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
-        .collect();
-    assert!(names.contains(&"b-basins.svg".to_string()), "{names:?}");
-    assert!(names.contains(&"b-basins.png".to_string()), "{names:?}");
+    // At the export's own resolution, not the screen's.
+    let sizes = bouncemap::tui::export::ExportSizes {
+        plane: (40, 20),
+        basins: (60, 30),
+    };
+    let said = crate::tui_common::export_view_to_end(&mut a, sizes, &stem).unwrap();
+    let all = said.join("\n");
+    for f in [
+        "b.csv",
+        "b-diagram.png",
+        "b-phase.svg",
+        "b-basins.svg",
+        "b-basins.png",
+    ] {
+        assert!(all.contains(f), "{f}: {all}");
+        assert!(dir.join(f).is_file(), "{f}");
+    }
+    assert!(all.contains("60×30 starts"), "{all}");
     let svg = std::fs::read_to_string(dir.join("b-basins.svg")).unwrap();
     assert!(
         svg.contains("periodic (1, 1)") && svg.contains("sticking"),

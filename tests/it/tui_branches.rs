@@ -102,11 +102,16 @@ fn the_branch_under_the_cursor_is_the_two_cycle_with_its_multipliers() {
         border_collision(&table, 0.8, 1).unwrap().alpha,
     );
     let alpha = 0.5 * (pd + bc);
-    let sys = System::new(table, alpha, 0.8).unwrap();
-    let two = two_cycle(&sys, 1).unwrap();
-    // Put the diagram's cursor on the 2-cycle's first phase at that α.
+    // The branch is described at the value the readout describes: the computed value
+    // nearest the cursor (one α on the screen).
     a.shared.focus = Slot::Diagram;
     a.panels.diagram.cursor = alpha;
+    let at = bouncemap::tui::components::diagram::readout::nearest(&a.panels.diagram)
+        .map_or(alpha, |r| r.value);
+    assert!((at - alpha).abs() < 0.25 * (bc - pd), "{at} {alpha}");
+    let sys = System::new(table, at, 0.8).unwrap();
+    let two = two_cycle(&sys, 1).unwrap();
+    // Put the diagram's cursor on the 2-cycle's first phase at that α.
     a.panels.diagram.ycursor = two.phase0;
     a.handle(Action::Cancel);
     let (i, p) = a

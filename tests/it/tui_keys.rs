@@ -362,22 +362,21 @@ fn export_view_writes_the_diagram_and_phase_plot_as_figures() {
     press(&mut a, KeyCode::Enter, KeyModifiers::NONE);
     assert_eq!(a.take_effects(), vec![Effect::Export]);
     let stem = std::path::PathBuf::from(a.export_pending.clone().unwrap());
-    let written = bouncemap::tui::export::export_view(&a.shared, &a.panels, &stem).unwrap();
-    let names: Vec<String> = written
-        .iter()
-        .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
-        .collect();
-    assert_eq!(
-        names,
-        [
-            "v1.5.csv",
-            "v1.5.txt",
-            "v1.5-diagram.svg",
-            "v1.5-diagram.png",
-            "v1.5-phase.svg",
-            "v1.5-phase.png"
-        ]
-    );
+    let sizes = bouncemap::tui::export::ExportSizes::default();
+    let said =
+        bouncemap::tui::export::export_view(&mut a.shared, &mut a.panels, sizes, &stem).unwrap();
+    let names = [
+        "v1.5.csv",
+        "v1.5.txt",
+        "v1.5-diagram.svg",
+        "v1.5-diagram.png",
+        "v1.5-phase.svg",
+        "v1.5-phase.png",
+    ];
+    let written: Vec<std::path::PathBuf> = names.iter().map(|n| dir.join(n)).collect();
+    for (n, p) in names.iter().zip(&written) {
+        assert!(said.contains(&p.display().to_string()), "{n}: {said}");
+    }
     for p in &written {
         let bytes = std::fs::read(p).unwrap();
         if p.extension().unwrap() == "png" {
@@ -394,7 +393,8 @@ fn export_view_writes_the_diagram_and_phase_plot_as_figures() {
         }
     }
     // Nothing is replaced: a second export under the same name is refused.
-    let e = bouncemap::tui::export::export_view(&a.shared, &a.panels, &stem).unwrap_err();
+    let e = bouncemap::tui::export::export_view(&mut a.shared, &mut a.panels, sizes, &stem)
+        .unwrap_err();
     assert!(e.contains("exists"), "{e}");
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -229,13 +229,18 @@ fn export_view_writes_the_plane_when_it_is_shown() {
     let dir = std::env::temp_dir().join(format!("bouncemap-plane-view-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let stem = dir.join("p");
-    let written = bouncemap::tui::export::export_view(&a.shared, &a.panels, &stem).unwrap();
-    let names: Vec<String> = written
-        .iter()
-        .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
-        .collect();
-    assert!(names.contains(&"p-plane.svg".to_string()), "{names:?}");
-    assert!(names.contains(&"p-plane.png".to_string()), "{names:?}");
+    let sizes = bouncemap::tui::export::ExportSizes {
+        plane: (48, 24),
+        basins: (20, 10),
+    };
+    let said = crate::tui_common::export_view_to_end(&mut a, sizes, &stem).unwrap();
+    let all = said.join("\n");
+    for f in ["p.csv", "p-diagram.svg", "p-plane.svg", "p-plane.png"] {
+        assert!(all.contains(f), "{f}: {all}");
+        assert!(dir.join(f).is_file(), "{f}");
+    }
+    // The export's resolution, not the screen's: 48 × 24 pixels in the figure's data.
+    assert!(all.contains("48×24 pixels"), "{all}");
     let svg = std::fs::read_to_string(dir.join("p-plane.svg")).unwrap();
     assert!(
         svg.contains("period 1") && svg.contains("of (1, 1)"),

@@ -109,7 +109,7 @@ impl Class {
     /// Its colour, the same in the figures (white paper), the text pictures and the
     /// terminal (a dark background): Okabe and Ito's palette, which stays apart for
     /// colour-blind readers, with the hues that vanish on one of the two backgrounds
-    /// (black, yellow) replaced by a grey and a dark yellow legible on both.
+    /// (black, yellow) replaced by a dark grey and a dark yellow legible on both.
     pub fn rgb(self) -> (u8, u8, u8) {
         match self {
             Class::Period1 => (86, 180, 233),             // sky blue
@@ -119,7 +119,7 @@ impl Class {
             Class::Periodic => (204, 121, 167),           // reddish purple
             Class::Sticking => (30, 130, 210),            // blue
             Class::StickingUnresolved => (140, 180, 220), // pale blue
-            Class::Chaotic => (150, 150, 150),            // grey
+            Class::Chaotic => (105, 105, 105),            // grey
             Class::Unresolved => (190, 170, 0),           // dark yellow
         }
     }

@@ -145,3 +145,37 @@ pub fn buffer_text(buf: &ratatui::buffer::Buffer) -> String {
         .collect::<Vec<_>>()
         .join("\n")
 }
+
+/// `E` under the name `stem` at `sizes`, run to its end: the files written at once, and
+/// the plane's or the basins' figures computed on real workers (at most a minute).
+/// Returns every message the export gave, in order.
+pub fn export_view_to_end(
+    app: &mut App,
+    sizes: bouncemap::tui::export::ExportSizes,
+    stem: &std::path::Path,
+) -> Result<Vec<String>, String> {
+    use bouncemap::tui::components::{Effect, Workers};
+    use std::time::{Duration, Instant};
+    let first = bouncemap::tui::export::export_view(&mut app.shared, &mut app.panels, sizes, stem)?;
+    let mut said = vec![first];
+    let workers = Workers::new(bouncemap_engine::jobs::Executor::new(2).unwrap());
+    for e in app.take_effects() {
+        if let Effect::Start(t) = e {
+            app.start(t, &workers);
+        }
+    }
+    let start = Instant::now();
+    let pending = |a: &App| {
+        a.panels.plane_export.request.is_some() || a.panels.basins_export.request.is_some()
+    };
+    while pending(app) && start.elapsed() < Duration::from_secs(60) {
+        if let Ok(m) = workers.rx.recv_timeout(Duration::from_millis(50)) {
+            let before = app.shared.log.len();
+            app.receive(m);
+            said.extend(app.shared.log.iter().skip(before).map(|(t, _)| t.clone()));
+        }
+    }
+    workers.cancel_all();
+    assert!(!pending(app), "the view export did not finish");
+    Ok(said)
+}
