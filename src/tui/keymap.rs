@@ -269,7 +269,8 @@ impl Key {
     pub fn parse(s: &str) -> Result<Key, String> {
         let bad = || {
             format!(
-                "'{s}' is not a key: valid a character, or [ctrl-|alt-|shift-] with {KEY_NAMES}"
+                "{} is not a key: valid a character, or [ctrl-|alt-|shift-] with {KEY_NAMES}",
+                crate::output::text::quoted(s)
             )
         };
         let mut key = Key::ch(' ');
@@ -319,7 +320,8 @@ impl Key {
         };
         if matches!(key.code, KeyName::Char(_)) && key.shift {
             return Err(format!(
-                "'{s}': write the shifted character itself (e.g. 'N'), not shift- with a character"
+                "{}: write the shifted character itself (e.g. 'N'), not shift- with a character",
+                crate::output::text::quoted(s)
             ));
         }
         Ok(key)

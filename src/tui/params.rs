@@ -12,7 +12,7 @@
 use crate::config::presets::Preset;
 use crate::config::rules::{self, Rule};
 use crate::config::table_spec::{table_range, TableSpec};
-use crate::output::text::shortest;
+use crate::output::text::{quoted, shortest};
 use bouncemap_engine::grid::SweepParam;
 use bouncemap_engine::orbits::stability_windows;
 use bouncemap_engine::sweep::Warm;
@@ -510,7 +510,11 @@ impl Params {
                     .into_iter()
                     .find(|p| p.as_str() == t || Params::symbol(*p) == t)
                     .ok_or_else(|| {
-                        refuse(format!("'{t}' is not a parameter: valid {}", id.range()))
+                        refuse(format!(
+                            "{} is not a parameter: valid {}",
+                            quoted(t),
+                            id.range()
+                        ))
                     })?;
                 self.set_param(p)
             }
@@ -530,13 +534,15 @@ impl Params {
                 Ok(())
             }
             ParamId::V0 => {
-                let x: f64 = t
-                    .parse()
-                    .ok()
-                    .filter(|x: &f64| x.is_finite())
-                    .ok_or_else(|| {
-                        refuse(format!("'{t}' is not a number: valid {}", id.range()))
-                    })?;
+                // The one number parser (its refusal quotes the text cut short), then
+                // this row's own range.
+                let x = rules::V0.parse(t).map_err(|_| {
+                    refuse(format!(
+                        "{} is not a number: valid {}",
+                        quoted(t),
+                        id.range()
+                    ))
+                })?;
                 self.set_value(id, x)
             }
             _ => {

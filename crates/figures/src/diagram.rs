@@ -666,6 +666,82 @@ mod tests {
         );
     }
 
+    /// A diagram coloured by class draws each class's points in that class's one
+    /// colour (the terminal's), with a legend entry each, beside the frame; by density
+    /// everything is black and there is no legend.
+    #[test]
+    fn a_coloured_diagram_takes_the_class_colours() {
+        let spec = SweepSpec::new(
+            Table::fd(0.1).unwrap(),
+            0.45,
+            0.8,
+            SweepParam::Alpha,
+            0.0,
+            1.0,
+            11,
+        );
+        let vals: Vec<ValueResult> = (0..11).map(|i| value(i, i as f64 / 10.0, i >= 6)).collect();
+        let fig = diagram_view(
+            &spec,
+            &vals,
+            None,
+            DiagramAxis::Phase,
+            Colouring::Class,
+            "caption",
+        );
+        let p = &fig.panels[0];
+        let colours: Vec<Color> = p
+            .layers
+            .iter()
+            .filter_map(|l| match l {
+                Layer::Density { color, .. } => Some(*color),
+                _ => None,
+            })
+            .collect();
+        let (r, g, b) = Class::Sticking.rgb();
+        assert!(colours.contains(&Color(r, g, b)), "{colours:?}");
+        assert_eq!(p.beside.len(), 1);
+        assert!(p.beside[0]
+            .entries
+            .iter()
+            .any(|(s, t)| s.color == Color(r, g, b) && t.contains("sticks")));
+        let black = diagram_view(
+            &spec,
+            &vals,
+            None,
+            DiagramAxis::Phase,
+            Colouring::Density,
+            "caption",
+        );
+        assert!(black.panels[0].beside.is_empty());
+        assert!(black.panels[0].layers.iter().all(|l| !matches!(
+            l,
+            Layer::Density { color, .. } if *color != Color::BLACK
+        )));
+    }
+
+    /// Several starts are said in the caption, as the text diagram says them.
+    #[test]
+    fn the_caption_states_several_starts() {
+        let mut spec = SweepSpec::new(
+            Table::fd(0.1).unwrap(),
+            0.45,
+            0.8,
+            SweepParam::Alpha,
+            0.45,
+            0.6,
+            5,
+        );
+        spec.initial.near_fixed_point = true;
+        assert!(spec_caption(&spec).contains("each started near the (1, 1) solution"));
+        spec.starts = 8;
+        let c = spec_caption(&spec);
+        assert!(
+            c.contains("each from 8 starts") && !c.contains("each started"),
+            "{c}"
+        );
+    }
+
     #[test]
     fn titles_name_the_table_as_the_paper_does() {
         assert_eq!(table_title(&Table::fd(0.1).unwrap()), "$F_{0.1}$");

@@ -321,6 +321,59 @@ fn describe(c: Class) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use bouncemap_engine::grid::Axis as GridAxis;
+
+    /// The classes' legend sits beside the frame (it would hide part of the map in any
+    /// corner); given the continued curves, the analytic ones they hold are not drawn
+    /// a second time (one line per curve, never two alike).
+    #[test]
+    fn the_map_keeps_its_legend_beside_and_draws_each_curve_once() {
+        let axis = |param, lo, hi, n| GridAxis { param, lo, hi, n };
+        let spec = PlaneSpec::new(
+            bouncemap_engine::Table::fd(0.0).unwrap(),
+            axis(SweepParam::Alpha, 0.45, 0.6, 12),
+            axis(SweepParam::D, 0.0, 1.0, 6),
+            0.45,
+            0.8,
+        );
+        let pixels = vec![None; spec.len()];
+        let analytic = bouncemap_engine::plane::curves(&spec).expect("an α axis");
+        let lines = |f: &Figure| {
+            f.panels[0]
+                .layers
+                .iter()
+                .filter(|l| matches!(l, Layer::Lines { .. }))
+                .count()
+        };
+        let alone = plane_figure(&spec, &pixels, Some(&analytic), None);
+        assert!(lines(&alone) >= 1, "the analytic curves");
+        assert_eq!(alone.panels[0].beside.len(), 1, "the classes beside");
+        assert!(alone.panels[0]
+            .legends
+            .iter()
+            .all(|l| l.entries.iter().all(|(s, _)| !s.band)));
+        let none = bouncemap_engine::orbits::curves::Curves {
+            curves: Vec::new(),
+            codim2: Vec::new(),
+            skipped: Vec::new(),
+            unseeded: Vec::new(),
+        };
+        let with = plane_figure(
+            &spec,
+            &pixels,
+            Some(&analytic),
+            Some(Continued {
+                curves: &none,
+                max_period: 8,
+            }),
+        );
+        assert_eq!(
+            lines(&with),
+            0,
+            "no analytic line beside the continued ones"
+        );
+        assert!(with.caption[0].contains("up to period 8"));
+    }
 
     /// A 20 × 10 plot of class 0 but for the cells `other` gives class 1.
     fn grid(other: impl Fn(f64, f64) -> bool) -> Vec<([f64; 2], usize)> {
