@@ -123,6 +123,7 @@ pub fn run(cli: &CurvesArgs) -> anyhow::Result<()> {
                             "impact": impact,
                             "breakpoint": bp,
                             "ends": [c.ends[0].as_str(), c.ends[1].as_str()],
+                            "cycle": stability(c),
                             "seed": c.seed,
                             "points": c.points.iter().map(|q| json!({
                                 "alpha": q.alpha,
@@ -143,17 +144,19 @@ pub fn run(cli: &CurvesArgs) -> anyhow::Result<()> {
                         "second_condition": p.second_condition,
                         "impact": p.impact.map(|x| x.0),
                         "breakpoint": p.impact.map(|x| x.1),
+                        "meets": p.meets,
                     })).collect::<Vec<_>>(),
                     "unseeded": found.unseeded.iter().map(|(p, why)| json!({
                         y: p,
                         "reason": why,
                     })).collect::<Vec<_>>(),
-                    "skipped": found.skipped.iter().map(|(s, why)| json!({
-                        "kind": s.kind.as_str(),
-                        "n": s.point.n,
-                        "k": s.point.k,
-                        "alpha": s.alpha,
-                        "reason": why,
+                    "skipped": found.skipped.iter().map(|k| json!({
+                        "kind": k.special.kind.as_str(),
+                        "n": k.special.point.n,
+                        "k": k.special.point.k,
+                        "alpha": k.special.alpha,
+                        "reason": k.reason,
+                        "count": k.count,
                     })).collect::<Vec<_>>(),
                 });
                 serde_json::to_writer(&mut out, &doc)?;
@@ -274,6 +277,7 @@ fn describe(kind: &CurveKind) -> String {
         }
         CurveKind::Grazing => "grazing (G)".into(),
         CurveKind::StickingOnset => "onset of sticking (S)".into(),
+        CurveKind::Birth => "birth of the pair (B, closed form)".into(),
     }
 }
 
@@ -329,10 +333,11 @@ fn text(
             });
         writeln!(
             out,
-            "\ncurve {i}: {} of ({}, {}), {} points, alpha {a0:.9}..{a1:.9}, {y} {p0:.9}..{p1:.9}",
+            "\ncurve {i}: {} of ({}, {}), {} cycle, {} points, alpha {a0:.9}..{a1:.9}, {y} {p0:.9}..{p1:.9}",
             describe(&c.kind),
             c.n,
             c.k,
+            stability(c).replace('_', " "),
             c.points.len()
         )?;
         let first = &c.points[0];
@@ -372,17 +377,43 @@ fn text(
     for (p, why) in &found.unseeded {
         writeln!(out, "no branch at {y} = {p}: {why}")?;
     }
-    for (s, why) in &found.skipped {
+    for k in &found.skipped {
+        let s = &k.special;
+        let times = if k.count > 1 {
+            format!(" (met {} times)", k.count)
+        } else {
+            String::new()
+        };
         writeln!(
             out,
-            "not followed: {} of ({}, {}) at alpha {:.9}: {why}",
+            "not followed: {} of ({}, {}) at alpha {:.9}: {}{times}",
             s.kind.as_str(),
             s.point.n,
             s.point.k,
-            s.alpha
+            s.alpha,
+            k.reason
         )?;
     }
     Ok(())
+}
+
+/// Which cycle a curve belongs to: on a period-doubling, fold or birth curve a
+/// multiplier is on the unit circle (`marginal`: the cycle is stable on one side of the
+/// curve, the other multiplier being ±r²ⁿ); elsewhere `stable`, `unstable`, or
+/// `stable_and_unstable` where it changes along the curve.
+fn stability(c: &Curve) -> &'static str {
+    if matches!(
+        c.kind,
+        CurveKind::PeriodDoubling | CurveKind::Fold | CurveKind::Birth
+    ) {
+        return "marginal";
+    }
+    let stable = c.points.iter().filter(|q| q.cycle.stable).count();
+    match stable {
+        0 => "unstable",
+        s if s == c.points.len() => "stable",
+        _ => "stable_and_unstable",
+    }
 }
 
 fn text_codim2(out: &mut impl Write, found: &Curves, p: &Codim2, y: &str) -> io::Result<()> {
@@ -400,9 +431,15 @@ fn text_codim2(out: &mut impl Write, found: &Curves, p: &Codim2, y: &str) -> io:
             p.second_condition.abs()
         ),
     };
+    let others: Vec<String> = p.meets.iter().skip(1).map(|i| i.to_string()).collect();
+    let meets = if others.is_empty() {
+        String::new()
+    } else {
+        format!(" (also on curve {})", others.join(", "))
+    };
     writeln!(
         out,
-        "  {:<16} curve {} ({}, {})  alpha {:.12}  {y} {:.12}{at}  {evidence}",
+        "  {:<16} curve {}{meets} ({}, {})  alpha {:.12}  {y} {:.12}{at}  {evidence}",
         p.kind.as_str(),
         p.curve,
         c.n,

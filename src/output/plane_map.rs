@@ -129,7 +129,7 @@ pub fn cells(
 pub fn curve_mark(kind: &CurveKind) -> char {
     match kind {
         CurveKind::PeriodDoubling => '•',
-        CurveKind::Fold => '~',
+        CurveKind::Fold | CurveKind::Birth => '~',
         CurveKind::BorderCollision { .. } => '×',
         CurveKind::Grazing | CurveKind::StickingOnset => '¦',
     }

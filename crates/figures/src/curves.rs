@@ -17,7 +17,7 @@ pub fn dash(kind: &CurveKind) -> Dash {
         CurveKind::PeriodDoubling => Dash::Solid,
         CurveKind::BorderCollision { .. } => Dash::Dashed,
         CurveKind::Grazing | CurveKind::StickingOnset => Dash::Dotted,
-        CurveKind::Fold => Dash::DashDot,
+        CurveKind::Fold | CurveKind::Birth => Dash::DashDot,
     }
 }
 
@@ -42,6 +42,7 @@ fn kind_text(kind: &CurveKind) -> &'static str {
         CurveKind::Grazing => "grazing",
         CurveKind::StickingOnset => "onset of sticking",
         CurveKind::Fold => "fold",
+        CurveKind::Birth => "birth of the pair",
     }
 }
 

@@ -385,8 +385,11 @@ fn fold_and_grazing_curves_of_the_sine() {
         },
     )
     .unwrap();
-    let fold = of(&c, "fold", 1);
+    // The (1, 1) pair's birth, a smooth fold of the sine, is the closed-form line: on
+    // the stability window's own birth, with a multiplier +1 there.
+    let fold = of(&c, "birth", 1);
     assert_eq!(fold.len(), 1);
+    assert!(of(&c, "fold", 1).is_empty(), "not traced a second time");
     assert!(fold[0].points.len() >= 50);
     for q in &fold[0].points {
         let w = stability_window(&Table::sine(), q.p, 1).unwrap().unwrap();
@@ -565,4 +568,154 @@ fn subcritical_flips_lose_the_orbit_and_supercritical_ones_keep_it() {
         sup >= 10 && sub >= 1,
         "checked {sup} supercritical, {sub} subcritical"
     );
+}
+
+/// The (1, 1) birth line is one whole curve, on the closed form α = (1 − r)/(1 + r) /
+/// (2 max F') at every point (F_D's max F' = ½ at t̂ = 0 for every D; the sine's 2π),
+/// and the pair is really born there: just above it `fixed_points` finds two (1, 1)
+/// solutions, just below none.
+#[test]
+fn the_birth_line_is_one_curve_on_its_closed_form() {
+    use bouncemap_engine::orbits::fixed::fixed_points;
+    let cases = [
+        (
+            Plane {
+                table: Table::fd(0.5).unwrap(),
+                r: 0.5,
+                alpha: (0.3, 0.7),
+                second: SweepParam::D,
+                window: (0.0, 1.0),
+            },
+            0.5,
+        ),
+        (
+            Plane {
+                table: Table::sine(),
+                r: 0.8,
+                alpha: (0.01, 0.5),
+                second: SweepParam::R,
+                window: (0.2, 0.95),
+            },
+            2.0 * std::f64::consts::PI,
+        ),
+    ];
+    for (plane, max_slope) in cases {
+        let seeds = Seeds::FromFixed {
+            k: 1,
+            max_period: 1,
+            at: 0.5 * (plane.window.0 + plane.window.1),
+            count: 5,
+        };
+        let c = curves(&plane, seeds).unwrap();
+        let births = of(&c, "birth", 1);
+        assert_eq!(births.len(), 1, "one birth line");
+        let b = births[0];
+        // Whole: it spans the window of the second parameter, or leaves by the α
+        // window's edge.
+        let ps: Vec<f64> = b.points.iter().map(|q| q.p).collect();
+        assert_eq!(ps[0], plane.window.0);
+        assert!(
+            *ps.last().unwrap() == plane.window.1
+                || (b.points.last().unwrap().alpha - plane.alpha.0).abs() < 1e-9,
+            "{:?}",
+            b.ends
+        );
+        for q in &b.points {
+            let r = if plane.second == SweepParam::R {
+                q.p
+            } else {
+                plane.r
+            };
+            let closed = 0.5 * (1.0 - r) / (1.0 + r) / max_slope;
+            assert!(
+                (q.alpha - closed).abs() <= 1e-14 * closed,
+                "{} {closed}",
+                q.alpha
+            );
+            assert!(q.cycle.return_error <= 1e-11);
+            let table = match plane.second {
+                SweepParam::D => Table::fd(q.p).unwrap(),
+                _ => plane.table.clone(),
+            };
+            let around = |f: f64| {
+                let sys = System::new(table.clone(), q.alpha * f, r).unwrap();
+                fixed_points(&sys, 1).map_or(0, |v| v.len())
+            };
+            if q.alpha * (1.0 + 1e-6) <= plane.alpha.1 {
+                assert_eq!(around(1.0 + 1e-6), 2, "born just above, at {}", q.p);
+            }
+            assert_eq!(around(1.0 - 1e-6), 0, "none just below, at {}", q.p);
+        }
+    }
+}
+
+/// Each codimension-two point is reported once, with the curves that meet there; the
+/// fd:0.5 (2, 2) border collision ends where that cycle collapses onto the (1, 1) pair
+/// being born on the breakpoint, which is named so (not a double border) and lies on
+/// the closed-form birth line; special points not followed are listed once, counted.
+#[test]
+fn codimension_two_points_and_refusals_are_told_once() {
+    let plane = Plane {
+        table: Table::fd(0.5).unwrap(),
+        r: 0.8,
+        alpha: (0.4, 0.7),
+        second: SweepParam::R,
+        window: (0.2, 0.95),
+    };
+    let seeds = Seeds::FromFixed {
+        k: 1,
+        max_period: 2,
+        at: 0.8,
+        count: 20,
+    };
+    let c = curves(&plane, seeds).unwrap();
+    for (i, a) in c.codim2.iter().enumerate() {
+        for b in &c.codim2[i + 1..] {
+            assert!(
+                a.kind != b.kind || (a.alpha - b.alpha).hypot(a.p - b.p) > 1e-6,
+                "{a:?} twice"
+            );
+        }
+        assert_eq!(a.meets[0], a.curve);
+    }
+    let collapse = c
+        .codim2
+        .iter()
+        .find(|p| p.kind == Codim2Kind::Collapse)
+        .expect("the (2, 2) collapse");
+    let birth = (1.0 - collapse.p) / (1.0 + collapse.p);
+    assert!((collapse.alpha - birth).abs() < 1e-6, "{collapse:?}");
+    assert!(
+        collapse.meets.len() >= 2,
+        "the birth line meets it: {collapse:?}"
+    );
+    assert!(!c.codim2.iter().any(|p| p.kind == Codim2Kind::DoubleBorder
+        && (p.alpha - collapse.alpha).hypot(p.p - collapse.p) < 1e-4));
+    // The sine's unsolvable (2, 2) grazing seeds: each once, with how often met.
+    let sine = Plane {
+        table: Table::sine(),
+        r: 0.8,
+        alpha: (0.01, 0.5),
+        second: SweepParam::R,
+        window: (0.2, 0.95),
+    };
+    let s = curves(
+        &sine,
+        Seeds::FromFixed {
+            k: 1,
+            max_period: 2,
+            at: 0.575,
+            count: 5,
+        },
+    )
+    .unwrap();
+    for (i, a) in s.skipped.iter().enumerate() {
+        for b in &s.skipped[i + 1..] {
+            assert!(
+                a.reason != b.reason || (a.special.alpha - b.special.alpha).abs() > 1e-9,
+                "{a:?} twice"
+            );
+        }
+    }
+    assert!(s.skipped.iter().any(|k| k.count > 1), "{:?}", s.skipped);
 }

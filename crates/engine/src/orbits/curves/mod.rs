@@ -72,6 +72,7 @@
 //!   test functions watched between points, the ends);
 //! * [`criticality`](mod@criticality): the flip's normal-form coefficient.
 
+pub mod birth;
 mod criticality;
 mod trace;
 
@@ -194,6 +195,9 @@ pub enum CurveKind {
     /// An impact's relative velocity reaches zero: the landing becomes tangential, and
     /// beyond it the ball chatters and sticks.
     StickingOnset,
+    /// The (1, k) pair is born (α max F' = (k/2)(1 − r)/(1 + r)): in closed form
+    /// ([`birth`]).
+    Birth,
 }
 
 impl CurveKind {
@@ -205,6 +209,7 @@ impl CurveKind {
             CurveKind::BorderCollision { .. } => "border_collision",
             CurveKind::Grazing => "grazing",
             CurveKind::StickingOnset => "sticking_onset",
+            CurveKind::Birth => "birth",
         }
     }
 
@@ -216,6 +221,7 @@ impl CurveKind {
             CurveKind::BorderCollision { .. } => "BC",
             CurveKind::Grazing => "G",
             CurveKind::StickingOnset => "S",
+            CurveKind::Birth => "B",
         }
     }
 
@@ -229,6 +235,9 @@ impl CurveKind {
                 .get(impact)
                 .map_or(f64::NAN, |&ph| signed_distance(ph, breakpoint)),
             CurveKind::StickingOnset => pt.min_impact_speed,
+            CurveKind::Birth => {
+                sys.alpha() * birth::max_slope(sys.table()).0 - birth::slope_at_birth(sys.r(), pt.k)
+            }
             CurveKind::Grazing => {
                 let g = min_interior_gap(sys, pt).0;
                 if g.is_finite() {
@@ -300,6 +309,14 @@ pub enum CurveEnd {
     NoConvergence,
     /// The step bound [`MAX_STEPS`] was reached.
     StepLimit,
+    /// The cycle on it stops being admissible (a flight meets the table before its end).
+    Inadmissible,
+    /// The cycle collapses onto the cycle of half its period (its two halves meet): a
+    /// doubled cycle ends where it was born.
+    Collapse,
+    /// The curve turns back on itself (a cusp, or where the cycle stops existing): the
+    /// tracer would retrace what it has followed, so it ends there.
+    TurnedBack,
 }
 
 impl CurveEnd {
@@ -313,6 +330,9 @@ impl CurveEnd {
             CurveEnd::Closed => "closed",
             CurveEnd::NoConvergence => "no_convergence",
             CurveEnd::StepLimit => "step_limit",
+            CurveEnd::Inadmissible => "inadmissible",
+            CurveEnd::Collapse => "collapse",
+            CurveEnd::TurnedBack => "turned_back",
         }
     }
 
@@ -339,6 +359,10 @@ pub enum Codim2Kind {
     DegenerateFlip,
     /// A grazing cycle's impact reaches a breakpoint.
     GrazingBorder,
+    /// The cycle collapses onto the one of half its period on a breakpoint (its two
+    /// halves meet there): where a doubled cycle is born by border collision, not two
+    /// independent border collisions.
+    Collapse,
 }
 
 impl Codim2Kind {
@@ -350,6 +374,7 @@ impl Codim2Kind {
             Codim2Kind::DoubleBorder => "double_border",
             Codim2Kind::DegenerateFlip => "degenerate_flip",
             Codim2Kind::GrazingBorder => "grazing_border",
+            Codim2Kind::Collapse => "collapse",
         }
     }
 
@@ -361,6 +386,7 @@ impl Codim2Kind {
             Codim2Kind::DoubleBorder => "two impacts at breakpoints",
             Codim2Kind::DegenerateFlip => "degenerate flip (criticality changes sign)",
             Codim2Kind::GrazingBorder => "grazing at a breakpoint",
+            Codim2Kind::Collapse => "the cycle collapses onto half its period on a breakpoint",
         }
     }
 }
@@ -382,6 +408,8 @@ pub struct Codim2 {
     pub second_condition: f64,
     /// The impact and the breakpoint concerned (border kinds).
     pub impact: Option<(usize, f64)>,
+    /// Every curve that passes through it (indices, its own first).
+    pub meets: Vec<usize>,
 }
 
 /// One curve of an (n, k) cycle.
@@ -470,12 +498,24 @@ pub struct Curves {
     pub curves: Vec<Curve>,
     /// Codimension-two points located on them.
     pub codim2: Vec<Codim2>,
-    /// Special points that were not followed, with the reason (a seed the corrector
-    /// could not solve, e.g. a grazing cycle that cannot be solved at the grazing).
-    pub skipped: Vec<(Special, String)>,
+    /// Special points that were not followed, each once with the reason and how many
+    /// times it was met (a seed the corrector could not solve, e.g. a grazing cycle that
+    /// cannot be solved at the grazing).
+    pub skipped: Vec<Skipped>,
     /// Values of the second parameter where no branch could be started, with the
     /// reason (e.g. a guess near which there is no cycle).
     pub unseeded: Vec<(f64, String)>,
+}
+
+/// A special point that was not followed.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Skipped {
+    /// The special point (the first met).
+    pub special: Special,
+    /// Why it was not followed.
+    pub reason: String,
+    /// How many seeds met it (at the same α to 1e-9, with the same reason).
+    pub count: usize,
 }
 
 /// How far [`curves_with_progress`] has got.
@@ -519,6 +559,11 @@ pub fn curves_with_progress(
             .collect(),
         Seeds::Point { at, .. } => vec![at],
     };
+    // The (1, k) birth line, whole, from its closed form: traced, it breaks where the
+    // pair is born on a breakpoint.
+    if let Seeds::FromFixed { k, .. } = seeds {
+        out.curves.extend(birth::birth_curves(plane, k));
+    }
     let total = values.len();
     for (done, p) in values.into_iter().enumerate() {
         let mut progress = CurvesProgress {
@@ -571,6 +616,22 @@ pub fn curves_with_progress(
                 if s.kind == Kind::PeriodDoubling && s.point.n != b.n {
                     continue;
                 }
+                // The (1, k) pair's birth is the closed-form line.
+                if s.point.n == 1 && matches!(s.kind, Kind::Fold | Kind::BorderCollision) {
+                    let k = s.point.k;
+                    if let Some((ab, _)) = birth::alpha_birth(&table, r, k) {
+                        if (s.alpha - ab).abs() <= 1e-7 * (1.0 + ab) {
+                            if !out
+                                .curves
+                                .iter()
+                                .any(|c| c.kind == CurveKind::Birth && c.k == k)
+                            {
+                                out.curves.extend(birth::birth_curves(plane, k));
+                            }
+                            continue;
+                        }
+                    }
+                }
                 // Within the chord error of the largest step of a curve already found.
                 let tol = 1e-4 * plane.scale();
                 let same = |c: &Curve| {
@@ -583,17 +644,30 @@ pub fn curves_with_progress(
                     continue;
                 }
                 if out.curves.len() >= MAX_CURVES {
-                    out.skipped
-                        .push((s.clone(), format!("more than {MAX_CURVES} curves")));
+                    skip(
+                        &mut out.skipped,
+                        s,
+                        format!("more than {MAX_CURVES} curves"),
+                    );
                     continue;
                 }
                 let index = out.curves.len();
                 match follow(plane, kind, s, p, index) {
+                    // A seed the tracer could not leave is no curve.
+                    Ok((curve, _)) if curve.points.len() < 2 => skip(
+                        &mut out.skipped,
+                        s,
+                        format!(
+                            "the curve could not be followed beyond its seed ({}, {})",
+                            curve.ends[0].as_str(),
+                            curve.ends[1].as_str()
+                        ),
+                    ),
                     Ok((curve, codim2)) => {
                         out.curves.push(curve);
                         out.codim2.extend(codim2);
                     }
-                    Err(why) => out.skipped.push((s.clone(), why)),
+                    Err(why) => skip(&mut out.skipped, s, why),
                 }
                 progress.curves = out.curves.len();
                 report(progress);
@@ -606,7 +680,59 @@ pub fn curves_with_progress(
         curves: out.curves.len(),
     });
     dedupe(&mut out, 1e-4 * plane.scale());
+    codim2_once(&mut out, 1e-6 * plane.scale());
     Ok(out)
+}
+
+/// Note a special point not followed, once per point and reason.
+fn skip(list: &mut Vec<Skipped>, s: &Special, reason: String) {
+    let same = |k: &Skipped| {
+        k.reason == reason
+            && k.special.kind == s.kind
+            && k.special.point.n == s.point.n
+            && k.special.point.k == s.point.k
+            && (k.special.alpha - s.alpha).abs() <= 1e-9 * (1.0 + s.alpha.abs())
+    };
+    match list.iter_mut().find(|k| same(k)) {
+        Some(k) => k.count += 1,
+        None => list.push(Skipped {
+            special: s.clone(),
+            reason,
+            count: 1,
+        }),
+    }
+}
+
+/// Each codimension-two point once: points of one kind within `tol` of each other (the
+/// same point located on two curves, or twice on one) are one, the best located kept
+/// (the smaller condition); each then lists every curve passing through it.
+fn codim2_once(out: &mut Curves, tol: f64) {
+    let mut kept: Vec<Codim2> = Vec::new();
+    for p in std::mem::take(&mut out.codim2) {
+        let twin = kept
+            .iter_mut()
+            .find(|q| q.kind == p.kind && (q.alpha - p.alpha).hypot(q.p - p.p) <= tol);
+        match twin {
+            Some(q) => {
+                if p.condition.abs() < q.condition.abs() {
+                    let meets = std::mem::take(&mut q.meets);
+                    *q = p;
+                    q.meets = meets;
+                }
+            }
+            None => kept.push(p),
+        }
+    }
+    for p in &mut kept {
+        let mut meets = vec![p.curve];
+        for (i, c) in out.curves.iter().enumerate() {
+            if i != p.curve && c.passes_near(p.alpha, p.p, 100.0 * tol) {
+                meets.push(i);
+            }
+        }
+        p.meets = meets;
+    }
+    out.codim2 = kept;
 }
 
 /// Drop a curve that another of the same kind and cycle covers (seeded at two values of

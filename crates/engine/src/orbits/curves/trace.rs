@@ -429,6 +429,15 @@ impl Tracer<'_> {
                     return (out, CurveEnd::Window);
                 }
                 Ok((next, grad)) => {
+                    // A step against the way the curve came: it turns back on itself.
+                    if let Some(p) = &prev {
+                        let back = (next.alpha - cur.alpha) * (cur.alpha - p.alpha)
+                            + (next.p - cur.p) * (cur.p - p.p);
+                        if back < 0.0 {
+                            let end = self.end_at_codim2(&cur, codim2, index);
+                            return (out, end.unwrap_or(CurveEnd::TurnedBack));
+                        }
+                    }
                     travelled += (next.alpha - cur.alpha).hypot(next.p - cur.p);
                     tau = tangent(grad, tau);
                     prev = Some(std::mem::replace(&mut cur, next));
@@ -453,6 +462,14 @@ impl Tracer<'_> {
                         // Stopped on the window's edge itself: it left the window.
                         if on_edge(self.plane, [cur.alpha, cur.p]) {
                             return (out, CurveEnd::Window);
+                        }
+                        // A doubled cycle whose halves have met: it ends where it was
+                        // born.
+                        if collapsed(&cur.cycle) {
+                            return (out, CurveEnd::Collapse);
+                        }
+                        if let Some(end) = self.end_at_codim2(&cur, codim2, index) {
+                            return (out, end);
                         }
                         return (out, CurveEnd::from_error(e));
                     }
@@ -487,14 +504,17 @@ impl Tracer<'_> {
             return false;
         };
         let dp = tp[j];
-        if dc.abs() > BORDER_REACH || dp.abs() <= dc.abs() || (dp < 0.0) != (dc < 0.0) {
+        // On the border already (to rounding), or closing in on it from one side.
+        let on = dc.abs() <= 1e-12;
+        if !on && (dc.abs() > BORDER_REACH || dp.abs() <= dc.abs() || (dp < 0.0) != (dc < 0.0)) {
             return false;
         }
-        let s = dc / (dp - dc);
+        let s = if on { 0.0 } else { dc / (dp - dc) };
         codim2.push(Codim2 {
             kind: match self.kind {
-                CurveKind::Fold => Codim2Kind::FoldBorder,
+                CurveKind::Fold | CurveKind::Birth => Codim2Kind::FoldBorder,
                 CurveKind::Grazing | CurveKind::StickingOnset => Codim2Kind::GrazingBorder,
+                CurveKind::BorderCollision { .. } if collapsed(&cur.cycle) => Codim2Kind::Collapse,
                 CurveKind::BorderCollision { .. } => Codim2Kind::DoubleBorder,
                 CurveKind::PeriodDoubling => Codim2Kind::PdBorder,
             },
@@ -504,8 +524,23 @@ impl Tracer<'_> {
             condition: cur.condition,
             second_condition: dc,
             impact: Some((j / nb, self.jumps[j % nb])),
+            meets: vec![index],
         });
         true
+    }
+
+    /// Where the curve stopped at a codimension-two point located on it (within a
+    /// hundred-thousandth of the plane): the end it makes (a collapse, or a border).
+    fn end_at_codim2(&self, cur: &CurvePoint, codim2: &[Codim2], index: usize) -> Option<CurveEnd> {
+        let tol = 1e-5 * self.plane.scale();
+        codim2
+            .iter()
+            .filter(|p| p.curve == index && (p.alpha - cur.alpha).hypot(p.p - cur.p) <= tol)
+            .find_map(|p| match p.kind {
+                Codim2Kind::Collapse => Some(CurveEnd::Collapse),
+                Codim2Kind::DegenerateFlip => None,
+                _ => Some(CurveEnd::Border),
+            })
     }
 
     /// The window edge crossed going from `y` (inside) to `pred` (outside).
@@ -570,13 +605,18 @@ impl Tracer<'_> {
             // Located only where the corrector worked up to the crossing.
             if second.abs() <= CONDITION_TOLERANCE {
                 codim2.push(Codim2 {
-                    kind: Codim2Kind::DoubleBorder,
+                    kind: if collapsed(&q.cycle) {
+                        Codim2Kind::Collapse
+                    } else {
+                        Codim2Kind::DoubleBorder
+                    },
                     curve: index,
                     alpha: q.alpha,
                     p: q.p,
                     condition: q.condition,
                     second_condition: second,
                     impact: Some((impact, bp)),
+                    meets: vec![index],
                 });
             }
         }
@@ -596,6 +636,7 @@ impl Tracer<'_> {
                             condition: q.condition,
                             second_condition: q.criticality.map_or(f64::NAN, |c| c.c),
                             impact: None,
+                            meets: vec![index],
                         });
                     }
                 }
@@ -603,6 +644,13 @@ impl Tracer<'_> {
         }
         false
     }
+}
+
+/// Whether a doubled cycle has collapsed onto the cycle of half its period (its return
+/// after half its impacts is zero to 1e-7).
+fn collapsed(pt: &CyclePoint) -> bool {
+    pt.half_return
+        .is_some_and(|[dt, dv]| dt.abs().max(dv.abs()) <= 1e-7)
 }
 
 /// Whether y lies on the window's boundary (to 1e-9 of its size).
