@@ -146,6 +146,11 @@ pub fn run(cli: &CurvesArgs) -> anyhow::Result<()> {
                         "breakpoint": p.impact.map(|x| x.1),
                         "meets": p.meets,
                     })).collect::<Vec<_>>(),
+                    "seeding": json!({
+                        "values": found.seeding.values,
+                        "level": found.seeding.level,
+                        "converged": found.seeding.converged,
+                    }),
                     "unseeded": found.unseeded.iter().map(|(p, why)| json!({
                         y: p,
                         "reason": why,
@@ -215,7 +220,7 @@ fn title(plane: &Plane, at: f64, args: &CurvesSpecArgs) -> String {
         match args.guess.cycle() {
             Some((n, t0, v0)) => format!("the ({n}, {}) branch near t0 = {t0}, v0 = {v0}", args.k),
             _ => format!(
-                "(1, {}) branches up to period {}, {} seed values",
+                "(1, {}) branches up to period {}, seeded on grids from {} values",
                 args.k, args.max_period, args.seeds
             ),
         }
@@ -307,7 +312,10 @@ fn text(
             _ => format!("(1, {}) branches up to period {}", args.k, args.max_period),
         },
         if args.seeds > 1 && args.guess.n.is_none() {
-            format!(" and at {} values over the window", args.seeds)
+            format!(
+                " and on grids of the window from {} values, finer until no new curve appears",
+                args.seeds
+            )
         } else {
             String::new()
         }
@@ -318,6 +326,7 @@ fn text(
         found.curves.len(),
         found.codim2.len()
     )?;
+    writeln!(out, "{}", seeding_text(&found.seeding, y))?;
     for (i, c) in found.curves.iter().enumerate() {
         let (a0, a1) = c
             .points
@@ -395,6 +404,21 @@ fn text(
         )?;
     }
     Ok(())
+}
+
+/// How the seeds were placed, in words.
+fn seeding_text(s: &bouncemap_engine::orbits::curves::Seeding, y: &str) -> String {
+    match s.level {
+        None => format!("seeded at the starting value of {y} only"),
+        Some(l) if s.converged => format!(
+            "seeded at {} values of {y} (grids of up to 2^{l} + 1); the last two finer grids found no new curve",
+            s.values
+        ),
+        Some(l) => format!(
+            "seeded at {} values of {y} (grids of up to 2^{l} + 1, the finest allowed); the finest still found new curves: a finer seeding might find more",
+            s.values
+        ),
+    }
 }
 
 /// Which cycle a curve belongs to: on a period-doubling, fold or birth curve a

@@ -264,7 +264,8 @@ fn a_curves_search_reports_its_progress() {
         .unwrap();
     assert!(status.success());
     let err = std::fs::read_to_string(d.join("err")).unwrap();
-    assert!(err.contains("curves of 5 seed values started"), "{err}");
+    // The starting value and the first grid of 5 (more as the grids get finer).
+    assert!(err.contains("curves of 6 seed values started"), "{err}");
     assert!(err.contains("curves specification: table sine"), "{err}");
     assert!(
         err.contains("seed values") && err.contains(" curves"),

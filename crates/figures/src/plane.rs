@@ -357,6 +357,7 @@ mod tests {
             codim2: Vec::new(),
             skipped: Vec::new(),
             unseeded: Vec::new(),
+            seeding: Default::default(),
         };
         let with = plane_figure(
             &spec,

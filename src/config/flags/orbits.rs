@@ -102,8 +102,9 @@ pub struct CurvesSpecArgs {
     /// No doubled branch is started beyond this period; valid 1 to 4096.
     #[arg(long, default_value_t = rules::CONTINUE_MAX_PERIOD.default as usize, value_parser = rules::CONTINUE_MAX_PERIOD.whole::<usize>(), value_name = "P")]
     pub max_period: usize,
-    /// Besides the starting value, seed at this many values of the second parameter
-    /// spread over its window; valid 1 to 64 (1: the starting value only).
+    /// Besides the starting value, seed on grids of the second parameter's window, the
+    /// first of about this many values, then finer (up to 129 values) until two finer
+    /// grids find no new curve; valid 1 to 64 (1: the starting value only).
     #[arg(long, default_value_t = rules::CURVE_SEEDS.default as usize, value_parser = rules::CURVE_SEEDS.whole::<usize>(), value_name = "N")]
     pub seeds: usize,
     #[command(flatten)]

@@ -15,6 +15,11 @@ use crate::orbits::roots::bracketed_root_nan;
 use crate::system::System;
 use crate::time::signed_distance;
 
+/// A step under this share of the largest counts as small ...
+const STALL_STEP: f64 = 1e-3;
+/// ... and this many small steps in a row stall a curve ([`CurveEnd::Stalled`]).
+const STALL_STEPS: usize = 60;
+
 /// The cycle and the condition at a point of the plane.
 #[derive(Clone, Debug)]
 struct Eval {
@@ -108,9 +113,32 @@ impl Tracer<'_> {
         d: f64,
         guess: &CyclePoint,
     ) -> Result<(Eval, [f64; 2]), PassError> {
-        if self.kind == CurveKind::Fold {
-            return self.correct_fold(y, c, d, guess);
+        let found = if self.kind == CurveKind::Fold {
+            self.correct_fold(y, c, d, guess)
+        } else {
+            let fixed = self.correct_fixed(y, c, d, guess);
+            let extended = !matches!(self.kind, CurveKind::Grazing | CurveKind::Birth);
+            match fixed {
+                Err(first) if extended => self.correct_fold(y, c, d, guess).map_err(|_| first),
+                other => other,
+            }
+        };
+        // A doubled cycle that has collapsed onto the one of half its period is that
+        // cycle, not this curve's: the curve ends before it (a collapse).
+        match found {
+            Ok((e, _)) if collapsed(&e.pt) && !collapsed(guess) => Err(PassError::NoConvergence),
+            other => other,
         }
+    }
+
+    /// [`Self::correct`] with the cycle solved at fixed parameters at every iterate.
+    fn correct_fixed(
+        &self,
+        y: [f64; 2],
+        c: [f64; 2],
+        d: f64,
+        guess: &CyclePoint,
+    ) -> Result<(Eval, [f64; 2]), PassError> {
         let mut e = self.eval(y, guess)?;
         for _ in 0..20 {
             let grad = self.gradient(&e)?;
@@ -151,8 +179,35 @@ impl Tracer<'_> {
         Err(PassError::NoConvergence)
     }
 
-    /// The fold's extended system at x = (α, p, t₀, v₀): the cycle's residual
-    /// (tₙ − t₀ − k, vₙ − v₀) and 1 − tr M + r²ⁿ, with the pass.
+    /// The condition from a pass of the map at x = (α, p, t₀, v₀), whether or not the
+    /// orbit closes yet (None for the kinds that need the closed cycle: grazing,
+    /// birth).
+    fn pass_condition(&self, sys: &System, x: [f64; 4], p: &periodic::Pass) -> Option<f64> {
+        let tr = p.monodromy[0][0] + p.monodromy[1][1];
+        let det = sys.r().powi(2 * self.n as i32);
+        match self.kind {
+            CurveKind::PeriodDoubling => Some(1.0 + tr + det),
+            CurveKind::Fold => Some(1.0 - tr + det),
+            CurveKind::BorderCollision { impact, breakpoint } => {
+                let ph = if impact == 0 {
+                    crate::time::wrap_phase(x[2])
+                } else {
+                    *p.phases.get(impact - 1)?
+                };
+                Some(signed_distance(ph, breakpoint))
+            }
+            CurveKind::StickingOnset => Some(
+                p.impact_speeds
+                    .iter()
+                    .cloned()
+                    .fold(f64::INFINITY, f64::min),
+            ),
+            CurveKind::Grazing | CurveKind::Birth => None,
+        }
+    }
+
+    /// The extended system at x = (α, p, t₀, v₀): the cycle's residual
+    /// (tₙ − t₀ − k, vₙ − v₀) and the condition, with the pass.
     fn fold_system(&self, x: [f64; 4]) -> Result<([f64; 3], periodic::Pass), PassError> {
         let sys = self
             .plane
@@ -160,16 +215,20 @@ impl Tracer<'_> {
             .map_err(|_| PassError::BadLaunch)?;
         let mut map = map_for(&sys);
         let p = pass(&mut map, x[2], x[3], self.n, self.k)?;
-        let tr = p.monodromy[0][0] + p.monodromy[1][1];
-        let g = 1.0 - tr + sys.r().powi(2 * self.n as i32);
+        let g = self
+            .pass_condition(&sys, x, &p)
+            .filter(|g| g.is_finite())
+            .ok_or(PassError::NoConvergence)?;
         Ok(([p.residual[0], p.residual[1], g], p))
     }
 
-    /// Newton's method on the fold's extended system (the cycle's equations and the
-    /// fold condition, in α, p, t₀, v₀) with c·(α, p) = d: at a fold the cycle cannot
-    /// be solved at fixed parameters (M − I is singular), so it is solved with them.
+    /// Newton's method on the extended system (the cycle's equations and the
+    /// condition, in α, p, t₀, v₀) with c·(α, p) = d. At a fold the cycle cannot be
+    /// solved at fixed parameters (M − I is singular), so a fold curve is always solved
+    /// with them; the other kinds come here where the cycle at fixed parameters cannot
+    /// be solved (a curve passing where its cycle's branch folds over the parameters).
     /// The map's own derivatives give the cycle equations' columns in α, t₀ and v₀;
-    /// forward differences give the p column and the fold condition's row.
+    /// forward differences give the p column and the condition's row.
     fn correct_fold(
         &self,
         y: [f64; 2],
@@ -396,6 +455,7 @@ impl Tracer<'_> {
         let mut prev: Option<CurvePoint> = None;
         let mut tau = tau0;
         let mut travelled = 0.0;
+        let mut small = 0;
         for _ in 0..MAX_STEPS {
             let y = [cur.alpha, cur.p];
             let pred = [y[0] + h * tau[0], y[1] + h * tau[1]];
@@ -413,7 +473,15 @@ impl Tracer<'_> {
             };
             // A step is refused where its point left the window or an impact crossed a
             // breakpoint the curve cannot cross.
-            let step = self.correct(start, c, d, &cur.cycle).and_then(|(e, grad)| {
+            // The cycle guessed along the way it has been moving (a secant over the last
+            // step), so an unstable cycle, which Newton's method finds only from close
+            // by, is still found after a step of useful length.
+            let guess = secant(
+                prev.as_ref(),
+                &cur,
+                (start[0] - y[0]).hypot(start[1] - y[1]),
+            );
+            let step = self.correct(start, c, d, &guess).and_then(|(e, grad)| {
                 let lost = at_edge && !near_edge(self.plane, e.y);
                 let next = (!lost).then(|| self.point(e));
                 match next {
@@ -434,6 +502,14 @@ impl Tracer<'_> {
                         let back = (next.alpha - cur.alpha) * (cur.alpha - p.alpha)
                             + (next.p - cur.p) * (cur.p - p.p);
                         if back < 0.0 {
+                            // Turning back where it meets a border or collapses is
+                            // ending there.
+                            if self.border_end(prev.as_ref(), &cur, index, codim2) {
+                                return (out, CurveEnd::Border);
+                            }
+                            if collapsing(&cur.cycle) {
+                                return (out, CurveEnd::Collapse);
+                            }
                             let end = self.end_at_codim2(&cur, codim2, index);
                             return (out, end.unwrap_or(CurveEnd::TurnedBack));
                         }
@@ -442,11 +518,37 @@ impl Tracer<'_> {
                     tau = tangent(grad, tau);
                     prev = Some(std::mem::replace(&mut cur, next));
                     out.push(cur.clone());
-                    // Back at the start: a closed curve.
+                    // Back at the start going the way it left: a closed curve (coming
+                    // back the other way, it retraced itself).
                     if travelled > 4.0 * h_max
                         && (cur.alpha - origin[0]).hypot(cur.p - origin[1]) < 0.5 * h
                     {
-                        return (out, CurveEnd::Closed);
+                        let same = tau[0] * tau0[0] + tau[1] * tau0[1] > 0.0;
+                        return (
+                            out,
+                            if same {
+                                CurveEnd::Closed
+                            } else {
+                                CurveEnd::TurnedBack
+                            },
+                        );
+                    }
+                    // Only tiny steps for a long while: the cycle changes too fast along
+                    // the curve for the corrector to follow at any useful cost.
+                    small = if h < STALL_STEP * h_max { small + 1 } else { 0 };
+                    if small >= STALL_STEPS {
+                        // Crawling toward the point where a doubled cycle is born from
+                        // its parent (its halves close together) is ending there.
+                        let near_birth = cur
+                            .cycle
+                            .half_return
+                            .is_some_and(|[dt, dv]| dt.abs().max(dv.abs()) <= 1e-2);
+                        let end = if near_birth {
+                            CurveEnd::Collapse
+                        } else {
+                            CurveEnd::Stalled
+                        };
+                        return (out, end);
                     }
                     h = (h * 1.5).min(h_max);
                 }
@@ -465,7 +567,7 @@ impl Tracer<'_> {
                         }
                         // A doubled cycle whose halves have met: it ends where it was
                         // born.
-                        if collapsed(&cur.cycle) {
+                        if collapsing(&cur.cycle) {
                             return (out, CurveEnd::Collapse);
                         }
                         if let Some(end) = self.end_at_codim2(&cur, codim2, index) {
@@ -651,6 +753,35 @@ impl Tracer<'_> {
 fn collapsed(pt: &CyclePoint) -> bool {
     pt.half_return
         .is_some_and(|[dt, dv]| dt.abs().max(dv.abs()) <= 1e-7)
+}
+
+/// `cur`'s cycle moved on by `h` along the curve as it moved from `prev` (its launch
+/// time and velocity extrapolated linearly; `cur`'s own without a previous point).
+fn secant(prev: Option<&CurvePoint>, cur: &CurvePoint, h: f64) -> CyclePoint {
+    let mut guess = cur.cycle.clone();
+    let Some(prev) = prev else { return guess };
+    let last = (cur.alpha - prev.alpha).hypot(cur.p - prev.p);
+    if !(last > 0.0 && h.is_finite()) {
+        return guess;
+    }
+    let f = (h / last).min(4.0);
+    let dt = cur.cycle.t0 - prev.cycle.t0;
+    let dv = cur.cycle.velocities[0] - prev.cycle.velocities[0];
+    // Only a launch that moved continuously (not one that jumped to another impact).
+    if dt.abs() > 0.05 || dv.abs() > 0.05 * (1.0 + cur.cycle.velocities[0].abs()) {
+        return guess;
+    }
+    guess.t0 += f * dt;
+    guess.velocities[0] += f * dv;
+    guess.phases[0] = crate::time::wrap_phase(guess.t0);
+    guess
+}
+
+/// Whether a doubled cycle is about to collapse (its halves within 1e-5 of each
+/// other): where the steps shrink toward a collapse they cannot pass.
+fn collapsing(pt: &CyclePoint) -> bool {
+    pt.half_return
+        .is_some_and(|[dt, dv]| dt.abs().max(dv.abs()) <= 1e-5)
 }
 
 /// Whether y lies on the window's boundary (to 1e-9 of its size).
