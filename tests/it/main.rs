@@ -13,6 +13,7 @@ mod figure_cli;
 mod generated_docs;
 mod hostile;
 mod merge_property;
+mod merge_stream;
 mod orbits_cli;
 mod plane_cli;
 mod reliability;
