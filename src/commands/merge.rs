@@ -11,9 +11,10 @@
 //! once ([`join`]). Any failure is one line naming the file (and line), status 2, and
 //! nothing is written. Only then are the parts read again, side by side, their values
 //! merged into index order and written ([`Joined::write`]): memory holds a value per
-//! part and the buffers, whatever the size of the parts. A part that changed between
-//! the two readings is refused then, and `--out` is left as it was (standard output
-//! has had the values before it).
+//! part and the buffers, whatever the size of the parts; every part is open at once, so
+//! more parts than the process may open files are refused before any is read. A part
+//! that changed between the two readings is refused then, and `--out` is left as it was
+//! (standard output has had the values before it).
 
 use crate::config::files::{check_input, head, open_input, read_again, LARGE_FILE};
 use crate::config::flags::MergeArgs;
@@ -29,6 +30,10 @@ use std::path::Path;
 /// How a part is named in refusals of its reading.
 const WHAT: &str = "merge: part";
 
+/// Open files a merge needs besides its parts (standard streams, the output, the
+/// executable and libraries, a second reading of a part).
+const SPARE_FILES: usize = 16;
+
 pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
     // The parts are inputs before they are read, so --out, opened (and so checked)
     // before the reading, can never be one of them.
@@ -39,9 +44,19 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
         );
     }
     let sink = Sink::open(args.output.out.as_deref()).map_err(InputError)?;
-    // Every part is there, a regular file, not too large, before any is read.
+    // Every part is there, a regular file, not too large, before any is read; and all
+    // can be open at once (they are read side by side).
     for f in &args.files {
         check_input(Path::new(f), WHAT, LARGE_FILE)?;
+    }
+    let open = allow_open_files(args.files.len() + SPARE_FILES);
+    if args.files.len() + SPARE_FILES > open {
+        return Err(InputError(format!(
+            "merge: {} parts, but this process may open {open} files at once: valid at most {} parts (or a higher `ulimit -n`)",
+            args.files.len(),
+            open.saturating_sub(SPARE_FILES)
+        ))
+        .into());
     }
     let first = args.files.first().map(|f| head(Path::new(f), 1600));
     if first.is_some_and(|t| is_plane(&t)) {
@@ -83,4 +98,28 @@ fn write<K: FileKind>(joined: &Joined<K>, sink: &mut Sink) -> Result<(), JoinErr
             read_again(Path::new(&p.name), p.body.offset, p.body.len, buffer)
         })
         .map(drop)
+}
+
+/// Raise this process's limit on open files to `wanted`, or as near as its hard limit
+/// allows (every part is open at once, and a Slurm array may have thousands of shards);
+/// the limit then.
+fn allow_open_files(wanted: usize) -> usize {
+    // SAFETY: getrlimit and setrlimit on a structure of our own.
+    unsafe {
+        let mut limit: libc::rlimit = std::mem::zeroed();
+        if libc::getrlimit(libc::RLIMIT_NOFILE, &mut limit) != 0 {
+            return usize::MAX;
+        }
+        let wanted = (wanted as libc::rlim_t).min(limit.rlim_max);
+        if limit.rlim_cur < wanted {
+            let raised = libc::rlimit {
+                rlim_cur: wanted,
+                rlim_max: limit.rlim_max,
+            };
+            if libc::setrlimit(libc::RLIMIT_NOFILE, &raised) == 0 {
+                limit.rlim_cur = wanted;
+            }
+        }
+        usize::try_from(limit.rlim_cur).unwrap_or(usize::MAX)
+    }
 }
