@@ -351,6 +351,12 @@ impl<W: Write, K: FileKind> PartWriter<W, K> {
 
     /// One value's json item.
     pub fn json(&mut self, item: &K::Item) -> io::Result<()> {
+        self.json_value(item)
+    }
+
+    /// One value's json item, or anything that is written as one (a view of a result
+    /// that makes its points as they are written).
+    pub fn json_value<T: Serialize + ?Sized>(&mut self, item: &T) -> io::Result<()> {
         let Inner::Json { out, first } = &mut self.inner else {
             return Err(io::Error::other(format!(
                 "a json value into a csv {} file",

@@ -163,11 +163,19 @@ impl<W: Write> SweepWriter<W> {
         })
     }
 
-    /// One value.
+    /// One value, written as it is made (a row or a point at a time: a value of a
+    /// million points is never copied whole).
     pub fn value(&mut self, r: &ValueResult) -> io::Result<()> {
         match self.part.layout() {
-            Layout::Csv => self.rows(&SweepRow::rows(r, self.lyapunov, self.several)),
-            Layout::Json => self.json(&SweepValue::new(r, self.lyapunov, self.several)),
+            Layout::Csv => {
+                let mut first = true;
+                SweepRow::each(r, self.lyapunov, self.several, |row| {
+                    self.part.csv_row(&row, std::mem::take(&mut first))
+                })
+            }
+            Layout::Json => self
+                .part
+                .json_value(&SweepValue::new(r, self.lyapunov, self.several)),
         }
     }
 
