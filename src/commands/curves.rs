@@ -4,13 +4,13 @@
 //! there, the flip's criticality on a PD curve), how it ends, and the
 //! codimension-two points located on it.
 
+use super::progress::Progress;
 use crate::config::flags::{CurvesArgs, CurvesSpecArgs};
 use crate::config::plane::curves_plane;
 use crate::config::InputError;
 use crate::output::records::csv_writer;
 use crate::output::sink::Sink;
 use crate::output::Format;
-use super::progress::Progress;
 use bouncemap_engine::orbits::curves::{
     curves_with_progress, Codim2, Curve, CurveKind, Curves, Plane, Seeds,
 };
@@ -188,8 +188,8 @@ fn follow_with_progress(
             events: 0,
             elapsed: started.elapsed(),
         };
-        let shown =
-            progress.get_or_insert_with(|| Progress::start_units("curves", "seed values", p.seeds, title));
+        let shown = progress
+            .get_or_insert_with(|| Progress::start_units("curves", "seed values", p.seeds, title));
         shown.update_noting(&last, &format!(", {} curves", p.curves));
     });
     if let Some(p) = progress {

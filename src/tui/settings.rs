@@ -219,7 +219,9 @@ impl Config {
 /// A value from the file as a refusal shows it: as written if short, else quoted and
 /// cut (the refusal stays one short line).
 fn shown_value(text: &str) -> String {
-    if text.chars().count() <= crate::output::text::QUOTED_MAX && !text.chars().any(char::is_control) {
+    if text.chars().count() <= crate::output::text::QUOTED_MAX
+        && !text.chars().any(char::is_control)
+    {
         text.to_string()
     } else {
         crate::output::text::quoted(text)
