@@ -118,7 +118,12 @@ pub fn read_again(
     len: u64,
     buffer: usize,
 ) -> io::Result<BufReader<io::Take<File>>> {
-    let mut file = File::open(path)?;
+    use std::os::unix::fs::OpenOptionsExt;
+    // Without waiting: a FIFO put in the part's place is refused, not waited on.
+    let mut file = std::fs::OpenOptions::new()
+        .read(true)
+        .custom_flags(libc::O_NONBLOCK)
+        .open(path)?;
     if !file.metadata()?.is_file() {
         return Err(io::Error::other("no longer a regular file"));
     }
