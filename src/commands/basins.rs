@@ -21,7 +21,7 @@ use std::io::Write;
 pub fn run(args: &BasinsArgs) -> anyhow::Result<()> {
     let spec = config::basin_spec(&args.spec)?;
     if args.run.check.check {
-        let (_, threads) = config::threads_plan(args.run.workers.threads);
+        let (workers, threads) = config::threads_plan(args.run.workers.threads);
         let what = match args.format {
             BasinsFormat::Csv => "csv",
             BasinsFormat::Json => "json",
@@ -30,8 +30,7 @@ pub fn run(args: &BasinsArgs) -> anyhow::Result<()> {
         return super::print_plan(&[
             format!("basins of {} starts: {}", spec.len(), title(&spec)),
             threads,
-            // A label per start, and the attractors' cells.
-            config::memory_plan(spec.len() as u64 * 16 + (64 << 20)),
+            config::memory_plan(memory_bound(&spec, workers, args)),
             super::output_plan(args.output.out.as_deref(), what)?,
         ]);
     }
@@ -41,6 +40,37 @@ pub fn run(args: &BasinsArgs) -> anyhow::Result<()> {
     write(&spec, &basins, args, &mut sink).map_err(|e| sink.describe(e))?;
     sink.finish()
 }
+
+/// A bound on the run's memory, in bytes: a label per start (or none yet) and the
+/// starts listed by pass, each worker's run and what identifying its attractor takes,
+/// an allowance for the attractors' cells and the results waiting their turn to be
+/// numbered (a few MB measured), the writer (a row at a time, or the text picture) and
+/// the process. Large blocks are returned to the system as they are freed
+/// ([`super::release_large_blocks`]).
+fn memory_bound(spec: &BasinSpec, threads: usize, args: &BasinsArgs) -> u64 {
+    use bouncemap_engine::attractors::identify_bytes;
+    use bouncemap_engine::run::OrbitRun;
+    use std::mem::size_of;
+    let starts = spec.len() as u64;
+    let labels = starts * (size_of::<Option<u32>>() + size_of::<usize>()) as u64;
+    let worker = OrbitRun::bytes(1, spec.settle.periodicity) + identify_bytes(spec.settle.sample);
+    let writer = match args.format {
+        BasinsFormat::Braille => {
+            let (w, h) = config::text_size(&args.run.text, || None);
+            super::picture_bytes(w, h)
+        }
+        _ => super::WRITER_BYTES,
+    };
+    super::BASE_BYTES
+        + threads as u64 * (worker + super::THREAD_BYTES)
+        + labels
+        + ATTRACTORS_BYTES
+        + writer
+}
+
+/// The allowance for the attractors' cells and the results waiting their turn to be
+/// numbered, in bytes.
+const ATTRACTORS_BYTES: u64 = 64 << 20;
 
 /// Run the picture to the end with progress on stderr.
 pub fn compute(spec: &BasinSpec, executor: &Executor) -> anyhow::Result<Basins> {

@@ -65,7 +65,14 @@ pub fn run(args: &LyapunovArgs) -> anyhow::Result<()> {
                 args.transient,
                 args.impacts
             ),
-            "memory: a few MB, whatever the impacts (the measurement streams)".into(),
+            // The measurement streams: the orbit, the cells its sample visits (at most
+            // a million, whatever the impacts), the process.
+            config::memory_plan(
+                super::BASE_BYTES
+                    + super::WRITER_BYTES
+                    + OrbitRun::bytes(1, settle.periodicity)
+                    + attractors::identify_bytes(settle.sample),
+            ),
             "writes to standard output".into(),
         ]);
     }

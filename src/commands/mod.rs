@@ -33,6 +33,7 @@ use std::io::Write;
 /// Run one subcommand. A SIGTERM, SIGINT or SIGHUP removes any output file still being
 /// written (the old one stays) and exits with 128 + the signal's number.
 pub fn run(cmd: Command) -> anyhow::Result<()> {
+    release_large_blocks();
     crate::output::sink::clean_up_on_signals()?;
     progress::check_environment()?;
     match cmd {
@@ -67,6 +68,36 @@ pub fn run(cmd: Command) -> anyhow::Result<()> {
             }
             Ok(())
         }
+    }
+}
+
+/// What a headless command's process holds besides its work, at most, in bytes: the
+/// binary and its libraries, the allocator's own, the job thread, standard output's and
+/// the file's buffers (7 MB measured). A part of every memory bound `--check` states.
+pub const BASE_BYTES: u64 = 16 << 20;
+/// What a worker thread holds besides its work, at most, in bytes: its stack and its
+/// allocator arena's small blocks.
+pub const THREAD_BYTES: u64 = 1 << 20;
+/// What writing csv or json holds, at most, in bytes: a row or a value at a time,
+/// through the writers' buffers.
+pub const WRITER_BYTES: u64 = 1 << 20;
+
+/// What drawing a text picture of `w` × `h` character cells holds, at most, in bytes:
+/// its counts or classes per dot, its marks and its text.
+pub fn picture_bytes(w: u16, h: u16) -> u64 {
+    WRITER_BYTES + w as u64 * h as u64 * 64
+}
+
+/// Have the allocator map every large block (a value's points, a run's ring of events)
+/// on its own and return it to the system when it is freed, instead of keeping it for
+/// later (glibc's default, which can hold freed blocks of tens of MB in every thread's
+/// arena): what the process holds is then what is live, and the memory bounds that
+/// `--check` states hold.
+pub fn release_large_blocks() {
+    #[cfg(all(target_os = "linux", target_env = "gnu"))]
+    // SAFETY: mallopt only sets an allocator parameter, before any thread starts.
+    unsafe {
+        libc::mallopt(libc::M_MMAP_THRESHOLD, 128 << 10);
     }
 }
 

@@ -9,6 +9,7 @@
 use super::drive::fill;
 use super::progress::Progress;
 use super::resume;
+use super::{picture_bytes, BASE_BYTES, THREAD_BYTES, WRITER_BYTES};
 use crate::config::flags::PlaneArgs;
 use crate::config::{self, InputError};
 use crate::output::part_file::{shard_name, PartWriter};
@@ -42,6 +43,7 @@ pub fn run(args: &PlaneArgs) -> anyhow::Result<()> {
     if resume::already_written::<PlaneFile>(&args.part, args.format, &header, spec.shard)? {
         return Ok(());
     }
+    config::check_memory(memory_bound(args, &spec, threads), "this plane")?;
     let mut sink = Sink::open(args.part.output.out.as_deref()).map_err(InputError)?;
     let plane = compute(&spec, &Executor::new(threads)?)?;
     let curves = curves(&spec);
@@ -108,12 +110,9 @@ fn check(args: &PlaneArgs, spec: &PlaneSpec) -> anyhow::Result<()> {
         spec.x.n * spec.y.n,
         title(spec)
     )];
-    let (_, line) = config::threads_plan(args.run.workers.threads);
+    let (threads, line) = config::threads_plan(args.run.workers.threads);
     plan.push(line);
-    // A few numbers per pixel of the shard, and a run per worker.
-    plan.push(config::memory_plan(
-        spec.shard_len() as u64 * 64 + (16 << 20),
-    ));
+    plan.push(config::memory_plan(memory_bound(args, spec, threads)));
     let header = PlaneHeader::from(spec);
     let what = match resume::part_layout(args.format) {
         Some(l) => l.name(),
@@ -126,6 +125,53 @@ fn check(args: &PlaneArgs, spec: &PlaneSpec) -> anyhow::Result<()> {
     }
     super::print_plan(&plan)
 }
+
+/// A bound on the run's memory, in bytes: the picture (a pixel's result, or none, for
+/// every pixel of the plane, whatever the shard), the shard's pixels listed by pass,
+/// every result of the shard in flight to the picture at once, each worker's run and
+/// what measuring its exponent takes, the two-parameter curves, the writer (a row at a
+/// time, or the text picture) and the process. Large blocks are returned to the system
+/// as they are freed ([`super::release_large_blocks`]).
+fn memory_bound(args: &PlaneArgs, spec: &PlaneSpec, threads: usize) -> u64 {
+    use bouncemap_engine::plane::{Pixel, KEEP, LYAPUNOV_SAMPLE};
+    use bouncemap_engine::run::{OrbitRun, Point};
+    use std::mem::size_of;
+    let all = spec.len() as u64;
+    let shard = spec.shard_len() as u64;
+    let picture = all * size_of::<Option<Pixel>>() as u64;
+    let passes = shard * size_of::<usize>() as u64;
+    let in_flight = shard * size_of::<(usize, Pixel)>() as u64;
+    let exponent = match spec.lyapunov {
+        true => bouncemap_engine::attractors::identify_bytes(LYAPUNOV_SAMPLE),
+        false => 0,
+    };
+    let worker = OrbitRun::bytes(KEEP, spec.periodicity)
+        + KEEP as u64 * size_of::<Point>() as u64
+        + exponent;
+    let writer = match resume::part_layout(args.format) {
+        Some(_) => WRITER_BYTES,
+        None => {
+            let (w, h) = config::text_size(&args.run.text, || None);
+            picture_bytes(w, h)
+        }
+    };
+    let curves = if args.curves.is_some() {
+        CURVES_BYTES
+    } else {
+        0
+    };
+    BASE_BYTES
+        + threads as u64 * (worker + THREAD_BYTES)
+        + picture
+        + passes
+        + in_flight
+        + curves
+        + writer
+}
+
+/// What the two-parameter curves over the text picture hold, at most, in bytes: a few
+/// curves of at most some thousands of points each (2 MB measured).
+const CURVES_BYTES: u64 = 32 << 20;
 
 /// Run the plane to the end with progress on stderr.
 pub fn compute(spec: &PlaneSpec, executor: &Executor) -> anyhow::Result<Plane> {

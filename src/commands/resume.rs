@@ -7,7 +7,7 @@
 //! replaces only this run's own output. A path that is not a regular file (a directory,
 //! a device) is left to the output's own rules.
 
-use crate::config::files::{read_existing_output, LARGE_FILE};
+use crate::config::files::{open_existing_output, read_again, LARGE_FILE};
 use crate::config::flags::PartArgs;
 use crate::config::InputError;
 use crate::output::part_file::{
@@ -87,8 +87,8 @@ fn regular(path: &Path) -> bool {
 /// Whether the file at `path` opens with this run's provenance ([`opens_as`]): a part of
 /// this run, maybe cut off or damaged, which the run may replace.
 fn own_output<K: FileKind>(path: &Path, layout: Layout, header: &K::Header, shard: Shard) -> bool {
-    read_existing_output(path, "the existing file", LARGE_FILE)
-        .is_ok_and(|text| opens_as::<K>(&text, layout, header, &shard_name(shard)))
+    open_existing_output(path, "the existing file", LARGE_FILE)
+        .is_ok_and(|input| opens_as::<K>(input, layout, header, &shard_name(shard)))
 }
 
 /// Whether `path` already holds the part of kind `K` with settings `header` and shard
@@ -106,8 +106,13 @@ pub fn check<K: FileKind>(
     if std::fs::symlink_metadata(path).is_err_and(|e| e.kind() == std::io::ErrorKind::NotFound) {
         return Err(format!("no {shown} yet"));
     }
-    let text = read_existing_output(path, "the existing file", LARGE_FILE).map_err(|e| e.0)?;
-    let part = read_part::<K>(&shown, &text)?;
+    let mut input = open_existing_output(path, "the existing file", LARGE_FILE).map_err(|e| e.0)?;
+    let mut again =
+        |offset, len| read_again(path, offset, len, 1 << 16).map(|r| Box::new(r) as Box<_>);
+    let part = read_part::<K, _>(&shown, &mut input, &mut again);
+    // What the reader found (not UTF-8 further on, grown) is said first.
+    input.finish().map_err(|e| e.0)?;
+    let part = part?;
     let kind = K::KIND;
     if part.layout != layout {
         return Err(format!(
@@ -137,7 +142,7 @@ pub fn check<K: FileKind>(
     }
     Ok(format!(
         "{shown} already holds shard {shard} of this {kind}, complete and verified ({} {})",
-        part.values.len(),
+        part.count,
         K::UNIT
     ))
 }

@@ -5,12 +5,15 @@
 //! verified, as it is.
 //!
 //! Values are computed in index order and written as they complete, through a window
-//! that keeps at most [`WINDOW_BYTES`] of results in flight: memory does not grow with
-//! the number of values.
+//! that keeps at most [`WINDOW_BYTES`] of results in flight (or two work items per
+//! worker, if more): memory does not grow with the number of values. The run's memory
+//! bound ([`budget`], refused up front beyond what the machine has, stated by
+//! `--check`) is an upper bound of what it holds.
 
 use super::drive::drive_job;
 use super::progress::Progress;
 use super::resume;
+use super::{picture_bytes, BASE_BYTES, THREAD_BYTES, WRITER_BYTES};
 use crate::config::flags::SweepArgs;
 use crate::config::{self, check_memory, InputError};
 use crate::output::diagram::BrailleDiagram;
@@ -23,13 +26,9 @@ use bouncemap_engine::sweep::{chain_len, SweepJob, SweepSpec, ValueResult};
 use std::collections::BTreeMap;
 use std::io::Write;
 
-/// Results held in flight at most, in bytes (the window of values ahead of the writer).
+/// Results held in flight at most, in bytes (the window of values ahead of the writer),
+/// when the workers can be kept busy with less.
 pub const WINDOW_BYTES: u64 = 64 << 20;
-
-/// Bytes one value's result takes: its points and their bookkeeping.
-fn value_bytes(keep: usize) -> u64 {
-    keep as u64 * 24 + 256
-}
 
 pub fn run(args: &SweepArgs) -> anyhow::Result<()> {
     let spec = config::sweep::sweep_spec(args)?;
@@ -41,31 +40,48 @@ pub fn run(args: &SweepArgs) -> anyhow::Result<()> {
     if resume::already_written::<SweepFile>(&args.part, args.format, &header, spec.shard)? {
         return Ok(());
     }
-    let (window, memory) = budget(&spec, threads);
+    let layout = resume::part_layout(args.format);
+    let size = braille_size(args);
+    let (window, memory) = budget(&spec, threads, writer_bytes(layout, size));
     check_memory(memory, "this sweep")?;
     let mut sink = Sink::open(args.part.output.out.as_deref()).map_err(InputError)?;
     let executor = Executor::new(threads)?;
-    let result = match resume::part_layout(args.format) {
+    let result = match layout {
         Some(layout) => stream(&spec, &executor, window, &mut sink, layout),
-        None => braille(&spec, &executor, window, &mut sink, braille_size(args)),
+        None => braille(&spec, &executor, window, &mut sink, size),
     };
     result.map_err(|e| sink.describe(e))?;
     sink.finish()
 }
 
-/// The values in flight (as many as [`WINDOW_BYTES`] holds, at least two per worker)
-/// and a bound on the run's memory.
-fn budget(spec: &SweepSpec, threads: usize) -> (usize, u64) {
-    let per_value = value_bytes(spec.keep);
-    let window = (WINDOW_BYTES / per_value).clamp(2 * threads as u64, 1 << 16) as usize;
-    // Per worker: its value's ring of kept events and the periodicity detector.
-    let max_period = spec.periodicity.map_or(0, |p| p.max_period) as u64;
-    let per_worker =
-        spec.keep as u64 * 32 + (2 * (64 + max_period) + max_period).next_power_of_two() * 32;
-    (
-        window,
-        window as u64 * per_value + threads as u64 * per_worker,
-    )
+/// The values in flight and a bound on the run's memory, in bytes. The window counts
+/// work items (chains of values with `--warm`): as many as [`WINDOW_BYTES`] of their
+/// values hold, at least two per worker. The bound is what the run holds at most: every
+/// item of the window finished and waiting for the writer (each value its largest
+/// result, [`SweepSpec::value_bytes`]; no more values than the shard has; with `--warm`
+/// whole chains, which may all finish while the writer waits for the first), each
+/// worker computing at its largest besides ([`SweepSpec::worker_bytes`]: its run's ring
+/// and detectors, what several starts or exponents take), the writer (a row or a point
+/// at a time; the text picture for braille), and the process itself. Large blocks are
+/// returned to the system as they are freed ([`super::release_large_blocks`]), so what
+/// the process holds is what is live.
+fn budget(spec: &SweepSpec, threads: usize, writer: u64) -> (usize, u64) {
+    let value = spec.value_bytes();
+    let chain = chain_len(spec.warm) as u64;
+    let threads = threads as u64;
+    let window = (WINDOW_BYTES / (value * chain)).clamp(2 * threads, 1 << 16);
+    let held = (window * chain).min(spec.shard_values() as u64) * value;
+    let workers = threads * (spec.worker_bytes() + THREAD_BYTES);
+    (window as usize, BASE_BYTES + held + workers + writer)
+}
+
+/// What the writer of `format` holds at most, in bytes: a row or a point at a time for
+/// csv and json; the text picture of `size` for braille.
+fn writer_bytes(layout: Option<Layout>, (w, h): (u16, u16)) -> u64 {
+    match layout {
+        Some(_) => WRITER_BYTES,
+        None => picture_bytes(w, h),
+    }
 }
 
 /// `--check`: what the run would do, checked as it would be, nothing computed.
@@ -80,7 +96,8 @@ fn check(args: &SweepArgs, spec: &SweepSpec) -> anyhow::Result<()> {
     )];
     let (threads, line) = config::threads_plan(args.run.workers.threads);
     plan.push(line);
-    plan.push(config::memory_plan(budget(spec, threads).1));
+    let writer = writer_bytes(resume::part_layout(args.format), braille_size(args));
+    plan.push(config::memory_plan(budget(spec, threads, writer).1));
     let what = match resume::part_layout(args.format) {
         Some(l) => l.name(),
         None => "the braille diagram",

@@ -5,8 +5,10 @@
 //!   right) and `serde_json`. Numbers are the shortest strings that read back to the
 //!   same f64 (exponent form where shorter).
 //! * [`part_file`]: the one format of the files `sweep` and `plane` write and `merge`
-//!   joins: provenance, hashes, shards, csv and json layouts, the streaming writer, the
-//!   reader that checks a part and the join; [`sweep_file`] and [`plane_file`] are its
+//!   joins: provenance, hashes, shards, csv and json layouts, the streaming writer and
+//!   the reader that checks a part, a value at a time ([`part_stream`]: the byte-level
+//!   pieces, never the whole file); [`part_join`]: the join, merging the parts' values
+//!   into index order as they are read again; [`sweep_file`] and [`plane_file`] are its
 //!   two kinds (their rows, and where a row belongs).
 //! * [`sink`]: the one output layer: standard output (a closed pipe ends the run
 //!   quietly, any other write error fails it) or a file written atomically (temporary,
@@ -32,6 +34,8 @@ pub mod diagram;
 pub mod figure_file;
 pub mod hitgrid;
 pub mod part_file;
+pub mod part_join;
+pub mod part_stream;
 pub mod plane_file;
 pub mod plane_map;
 pub mod records;

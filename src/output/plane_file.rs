@@ -21,7 +21,7 @@
 //! null without an α axis), `pixels` and the checksum of the curves' and pixels' bytes.
 
 use super::classes::{of_pixel, Class, NO_LANDING};
-use super::part_file::{clip, FileKind, Layout, Part, PartWriter};
+use super::part_file::{clip, FileKind, Layout, PartWriter};
 use super::records::{solver_name, EarlyStop, Exponent};
 use bouncemap_engine::grid::grid_value;
 use bouncemap_engine::grid::Shard;
@@ -287,26 +287,56 @@ impl FileKind for PlaneFile {
         format!("{pixels} pixels")
     }
 
-    fn check(part: &Part<PlaneFile>) -> Result<usize, String> {
-        check_rows(part)
+    type Checker = PlaneCheck;
+
+    fn checker(h: &PlaneHeader, shard: Option<Shard>) -> Result<PlaneCheck, String> {
+        let total = h.len();
+        Ok(PlaneCheck {
+            header: h.clone(),
+            shard,
+            total,
+            expected: match shard {
+                Some(s) => total / s.count + usize::from(s.index < total % s.count),
+                None => total,
+            },
+            k: 0,
+        })
     }
 
-    /// Shard I/N holds the pixels I − 1 modulo N: pixel p is the next row of shard
-    /// p mod N.
-    fn combine(h: &PlaneHeader, shards: Vec<Vec<PixelRow>>) -> Result<Vec<PixelRow>, String> {
-        let count = shards.len().max(1);
-        let mut iters: Vec<_> = shards.into_iter().map(Vec::into_iter).collect();
-        let rows: Vec<PixelRow> = (0..h.len())
-            .filter_map(|p| iters.get_mut(p % count).and_then(Iterator::next))
-            .collect();
-        if rows.len() != h.len() {
-            return Err(format!(
-                "the parts hold {} of the plane's {} pixels",
-                rows.len(),
-                h.len()
-            ));
+    fn check(c: &mut PlaneCheck, r: &PixelRow) -> Result<(), String> {
+        c.row(r)
+    }
+
+    fn expected(c: &PlaneCheck) -> usize {
+        c.expected
+    }
+
+    fn stated_index(_: &PixelRow) -> Option<usize> {
+        None
+    }
+
+    fn row_index(_: &PixelRow) -> Option<usize> {
+        None
+    }
+
+    /// Shard I/N holds the pixels I − 1 modulo N: its row k is pixel I − 1 + kN.
+    fn place(shard: Option<Shard>, k: usize, _: Option<usize>) -> usize {
+        row_pixel(shard, k)
+    }
+
+    /// Pixel p is the next row of shard p mod N.
+    fn complete(h: &PlaneHeader, counts: &[usize]) -> Result<(), String> {
+        let n = counts.len().max(1);
+        let len = h.len();
+        let held: usize = counts
+            .iter()
+            .enumerate()
+            .map(|(s, &c)| c.min(len / n + usize::from(s < len % n)))
+            .sum();
+        if held != len {
+            return Err(format!("the parts hold {held} of the plane's {len} pixels"));
         }
-        Ok(rows)
+        Ok(())
     }
 }
 
@@ -326,22 +356,31 @@ fn row_pixel(shard: Option<Shard>, k: usize) -> usize {
     }
 }
 
-/// The checks on a part's rows: each well-formed and at the pixel its place in the
-/// shard means. Returns how many pixels its shard has.
-fn check_rows(part: &Part<PlaneFile>) -> Result<usize, String> {
-    let h = &part.header;
-    let total = h.len();
-    let expected = match part.shard {
-        Some(s) => total / s.count + usize::from(s.index < total % s.count),
-        None => total,
-    };
-    for (k, r) in part.values.iter().enumerate() {
+/// The checks on a part's rows, one at a time: each well-formed and at the pixel its
+/// place in the shard means.
+pub struct PlaneCheck {
+    header: PlaneHeader,
+    shard: Option<Shard>,
+    total: usize,
+    /// Pixels the shard has.
+    expected: usize,
+    /// Rows checked.
+    k: usize,
+}
+
+impl PlaneCheck {
+    fn row(&mut self, r: &PixelRow) -> Result<(), String> {
+        let k = self.k;
+        self.k += 1;
         r.check().map_err(|e| format!("pixel row {}: {e}", k + 1))?;
-        let p = row_pixel(part.shard, k);
-        if p >= total {
-            return Err(format!("holds more than its shard's {expected} pixels"));
+        let p = row_pixel(self.shard, k);
+        if p >= self.total {
+            return Err(format!(
+                "holds more than its shard's {} pixels",
+                self.expected
+            ));
         }
-        let (x, y) = h.values(p);
+        let (x, y) = self.header.values(p);
         if r.x.to_bits() != x.to_bits() || r.y.to_bits() != y.to_bits() {
             return Err(format!(
                 "pixel row {} is at ({}, {}), but its place means pixel {p} at ({x}, {y})",
@@ -350,8 +389,8 @@ fn check_rows(part: &Part<PlaneFile>) -> Result<usize, String> {
                 r.y
             ));
         }
+        Ok(())
     }
-    Ok(expected)
 }
 
 /// The rows of a computed plane's shard, in index order, made one by one.

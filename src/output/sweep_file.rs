@@ -21,12 +21,10 @@
 //! ([`SweepWriter`]), so memory is bounded by the values in flight, not by the run.
 
 pub use super::part_file::Layout;
-use super::part_file::{clip, shard_name, FileKind, Part, PartWriter};
+use super::part_file::{clip, shard_name, FileKind, PartWriter};
 use super::records::{PointRecord, SweepHeader, SweepRow, SweepValue};
-use bouncemap_engine::grid::grid_value;
-use bouncemap_engine::grid::SweepParam;
+use bouncemap_engine::grid::{grid_value, Shard, SweepParam};
 use bouncemap_engine::sweep::{chain_len, ValueResult, Warm};
-use std::collections::BTreeSet;
 use std::io::{self, Write};
 
 /// The sweep file as a kind of part file.
@@ -82,22 +80,62 @@ impl FileKind for SweepFile {
         format!("{values} values, {rows} rows")
     }
 
-    fn check(part: &Part<SweepFile>) -> Result<usize, String> {
-        check_values(part)
+    type Checker = SweepCheck;
+
+    fn checker(h: &SweepHeader, shard: Option<Shard>) -> Result<SweepCheck, String> {
+        let warm = Warm::from_name(&h.start).ok_or_else(|| {
+            format!(
+                "start '{}' is not cold, warm or warm-backward",
+                clip(&h.start)
+            )
+        })?;
+        let chain = chain_len(warm);
+        Ok(SweepCheck {
+            lo: h.lo,
+            hi: h.hi,
+            steps: h.steps,
+            keep: h.keep.saturating_mul(h.starts.max(1)),
+            shard,
+            chain,
+            expected: match shard {
+                Some(s) => s.items_of(h.steps, chain),
+                None => h.steps,
+            },
+            prev: None,
+        })
     }
 
-    fn combine(h: &SweepHeader, shards: Vec<Vec<PartValue>>) -> Result<Vec<PartValue>, String> {
-        let mut values: Vec<PartValue> = shards.into_iter().flatten().collect();
-        values.sort_by_key(PartValue::index);
-        let distinct: BTreeSet<usize> = values.iter().map(PartValue::index).collect();
-        if distinct.len() != h.steps || values.len() != h.steps {
+    fn check(c: &mut SweepCheck, v: &PartValue) -> Result<(), String> {
+        c.value(v)
+    }
+
+    fn expected(c: &SweepCheck) -> usize {
+        c.expected
+    }
+
+    fn stated_index(v: &PartValue) -> Option<usize> {
+        Some(v.index())
+    }
+
+    fn row_index(row: &SweepRow) -> Option<usize> {
+        Some(row.index)
+    }
+
+    /// A value states its index.
+    fn place(_: Option<Shard>, k: usize, stated: Option<usize>) -> usize {
+        stated.unwrap_or(k)
+    }
+
+    /// Checked parts hold values of their own shards, each once.
+    fn complete(h: &SweepHeader, counts: &[usize]) -> Result<(), String> {
+        let held: usize = counts.iter().sum();
+        if held != h.steps {
             return Err(format!(
-                "the parts hold {} of the sweep's {} values",
-                distinct.len(),
+                "the parts hold {held} of the sweep's {} values",
                 h.steps
             ));
         }
-        Ok(values)
+        Ok(())
     }
 }
 
@@ -125,11 +163,19 @@ impl<W: Write> SweepWriter<W> {
         })
     }
 
-    /// One value.
+    /// One value, written as it is made (a row or a point at a time: a value of a
+    /// million points is never copied whole).
     pub fn value(&mut self, r: &ValueResult) -> io::Result<()> {
         match self.part.layout() {
-            Layout::Csv => self.rows(&SweepRow::rows(r, self.lyapunov, self.several)),
-            Layout::Json => self.json(&SweepValue::new(r, self.lyapunov, self.several)),
+            Layout::Csv => {
+                let mut first = true;
+                SweepRow::each(r, self.lyapunov, self.several, |row| {
+                    self.part.csv_row(&row, std::mem::take(&mut first))
+                })
+            }
+            Layout::Json => self
+                .part
+                .json_value(&SweepValue::new(r, self.lyapunov, self.several)),
         }
     }
 
@@ -165,45 +211,46 @@ impl PartValue {
     }
 }
 
-/// The checks on a part's values: in index order, each once, inside its shard, at the
-/// value its index means, well-formed. Returns how many values its shard has.
-fn check_values(part: &Part<SweepFile>) -> Result<usize, String> {
-    let h = &part.header;
-    let warm = Warm::from_name(&h.start).ok_or_else(|| {
-        format!(
-            "start '{}' is not cold, warm or warm-backward",
-            clip(&h.start)
-        )
-    })?;
-    let mut prev: Option<usize> = None;
-    for v in &part.values {
+/// The checks on a part's values, one at a time: in index order, each once, inside its
+/// shard, at the value its index means, well-formed.
+pub struct SweepCheck {
+    lo: f64,
+    hi: f64,
+    steps: usize,
+    /// Points a value may have: keep × starts.
+    keep: usize,
+    shard: Option<Shard>,
+    chain: usize,
+    /// Values the shard has.
+    expected: usize,
+    /// The index of the value before.
+    prev: Option<usize>,
+}
+
+impl SweepCheck {
+    fn value(&mut self, v: &PartValue) -> Result<(), String> {
         let i = v.index();
-        if i >= h.steps {
+        if i >= self.steps {
             return Err(format!(
                 "value {i} is outside the sweep's {} values",
-                h.steps
+                self.steps
             ));
         }
-        if prev.is_some_and(|p| i <= p) {
+        if self.prev.is_some_and(|p| i <= p) {
             return Err(format!("value {i} is out of order or repeated"));
         }
-        prev = Some(i);
-        if let Some(s) = part.shard {
-            if !s.holds(i, chain_len(warm)) {
+        self.prev = Some(i);
+        if let Some(s) = self.shard {
+            if !s.holds(i, self.chain) {
                 return Err(format!(
                     "value {i} does not belong to shard {}",
                     shard_name(s)
                 ));
             }
         }
-        let want = grid_value(h.lo, h.hi, h.steps, i);
-        check_value(v, want, h.keep.saturating_mul(h.starts.max(1)))
-            .map_err(|e| format!("value {i}: {e}"))?;
+        let want = grid_value(self.lo, self.hi, self.steps, i);
+        check_value(v, want, self.keep).map_err(|e| format!("value {i}: {e}"))
     }
-    Ok(match part.shard {
-        Some(s) => s.items_of(h.steps, chain_len(warm)),
-        None => h.steps,
-    })
 }
 
 fn check_point(phase: f64, v: f64) -> Result<(), String> {

@@ -4,6 +4,7 @@
 mod architecture;
 mod array_and_resume;
 mod attractors_cli;
+mod check_memory;
 mod cli;
 mod cli_orbit;
 mod continuation_cli;
@@ -14,6 +15,7 @@ mod generated_docs;
 mod hostile;
 mod hostile_three;
 mod merge_property;
+mod merge_stream;
 mod orbits_cli;
 mod plane_cli;
 mod reliability;

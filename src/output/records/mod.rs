@@ -209,8 +209,14 @@ impl SweepRow {
     }
 
     /// The rows of one value, with a `lyapunov` column and with an `attractor` column
-    /// (for `several` starts) as asked.
-    pub fn rows(r: &ValueResult, lyapunov: bool, several: bool) -> Vec<SweepRow> {
+    /// (for `several` starts) as asked, handed to `f` one at a time, in order, so a
+    /// million of them are never held at once; the first error of `f` ends it.
+    pub fn each<E>(
+        r: &ValueResult,
+        lyapunov: bool,
+        several: bool,
+        mut f: impl FnMut(SweepRow) -> Result<(), E>,
+    ) -> Result<(), E> {
         let row = |p: Option<&SweepPoint>,
                    o: &Outcome,
                    l: Option<f64>,
@@ -238,7 +244,6 @@ impl SweepRow {
             }
         };
         if several && !r.attractors.is_empty() {
-            let mut out = Vec::new();
             for (n, a) in r.attractors.iter().enumerate() {
                 let pts = &r.points[a.points.clone()];
                 // Each attractor's own: a sticking or resting one, a stick or release
@@ -259,11 +264,13 @@ impl SweepRow {
                     )
                 };
                 if pts.is_empty() {
-                    out.push(row(None));
+                    f(row(None))?;
                 }
-                out.extend(pts.iter().map(|p| row(Some(p))));
+                for p in pts {
+                    f(row(Some(p)))?;
+                }
             }
-            return out;
+            return Ok(());
         }
         let attractor = several.then_some(1);
         let row = |p| {
@@ -277,10 +284,9 @@ impl SweepRow {
             )
         };
         if r.points.is_empty() {
-            vec![row(None)]
-        } else {
-            r.points.iter().map(|p| row(Some(p))).collect()
+            return f(row(None));
         }
+        r.points.iter().try_for_each(|p| f(row(Some(p))))
     }
 }
 
@@ -296,10 +302,11 @@ pub struct PointRecord {
     pub attractor: Option<usize>,
 }
 
-/// One value in a sweep's json.
+/// One value in a sweep's json: its points a list (`P`, as read back), or written
+/// straight from a result ([`PointsOf`], not copied).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct SweepValue {
+pub struct SweepValue<P = Vec<PointRecord>> {
     pub index: usize,
     pub value: f64,
     pub status: Status,
@@ -326,18 +333,38 @@ pub struct SweepValue {
     /// With several starts: the attractors, largest basin first (numbered from 1).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub attractors: Vec<AttractorRecord>,
-    pub points: Vec<PointRecord>,
+    pub points: P,
 }
 
-impl SweepValue {
-    /// The json of one value, with its exponent and attractors as asked.
-    pub fn new(r: &ValueResult, lyapunov: bool, several: bool) -> SweepValue {
+/// The points of a result as json writes them (a list of [`PointRecord`]), made one at
+/// a time as they are written.
+#[derive(Clone, Copy, Debug)]
+pub struct PointsOf<'a> {
+    r: &'a ValueResult,
+    several: bool,
+}
+
+impl Serialize for PointsOf<'_> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let r = self.r;
         let attractor_of = |i: usize| {
             r.attractors
                 .iter()
                 .position(|a| a.points.contains(&i))
                 .map(|n| n + 1)
         };
+        s.collect_seq(r.points.iter().enumerate().map(|(i, p)| PointRecord {
+            phase: p.phase,
+            v: p.v,
+            kind: p.kind.into(),
+            attractor: if self.several { attractor_of(i) } else { None },
+        }))
+    }
+}
+
+impl<'a> SweepValue<PointsOf<'a>> {
+    /// The json of one value, with its exponent and attractors as asked.
+    pub fn new(r: &'a ValueResult, lyapunov: bool, several: bool) -> SweepValue<PointsOf<'a>> {
         let resolved = r.precision.map(|p| p.resolved);
         let claimed = resolved != Some(false);
         SweepValue {
@@ -374,17 +401,7 @@ impl SweepValue {
                     )
                 })
                 .collect(),
-            points: r
-                .points
-                .iter()
-                .enumerate()
-                .map(|(i, p)| PointRecord {
-                    phase: p.phase,
-                    v: p.v,
-                    kind: p.kind.into(),
-                    attractor: if several { attractor_of(i) } else { None },
-                })
-                .collect(),
+            points: PointsOf { r, several },
         }
     }
 }

@@ -207,6 +207,25 @@ pub fn box_start(s: usize, w_max: f64) -> (f64, f64) {
     (x, w_max * y)
 }
 
+/// Bytes a visited cell takes in a hash table of visits (cell and count) at its worst:
+/// the table least full, the one it grows from still held, and the sorted list made of
+/// it.
+const VISIT_BYTES: u64 = 64;
+/// Bytes a cell takes in a hash set of cells at its worst (least full, while it grows).
+const CELL_BYTES: u64 = 48;
+/// Bytes measuring exponents on a cycle takes per event of the cycle, at most (its
+/// events, flights and tangent maps): a generous bound.
+const CYCLE_BYTES_PER_EVENT: u64 = 512;
+
+/// The most [`identify`] holds at once, in bytes, sampling `sample` events of an
+/// unsettled orbit: the cells the sample visits, or the events of a cycle of up to
+/// [`LONG_PERIOD`](crate::run::detect::LONG_PERIOD) events and their tangent maps (the
+/// bound of a memory estimate).
+pub fn identify_bytes(sample: u64) -> u64 {
+    let cells = sample.min(MAX_VISITED_CELLS as u64) * VISIT_BYTES;
+    cells.max(crate::run::detect::LONG_PERIOD as u64 * CYCLE_BYTES_PER_EVENT)
+}
+
 /// Run `start` to its attractor: the transient with early stop, then [`identify`].
 /// None if cancelled. `keep` events before the end of the transient are returned too.
 pub fn settle(
@@ -486,6 +505,14 @@ impl Registry {
     /// An empty registry.
     pub fn new() -> Registry {
         Registry::default()
+    }
+
+    /// The most a registry of `starts` starts holds, in bytes, each an unsettled orbit
+    /// sampled over `sample` events (every start an attractor of its own, with the cells
+    /// of its sample): the bound of a memory estimate.
+    pub fn bytes(starts: usize, sample: u64) -> u64 {
+        let cells = sample.min(MAX_VISITED_CELLS as u64) * CELL_BYTES;
+        starts as u64 * (std::mem::size_of::<Attractor>() as u64 + cells)
     }
 
     /// The attractors, in the order they were first found (their ids).

@@ -113,12 +113,16 @@ pub struct Detector {
 }
 
 impl Detector {
-    /// A detector with no history.
-    pub fn new(cfg: Periodicity) -> Detector {
+    /// Events of history a detector with settings `cfg` keeps.
+    pub fn capacity(cfg: Periodicity) -> usize {
         let p = cfg.max_period.max(1);
         // Two windows of at most WINDOW + p − 1 events each, plus one cycle.
-        let need = 2 * (WINDOW + p) + p;
-        let cap = need.next_power_of_two();
+        (2 * (WINDOW + p) + p).next_power_of_two()
+    }
+
+    /// A detector with no history.
+    pub fn new(cfg: Periodicity) -> Detector {
+        let cap = Detector::capacity(cfg);
         Detector {
             cfg,
             hist: vec![

@@ -41,6 +41,10 @@ use std::collections::VecDeque;
 
 use crate::jobs::CANCEL_EVERY;
 
+/// What confirming a long cycle holds per event of the cycle, at most, in bytes (its
+/// flights and events on the exact map, and the cycle continued): a generous bound.
+const CONFIRM_BYTES_PER_EVENT: u64 = 512;
+
 /// One recorded event of a run.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Point {
@@ -175,6 +179,20 @@ impl OrbitRun {
             cycle_sticks: false,
             released: None,
         }
+    }
+
+    /// The most a run keeping `keep` events with early stop `periodicity` holds at
+    /// once, in bytes, besides the points it hands back: its ring of events, the
+    /// detectors' history and what confirming a long cycle takes (the bound of a
+    /// memory estimate).
+    pub fn bytes(keep: usize, periodicity: Option<Periodicity>) -> u64 {
+        let rec = std::mem::size_of::<Rec>() as u64;
+        let detectors = periodicity.map_or(0, |p| {
+            Detector::capacity(p) as u64 * rec
+                + std::mem::size_of::<LongDetector>() as u64
+                + detect::LONG_PERIOD as u64 * CONFIRM_BYTES_PER_EVENT
+        });
+        std::mem::size_of::<OrbitRun>() as u64 + keep.max(1) as u64 * rec + detectors
     }
 
     /// Events computed so far.

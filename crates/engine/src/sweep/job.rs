@@ -223,7 +223,8 @@ impl SweepJob {
         let Some((outcome, lyapunov, sticking, precision)) = lead else {
             return;
         };
-        let mut points = Vec::new();
+        // Allocated once at its size (grown by doubling, it could take twice that).
+        let mut points = Vec::with_capacity(first.iter().map(|(p, _)| p.len()).sum());
         let mut list = Vec::new();
         for id in registry.ranked() {
             let a = &registry.attractors()[id];

@@ -69,6 +69,7 @@ mod job;
 
 pub use job::{SweepJob, ValueAttractor, ValueResult};
 
+use crate::attractors::{self, Registry};
 use crate::error::EngineError;
 use crate::grid::{grid_value, Shard, SweepParam};
 use crate::impact::Solver;
@@ -77,8 +78,10 @@ use crate::limits;
 use crate::map::State;
 use crate::run::detect::Periodicity;
 use crate::run::start::near_fixed_point;
+use crate::run::{OrbitRun, Point};
 use crate::system::System;
 use crate::table::Table;
+use std::mem::size_of;
 
 /// Consecutive values per warm-start chain.
 pub const WARM_CHAIN: usize = 32;
@@ -208,6 +211,47 @@ pub struct SweepSpec {
 }
 
 impl SweepSpec {
+    /// The most one value's result holds, in bytes: `keep` points for each start (each
+    /// may end on an attractor of its own), its attractors and the rest of the result
+    /// (the bound of a memory estimate).
+    pub fn value_bytes(&self) -> u64 {
+        let starts = self.starts.max(1) as u64;
+        let attractors = match starts {
+            1 => 0,
+            n => n * size_of::<ValueAttractor>() as u64,
+        };
+        self.keep.max(1) as u64 * starts * size_of::<Point>() as u64
+            + size_of::<ValueResult>() as u64
+            + attractors
+    }
+
+    /// The most a worker holds at once while it computes a value, in bytes, besides the
+    /// value's result ([`Self::value_bytes`]): the run of a start ([`OrbitRun::bytes`])
+    /// and what identifying its attractor takes ([`attractors::identify_bytes`]); with
+    /// several starts also each start's points, the points of every attractor found so
+    /// far (one per start at most) and the registry's cells ([`Registry::bytes`]). The
+    /// bound of a memory estimate.
+    pub fn worker_bytes(&self) -> u64 {
+        let run = OrbitRun::bytes(self.keep, self.periodicity);
+        if self.starts <= 1 {
+            // The run's points are the value's.
+            let exponent = match self.lyapunov {
+                true => attractors::identify_bytes(LYAPUNOV_SAMPLE),
+                false => 0,
+            };
+            return run + exponent;
+        }
+        let sample = match self.lyapunov {
+            true => LYAPUNOV_SAMPLE,
+            false => attractors::Settle::BASINS.sample,
+        };
+        let points = self.keep.max(1) as u64 * size_of::<Point>() as u64;
+        let starts = self.starts as u64;
+        run + attractors::identify_bytes(sample)
+            + (starts + 1) * points
+            + Registry::bytes(self.starts, sample)
+    }
+
     /// A sweep of `param` over `lo..=hi` at the paper's fidelity (T = 5·10⁶, keep 100),
     /// cold start, exact solver, early stop with the default [`Periodicity`]; `alpha`
     /// and `r` are used where they are not swept (the swept one's slot is set to `lo`,
