@@ -1,53 +1,18 @@
 //! Hostile case 3: the memory a `--check` plan states is an upper bound of what the run
 //! then holds (a Slurm `--mem` is sized from it), and not a loose one where the points
 //! dominate: each configuration runs with `--check`, then for real, its peak memory
-//! from `wait4`.
+//! read as it runs.
 
-use std::process::{Command, Stdio};
-use std::time::{Duration, Instant};
+use std::process::Command;
+use std::time::Duration;
 
 /// Run the binary to its end: its exit code, stdout, stderr and peak memory in bytes
-/// (from `wait4`: the child's own high-water mark).
-// The child is reaped by `wait4` (for its peak memory), which clippy does not see.
-#[allow(clippy::zombie_processes)]
+/// (its own high-water mark, as the hostile tests read it).
 fn run(args: &[&str]) -> (Option<i32>, String, String, u64) {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_bouncemap"))
-        .args(args)
-        .stdin(Stdio::null())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    let (mut out, mut err) = (child.stdout.take().unwrap(), child.stderr.take().unwrap());
-    let out = std::thread::spawn(move || {
-        let mut s = String::new();
-        let _ = std::io::Read::read_to_string(&mut out, &mut s);
-        s
-    });
-    let err = std::thread::spawn(move || {
-        let mut s = String::new();
-        let _ = std::io::Read::read_to_string(&mut err, &mut s);
-        s
-    });
-    let pid = child.id() as libc::pid_t;
-    let t = Instant::now();
-    let (status, rss) = loop {
-        let mut status = 0;
-        // SAFETY: wait4 on our own child with structures of our own.
-        let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
-        let r = unsafe { libc::wait4(pid, &mut status, libc::WNOHANG, &mut usage) };
-        if r == pid {
-            break (status, usage.ru_maxrss as u64 * 1024);
-        }
-        if t.elapsed() > Duration::from_secs(300) {
-            let _ = child.kill();
-            let _ = child.wait();
-            panic!("{args:?} ran longer than 300 s");
-        }
-        std::thread::sleep(Duration::from_millis(5));
-    };
-    let code = libc::WIFEXITED(status).then(|| libc::WEXITSTATUS(status));
-    (code, out.join().unwrap(), err.join().unwrap(), rss)
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_bouncemap"));
+    cmd.args(args);
+    let r = crate::hostile::run_cmd(cmd, Duration::from_secs(300));
+    (r.code, r.out, r.err, r.max_rss)
 }
 
 /// The bound a `--check` plan states ("memory: about 95.4 MB at most"), in bytes.

@@ -26,24 +26,24 @@ fn s(p: &Path) -> &str {
 
 /// How a run ended: exit code (or the signal), stdout, stderr, peak memory in bytes and
 /// wall time.
-struct Ran {
-    code: Option<i32>,
-    signal: Option<i32>,
-    out: String,
-    err: String,
-    max_rss: u64,
-    took: Duration,
+pub struct Ran {
+    pub code: Option<i32>,
+    pub signal: Option<i32>,
+    pub out: String,
+    pub err: String,
+    pub max_rss: u64,
+    pub took: Duration,
 }
 
 /// Run `cmd` to its end, killing it after `limit`; its peak memory from `wait4`.
-fn run_cmd(cmd: Command, limit: Duration) -> Ran {
+pub fn run_cmd(cmd: Command, limit: Duration) -> Ran {
     run_to(cmd, limit, Stdio::piped())
 }
 
 /// [`run_cmd`] with standard output going to `stdout` (not read back unless piped).
 // The child is reaped by `wait4` (for its peak memory), which clippy does not see.
 #[allow(clippy::zombie_processes)]
-fn run_to(mut cmd: Command, limit: Duration, stdout: Stdio) -> Ran {
+pub fn run_to(mut cmd: Command, limit: Duration, stdout: Stdio) -> Ran {
     let t = Instant::now();
     let mut child = cmd
         .stdin(Stdio::null())

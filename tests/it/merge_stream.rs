@@ -1,12 +1,12 @@
 //! Hostile case 10: `merge` streams. Parts of many MB (they may be up to 8 GiB each) are
-//! joined holding a value per part and the buffers, not the parts: its peak memory (from
-//! `wait4`) stays a small fraction of their size (it was three times their size), and
+//! joined holding a value per part and the buffers, not the parts: its peak memory (read
+//! as it runs) stays a small fraction of their size (it was three times their size), and
 //! what it writes is still the unsharded run's file but for the shard line.
 
 use std::io::{BufRead, BufReader};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 fn dir(name: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("bouncemap-merge-{name}-{}", std::process::id()));
@@ -19,43 +19,13 @@ fn s(p: &Path) -> &str {
     p.to_str().unwrap()
 }
 
-/// Run the binary to its end: its exit code, stderr and peak memory in bytes (from
-/// `wait4`, so the child's own high-water mark, not a sample).
-// The child is reaped by `wait4` (for its peak memory), which clippy does not see.
-#[allow(clippy::zombie_processes)]
+/// Run the binary to its end: its exit code, stderr and peak memory in bytes (its own
+/// high-water mark, as the hostile tests read it).
 fn run(args: &[&str]) -> (Option<i32>, String, u64) {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_bouncemap"))
-        .args(args)
-        .stdin(Stdio::null())
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    let mut err = child.stderr.take().unwrap();
-    let reader = std::thread::spawn(move || {
-        let mut e = String::new();
-        let _ = std::io::Read::read_to_string(&mut err, &mut e);
-        e
-    });
-    let pid = child.id() as libc::pid_t;
-    let t = Instant::now();
-    let (status, rss) = loop {
-        let mut status = 0;
-        // SAFETY: wait4 on our own child with structures of our own.
-        let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
-        let r = unsafe { libc::wait4(pid, &mut status, libc::WNOHANG, &mut usage) };
-        if r == pid {
-            break (status, usage.ru_maxrss as u64 * 1024);
-        }
-        if t.elapsed() > Duration::from_secs(300) {
-            let _ = child.kill();
-            let _ = child.wait();
-            panic!("{args:?} ran longer than 300 s");
-        }
-        std::thread::sleep(Duration::from_millis(5));
-    };
-    let code = libc::WIFEXITED(status).then(|| libc::WEXITSTATUS(status));
-    (code, reader.join().unwrap(), rss)
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_bouncemap"));
+    cmd.args(args);
+    let r = crate::hostile::run_to(cmd, Duration::from_secs(300), Stdio::null());
+    (r.code, r.err, r.max_rss)
 }
 
 /// A file around its shard (the value of its `# shard` line, or of its json

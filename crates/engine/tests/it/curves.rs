@@ -529,7 +529,10 @@ fn the_sine_has_a_subcritical_flip_near_r_one() {
         window: (0.9, 0.99),
     };
     let (sup, sub) = flips_against_simulation(&plane, 0.95);
-    assert!(sup >= 5 && sub >= 1, "checked {sup} supercritical, {sub} subcritical");
+    assert!(
+        sup >= 5 && sub >= 1,
+        "checked {sup} supercritical, {sub} subcritical"
+    );
 }
 
 /// Every fourth decided point of the (2, 2) period-doubling curves of `plane` (seeded
