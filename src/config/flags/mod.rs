@@ -399,7 +399,8 @@ pub struct LyapunovArgs {
     /// 1e10.
     ///
     /// The measurement streams: memory does not grow with M (the QR sums, 16 block
-    /// means and the cells the orbit visits, a few MB), time does (about 2 s per 10⁷
+    /// means and the cells the orbit visits: typically a few MB, at most about 90 MB
+    /// where it visits a million cells, as --check states), time does (about 2 s per 10⁷
     /// impacts on one core, so 1e10 takes half an hour or more), with progress on
     /// stderr; Ctrl-C stops it.
     #[arg(long, default_value_t = rules::IMPACTS.default as u64, value_parser = rules::IMPACTS.whole::<u64>(), value_name = "M")]
