@@ -19,8 +19,7 @@
 use crate::config::files::{check_input, head, open_input, read_again, LARGE_FILE};
 use crate::config::flags::MergeArgs;
 use crate::config::InputError;
-use crate::output::part_file::{read_part, FileKind};
-use crate::output::part_join::{join, JoinError, Joined};
+use crate::output::part_file::{join, read_part, FileKind, JoinError, Joined};
 use crate::output::plane_file::{is_plane, PlaneFile};
 use crate::output::sink::{note_input, Sink};
 use crate::output::sweep_file::SweepFile;

@@ -6,8 +6,8 @@
 //!   same f64 (exponent form where shorter).
 //! * [`part_file`]: the one format of the files `sweep` and `plane` write and `merge`
 //!   joins: provenance, hashes, shards, csv and json layouts, the streaming writer and
-//!   the reader that checks a part, a value at a time ([`part_stream`]: the byte-level
-//!   pieces, never the whole file); [`part_join`]: the join, merging the parts' values
+//!   the reader that checks a part, a value at a time (over byte-level pieces, never the
+//!   whole file), and the join, merging the parts' values
 //!   into index order as they are read again; [`sweep_file`] and [`plane_file`] are its
 //!   two kinds (their rows, and where a row belongs).
 //! * [`sink`]: the one output layer: standard output (a closed pipe ends the run
@@ -34,8 +34,6 @@ pub mod diagram;
 pub mod figure_file;
 pub mod hitgrid;
 pub mod part_file;
-pub mod part_join;
-pub mod part_stream;
 pub mod plane_file;
 pub mod plane_map;
 pub mod records;

@@ -1,5 +1,5 @@
 //! Part files read as streams, below their format: the byte-level pieces the part-file
-//! reader ([`super::part_file`]) is built on, so no part is ever held whole. Here: the
+//! reader ([`super`]) is built on, so no part is ever held whole. Here: the
 //! checksum (64-bit FNV-1a), the csv rows between line 6 and the end line
 //! ([`CsvBody`]), where a json value lies in a file a json parser reads ([`Tap`]), the
 //! items of a json array cut one by one ([`JsonItems`]), and bytes read again checked

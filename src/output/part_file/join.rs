@@ -1,14 +1,13 @@
 //! The join of the part files of one run ([`join`]) and the file it writes
 //! ([`Joined::write`]): the unsharded run's file, but for its shard line. The parts
 //! must be of one run (the same tool, specification, layout and sections) with every
-//! shard exactly once; that is decided on what [`read_part`](super::part_file::read_part)
+//! shard exactly once; that is decided on what [`read_part`](super::read_part)
 //! kept of each (everything but its values). Writing reads every part's values again,
 //! side by side, and merges them into index order holding one value per part, so
 //! memory does not grow with the parts.
 
-use super::part_file::{
-    differing_setting, shard_name, FileKind, Layout, Next, Part, PartWriter, Reread,
-};
+use super::reread::Next;
+use super::{differing_setting, shard_name, FileKind, Layout, Part, PartWriter, Reread};
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 use std::io::{self, BufRead, Write};
@@ -212,8 +211,8 @@ pub fn join<K: FileKind>(parts: Vec<Part<K>>) -> Result<Joined<K>, String> {
 
 #[cfg(test)]
 mod tests {
+    use super::super::read_part;
     use super::*;
-    use crate::output::part_file::read_part;
     use crate::output::sweep_file::SweepFile;
     use std::io::Cursor;
 
