@@ -3,6 +3,7 @@
 mod attractors;
 mod continuation;
 mod curves;
+mod curves_set;
 mod engine_properties;
 mod long_cycles;
 mod long_runs;

@@ -5,7 +5,7 @@
 //! # For front ends
 //! [`curves`] takes a [`Plane`] (the table, r, the α window and the second parameter's
 //! window) and a [`Seeds`] choice, runs the one-parameter continuation
-//! ([`continuation::branches`]) at each seed value of the second parameter, and follows
+//! ([`crate::orbits::continuation::branches`]) at each seed value of the second parameter, and follows
 //! every special point it finds (PD, fold, border collision, grazing) as a curve
 //! ([`Curve`]: its points, how each end came about, the flip's criticality along a PD
 //! curve). The codimension-two points ([`Codim2`]) are located on the curves.
@@ -23,7 +23,7 @@
 //!   landing turning tangential).
 //!
 //! The cycle is solved exactly at each (α, p) by Newton's method on the map
-//! ([`periodic::cycle`], re-verified by the 1e-11 return), warm-started from the
+//! ([`crate::orbits::periodic::cycle`], re-verified by the 1e-11 return), warm-started from the
 //! previous point, so the curve G(α, p) = 0 is a curve in the plane. It is followed by
 //! pseudo-arclength continuation: a predictor along the tangent (orthogonal to ∇G, by
 //! central differences of G with the cycle re-solved) and Newton's method on
@@ -66,19 +66,27 @@
 //! undecided (e.g. near a border, or where f''' = 0 makes c vanish).
 //!
 //! # Files
-//! * this file: the plane, the kinds of curves and of codimension-two points, the
-//!   seeds, [`curves`] and the merging of curves found twice;
-//! * [`trace`]: following one curve (the corrector, the fold's extended system, the
-//!   test functions watched between points, the ends);
-//! * [`criticality`](mod@criticality): the flip's normal-form coefficient.
+//! * this file: the plane, the kinds of curves, ends and codimension-two points, the
+//!   seeds and what [`curves`] returns;
+//! * `find.rs`: finding the set ([`curves`]): the seed grids refined until no new curve
+//!   appears, the one-parameter continuation at each seed value, the other border
+//!   collision through each double border;
+//! * `merge.rs`: curves found twice made one, codimension-two points told once;
+//! * `trace.rs`: following one curve (the corrector at fixed parameters or on the
+//!   extended system, the test functions watched between points, the ends);
+//! * [`birth`]: the (1, k) birth line in closed form;
+//! * `criticality.rs`: the flip's normal-form coefficient ([`criticality()`]).
 
 pub mod birth;
 mod criticality;
+mod find;
+mod merge;
 mod trace;
 
 pub use criticality::criticality;
+pub use find::{curves, curves_with_progress};
 
-use super::continuation::{branches, Kind, Options, Special, Start};
+use super::continuation::Special;
 use super::events::jump_phases;
 use super::periodic::{min_interior_gap, CyclePoint, PassError};
 use crate::error::EngineError;
@@ -86,7 +94,6 @@ use crate::grid::SweepParam;
 use crate::system::System;
 use crate::table::Table;
 use crate::time::signed_distance;
-use trace::follow;
 
 /// An accepted curve point satisfies its condition to this.
 pub const CONDITION_TOLERANCE: f64 = 1e-9;
@@ -555,444 +562,3 @@ pub struct CurvesProgress {
 
 /// At most this many curves.
 pub const MAX_CURVES: usize = 256;
-
-/// Follow every curve reachable from `seeds` in `plane`.
-pub fn curves(plane: &Plane, seeds: Seeds) -> Result<Curves, EngineError> {
-    curves_with_progress(plane, seeds, &mut |_| {})
-}
-
-/// [`curves`], telling `report` after each seed value's branches and after each curve.
-pub fn curves_with_progress(
-    plane: &Plane,
-    seeds: Seeds,
-    report: &mut dyn FnMut(CurvesProgress),
-) -> Result<Curves, EngineError> {
-    plane.check()?;
-    let mut out = Curves {
-        curves: Vec::new(),
-        codim2: Vec::new(),
-        skipped: Vec::new(),
-        unseeded: Vec::new(),
-        seeding: Seeding::default(),
-    };
-    // The (1, k) birth line, whole, from its closed form: traced, it breaks where the
-    // pair is born on a breakpoint.
-    if let Seeds::FromFixed { k, .. } = seeds {
-        out.curves.extend(birth::birth_curves(plane, k));
-    }
-    // Seeds at the starting value, then on dyadic grids of the window, finer and finer
-    // (a grid of 2^L + 1 values holds the coarser ones), from the first as fine as
-    // `count` asks until two finer levels in a row find no new curve: the set found does
-    // not depend on `count`, only on how fine it had to go.
-    let at = match seeds {
-        Seeds::FromFixed { at, .. } | Seeds::Point { at, .. } => at,
-    };
-    let mut seeded: Vec<f64> = Vec::new();
-    let mut seed = |p: f64, total: usize, out: &mut Curves| -> Result<bool, EngineError> {
-        if seeded
-            .iter()
-            .any(|&q| (q - p).abs() <= 1e-12 * plane.scale())
-        {
-            return Ok(false);
-        }
-        let done = seeded.len();
-        seeded.push(p);
-        seed_at(plane, seeds, p, out, &mut |curves| {
-            report(CurvesProgress {
-                seeds_done: done,
-                seeds: total,
-                curves,
-            })
-        })?;
-        Ok(true)
-    };
-    // `count` 1: the starting value only (a quick look, said so in the output).
-    let grids = match seeds {
-        Seeds::FromFixed { count, .. } if count >= 2 => Some(count),
-        _ => None,
-    };
-    let first = grids.map_or(0, |count| {
-        ((count - 1).next_power_of_two().trailing_zeros()).min(MAX_SEED_LEVEL)
-    });
-    // The values planned so far: the starting one and the first grid.
-    let planned = 1 + grids.map_or(0, |_| (1usize << first) + 1);
-    seed(at, planned, &mut out)?;
-    out.seeding = Seeding {
-        values: 1,
-        level: None,
-        converged: true,
-    };
-    if grids.is_some() {
-        let mut quiet = 0;
-        let mut values = 1;
-        for level in first..=MAX_SEED_LEVEL {
-            let before = out.curves.len();
-            let n = 1usize << level;
-            let grid: Vec<f64> = (0..=n)
-                .map(|i| plane.window.0 + (plane.window.1 - plane.window.0) * i as f64 / n as f64)
-                .collect();
-            let total = values + grid.len();
-            for p in grid {
-                if seed(p, total, &mut out)? {
-                    values += 1;
-                }
-            }
-            seed_at_double_borders(plane, &mut out);
-            dedupe(&mut out, 1e-4 * plane.scale());
-            // The first grid itself is not yet evidence of anything.
-            if level > first {
-                quiet = if out.curves.len() > before {
-                    0
-                } else {
-                    quiet + 1
-                };
-            }
-            out.seeding = Seeding {
-                values,
-                level: Some(level),
-                converged: quiet >= 2,
-            };
-            if quiet >= 2 {
-                break;
-            }
-        }
-    }
-    report(CurvesProgress {
-        seeds_done: out.seeding.values,
-        seeds: out.seeding.values,
-        curves: out.curves.len(),
-    });
-    dedupe(&mut out, 1e-4 * plane.scale());
-    codim2_once(&mut out, 1e-6 * plane.scale());
-    Ok(out)
-}
-
-/// At a double border two border-collision curves of the cycle cross (one impact on
-/// each breakpoint): where only the one it was found on is known, the other is followed
-/// from there too (it may be too short for any seed value's continuation to meet).
-fn seed_at_double_borders(plane: &Plane, out: &mut Curves) {
-    let tol = 1e-4 * plane.scale();
-    let mut i = 0;
-    while i < out.codim2.len() {
-        let p = out.codim2[i].clone();
-        i += 1;
-        let (Codim2Kind::DoubleBorder, Some((impact, breakpoint))) = (p.kind, p.impact) else {
-            continue;
-        };
-        let on = &out.curves[p.curve];
-        let crossing = out.curves.iter().enumerate().any(|(j, c)| {
-            j != p.curve
-                && c.n == on.n
-                && c.k == on.k
-                && matches!(c.kind, CurveKind::BorderCollision { .. })
-                && c.passes_near(p.alpha, p.p, tol)
-        });
-        if crossing || out.curves.len() >= MAX_CURVES {
-            continue;
-        }
-        // The point of the known curve nearest the double border, as the seed.
-        let Some(q) = on.points.iter().min_by(|a, b| {
-            (a.alpha - p.alpha)
-                .hypot(a.p - p.p)
-                .total_cmp(&(b.alpha - p.alpha).hypot(b.p - p.p))
-        }) else {
-            continue;
-        };
-        let special = Special {
-            kind: Kind::BorderCollision,
-            alpha: q.alpha,
-            phase: breakpoint,
-            impact,
-            point: q.cycle.clone(),
-            collision: None,
-            last_step: None,
-        };
-        let kind = CurveKind::BorderCollision { impact, breakpoint };
-        let index = out.curves.len();
-        match follow(plane, kind, &special, q.p, index) {
-            Ok((curve, codim2)) if curve.points.len() >= 2 => {
-                out.curves.push(curve);
-                out.codim2.extend(codim2);
-            }
-            _ => {}
-        }
-    }
-}
-
-/// Note a special point not followed, once per point and reason.
-/// Seed at value `p` of the second parameter: the one-parameter continuation from
-/// `seeds`' start there, and every special point it finds followed as a curve (unless a
-/// curve already found passes through it). `report` hears how many curves there are
-/// after each.
-fn seed_at(
-    plane: &Plane,
-    seeds: Seeds,
-    p: f64,
-    out: &mut Curves,
-    report: &mut dyn FnMut(usize),
-) -> Result<(), EngineError> {
-    report(out.curves.len());
-    plane.second.limit().check(p)?;
-    let (table, r) = match plane.second {
-        SweepParam::D => (Table::fd(p)?, plane.r),
-        _ => (plane.table.clone(), p),
-    };
-    let (start, max_period) = match seeds {
-        Seeds::FromFixed { k, max_period, .. } => (Start::Fixed { k }, max_period),
-        Seeds::Point { n, k, t0, v0, .. } => (Start::Point { n, k, t0, v0 }, n),
-    };
-    let opts = Options {
-        max_period,
-        ..Options::default()
-    };
-    let found = match branches(&table, r, plane.alpha, start, opts) {
-        Ok(found) => found,
-        Err(e) => {
-            out.unseeded.push((p, e.to_string()));
-            return Ok(());
-        }
-    };
-    for b in &found {
-        let ends = [&b.begin, &b.end];
-        let specials = b.specials.iter().chain(ends.into_iter().filter(|s| {
-            matches!(
-                s.kind,
-                Kind::BorderCollision | Kind::Grazing | Kind::Fold | Kind::StickingOnset
-            )
-        }));
-        for s in specials {
-            let kind = match s.kind {
-                Kind::PeriodDoubling => CurveKind::PeriodDoubling,
-                Kind::Fold => CurveKind::Fold,
-                Kind::BorderCollision => CurveKind::BorderCollision {
-                    impact: s.impact,
-                    breakpoint: s.phase,
-                },
-                Kind::Grazing => CurveKind::Grazing,
-                Kind::StickingOnset => CurveKind::StickingOnset,
-                _ => continue,
-            };
-            // A doubled branch's birth is its parent's period doubling.
-            if s.kind == Kind::PeriodDoubling && s.point.n != b.n {
-                continue;
-            }
-            // The (1, k) pair's birth is the closed-form line.
-            if s.point.n == 1 && matches!(s.kind, Kind::Fold | Kind::BorderCollision) {
-                let k = s.point.k;
-                if let Some((ab, _)) = birth::alpha_birth(&table, r, k) {
-                    if (s.alpha - ab).abs() <= 1e-7 * (1.0 + ab) {
-                        if !out
-                            .curves
-                            .iter()
-                            .any(|c| c.kind == CurveKind::Birth && c.k == k)
-                        {
-                            out.curves.extend(birth::birth_curves(plane, k));
-                        }
-                        continue;
-                    }
-                }
-            }
-            // Within the chord error of the largest step of a curve already found.
-            let tol = 1e-4 * plane.scale();
-            let same = |c: &Curve| {
-                c.n == s.point.n
-                    && c.k == s.point.k
-                    && c.kind.as_str() == kind.as_str()
-                    && c.passes_near(s.alpha, p, tol)
-            };
-            if out.curves.iter().any(same) {
-                continue;
-            }
-            if out.curves.len() >= MAX_CURVES {
-                skip(
-                    &mut out.skipped,
-                    s,
-                    format!("more than {MAX_CURVES} curves"),
-                );
-                continue;
-            }
-            let index = out.curves.len();
-            match follow(plane, kind, s, p, index) {
-                // A seed the tracer could not leave is no curve.
-                Ok((curve, _)) if curve.points.len() < 2 => skip(
-                    &mut out.skipped,
-                    s,
-                    format!(
-                        "the curve could not be followed beyond its seed ({}, {})",
-                        curve.ends[0].as_str(),
-                        curve.ends[1].as_str()
-                    ),
-                ),
-                Ok((curve, codim2)) => {
-                    out.curves.push(curve);
-                    out.codim2.extend(codim2);
-                }
-                Err(why) => skip(&mut out.skipped, s, why),
-            }
-            report(out.curves.len());
-        }
-    }
-    Ok(())
-}
-
-fn skip(list: &mut Vec<Skipped>, s: &Special, reason: String) {
-    let same = |k: &Skipped| {
-        k.reason == reason
-            && k.special.kind == s.kind
-            && k.special.point.n == s.point.n
-            && k.special.point.k == s.point.k
-            && (k.special.alpha - s.alpha).abs() <= 1e-9 * (1.0 + s.alpha.abs())
-    };
-    match list.iter_mut().find(|k| same(k)) {
-        Some(k) => k.count += 1,
-        None => list.push(Skipped {
-            special: s.clone(),
-            reason,
-            count: 1,
-        }),
-    }
-}
-
-/// Each codimension-two point once: points of one kind within `tol` of each other (the
-/// same point located on two curves, or twice on one) are one, the best located kept
-/// (the smaller condition); each then lists every curve passing through it.
-fn codim2_once(out: &mut Curves, tol: f64) {
-    let mut kept: Vec<Codim2> = Vec::new();
-    for p in std::mem::take(&mut out.codim2) {
-        let twin = kept
-            .iter_mut()
-            .find(|q| q.kind == p.kind && (q.alpha - p.alpha).hypot(q.p - p.p) <= tol);
-        match twin {
-            Some(q) => {
-                if p.condition.abs() < q.condition.abs() {
-                    let meets = std::mem::take(&mut q.meets);
-                    *q = p;
-                    q.meets = meets;
-                }
-            }
-            None => kept.push(p),
-        }
-    }
-    for p in &mut kept {
-        let mut meets = vec![p.curve];
-        for (i, c) in out.curves.iter().enumerate() {
-            if i != p.curve && c.passes_near(p.alpha, p.p, 100.0 * tol) {
-                meets.push(i);
-            }
-        }
-        p.meets = meets;
-    }
-    out.codim2 = kept;
-}
-
-/// `a` extended by the part of `b` beyond one of its ends, where `b` runs along `a` for
-/// at least a fifth of its points and leaves it only at its own start or end, from a
-/// point near an end of `a` (None otherwise: two curves that cross, or touch).
-fn join(a: &Curve, b: &Curve, tol: f64) -> Option<Curve> {
-    let covered: Vec<bool> = b
-        .points
-        .iter()
-        .map(|q| a.passes_near(q.alpha, q.p, tol))
-        .collect();
-    let count = covered.iter().filter(|c| **c).count();
-    if count * 5 < b.points.len() || count == b.points.len() {
-        return None;
-    }
-    let first = covered.iter().position(|c| *c)?;
-    let last = covered.iter().rposition(|c| *c)?;
-    // Covered in one stretch: the rest is a run before it, after it, or both.
-    if covered[first..=last].iter().any(|c| !c) {
-        return None;
-    }
-    let near = |q: &CurvePoint, r: &CurvePoint| (q.alpha - r.alpha).hypot(q.p - r.p) <= 10.0 * tol;
-    let mut out = a.clone();
-    for (run, at_b_start) in [(&b.points[..first], true), (&b.points[last + 1..], false)] {
-        if run.is_empty() {
-            continue;
-        }
-        // The covered point next to the run, and the end of `a` it is near.
-        let joint = if at_b_start {
-            &b.points[first]
-        } else {
-            &b.points[last]
-        };
-        let end_kind = b.ends[if at_b_start { 0 } else { 1 }];
-        // The run, ordered away from the joint.
-        let away: Vec<CurvePoint> = if at_b_start {
-            run.iter().rev().cloned().collect()
-        } else {
-            run.to_vec()
-        };
-        if near(joint, out.points.last()?) {
-            out.points.extend(away);
-            out.ends[1] = end_kind;
-        } else if near(joint, &out.points[0]) {
-            let mut pts: Vec<CurvePoint> = away.into_iter().rev().collect();
-            pts.append(&mut out.points);
-            out.points = pts;
-            out.ends[0] = end_kind;
-        } else {
-            return None;
-        }
-    }
-    Some(out)
-}
-
-/// Drop a curve that another of the same kind and cycle covers (seeded at two values of
-/// the second parameter, the shorter may be a piece of the longer): every tenth of its
-/// points lies within `tol` of the other. Its codimension-two points go to the other.
-fn dedupe(out: &mut Curves, tol: f64) {
-    let n = out.curves.len();
-    let mut into: Vec<Option<usize>> = vec![None; n];
-    for i in 0..n {
-        for j in 0..n {
-            let (a, b) = (&out.curves[i], &out.curves[j]);
-            if i == j
-                || into[j].is_some()
-                || a.n != b.n
-                || a.k != b.k
-                || a.kind.as_str() != b.kind.as_str()
-                || (b.points.len(), j) < (a.points.len(), i)
-            {
-                continue;
-            }
-            let step = (a.points.len() / 10).max(1);
-            if a.points
-                .iter()
-                .step_by(step)
-                .all(|q| b.passes_near(q.alpha, q.p, tol))
-            {
-                into[i] = Some(j);
-                break;
-            }
-            // A piece that runs along the other and then beyond one of its ends (the
-            // same curve followed from two seeds, each stopped elsewhere): its part
-            // beyond is joined to that end.
-            if let Some(joined) = join(b, a, tol) {
-                out.curves[j] = joined;
-                into[i] = Some(j);
-                break;
-            }
-        }
-    }
-    let mut index = vec![0usize; n];
-    let mut kept = 0;
-    for i in 0..n {
-        if into[i].is_none() {
-            index[i] = kept;
-            kept += 1;
-        }
-    }
-    for p in &mut out.codim2 {
-        let mut c = p.curve;
-        while let Some(j) = into[c] {
-            c = j;
-        }
-        p.curve = index[c];
-    }
-    let mut i = 0;
-    out.curves.retain(|_| {
-        i += 1;
-        into[i - 1].is_none()
-    });
-}

@@ -1,0 +1,271 @@
+//! The set of two-parameter curves (round two): the (1, k) birth line whole on its
+//! closed form, each codimension-two point once and named for what happens there, the
+//! same curves whatever the seeds, and curves that go on where they go on, checked
+//! against closed forms, `fixed_points` and the one-parameter continuation.
+
+use super::curves::of;
+use bouncemap_engine::grid::SweepParam;
+use bouncemap_engine::orbits::continuation::{branches, Kind, Options, Special, Start};
+use bouncemap_engine::orbits::curves::{
+    curves, Codim2Kind, Curve, CurvePoint, Curves, Plane, Seeds,
+};
+use bouncemap_engine::system::System;
+use bouncemap_engine::table::Table;
+
+/// The (1, 1) birth line is one whole curve, on the closed form α = (1 − r)/(1 + r) /
+/// (2 max F') at every point (F_D's max F' = ½ at t̂ = 0 for every D; the sine's 2π),
+/// and the pair is really born there: just above it `fixed_points` finds two (1, 1)
+/// solutions, just below none.
+#[test]
+fn the_birth_line_is_one_curve_on_its_closed_form() {
+    use bouncemap_engine::orbits::fixed::fixed_points;
+    let cases = [
+        (
+            Plane {
+                table: Table::fd(0.5).unwrap(),
+                r: 0.5,
+                alpha: (0.3, 0.7),
+                second: SweepParam::D,
+                window: (0.0, 1.0),
+            },
+            0.5,
+        ),
+        (
+            Plane {
+                table: Table::sine(),
+                r: 0.8,
+                alpha: (0.01, 0.5),
+                second: SweepParam::R,
+                window: (0.2, 0.95),
+            },
+            2.0 * std::f64::consts::PI,
+        ),
+    ];
+    for (plane, max_slope) in cases {
+        let seeds = Seeds::FromFixed {
+            k: 1,
+            max_period: 1,
+            at: 0.5 * (plane.window.0 + plane.window.1),
+            count: 5,
+        };
+        let c = curves(&plane, seeds).unwrap();
+        let births = of(&c, "birth", 1);
+        assert_eq!(births.len(), 1, "one birth line");
+        let b = births[0];
+        // Whole: it spans the window of the second parameter, or leaves by the α
+        // window's edge.
+        let ps: Vec<f64> = b.points.iter().map(|q| q.p).collect();
+        assert_eq!(ps[0], plane.window.0);
+        assert!(
+            *ps.last().unwrap() == plane.window.1
+                || (b.points.last().unwrap().alpha - plane.alpha.0).abs() < 1e-9,
+            "{:?}",
+            b.ends
+        );
+        for q in &b.points {
+            let r = if plane.second == SweepParam::R {
+                q.p
+            } else {
+                plane.r
+            };
+            let closed = 0.5 * (1.0 - r) / (1.0 + r) / max_slope;
+            assert!(
+                (q.alpha - closed).abs() <= 1e-14 * closed,
+                "{} {closed}",
+                q.alpha
+            );
+            assert!(q.cycle.return_error <= 1e-11);
+            let table = match plane.second {
+                SweepParam::D => Table::fd(q.p).unwrap(),
+                _ => plane.table.clone(),
+            };
+            let around = |f: f64| {
+                let sys = System::new(table.clone(), q.alpha * f, r).unwrap();
+                fixed_points(&sys, 1).map_or(0, |v| v.len())
+            };
+            if q.alpha * (1.0 + 1e-6) <= plane.alpha.1 {
+                assert_eq!(around(1.0 + 1e-6), 2, "born just above, at {}", q.p);
+            }
+            assert_eq!(around(1.0 - 1e-6), 0, "none just below, at {}", q.p);
+        }
+    }
+}
+
+/// Each codimension-two point is reported once, with the curves that meet there; the
+/// fd:0.5 (2, 2) border collision runs to where the (2, 2) cycle is born from the
+/// (1, 1) on the breakpoint (the (1, 1) period doubling's pd_border point) and ends
+/// there as a collapse, not as a failure; special points not followed are listed once,
+/// counted.
+#[test]
+fn codimension_two_points_and_refusals_are_told_once() {
+    let plane = Plane {
+        table: Table::fd(0.5).unwrap(),
+        r: 0.8,
+        alpha: (0.4, 0.7),
+        second: SweepParam::R,
+        window: (0.2, 0.95),
+    };
+    let seeds = Seeds::FromFixed {
+        k: 1,
+        max_period: 2,
+        at: 0.8,
+        count: 20,
+    };
+    let c = curves(&plane, seeds).unwrap();
+    for (i, a) in c.codim2.iter().enumerate() {
+        for b in &c.codim2[i + 1..] {
+            assert!(
+                a.kind != b.kind || (a.alpha - b.alpha).hypot(a.p - b.p) > 1e-6,
+                "{a:?} twice"
+            );
+        }
+        assert_eq!(a.meets[0], a.curve);
+    }
+    let pd_border = c
+        .codim2
+        .iter()
+        .find(|p| p.kind == Codim2Kind::PdBorder && c.curves[p.curve].n == 1)
+        .expect("the (1, 1) period doubling on the border");
+    // An independent location: the (1, 1) solution's f'' on the border t̂ = 0+ is κ_c
+    // there, α_PD = (1 + r²)/(1 + r)² / ... at which the birth and the PD coincide:
+    // F_D's t̂* = 0 is the birth, so the point lies on the birth line too.
+    let birth = (1.0 - pd_border.p) / (1.0 + pd_border.p);
+    assert!((pd_border.alpha - birth).abs() < 1e-9, "{pd_border:?}");
+    let bc: Vec<&Curve> = c
+        .curves
+        .iter()
+        .filter(|cv| cv.kind.as_str() == "border_collision" && cv.n == 2)
+        .collect();
+    let ends_there = bc.iter().any(|cv| {
+        let near = |q: &CurvePoint| (q.alpha - pd_border.alpha).hypot(q.p - pd_border.p) < 5e-3;
+        (near(&cv.points[0]) && cv.ends[0].as_str() == "collapse")
+            || (near(cv.points.last().unwrap()) && cv.ends[1].as_str() == "collapse")
+    });
+    assert!(
+        ends_there,
+        "the (2, 2) border collision ends where the (2, 2) is born"
+    );
+    // The sine's unsolvable (2, 2) grazing seeds: each once, with how often met.
+    let sine = Plane {
+        table: Table::sine(),
+        r: 0.8,
+        alpha: (0.01, 0.5),
+        second: SweepParam::R,
+        window: (0.2, 0.95),
+    };
+    let s = curves(
+        &sine,
+        Seeds::FromFixed {
+            k: 1,
+            max_period: 2,
+            at: 0.575,
+            count: 5,
+        },
+    )
+    .unwrap();
+    for (i, a) in s.skipped.iter().enumerate() {
+        for b in &s.skipped[i + 1..] {
+            assert!(
+                a.reason != b.reason || (a.special.alpha - b.special.alpha).abs() > 1e-9,
+                "{a:?} twice"
+            );
+        }
+    }
+    assert!(s.skipped.iter().all(|k| k.count >= 1));
+}
+
+/// The set of curves does not depend on the seeds asked for: over the F_D plane up to
+/// period 4, `count` 5 and 20 find the same curves (each of one has its twin in the
+/// other: same kind and cycle, the same points to the chord error), and the curves do
+/// not stop where they go on: the (4, 4) border collision at phase ½ passes through the
+/// α where the one-parameter continuation finds it at D = 0.70 and 0.72.
+#[test]
+fn the_curves_do_not_depend_on_the_seeds_and_go_on_where_they_go_on() {
+    let plane = Plane {
+        table: Table::fd(0.5).unwrap(),
+        r: 0.8,
+        alpha: (0.4, 0.7),
+        second: SweepParam::D,
+        window: (0.0, 1.0),
+    };
+    let run = |count| {
+        let seeds = Seeds::FromFixed {
+            k: 1,
+            max_period: 4,
+            at: 0.5,
+            count,
+        };
+        curves(&plane, seeds).unwrap()
+    };
+    let (a, b) = (run(5), run(20));
+    assert!(
+        a.seeding.values >= 33 && b.seeding.values >= 33,
+        "refined past the first grid"
+    );
+    assert_eq!(a.curves.len(), b.curves.len());
+    let twin = |c: &Curve, set: &Curves| {
+        set.curves.iter().any(|d| {
+            d.kind.as_str() == c.kind.as_str()
+                && d.n == c.n
+                && c.points
+                    .iter()
+                    .step_by((c.points.len() / 8).max(1))
+                    .filter(|q| d.passes_near(q.alpha, q.p, 2e-3))
+                    .count()
+                    * 10
+                    >= 8 * c.points.len().div_ceil((c.points.len() / 8).max(1))
+        })
+    };
+    for c in &a.curves {
+        assert!(
+            twin(c, &b),
+            "{} of ({}, {}) not found with 20",
+            c.kind.as_str(),
+            c.n,
+            c.k
+        );
+    }
+    for c in &b.curves {
+        assert!(
+            twin(c, &a),
+            "{} of ({}, {}) not found with 5",
+            c.kind.as_str(),
+            c.n,
+            c.k
+        );
+    }
+    // The (4, 4) border collision at ½ against the one-parameter continuation.
+    for d in [0.70, 0.72] {
+        let found = branches(
+            &Table::fd(d).unwrap(),
+            0.8,
+            (0.45, 0.65),
+            Start::Fixed { k: 1 },
+            Options {
+                max_period: 4,
+                ..Options::default()
+            },
+        )
+        .unwrap();
+        let bc: Vec<&Special> = found
+            .iter()
+            .filter(|br| br.n == 4)
+            .flat_map(|br| br.specials.iter().chain([&br.begin, &br.end]))
+            .filter(|s| s.kind == Kind::BorderCollision && (s.phase - 0.5).abs() < 1e-12)
+            .collect();
+        assert!(
+            !bc.is_empty(),
+            "D = {d}: the continuation's (4, 4) border collision"
+        );
+        for s in bc {
+            let on = a.curves.iter().any(|c| {
+                c.n == 4 && c.kind.as_str() == "border_collision" && c.passes_near(s.alpha, d, 1e-5)
+            });
+            assert!(
+                on,
+                "D = {d}: no curve through the continuation's α {}",
+                s.alpha
+            );
+        }
+    }
+}
