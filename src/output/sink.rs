@@ -103,9 +103,12 @@ fn real_path(path: &Path) -> PathBuf {
 /// SIGUSR1, ...) by its default action. For the headless commands.
 pub fn clean_up_on_signals() -> io::Result<()> {
     use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
-    let mut wanted = vec![SIGTERM, SIGINT, SIGHUP];
-    wanted.extend(super::signals::ending());
-    let mut signals = signal_hook::iterator::Signals::new(wanted)?;
+    let mut signals = signal_hook::iterator::Signals::new([SIGTERM, SIGINT, SIGHUP])?;
+    // Each of the others where it can be caught (a tool the program runs under, such as
+    // valgrind, may keep a real-time signal for itself).
+    for sig in super::signals::ending() {
+        let _ = signals.add_signal(sig);
+    }
     std::thread::Builder::new()
         .name("signals".into())
         .spawn(move || {

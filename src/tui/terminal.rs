@@ -148,13 +148,14 @@ pub fn signal_flag() -> io::Result<Arc<AtomicUsize>> {
     }
     for sig in crate::output::signals::ending() {
         // SAFETY: the action calls only async-signal-safe functions (atomics, write,
-        // tcsetattr, sigaction, pthread_sigmask, raise).
-        unsafe {
+        // tcsetattr, sigaction, pthread_sigmask, raise). A signal that cannot be caught
+        // here (one a tool the program runs under keeps for itself) is left as it is.
+        let _ = unsafe {
             signal_hook::low_level::register(sig, move || {
                 restore_in_handler();
                 crate::output::signals::die_by(sig);
-            })?;
-        }
+            })
+        };
     }
     Ok(flag)
 }
