@@ -128,14 +128,11 @@ pub fn curves_figure(plane: &Plane, c: &Curves, max_period: usize) -> Figure {
     let (layers, entries) = layers(c, true, None);
     panel.layers = layers;
     if !entries.is_empty() {
-        let points: Vec<[f64; 2]> = c
-            .curves
-            .iter()
-            .flat_map(|cv| cv.points.iter())
-            .map(|q| [panel.x.fraction(q.alpha), panel.y.fraction(q.p)])
-            .collect();
-        let corner = freest_corner(&points, [0.45, 0.1 + 0.075 * entries.len() as f64]);
-        panel.legends.push(Legend { corner, entries });
+        // Beside the frame: the curves reach every corner of a plane.
+        panel.beside.push(Legend {
+            corner: Corner::TopRight,
+            entries,
+        });
     }
     let (family, fixed) = match plane.second {
         SweepParam::D => ("$F_D$".to_string(), format!("r = {}", shortest(plane.r))),
@@ -165,32 +162,6 @@ pub fn curves_figure(plane: &Plane, c: &Curves, max_period: usize) -> Figure {
         panels: vec![panel],
         columns: 1,
         caption: vec![caption],
-        size: (5.0, 3.6),
+        size: (6.4, 3.6),
     }
-}
-
-/// The corner whose box of `size` (fractions of the plot) holds the fewest of `points`
-/// (fractions of the plot); ties go to the bottom right, top left, top right, bottom
-/// left in that order.
-pub fn freest_corner(points: &[[f64; 2]], size: [f64; 2]) -> Corner {
-    let inside = |c: Corner, p: &[f64; 2]| {
-        let x = match c {
-            Corner::TopLeft | Corner::BottomLeft => p[0] <= size[0],
-            _ => p[0] >= 1.0 - size[0],
-        };
-        let y = match c {
-            Corner::TopLeft | Corner::TopRight => p[1] >= 1.0 - size[1],
-            _ => p[1] <= size[1],
-        };
-        x && y
-    };
-    [
-        Corner::BottomRight,
-        Corner::TopLeft,
-        Corner::TopRight,
-        Corner::BottomLeft,
-    ]
-    .into_iter()
-    .min_by_key(|&c| points.iter().filter(|p| inside(c, p)).count())
-    .unwrap_or(Corner::BottomRight)
 }

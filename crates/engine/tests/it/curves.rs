@@ -555,10 +555,21 @@ fn flips_against_simulation(plane: &Plane, at: f64) -> (usize, usize) {
         if cv.n != 2 || cv.kind.as_str() != "period_doubling" {
             continue;
         }
+        // Near a degenerate flip c → 0 and the cubic normal form holds only for Δα ≪ c²:
+        // the fixed steps of the simulation below are not small enough there.
+        let degenerate: Vec<f64> = c
+            .codim2
+            .iter()
+            .filter(|p| p.kind == Codim2Kind::DegenerateFlip && p.meets.contains(&i))
+            .map(|p| p.p)
+            .collect();
         for q in cv.points.iter().step_by(4) {
             let Some(kind) = q.criticality.and_then(|c| c.supercritical()) else {
                 continue;
             };
+            if degenerate.iter().any(|&p| (q.p - p).abs() < 0.005) {
+                continue;
+            }
             let d1 = drift_past_the_flip(&table, q, 1e-4);
             if kind {
                 let d2 = drift_past_the_flip(&table, q, 2.5e-5);

@@ -5,6 +5,12 @@
 //! curve, unless a curve already found passes through it.
 
 use super::merge::{codim2_once, dedupe};
+
+/// Two curves of one kind and cycle within this share of the plane of each other are
+/// one: more than the chord error of the largest step (a tenth of a step of
+/// 0.005 of the plane where the curve bends sharply), far less than two different
+/// curves' distance.
+const SAME_CURVE: f64 = 5e-4;
 use super::trace::follow;
 use super::*;
 use crate::orbits::continuation::{branches, Kind, Options, Start};
@@ -91,7 +97,7 @@ pub fn curves_with_progress(
                 }
             }
             seed_at_double_borders(plane, &mut out);
-            dedupe(&mut out, 1e-4 * plane.scale());
+            dedupe(&mut out, SAME_CURVE * plane.scale());
             // The first grid itself is not yet evidence of anything.
             if level > first {
                 quiet = if out.curves.len() > before {
@@ -115,7 +121,7 @@ pub fn curves_with_progress(
         seeds: out.seeding.values,
         curves: out.curves.len(),
     });
-    dedupe(&mut out, 1e-4 * plane.scale());
+    dedupe(&mut out, SAME_CURVE * plane.scale());
     codim2_once(&mut out, 1e-6 * plane.scale());
     Ok(out)
 }
@@ -124,7 +130,7 @@ pub fn curves_with_progress(
 /// each breakpoint): where only the one it was found on is known, the other is followed
 /// from there too (it may be too short for any seed value's continuation to meet).
 fn seed_at_double_borders(plane: &Plane, out: &mut Curves) {
-    let tol = 1e-4 * plane.scale();
+    let tol = SAME_CURVE * plane.scale();
     let mut i = 0;
     while i < out.codim2.len() {
         let p = out.codim2[i].clone();
@@ -246,7 +252,7 @@ fn seed_at(
                 }
             }
             // Within the chord error of the largest step of a curve already found.
-            let tol = 1e-4 * plane.scale();
+            let tol = SAME_CURVE * plane.scale();
             let same = |c: &Curve| {
                 c.n == s.point.n
                     && c.k == s.point.k

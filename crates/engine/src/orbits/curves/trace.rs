@@ -45,10 +45,7 @@ impl Tracer<'_> {
             .map_err(|_| PassError::BadLaunch)?;
         let pt = cycle(&sys, self.n, self.k, guess.t0, guess.velocities[0])?;
         // The same cycle, not another one nearby: the launch moved continuously.
-        let moved = signed_distance(pt.phases[0], guess.phases[0]).abs().max(
-            (pt.velocities[0] - guess.velocities[0]).abs() / (1.0 + guess.velocities[0].abs()),
-        );
-        if moved > 0.05 {
+        if moved(&pt, guess) > 0.05 {
             return Err(PassError::NoConvergence);
         }
         let g = self.kind.condition(&sys, &pt);
@@ -124,9 +121,12 @@ impl Tracer<'_> {
             }
         };
         // A doubled cycle that has collapsed onto the one of half its period is that
-        // cycle, not this curve's: the curve ends before it (a collapse).
+        // cycle, not this curve's: the curve ends before it (a collapse). And the cycle
+        // found must be the one guessed, moved on continuously, not another one the
+        // extended system slid to.
         match found {
             Ok((e, _)) if collapsed(&e.pt) && !collapsed(guess) => Err(PassError::NoConvergence),
+            Ok((e, _)) if moved(&e.pt, guess) > 0.05 => Err(PassError::NoConvergence),
             other => other,
         }
     }
@@ -482,7 +482,8 @@ impl Tracer<'_> {
                 (start[0] - y[0]).hypot(start[1] - y[1]),
             );
             let step = self.correct(start, c, d, &guess).and_then(|(e, grad)| {
-                let lost = at_edge && !near_edge(self.plane, e.y);
+                // A point outside the window is not this curve's to report.
+                let lost = !near_edge(self.plane, e.y);
                 let next = (!lost).then(|| self.point(e));
                 match next {
                     Some(next) if !self.crosses_border(&cur, &next, tau, index, codim2) => {
@@ -753,6 +754,14 @@ impl Tracer<'_> {
 fn collapsed(pt: &CyclePoint) -> bool {
     pt.half_return
         .is_some_and(|[dt, dv]| dt.abs().max(dv.abs()) <= 1e-7)
+}
+
+/// How far a cycle's launch moved from `guess`'s: in phase, and in velocity relative to
+/// its size.
+fn moved(pt: &CyclePoint, guess: &CyclePoint) -> f64 {
+    signed_distance(pt.phases[0], guess.phases[0])
+        .abs()
+        .max((pt.velocities[0] - guess.velocities[0]).abs() / (1.0 + guess.velocities[0].abs()))
 }
 
 /// `cur`'s cycle moved on by `h` along the curve as it moved from `prev` (its launch
