@@ -256,3 +256,27 @@ fn an_export_after_all_attractors_says_so_and_colours_by_attractor() {
     assert!(svg.contains(&blue), "attractor 1's colour {blue}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// `t` shows the other coordinate of the points already computed: it re-bins them and
+/// starts nothing (the sweep is not run again), focused or not.
+#[test]
+fn t_rebins_without_running_the_sweep_again() {
+    use bouncemap::tui::components::{Effect, Target};
+    let mut a = app(Marker::Braille);
+    fill(&mut a);
+    size(&mut a, 120, 40);
+    let plotted = a.panels.diagram.plotted;
+    for focus_diagram in [false, true] {
+        if focus_diagram {
+            a.handle(Action::NextPanel);
+        }
+        a.take_effects();
+        a.handle(Action::ToggleAxis);
+        let fx = a.take_effects();
+        assert!(!fx.contains(&Effect::Start(Target::Diagram)), "{fx:?}");
+        assert_eq!(
+            a.panels.diagram.plotted, plotted,
+            "the same points, re-binned"
+        );
+    }
+}
