@@ -540,11 +540,7 @@ impl Tracer<'_> {
                     if small >= STALL_STEPS {
                         // Crawling toward the point where a doubled cycle is born from
                         // its parent (its halves close together) is ending there.
-                        let near_birth = cur
-                            .cycle
-                            .half_return
-                            .is_some_and(|[dt, dv]| dt.abs().max(dv.abs()) <= 1e-2);
-                        let end = if near_birth {
+                        let end = if near_birth(&cur.cycle) {
                             CurveEnd::Collapse
                         } else {
                             CurveEnd::Stalled
@@ -566,9 +562,9 @@ impl Tracer<'_> {
                         if on_edge(self.plane, [cur.alpha, cur.p]) {
                             return (out, CurveEnd::Window);
                         }
-                        // A doubled cycle whose halves have met: it ends where it was
-                        // born.
-                        if collapsing(&cur.cycle) {
+                        // A doubled cycle whose halves are closing in: it ends where it
+                        // is born from its parent.
+                        if near_birth(&cur.cycle) {
                             return (out, CurveEnd::Collapse);
                         }
                         if let Some(end) = self.end_at_codim2(&cur, codim2, index) {
@@ -791,6 +787,14 @@ fn secant(prev: Option<&CurvePoint>, cur: &CurvePoint, h: f64) -> CyclePoint {
 fn collapsing(pt: &CyclePoint) -> bool {
     pt.half_return
         .is_some_and(|[dt, dv]| dt.abs().max(dv.abs()) <= 1e-5)
+}
+
+/// Whether a doubled cycle's halves are within 1e-2 of each other: where a curve that
+/// cannot go on stops next to the point its cycle is born from its parent (by a period
+/// doubling, or on a border), which is where it ends.
+fn near_birth(pt: &CyclePoint) -> bool {
+    pt.half_return
+        .is_some_and(|[dt, dv]| dt.abs().max(dv.abs()) <= 1e-2)
 }
 
 /// Whether y lies on the window's boundary (to 1e-9 of its size).
