@@ -46,6 +46,7 @@
 //! paper's time grid for comparison), the polynomial numerics and the double-double
 //! arithmetic are internal.
 #![warn(missing_docs)]
+#![forbid(unsafe_code)]
 
 pub mod attractors;
 pub mod error;

@@ -42,6 +42,8 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+#![forbid(unsafe_code)]
+
 pub mod basins;
 pub mod classes;
 pub mod curves;
@@ -506,7 +508,7 @@ pub struct SeriesData {
 }
 
 /// A [`DensityGrid`]'s numbers: the bins along x are centred on `nx` evenly spaced
-/// values from x[0] to x[1], along y they split [y[0], y[1]] in `ny`; `counts` holds
+/// values from `x[0]` to `x[1]`, along y they split `[y[0], y[1]]` in `ny`; `counts` holds
 /// the points per bin, x-major (bin (i, j) at i·ny + j).
 #[derive(Serialize, Debug)]
 pub struct GridData {

@@ -3,7 +3,7 @@
 //! kind of file (its settings, its rows, where a row belongs); everything else is here,
 //! once: the provenance, the hashes, the shards, the csv and json layouts, the
 //! streaming writer ([`PartWriter`]) and the reader that checks a part ([`read_part`])
-//! and reads its values again ([`Part::values`]), both a value at a time over the
+//! and reads its values again ([`Part::reread`]), both a value at a time over the
 //! byte-level pieces of `stream.rs`; the join of the parts of one run is [`join`].
 //!
 //! Files: this one the format (layouts, provenance, hashes, shards, [`FileKind`]) and

@@ -10,7 +10,7 @@ use super::*;
 
 /// A part file, read and checked on its own: everything but its values, which were
 /// checked one at a time as they passed and are read again from the file when they are
-/// written ([`Part::values`]).
+/// written ([`Part::reread`]).
 #[derive(Clone, Debug)]
 pub struct Part<K: FileKind> {
     pub name: String,
