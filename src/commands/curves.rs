@@ -227,13 +227,10 @@ fn title(plane: &Plane, at: f64, args: &CurvesSpecArgs) -> String {
     )
 }
 
-/// The table as every format names it: with a d axis the F_D family, `fd` (its D is
-/// the axis), else the table's own name.
-fn table_label(plane: &Plane) -> &str {
-    match plane.second {
-        bouncemap_engine::grid::SweepParam::D => "fd",
-        _ => plane.table.name(),
-    }
+/// The table as every format names it: with a family parameter as the second axis
+/// the family with it left free (F_D as `fd`), else the table's own name.
+fn table_label(plane: &Plane) -> String {
+    crate::output::text::table_with_free(&plane.table, &[plane.second])
 }
 
 /// The seeds `args` ask for, started at `at`: the (1, k) branches, or one (n, k)

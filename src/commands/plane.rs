@@ -190,13 +190,7 @@ fn title(spec: &PlaneSpec) -> String {
             a.n
         )
     };
-    let table = if spec.table.d().is_some()
-        && (spec.x.param.as_str() == "d" || spec.y.param.as_str() == "d")
-    {
-        "fd".to_string()
-    } else {
-        spec.table.name().to_string()
-    };
+    let table = crate::output::text::table_with_free(&spec.table, &[spec.x.param, spec.y.param]);
     let mut fixed = String::new();
     for p in ["alpha", "r"] {
         if spec.x.param.as_str() != p && spec.y.param.as_str() != p {

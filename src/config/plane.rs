@@ -2,7 +2,7 @@
 //! (`fd` names the F_D family for a d axis), the fixed parameters and the start.
 
 use super::flags::{PlaneArgs, PlaneSpecArgs, PlaneStartArg};
-use super::rules::{self, Rule};
+use super::rules;
 use super::sweep::shard;
 use super::table_spec::TableSpec;
 use super::InputError;
@@ -11,45 +11,85 @@ use bouncemap_engine::grid::Axis;
 use bouncemap_engine::grid::Shard;
 use bouncemap_engine::grid::SweepParam;
 use bouncemap_engine::plane::{PlaneSpec, PlaneStart};
+use bouncemap_engine::Table;
 
-/// The rule of an axis parameter.
-fn rule_of(p: SweepParam) -> Rule {
-    match p {
-        SweepParam::Alpha => rules::ALPHA,
-        SweepParam::R => rules::R,
-        SweepParam::D => rules::D,
-    }
-}
-
-/// `PARAM:LO..HI` with PARAM alpha, r or d and n pixels.
-pub fn parse_axis(flag: &str, s: &str, n: usize) -> Result<Axis, InputError> {
+/// `PARAM:LO..HI` with PARAM alpha, r or a parameter of `table`'s family, and n
+/// pixels; each end is checked against the parameter's range.
+pub fn parse_axis(flag: &str, s: &str, n: usize, table: &Table) -> Result<Axis, InputError> {
     let refuse = |msg: String| InputError(format!("--{flag} {}: {msg}", quoted(s)));
+    let names = SweepParam::names(table);
     let (name, window) = s.trim().split_once(':').ok_or_else(|| {
-        refuse(
-            "not an axis: valid PARAM:LO..HI with PARAM alpha, r or d, e.g. alpha:0.45..0.6".into(),
-        )
+        refuse(format!(
+            "not an axis: valid PARAM:LO..HI with PARAM one of {names}, e.g. alpha:0.45..0.6"
+        ))
     })?;
-    let param = SweepParam::ALL
-        .into_iter()
-        .find(|p| p.as_str() == name.trim())
-        .ok_or_else(|| {
+    let param = SweepParam::parse(name, table).map_err(|e| {
+        if name.trim().eq_ignore_ascii_case("d") {
             refuse(format!(
-                "unknown parameter '{}': valid alpha, r or d",
-                name.trim()
+                "the table {} has no parameter D: valid --table fd (the F_D family), or a table file declaring D",
+                table.name()
             ))
-        })?;
+        } else {
+            refuse(format!("the table {}: {e}", table.name()))
+        }
+    })?;
     let (a, b) = window
         .split_once("..")
         .ok_or_else(|| refuse("not a window: valid PARAM:LO..HI".into()))?;
-    let rule = rule_of(param);
-    let lo = rule.parse(a).map_err(&refuse)?;
-    let hi = rule.parse(b).map_err(&refuse)?;
+    let value = |t: &str| -> Result<f64, InputError> {
+        match param {
+            SweepParam::Alpha => rules::ALPHA.parse(t).map_err(&refuse),
+            SweepParam::R => rules::R.parse(t).map_err(&refuse),
+            SweepParam::Table(_) => {
+                let x = t
+                    .trim()
+                    .parse::<f64>()
+                    .map_err(|_| refuse(format!("'{}' is not a number", t.trim())))?;
+                param.check(table, x).map_err(|e| refuse(e.to_string()))
+            }
+        }
+    };
+    let (lo, hi) = (value(a)?, value(b)?);
     if lo > hi {
         return Err(refuse(
             "the window is empty: valid LO..HI with LO ≤ HI".into(),
         ));
     }
     Ok(Axis { param, lo, hi, n })
+}
+
+/// The parameter name of an axis text `NAME:LO..HI` (before the table is known).
+fn axis_name(s: &str) -> &str {
+    s.trim().split_once(':').map_or("", |(n, _)| n.trim())
+}
+
+/// `--table` of a plane or curves: `fd` names the F_D family (its D is an axis), else
+/// any table name. A table whose name gives a value to a parameter that is an axis
+/// would have it replaced: refused instead of dropped.
+fn plane_table(text: &str, axes: [&str; 2]) -> Result<(TableSpec, Table), InputError> {
+    let spec = match text.trim() {
+        "fd" => TableSpec::fd(rules::D.default),
+        t => TableSpec::parse(t).map_err(|e| InputError(format!("--table: {e}")))?,
+    };
+    let table = spec.load()?;
+    for name in axes {
+        if let Ok(SweepParam::Table(n)) = SweepParam::parse(name, &table) {
+            if text.trim() != "fd" && spec.sets(n.as_str()) {
+                let valid = if spec.d().is_some() {
+                    "--table fd".to_string()
+                } else {
+                    "the table without a value for it".to_string()
+                };
+                return Err(InputError(format!(
+                    "--table {}: {} is an axis of the plane, so the table's own {} would be ignored: valid {valid}",
+                    crate::output::text::escape(text.trim()),
+                    n.as_str(),
+                    n.as_str()
+                )));
+            }
+        }
+    }
+    Ok((spec, table))
 }
 
 /// The plane `plane`'s flags describe.
@@ -67,28 +107,9 @@ pub fn plane_spec_from(
     (nx, ny): (usize, usize),
     part: Shard,
 ) -> Result<PlaneSpec, InputError> {
-    let x = parse_axis("x", &args.x, nx)?;
-    let y = parse_axis("y", &args.y, ny)?;
-    let has_d = x.param == SweepParam::D || y.param == SweepParam::D;
-    let table = match args.table.trim() {
-        "fd" => TableSpec::fd(rules::D.default),
-        t => TableSpec::parse(t).map_err(|e| InputError(format!("--table: {e}")))?,
-    };
-    if has_d && table.d().is_none() {
-        return Err(InputError(format!(
-            "--table {}: a d axis needs the F_D family: valid --table fd",
-            crate::output::text::escape(args.table.trim())
-        )));
-    }
-    // A D given with the table would be replaced by the axis's: say so instead of
-    // dropping it.
-    if has_d && args.table.trim() != "fd" {
-        return Err(InputError(format!(
-            "--table {}: D is an axis of the plane, so the table's own D would be ignored: valid --table fd",
-            crate::output::text::escape(args.table.trim())
-        )));
-    }
-    let table = table.load()?;
+    let (_, table) = plane_table(&args.table, [axis_name(&args.x), axis_name(&args.y)])?;
+    let x = parse_axis("x", &args.x, nx, &table)?;
+    let y = parse_axis("y", &args.y, ny, &table)?;
     let mut spec = PlaneSpec::new(
         table,
         x,
@@ -124,8 +145,14 @@ pub fn plane_spec_from(
 pub fn curves_plane(
     args: &super::flags::CurvesSpecArgs,
 ) -> Result<(bouncemap_engine::orbits::curves::Plane, f64), InputError> {
-    let x = parse_axis("x", &args.x, 2)?;
-    let y = parse_axis("y", &args.y, 2)?;
+    let fd_family = args.table.trim() == "fd";
+    let table_spec = match args.table.trim() {
+        "fd" => TableSpec::fd(rules::D.default),
+        t => TableSpec::parse(t).map_err(|e| InputError(format!("--table: {e}")))?,
+    };
+    let table = table_spec.load()?;
+    let x = parse_axis("x", &args.x, 2, &table)?;
+    let y = parse_axis("y", &args.y, 2, &table)?;
     if x.param != SweepParam::Alpha {
         return Err(InputError(format!(
             "--x {}: the curves' x axis is alpha: valid alpha:LO..HI",
@@ -134,8 +161,9 @@ pub fn curves_plane(
     }
     if y.param == SweepParam::Alpha {
         return Err(InputError(format!(
-            "--y {}: the second parameter is r or d: valid r:LO..HI or d:LO..HI",
-            quoted(&args.y)
+            "--y {}: the second parameter is one of {}: valid NAME:LO..HI",
+            quoted(&args.y),
+            SweepParam::names(&table).trim_start_matches("alpha, ")
         )));
     }
     for (flag, axis, text) in [("x", x, &args.x), ("y", y, &args.y)] {
@@ -146,29 +174,29 @@ pub fn curves_plane(
             )));
         }
     }
-    let table = match args.table.trim() {
-        "fd" => TableSpec::fd(rules::D.default),
-        t => TableSpec::parse(t).map_err(|e| InputError(format!("--table: {e}")))?,
-    };
     let at = match y.param {
-        SweepParam::D => {
-            let Some(d) = table.d() else {
-                return Err(InputError(format!(
-                    "--table {}: a d axis needs the F_D family: valid --table fd or fd:D",
-                    crate::output::text::escape(args.table.trim())
-                )));
-            };
-            if args.table.trim() == "fd" {
+        SweepParam::Table(n) => {
+            let name = n.as_str();
+            let v = table
+                .param(name)
+                .expect("the axis is the table's parameter");
+            if fd_family || !table_spec.sets(name) {
+                // No value given: the curves start from the window's middle.
                 0.5 * (y.lo + y.hi)
-            } else if d < y.lo || d > y.hi {
+            } else if v < y.lo || v > y.hi {
+                let valid = if table_spec.d().is_some() {
+                    "fd:D with D in the window, or fd"
+                } else {
+                    "a value in the window, or none"
+                };
                 return Err(InputError(format!(
-                    "--table {}: D = {d} is outside the d window {}..{}: valid fd:D with D in the window, or fd",
+                    "--table {}: {name} = {v} is outside the {name} window {}..{}: valid {valid}",
                     args.table.trim(),
                     y.lo,
                     y.hi
                 )));
             } else {
-                d
+                v
             }
         }
         _ => match args.r {
@@ -183,7 +211,7 @@ pub fn curves_plane(
         },
     };
     let plane = bouncemap_engine::orbits::curves::Plane {
-        table: table.load()?,
+        table,
         r: match y.param {
             SweepParam::R => at,
             _ => args.r.unwrap_or(rules::R.default),
@@ -224,7 +252,7 @@ pub fn plane_curves(
         }
     };
     let own = match other.param {
-        SweepParam::D => spec.table.d().unwrap_or(rules::D.default),
+        SweepParam::Table(n) => spec.table.param(n.as_str()).unwrap_or(other.lo),
         _ => spec.r,
     };
     let at = [current, Some(own)]

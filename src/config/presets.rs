@@ -10,35 +10,6 @@ use bouncemap_engine::grid::SweepParam;
 use bouncemap_engine::sweep::{InitialSpec, SweepSpec};
 use serde::Deserialize;
 
-/// The swept parameter, as flags and preset files name it.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, clap::ValueEnum)]
-#[serde(rename_all = "lowercase")]
-pub enum Param {
-    Alpha,
-    R,
-    D,
-}
-
-impl From<Param> for SweepParam {
-    fn from(p: Param) -> SweepParam {
-        match p {
-            Param::Alpha => SweepParam::Alpha,
-            Param::R => SweepParam::R,
-            Param::D => SweepParam::D,
-        }
-    }
-}
-
-impl From<SweepParam> for Param {
-    fn from(p: SweepParam) -> Param {
-        match p {
-            SweepParam::Alpha => Param::Alpha,
-            SweepParam::R => Param::R,
-            SweepParam::D => Param::D,
-        }
-    }
-}
-
 /// Where each value of a preset starts.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Deserialize)]
 #[serde(rename_all = "kebab-case")]
@@ -58,7 +29,8 @@ pub struct Preset {
     pub description: String,
     #[serde(deserialize_with = "table_spec")]
     pub table: TableSpec,
-    pub param: Param,
+    /// The swept parameter's name (`alpha`, `r`, or one of the table's, e.g. `D`).
+    pub param: String,
     /// The swept window [lo, hi].
     pub window: [f64; 2],
     pub alpha: Option<f64>,
@@ -132,12 +104,13 @@ impl Preset {
     /// The sweep this preset runs, validated.
     pub fn sweep_spec(&self) -> Result<SweepSpec, InputError> {
         let table = self.table.load()?;
+        let param = SweepParam::parse(&self.param, &table).map_err(InputError)?;
         let (lo, hi) = self.window();
         let mut spec = SweepSpec::new(
             table,
             self.alpha.unwrap_or(rules::ALPHA.default),
             self.r.unwrap_or(rules::R.default),
-            self.param.into(),
+            param,
             lo,
             hi,
             self.steps,
@@ -174,7 +147,8 @@ mod tests {
         let text = PRESETS[0]
             .1
             .replace("param = \"alpha\"", "param = \"alfa\"");
-        let e = toml::from_str::<Preset>(&text).unwrap_err().to_string();
-        assert!(e.contains("alfa"), "{e}");
+        let p = toml::from_str::<Preset>(&text).unwrap();
+        let e = p.sweep_spec().unwrap_err().0;
+        assert!(e.contains("alfa") && e.contains("valid alpha, r, D"), "{e}");
     }
 }

@@ -2,13 +2,13 @@
 //! [`SweepSpec`]. Flags given with a preset override its settings; the swept parameter is
 //! the one given as a window `LO..HI` (or named by `--param`).
 
-use super::presets::{preset, Param, Start};
+use super::presets::{preset, Start};
 use super::rules::{self, Rule};
 use super::table_spec::TableSpec;
 use super::InputError;
 use crate::config::flags::{ShardArg, SweepArgs, SweepSpecArgs};
 use crate::output::text::quoted;
-use bouncemap_engine::grid::Shard;
+use bouncemap_engine::grid::{Shard, SweepParam};
 use bouncemap_engine::run::detect::Periodicity;
 use bouncemap_engine::sweep::{InitialSpec, SweepSpec, Warm};
 use bouncemap_engine::Table;
@@ -20,16 +20,10 @@ enum Setting {
     Window(f64, f64),
 }
 
-fn flag_rule(p: Param) -> (&'static str, Rule) {
-    match p {
-        Param::Alpha => ("alpha", rules::ALPHA),
-        Param::R => ("r", rules::R),
-        Param::D => ("d", rules::D),
-    }
-}
+/// The flags that set one parameter each: --alpha, --r, and --d for F_D's D.
+const FLAGS: [(&str, Rule); 3] = [("alpha", rules::ALPHA), ("r", rules::R), ("d", rules::D)];
 
-fn parse_setting(p: Param, s: &str) -> Result<Setting, InputError> {
-    let (flag, rule) = flag_rule(p);
+fn parse_setting(flag: &str, rule: Rule, s: &str) -> Result<Setting, InputError> {
     let one = |t: &str| {
         rule.parse(t)
             .map_err(|e| InputError(format!("--{flag} {}: {e}", quoted(s))))
@@ -51,6 +45,49 @@ fn parse_setting(p: Param, s: &str) -> Result<Setting, InputError> {
     }
 }
 
+/// The parameter a flag sets, over `table`.
+fn flag_param(flag: &str) -> SweepParam {
+    match flag {
+        "alpha" => SweepParam::Alpha,
+        "r" => SweepParam::R,
+        _ => SweepParam::D,
+    }
+}
+
+/// `--param NAME` or `--param NAME:LO..HI`: the name, and the window if given (each end
+/// checked against the parameter's range over `table`).
+fn parse_param_flag(
+    s: &str,
+    table: &Table,
+) -> Result<(SweepParam, Option<(f64, f64)>), InputError> {
+    let refuse = |m: String| InputError(format!("--param {}: {m}", quoted(s)));
+    let (name, window) = match s.split_once(':') {
+        Some((n, w)) => (n, Some(w)),
+        None => (s, None),
+    };
+    let param = SweepParam::parse(name, table).map_err(refuse)?;
+    let Some(w) = window else {
+        return Ok((param, None));
+    };
+    let (a, b) = w
+        .split_once("..")
+        .ok_or_else(|| refuse("not a window: valid NAME:LO..HI".into()))?;
+    let num = |t: &str| -> Result<f64, InputError> {
+        let x = t
+            .trim()
+            .parse::<f64>()
+            .map_err(|_| refuse(format!("'{}' is not a number", t.trim())))?;
+        param.check(table, x).map_err(|e| refuse(e.to_string()))
+    };
+    let (lo, hi) = (num(a)?, num(b)?);
+    if lo > hi {
+        return Err(refuse(
+            "the window is empty: valid LO..HI with LO ≤ HI".into(),
+        ));
+    }
+    Ok((param, Some((lo, hi))))
+}
+
 /// The sweep `sweep`'s flags (and their preset) describe.
 pub fn sweep_spec(args: &SweepArgs) -> Result<SweepSpec, InputError> {
     sweep_spec_from(
@@ -67,116 +104,140 @@ pub fn sweep_spec_from(args: &SweepSpecArgs, part: Shard) -> Result<SweepSpec, I
         None => None,
     };
     let pr = p.as_ref();
-    let mut given = [
-        (Param::Alpha, args.alpha.clone()),
-        (Param::R, args.r.clone()),
-        (Param::D, args.d.clone()),
-    ];
+    let mut given: Vec<(&str, Option<Setting>)> = Vec::new();
+    for ((flag, rule), text) in FLAGS.iter().zip([&args.alpha, &args.r, &args.d]) {
+        given.push((
+            flag,
+            text.as_deref()
+                .map(|s| parse_setting(flag, *rule, s))
+                .transpose()?,
+        ));
+    }
+    let setting = |flag: &str| given.iter().find(|g| g.0 == flag).and_then(|g| g.1);
+    // The table: --table, else the preset's; --d D alone means fd:D.
+    let table_arg: Option<TableSpec> = args.table.clone().or(pr.map(|p| p.table.clone()));
+    let table =
+        match (&table_arg, setting("d")) {
+            (Some(_), Some(Setting::Fixed(_))) if args.table.is_some() => return Err(InputError(
+                "--d: give either --table or --d, not both: valid --d D alone means --table fd:D"
+                    .into(),
+            )),
+            (_, Some(Setting::Fixed(d))) => Table::fd(d)?,
+            (Some(t), _) => t.load()?,
+            (None, Some(Setting::Window(lo, _))) => Table::fd(lo)?,
+            (None, None) => TableSpec::parse(rules::DEFAULT_TABLE)
+                .map_err(InputError)?
+                .load()?,
+        };
+    // Where the table came from, as refusals name it.
+    let source = match (&args.table, &args.preset, &table_arg) {
+        (None, Some(name), Some(t)) => format!("--preset {name}: its table {t}"),
+        (_, _, Some(t)) => format!("--table {t}"),
+        _ => format!("the table {}", table.name()),
+    };
+    let (flagged, flag_window) = match &args.param {
+        Some(s) => {
+            let name = s.split_once(':').map_or(s.as_str(), |(n, _)| n);
+            if SweepParam::parse(name, &table).is_err() {
+                return Err(InputError(format!(
+                    "--param {}: {source} has no such parameter: valid {}",
+                    quoted(s),
+                    SweepParam::names(&table)
+                )));
+            }
+            let (q, w) = parse_param_flag(s, &table)?;
+            (Some(q), w)
+        }
+        None => (None, None),
+    };
     // The preset's window applies to its own parameter, unless --param sweeps another.
-    if let Some(p) = pr {
-        if args.param.is_none_or(|q| q == p.param) {
-            for (q, v) in given.iter_mut() {
-                if *q == p.param && v.is_none() {
-                    *v = Some(format!("{}..{}", p.window[0], p.window[1]));
-                }
-            }
-        }
-        for (q, v) in given.iter_mut() {
-            let fixed = match q {
-                Param::Alpha => p.alpha,
-                Param::R => p.r,
-                Param::D => None,
-            };
-            if v.is_none() && *q != p.param {
-                *v = fixed.map(|x| x.to_string());
-            }
-        }
-    }
-    let mut parsed = Vec::new();
-    for (q, v) in &given {
-        parsed.push((*q, v.as_deref().map(|s| parse_setting(*q, s)).transpose()?));
-    }
-    let windows: Vec<Param> = parsed
+    let preset_param = match pr {
+        Some(p) => Some(
+            SweepParam::parse(&p.param, &table)
+                .map_err(|e| InputError(format!("--preset: {e}")))?,
+        ),
+        None => None,
+    };
+    let windows: Vec<&str> = given
         .iter()
         .filter(|(_, s)| matches!(s, Some(Setting::Window(..))))
-        .map(|(q, _)| *q)
+        .map(|(f, _)| *f)
         .collect();
-    let param = match (args.param, windows.as_slice()) {
+    let param = match (flagged, windows.as_slice()) {
         (Some(q), _) => q,
-        (None, [one]) => *one,
-        (None, []) => return Err(InputError(
-            "sweep: no window given: give the swept parameter as LO..HI, e.g. --alpha 0.45..0.6"
-                .into(),
-        )),
+        (None, [one]) => flag_param(one),
+        (None, []) => match preset_param {
+            Some(q) => q,
+            None => return Err(InputError(
+                "sweep: no window given: give the swept parameter as LO..HI, e.g. --alpha 0.45..0.6, or name it with --param NAME"
+                    .into(),
+            )),
+        },
         (None, _) => {
-            let names: Vec<String> = windows
-                .iter()
-                .map(|q| format!("--{}", flag_rule(*q).0))
-                .collect();
+            let names: Vec<String> = windows.iter().map(|f| format!("--{f}")).collect();
             return Err(InputError(format!(
                 "sweep: windows given for {}: valid a window for exactly one of --alpha, --r, --d",
                 names.join(" and ")
             )));
         }
     };
-    let mut window = None;
-    let mut fixed = |q: Param| -> Result<Option<f64>, InputError> {
-        let flag = flag_rule(q).0;
-        let s = parsed.iter().find(|(g, _)| *g == q).and_then(|(_, s)| *s);
+    if param == SweepParam::D && table.param("D").is_none() {
+        return Err(InputError(format!(
+            "{source} cannot sweep D: valid an fd:D table (fd:D, quad or cubic), or a table file declaring D"
+        )));
+    }
+    // The swept parameter's flag, if it has one.
+    let own_flag = FLAGS.iter().map(|f| f.0).find(|f| flag_param(f) == param);
+    let mut window = flag_window;
+    for (flag, s) in &given {
         match s {
-            Some(Setting::Window(lo, hi)) if q == param => {
-                window = Some((lo, hi));
-                Ok(None)
-            }
-            Some(Setting::Window(lo, hi)) => Err(InputError(format!(
-                "--{flag} {lo}..{hi}: only the swept parameter (--{}) takes a window: valid a number",
-                flag_rule(param).0
-            ))),
-            None if q == param => Err(InputError(format!(
-                "--{flag}: the swept parameter needs a window: valid LO..HI, e.g. --{flag} 0.4..0.6"
-            ))),
-            Some(Setting::Fixed(x)) if q == param => Err(InputError(format!(
-                "--{flag} {x}: the swept parameter needs a window: valid LO..HI"
-            ))),
-            Some(Setting::Fixed(x)) => Ok(Some(x)),
-            None => Ok(None),
-        }
-    };
-    let alpha = fixed(Param::Alpha)?.unwrap_or(rules::ALPHA.default);
-    let r = fixed(Param::R)?.unwrap_or(rules::R.default);
-    let d = fixed(Param::D)?;
-    let (lo, hi) = window.expect("the swept parameter's window was checked");
-    let table_arg: Option<TableSpec> = args.table.clone().or(pr.map(|p| p.table.clone()));
-    let table =
-        match (param, &table_arg, d) {
-            (Param::D, Some(t), _) => {
-                if t.d().is_none() {
-                    let source = match (&args.table, &args.preset) {
-                        (None, Some(name)) => format!("--preset {name}: its table {t}"),
-                        _ => format!("--table {t}"),
-                    };
+            Some(Setting::Window(lo, hi)) if Some(*flag) == own_flag => {
+                if window.is_some() {
                     return Err(InputError(format!(
-                        "{source} cannot sweep D: valid an fd:D table (fd:D, quad or cubic)"
+                        "--{flag} {lo}..{hi}: the window is given twice (also by --param): valid one of them"
                     )));
                 }
-                t.load()?
+                window = Some((*lo, *hi));
             }
-            (Param::D, None, _) => Table::fd(lo)?,
-            (_, Some(_), Some(_)) if args.table.is_some() => return Err(InputError(
-                "--d: give either --table or --d, not both: valid --d D alone means --table fd:D"
-                    .into(),
-            )),
-            (_, _, Some(dv)) => Table::fd(dv)?,
-            (_, Some(t), None) => t.load()?,
-            (_, None, None) => TableSpec::parse(rules::DEFAULT_TABLE)
-                .map_err(InputError)?
-                .load()?,
-        };
+            Some(Setting::Window(lo, hi)) => {
+                return Err(InputError(format!(
+                    "--{flag} {lo}..{hi}: only the swept parameter ({param}) takes a window: valid a number"
+                )))
+            }
+            Some(Setting::Fixed(x)) if Some(*flag) == own_flag => {
+                return Err(InputError(format!(
+                    "--{flag} {x}: the swept parameter needs a window: valid LO..HI"
+                )))
+            }
+            _ => {}
+        }
+    }
+    if window.is_none() && preset_param == Some(param) {
+        window = pr.map(|p| p.window());
+    }
+    // A parameter of the table's family is swept over its whole range by default.
+    if window.is_none() && param.is_table() {
+        window = param.range(&table);
+    }
+    let Some((lo, hi)) = window else {
+        let flag = own_flag.unwrap_or("alpha");
+        return Err(InputError(format!(
+            "--{flag}: the swept parameter needs a window: valid LO..HI, e.g. --{flag} 0.4..0.6"
+        )));
+    };
+    let fixed = |flag: &str, from_preset: Option<f64>, default: f64| -> f64 {
+        match setting(flag) {
+            Some(Setting::Fixed(x)) => x,
+            _ => from_preset.unwrap_or(default),
+        }
+    };
+    let alpha = fixed("alpha", pr.and_then(|p| p.alpha), rules::ALPHA.default);
+    let r = fixed("r", pr.and_then(|p| p.r), rules::R.default);
     let mut spec = SweepSpec::new(
         table,
         alpha,
         r,
-        param.into(),
+        param,
         lo,
         hi,
         args.steps

@@ -143,7 +143,9 @@ fn fixed_params(spec: &SweepSpec) -> String {
     match spec.param {
         SweepParam::Alpha => format!("r = {}", shortest(spec.r)),
         SweepParam::R => format!("alpha = {}", shortest(spec.alpha)),
-        SweepParam::D => format!("alpha = {}  r = {}", shortest(spec.alpha), shortest(spec.r)),
+        SweepParam::Table(_) => {
+            format!("alpha = {}  r = {}", shortest(spec.alpha), shortest(spec.r))
+        }
     }
 }
 

@@ -75,16 +75,13 @@ impl From<&PlaneSpec> for PlaneHeader {
             n: a.n,
         };
         PlaneHeader {
-            table: if on_axis("d") {
-                "fd".to_string()
-            } else {
-                s.table.name().to_string()
-            },
+            // A family's parameter on an axis is left free in the table's name.
+            table: super::text::table_with_free(&s.table, &[s.x.param, s.y.param]),
             x: axis(&s.x),
             y: axis(&s.y),
             alpha: (!on_axis("alpha")).then_some(s.alpha),
             r: (!on_axis("r")).then_some(s.r),
-            d: if on_axis("d") { None } else { s.table.d() },
+            d: if on_axis("D") { None } else { s.table.d() },
             transient: s.transient,
             start: s.start.as_str().to_string(),
             solver: solver_name(s.solver).to_string(),
@@ -213,7 +210,7 @@ pub struct CurvesRecord<'a> {
     /// `x` or `y`: the axis the α values refer to.
     pub alpha_axis: &'static str,
     /// The other axis's parameter and its pixel values.
-    pub along: &'static str,
+    pub along: &'a str,
     pub values: &'a [f64],
     pub alpha_birth: &'a [Option<f64>],
     pub alpha_pd: &'a [Option<f64>],

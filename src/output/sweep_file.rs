@@ -23,7 +23,7 @@
 pub use super::part_file::Layout;
 use super::part_file::{clip, shard_name, FileKind, PartWriter};
 use super::records::{PointRecord, SweepHeader, SweepRow, SweepValue};
-use bouncemap_engine::grid::{grid_value, Shard, SweepParam};
+use bouncemap_engine::grid::{grid_value, Shard};
 use bouncemap_engine::sweep::{chain_len, ValueResult, Warm};
 use std::io::{self, Write};
 
@@ -42,15 +42,13 @@ impl FileKind for SweepFile {
     type Value = PartValue;
 
     fn header_row(h: &SweepHeader) -> String {
-        SweepFile::field_names(h).join(",")
+        let mut names: Vec<&str> = SweepFile::field_names(h);
+        names[1] = &h.param;
+        names.join(",")
     }
 
     fn field_names(h: &SweepHeader) -> Vec<&'static str> {
-        let param = SweepParam::ALL
-            .into_iter()
-            .find(|p| p.as_str() == h.param)
-            .unwrap_or(SweepParam::Alpha);
-        SweepRow::header(param, h.lyapunov, h.starts > 1)
+        SweepRow::field_names(h.lyapunov, h.starts > 1)
     }
 
     /// A value's rows are consecutive: a row of the last value's index joins it.

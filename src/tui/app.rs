@@ -78,7 +78,9 @@ impl App {
 
     /// The selected parameter row.
     pub fn selected_param(&self) -> ParamId {
-        self.panels.parameters.selected_param()
+        self.panels
+            .parameters
+            .selected_param_in(&self.shared.params.rows())
     }
 
     // ---------------------------------------------------------------- actions

@@ -1,5 +1,6 @@
-//! The parameters the user edits: table, D, α, r, k, initial state, the diagram's
-//! swept parameter, window, start mode, transient and keep. Each row parses and checks
+//! The parameters the user edits: table, the table family's own parameters (F_D's D, a
+//! table file's), α, r, k, initial state, the diagram's swept parameter, window, start
+//! mode, transient and keep. Each row parses and checks
 //! typed text through the shared rule for it ([`crate::config::rules`], the same ranges
 //! and messages as the command line) and knows its coarse and fine steps; a refused
 //! value leaves everything unchanged and comes back as a one-line message naming the
@@ -16,7 +17,7 @@ use crate::output::text::{quoted, shortest};
 use bouncemap_engine::grid::SweepParam;
 use bouncemap_engine::orbits::stability_windows;
 use bouncemap_engine::sweep::Warm;
-use bouncemap_engine::table::builtin::{Builtin, FAMILIES};
+use bouncemap_engine::table::builtin::{families, Builtin};
 use bouncemap_engine::{State, System, Table, DEFAULT_HOP};
 
 /// How every value of the diagram's sweep starts.
@@ -119,17 +120,16 @@ pub struct Params {
 /// the (1, 1) branch, its period doubling at α_PD = 0.50997, the narrow (2, 2) window
 /// up to 0.51184 and the chaos after it), with the paper's start (values next to the
 /// (1, 1) solution).
-/// Windows of r and D sweeps.
+/// The window of r sweeps (a family parameter's is its whole range).
 pub const R_WINDOW: (f64, f64) = (0.5, 0.95);
-pub const D_WINDOW: (f64, f64) = (0.0, 1.0);
 pub const START_TRANSIENT: u64 = 20_000;
 
-/// The window a sweep of `param` opens with on `table`.
-pub fn default_window(param: SweepParam, table: &TableSpec) -> (f64, f64) {
-    match (param, table) {
-        (SweepParam::Alpha, t) => t.alpha_window(),
-        (SweepParam::R, _) => R_WINDOW,
-        (SweepParam::D, _) => D_WINDOW,
+/// The window a sweep of `param` opens with on `table` (named `spec`).
+pub fn default_window(param: SweepParam, spec: &TableSpec, table: &Table) -> (f64, f64) {
+    match param {
+        SweepParam::Alpha => spec.alpha_window(),
+        SweepParam::R => R_WINDOW,
+        SweepParam::Table(_) => param.range(table).unwrap_or((0.0, 1.0)),
     }
 }
 
@@ -161,7 +161,8 @@ impl Default for Params {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ParamId {
     Table,
-    D,
+    /// The i-th parameter of the table's family (F_D's D).
+    Family(u8),
     Alpha,
     R,
     K,
@@ -188,9 +189,8 @@ pub enum Touch {
 }
 
 impl ParamId {
-    pub const ALL: [ParamId; 14] = [
-        ParamId::Table,
-        ParamId::D,
+    /// The rows after the table and its family's parameters.
+    pub const SYSTEM: [ParamId; 12] = [
         ParamId::Alpha,
         ParamId::R,
         ParamId::K,
@@ -208,7 +208,6 @@ impl ParamId {
     /// The shared rule of a numeric row.
     pub fn rule(self) -> Option<Rule> {
         match self {
-            ParamId::D => Some(rules::D),
             ParamId::Alpha => Some(rules::ALPHA),
             ParamId::R => Some(rules::R),
             ParamId::K => Some(rules::K),
@@ -217,6 +216,8 @@ impl ParamId {
             ParamId::Keep => Some(rules::KEEP),
             ParamId::Values => Some(rules::STEPS),
             ParamId::Table | ParamId::V0 | ParamId::Sweep | ParamId::Start => None,
+            // A family parameter's range is the family's (see `Params::range_of`).
+            ParamId::Family(_) => None,
             // The window's rule is the swept parameter's (see `Params::window_rule`).
             ParamId::Lo | ParamId::Hi => None,
         }
@@ -236,7 +237,9 @@ impl ParamId {
 
     pub fn touches(self) -> Touch {
         match self {
-            ParamId::Table | ParamId::D | ParamId::Alpha | ParamId::R | ParamId::K => Touch::System,
+            ParamId::Table | ParamId::Family(_) | ParamId::Alpha | ParamId::R | ParamId::K => {
+                Touch::System
+            }
             ParamId::T0 | ParamId::V0 => Touch::Start,
             ParamId::Sweep
             | ParamId::Lo
@@ -253,7 +256,7 @@ impl ParamId {
         match self {
             ParamId::Table => format!("{} (a file is read when typed)", table_range()),
             ParamId::V0 => "auto, or a number ≥ f'(t̂0) with |v0 − f'(t̂0)| ≤ 1000".into(),
-            ParamId::Sweep => "alpha, r, or d (for an fd:D table)".into(),
+            ParamId::Sweep => "alpha, r, or a parameter of the table's family".into(),
             ParamId::Start => START_RANGE.into(),
             ParamId::Lo => "the swept parameter's range, below the window's end".into(),
             ParamId::Hi => "the swept parameter's range, above the window's start".into(),
@@ -265,6 +268,91 @@ impl ParamId {
 }
 
 impl Params {
+    /// The panel's rows: the table, its family's parameters, then the rest.
+    pub fn rows(&self) -> Vec<ParamId> {
+        let n = self.family_params().len();
+        let mut v = vec![ParamId::Table];
+        v.extend((0..n).map(|i| ParamId::Family(i as u8)));
+        v.extend(ParamId::SYSTEM);
+        v
+    }
+
+    /// The table family's parameters (none for the sine and a file without any).
+    pub fn family_params(&self) -> &[bouncemap_engine::table::Param] {
+        self.loaded.family().map_or(&[], |(f, _)| f.params())
+    }
+
+    /// A row's label: a family parameter by its own name.
+    pub fn label(&self, id: ParamId) -> String {
+        match id {
+            ParamId::Family(i) => self
+                .family_params()
+                .get(i as usize)
+                .map_or("?".into(), |p| p.name().to_string()),
+            other => other.label().to_string(),
+        }
+    }
+
+    /// A row's valid range, as refusals state it.
+    pub fn range_of(&self, id: ParamId) -> String {
+        match id {
+            ParamId::Family(i) => self
+                .family_params()
+                .get(i as usize)
+                .map_or(String::new(), |p| p.range_text()),
+            ParamId::Lo | ParamId::Hi => self.window_range(),
+            other => other.range(),
+        }
+    }
+
+    /// The swept parameter's range, as refusals state it.
+    fn window_range(&self) -> String {
+        match self.param {
+            SweepParam::Alpha => rules::ALPHA.limit.text.to_string(),
+            SweepParam::R => rules::R.limit.text.to_string(),
+            SweepParam::Table(_) => self
+                .param
+                .range(&self.loaded)
+                .map_or(String::new(), |(lo, hi)| {
+                    format!("[{}, {}]", shortest(lo), shortest(hi))
+                }),
+        }
+    }
+
+    /// The closed bounds a window of the swept parameter may reach (an open end moved
+    /// in by 1e-9).
+    pub fn window_bounds(&self) -> (f64, f64) {
+        let closed = |l: bouncemap_engine::limits::Limit| {
+            (
+                if l.lo_open { l.lo + 1e-9 } else { l.lo },
+                if l.hi_open { l.hi - 1e-9 } else { l.hi },
+            )
+        };
+        match self.param {
+            SweepParam::Alpha => closed(rules::ALPHA.limit),
+            SweepParam::R => closed(rules::R.limit),
+            SweepParam::Table(_) => self.param.range(&self.loaded).unwrap_or((0.0, 1.0)),
+        }
+    }
+
+    /// `x` parsed from `text` and checked as a value of the swept parameter.
+    fn window_value(&self, text: &str) -> Result<f64, String> {
+        match self.param {
+            SweepParam::Alpha => rules::ALPHA.parse(text),
+            SweepParam::R => rules::R.parse(text),
+            SweepParam::Table(_) => {
+                let x = text.trim().parse::<f64>().map_err(|_| {
+                    format!(
+                        "{} is not a number: valid {}",
+                        quoted(text.trim()),
+                        self.window_range()
+                    )
+                })?;
+                self.param.check(&self.loaded, x).map_err(|e| e.to_string())
+            }
+        }
+    }
+
     /// The table these parameters name.
     pub fn table(&self) -> Table {
         self.loaded.clone()
@@ -278,39 +366,33 @@ impl Params {
         }
     }
 
-    /// The rule of the window's ends: the swept parameter's.
-    pub fn window_rule(&self) -> Rule {
-        match self.param {
-            SweepParam::Alpha => rules::ALPHA,
-            SweepParam::R => rules::R,
-            SweepParam::D => rules::D,
-        }
-    }
-
-    /// The current value of `param` (D: of the fd:D table, if it is one).
+    /// The current value of `param` (a family's parameter: of the table, if it has it).
     pub fn value(&self, param: SweepParam) -> Option<f64> {
         match param {
             SweepParam::Alpha => Some(self.alpha),
             SweepParam::R => Some(self.r),
-            SweepParam::D => self.table.d(),
+            SweepParam::Table(n) => self.loaded.param(n.as_str()),
         }
     }
 
-    /// The row that edits `param`.
-    pub fn row_of(param: SweepParam) -> ParamId {
+    /// The row that edits `param`, if the panel has one.
+    pub fn row_of(&self, param: SweepParam) -> Option<ParamId> {
         match param {
-            SweepParam::Alpha => ParamId::Alpha,
-            SweepParam::R => ParamId::R,
-            SweepParam::D => ParamId::D,
+            SweepParam::Alpha => Some(ParamId::Alpha),
+            SweepParam::R => Some(ParamId::R),
+            SweepParam::Table(n) => self
+                .family_params()
+                .iter()
+                .position(|p| p.name() == n.as_str())
+                .map(|i| ParamId::Family(i as u8)),
         }
     }
 
-    /// The swept parameter's symbol (α, r, D).
-    pub fn symbol(param: SweepParam) -> &'static str {
+    /// The swept parameter's symbol (α, r, or the family parameter's name).
+    pub fn symbol(param: SweepParam) -> String {
         match param {
-            SweepParam::Alpha => "α",
-            SweepParam::R => "r",
-            SweepParam::D => "D",
+            SweepParam::Alpha => "α".into(),
+            other => other.as_str().to_string(),
         }
     }
 
@@ -362,13 +444,17 @@ impl Params {
         let n = |x: f64| fmt_num(x);
         match id {
             ParamId::Table => self.table_label(),
-            ParamId::D => self.table.d().map_or("—".into(), n),
+            ParamId::Family(i) => self
+                .loaded
+                .family()
+                .and_then(|(_, v)| v.get(i as usize).copied())
+                .map_or("—".into(), n),
             ParamId::Alpha => n(self.alpha),
             ParamId::R => n(self.r),
             ParamId::K => self.k.to_string(),
             ParamId::T0 => n(self.t0),
             ParamId::V0 => self.v0.map_or("auto".into(), n),
-            ParamId::Sweep => Params::symbol(self.param).into(),
+            ParamId::Sweep => Params::symbol(self.param),
             ParamId::Lo => n(self.lo),
             ParamId::Hi => n(self.hi),
             ParamId::Start => self.start.label().into(),
@@ -411,10 +497,16 @@ impl Params {
                 self.start = all[((here as i32 + dir).rem_euclid(4)) as usize];
                 return Ok(());
             }
-            ParamId::D => round_to(
-                self.table.d().unwrap_or(rules::D.default) + step(0.1, 0.01),
-                1e-9,
-            ),
+            ParamId::Family(i) => {
+                // Tenths and hundredths of the parameter's range (F_D's D: 0.1, 0.01).
+                let Some(p) = self.family_params().get(i as usize) else {
+                    return Ok(());
+                };
+                let (lo, hi) = p.range();
+                let cur = self.show_value(id).unwrap_or(p.default_value());
+                let x = round_to(cur + step(0.1 * (hi - lo), 0.01 * (hi - lo)), 1e-9);
+                x.clamp(lo, hi)
+            }
             ParamId::Alpha => round_to(self.alpha + step(0.01, 0.001), 1e-9),
             ParamId::R => round_to(self.r + step(0.01, 0.001), 1e-9),
             ParamId::K => self.k as f64 + s,
@@ -449,25 +541,33 @@ impl Params {
         self.set_value(id, value)
     }
 
-    /// The parameters a diagram can sweep on this table (D for fd:D only).
+    /// The current value of a family parameter's row.
+    fn show_value(&self, id: ParamId) -> Option<f64> {
+        let ParamId::Family(i) = id else {
+            return None;
+        };
+        self.loaded
+            .family()
+            .and_then(|(_, v)| v.get(i as usize).copied())
+    }
+
+    /// The parameters a diagram can sweep on this table: α, r and its family's.
     pub fn sweepable(&self) -> Vec<SweepParam> {
-        SweepParam::ALL
-            .into_iter()
-            .filter(|p| *p != SweepParam::D || self.table.d().is_some())
-            .collect()
+        SweepParam::all(&self.loaded)
     }
 
     /// Sweep `param`: its default window, α placed for an α sweep.
     pub fn set_param(&mut self, param: SweepParam) -> Result<(), String> {
-        if param == SweepParam::D && self.table.d().is_none() {
+        if !self.sweepable().contains(&param) {
             return Err(format!(
-                "sweep: D needs an fd:D table (this is {}); valid {}",
+                "sweep: {} is not a parameter of {}; valid {}",
+                param.as_str(),
                 self.table_label(),
-                ParamId::Sweep.range()
+                SweepParam::names(&self.loaded)
             ));
         }
         self.param = param;
-        (self.lo, self.hi) = default_window(param, &self.table);
+        (self.lo, self.hi) = default_window(param, &self.table, &self.loaded);
         self.place_alpha();
         Ok(())
     }
@@ -478,20 +578,23 @@ impl Params {
     pub fn change_table(&mut self, spec: TableSpec, table: Table) {
         let kind_changed = !same_kind(&spec, &self.table);
         self.set_table(spec, table);
-        if self.param == SweepParam::D && self.table.d().is_none() {
+        if !self.sweepable().contains(&self.param) {
             self.param = SweepParam::Alpha;
-            (self.lo, self.hi) = default_window(SweepParam::Alpha, &self.table);
+            (self.lo, self.hi) = default_window(SweepParam::Alpha, &self.table, &self.loaded);
             self.place_alpha();
         } else if kind_changed && self.param == SweepParam::Alpha {
-            (self.lo, self.hi) = default_window(SweepParam::Alpha, &self.table);
+            (self.lo, self.hi) = default_window(SweepParam::Alpha, &self.table, &self.loaded);
             self.place_alpha();
+        } else if kind_changed && self.param.is_table() {
+            (self.lo, self.hi) = default_window(self.param, &self.table, &self.loaded);
         }
     }
 
     /// Set a row from typed text. Refusals name the valid range; nothing changes then.
     pub fn set_text(&mut self, id: ParamId, text: &str) -> Result<(), String> {
         let t = text.trim();
-        let refuse = |e: String| format!("{}: {e}", id.label());
+        let label = self.label(id);
+        let refuse = |e: String| format!("{label}: {e}");
         match id {
             ParamId::Table => {
                 let spec = TableSpec::parse(t).map_err(refuse)?;
@@ -506,16 +609,7 @@ impl Params {
                 Ok(())
             }
             ParamId::Sweep => {
-                let p = SweepParam::ALL
-                    .into_iter()
-                    .find(|p| p.as_str() == t || Params::symbol(*p) == t)
-                    .ok_or_else(|| {
-                        refuse(format!(
-                            "{} is not a parameter: valid {}",
-                            quoted(t),
-                            id.range()
-                        ))
-                    })?;
+                let p = SweepParam::parse(t, &self.loaded).map_err(refuse)?;
                 self.set_param(p)
             }
             ParamId::Start => {
@@ -523,7 +617,17 @@ impl Params {
                 Ok(())
             }
             ParamId::Lo | ParamId::Hi => {
-                let x = self.window_rule().parse(t).map_err(refuse)?;
+                let x = self.window_value(t).map_err(refuse)?;
+                self.set_value(id, x)
+            }
+            ParamId::Family(_) => {
+                let x = t.parse::<f64>().map_err(|_| {
+                    refuse(format!(
+                        "{} is not a number: valid {}",
+                        quoted(t),
+                        self.range_of(id)
+                    ))
+                })?;
                 self.set_value(id, x)
             }
             ParamId::V0 if t == "auto" || t.is_empty() => {
@@ -555,22 +659,36 @@ impl Params {
 
     /// Set a numeric row to `x`, checking it and what depends on it.
     fn set_value(&mut self, id: ParamId, x: f64) -> Result<(), String> {
-        let rule = match id {
-            ParamId::Lo | ParamId::Hi => Some(self.window_rule()),
-            _ => id.rule(),
-        };
-        if let Some(rule) = rule {
-            rule.check(x)
-                .map_err(|e| format!("{}: {e}", id.label().trim()))?;
+        let label = self.label(id);
+        match id {
+            ParamId::Lo | ParamId::Hi => {
+                self.param
+                    .check(&self.loaded, x)
+                    .map_err(|e| format!("{}: {e}", label.trim()))?;
+            }
+            _ => {
+                if let Some(rule) = id.rule() {
+                    rule.check(x)
+                        .map_err(|e| format!("{}: {e}", label.trim()))?;
+                }
+            }
         }
         let mut next = self.clone();
         match id {
             ParamId::Table | ParamId::Sweep | ParamId::Start => {
                 unreachable!("the table, sweep and start rows are not numeric")
             }
-            ParamId::D => {
-                let spec = TableSpec::fd(x);
-                let table = spec.load().map_err(|e| e.0)?;
+            ParamId::Family(i) => {
+                let name = self
+                    .family_params()
+                    .get(i as usize)
+                    .map(|p| p.name().to_string())
+                    .ok_or_else(|| format!("{label}: the table has no such parameter"))?;
+                let table = self
+                    .loaded
+                    .with_param(&name, x)
+                    .map_err(|e| format!("{label}: {e}"))?;
+                let spec = self.table.with_value(&name, x);
                 next.set_table(spec, table);
             }
             ParamId::Alpha => next.alpha = x,
@@ -599,7 +717,7 @@ impl Params {
                 Params::symbol(self.param),
                 id.label().trim(),
                 shortest(v),
-                self.window_rule().limit.text,
+                self.window_range(),
                 if id == ParamId::Lo { "below" } else { "above" },
                 shortest(if id == ParamId::Lo { self.hi } else { self.lo })
             ));
@@ -652,10 +770,10 @@ impl Params {
     fn table_order(&self) -> Vec<(TableSpec, Table)> {
         let d = self.table.d().unwrap_or(rules::D.default);
         // Every built-in family (F_D at the current D), then the file.
-        let mut v: Vec<(TableSpec, Table)> = FAMILIES
-            .iter()
+        let mut v: Vec<(TableSpec, Table)> = families()
+            .into_iter()
             .map(|f| {
-                let b = Builtin::of(f.name, f.param.map(|_| d));
+                let b = Builtin::of(f.name(), (!f.params().is_empty()).then_some(d));
                 (TableSpec::Builtin(b), b.table().expect("D is in range"))
             })
             .collect();

@@ -11,7 +11,9 @@
 //! marker = "braille"   # braille | halfblock | dot
 //! mouse = false
 //! [defaults]
-//! table = "fd:0.1"
+//! table = "fd:0.1"    # or a file: "asym.toml", "asym.toml:w=0.3"
+//! d = 0.1              # F_D's D (the table's parameter D)
+//! params = { w = 0.3 } # any parameter of the table's family, by name
 //! alpha = 0.45
 //! r = 0.8
 //! k = 1
@@ -36,6 +38,7 @@ use crate::config::files::{read_text, SMALL_FILE};
 use crate::config::rules;
 use crate::output::hitgrid::Marker;
 use crate::output::text::shortest;
+use bouncemap_engine::grid::SweepParam;
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -64,6 +67,7 @@ struct ExportSizes {
 struct Defaults {
     table: Option<String>,
     d: Option<f64>,
+    params: Option<BTreeMap<String, f64>>,
     alpha: Option<f64>,
     r: Option<f64>,
     k: Option<u32>,
@@ -82,6 +86,14 @@ enum OneOrMany {
     Many(Vec<String>),
 }
 
+/// What a `[defaults]` entry sets: a row, or a parameter of the table's family by name
+/// (found once the table is set).
+#[derive(Clone, Debug, PartialEq)]
+pub enum Setting {
+    Row(ParamId),
+    Family(String),
+}
+
 /// Settings read from a config file (None: not set there).
 #[derive(Debug, Default)]
 pub struct Config {
@@ -90,8 +102,8 @@ pub struct Config {
     pub color: Option<ColorChoice>,
     pub marker: Option<Marker>,
     pub mouse: Option<bool>,
-    /// (row, typed text) pairs applied to the default parameters in order.
-    pub defaults: Vec<(ParamId, String)>,
+    /// (setting, typed text) pairs applied to the default parameters in order.
+    pub defaults: Vec<(Setting, String)>,
     pub sweep: Option<(f64, f64)>,
     /// `[export]`: the plane's pixels and the basins' starts of `E`'s figures.
     pub export_plane: Option<(usize, usize)>,
@@ -150,11 +162,21 @@ impl Config {
         if let Some(d) = f.defaults {
             let mut push = |id, v: Option<String>| {
                 if let Some(v) = v {
-                    c.defaults.push((id, v));
+                    c.defaults.push((Setting::Row(id), v));
                 }
             };
             push(ParamId::Table, d.table);
-            push(ParamId::D, d.d.map(shortest));
+            if let Some(x) = d.d {
+                c.defaults.push((Setting::Family("D".into()), shortest(x)));
+            }
+            for (name, x) in d.params.into_iter().flatten() {
+                c.defaults.push((Setting::Family(name), shortest(x)));
+            }
+            let mut push = |id, v: Option<String>| {
+                if let Some(v) = v {
+                    c.defaults.push((Setting::Row(id), v));
+                }
+            };
             push(ParamId::R, d.r.map(shortest));
             push(ParamId::K, d.k.map(|x| x.to_string()));
             push(ParamId::Alpha, d.alpha.map(shortest));
@@ -212,11 +234,33 @@ impl Config {
 
     /// Apply the `[defaults]` to a parameter set; the message names the setting.
     pub fn apply_defaults(&self, p: &mut Params) -> Result<(), String> {
-        for (id, text) in &self.defaults {
-            p.set_text(*id, text).map_err(|e| {
+        for (setting, text) in &self.defaults {
+            let (id, key) = match setting {
+                Setting::Row(id) => (*id, key_of(*id).to_string()),
+                Setting::Family(name) => {
+                    let key = if name == "D" {
+                        "d".to_string()
+                    } else {
+                        format!("params.{name}")
+                    };
+                    let found = SweepParam::parse(name, &p.table())
+                        .ok()
+                        .filter(SweepParam::is_table)
+                        .and_then(|q| p.row_of(q));
+                    let Some(id) = found else {
+                        return Err(format!(
+                            "defaults.{key}: the table {} has no parameter {name}: its parameters are {}",
+                            p.table_label(),
+                            p.table().family().map_or("none".into(), |(f, _)| f.param_names())
+                        ));
+                    };
+                    (id, key)
+                }
+            };
+            p.set_text(id, text).map_err(|e| {
                 // The message starts with the row's label; the file's key is named instead.
-                let detail = e.strip_prefix(&format!("{}: ", id.label())).unwrap_or(&e);
-                format!("defaults.{} = {}: {detail}", key_of(*id), shown_value(text))
+                let detail = e.strip_prefix(&format!("{}: ", p.label(id))).unwrap_or(&e);
+                format!("defaults.{key} = {}: {detail}", shown_value(text))
             })?;
         }
         if let Some((lo, hi)) = self.sweep {

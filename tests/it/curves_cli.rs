@@ -39,7 +39,7 @@ fn curves_agree_with_fixed_and_their_formats_agree() {
         .expect("the (1, 1) PD curve");
     let pts = pd["points"].as_array().unwrap();
     for q in pts.iter().step_by(pts.len() / 10) {
-        let d = f(&q["d"]);
+        let d = f(&q["D"]);
         let table = format!("fd:{d}");
         let fx = run_json(&[
             "fixed", "--table", &table, "--alpha", "0.5", "--format", "json",
@@ -86,7 +86,7 @@ fn curves_refuse_bad_planes_with_one_line() {
         (&["--x", "r:0.2..0.9", "--y", "d:0..1"][..], "alpha:LO..HI"),
         (
             &["--x", "alpha:0.4..0.7", "--y", "alpha:0.4..0.7"][..],
-            "r:LO..HI or d:LO..HI",
+            "the second parameter is one of r, D",
         ),
         (
             &[
@@ -97,7 +97,7 @@ fn curves_refuse_bad_planes_with_one_line() {
                 "--y",
                 "d:0.5..1",
             ][..],
-            "outside the d window",
+            "outside the D window",
         ),
         (
             &["--x", "alpha:0.4..0.7", "--y", "r:0.2..0.5", "--r", "0.8"][..],
@@ -172,7 +172,7 @@ fn curves_from_an_explicit_cycle_follow_its_branch() {
         .as_array()
         .unwrap()
         .iter()
-        .find(|q| f(&q["d"]) == 1.0)
+        .find(|q| f(&q["D"]) == 1.0)
         .expect("a point at D = 1");
     let cascade = run_json(&[
         "cascade", "--table", "fd:1", "--depth", "2", "--format", "json",
@@ -420,7 +420,7 @@ fn the_curves_figure_draws_what_curves_computes() {
         let pts = c["points"].as_array().unwrap();
         assert_eq!(line.as_array().unwrap().len(), pts.len(), "{name}");
         assert_eq!(line[0][0].as_f64(), pts[0]["alpha"].as_f64());
-        assert_eq!(line[0][1].as_f64(), pts[0]["d"].as_f64());
+        assert_eq!(line[0][1].as_f64(), pts[0]["D"].as_f64());
     }
     assert_eq!(
         series(&fig, "codimension-two points").len(),

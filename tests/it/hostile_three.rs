@@ -184,14 +184,14 @@ fn curves_from_a_guess_that_is_no_cycle_say_why() {
     assert_eq!(code, Some(0), "{err}");
     assert!(out.contains("0 curves"), "{out}");
     assert!(
-        out.contains("no branch at d = 0.5: no (2, 1) cycle near t0 = 0.2, v0 = 0.5"),
+        out.contains("no branch at D = 0.5: no (2, 1) cycle near t0 = 0.2, v0 = 0.5"),
         "{out}"
     );
     let (_, json, _) = run(bin().args(CURVES).args(guess).args(["--format", "json"]));
     let doc: serde_json::Value = serde_json::from_str(&json).unwrap();
     let why = doc["unseeded"][0]["reason"].as_str().unwrap();
     assert!(why.contains("bad_launch"), "{why}");
-    assert_eq!(doc["unseeded"][0]["d"], 0.5);
+    assert_eq!(doc["unseeded"][0]["D"], 0.5);
 }
 
 /// With a d axis every format names the table as the family, `fd`.

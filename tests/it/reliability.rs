@@ -357,7 +357,7 @@ fn small_ones() {
         &run(&[
             "sweep", "--preset", "fig3f", "--param", "d", "--d", "0.1..0.2",
         ]),
-        "--preset fig3f: its table sine cannot sweep D",
+        "--preset fig3f: its table sine has no such parameter: valid alpha, r",
     );
     // Huge and tiny numbers in shortest or exponent form.
     let o = run(&["orbit", "--alpha", "1e300"]);

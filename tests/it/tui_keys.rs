@@ -129,7 +129,7 @@ fn typed_values_are_set_or_refused_inline_with_the_range() {
         .contains("not a number"));
     // r at its edge is refused by the nudge, unchanged.
     a.shared.params.set_text(ParamId::R, "0.995").unwrap();
-    a.panels.parameters.selected = 3;
+    a.panels.parameters.selected = ParamId::R;
     press(&mut a, KeyCode::Right, KeyModifiers::NONE);
     assert_eq!(a.shared.params.r, 0.995);
     assert!(a.shared.message.as_ref().unwrap().0.contains("(0, 1)"));

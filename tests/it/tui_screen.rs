@@ -83,7 +83,7 @@ fn a_table_of_another_kind_brings_its_window_and_alpha() {
     assert!(p.alpha < alpha_pd(&p) && p.alpha > p.lo);
     // A D of the same kind keeps the window the user chose.
     p.lo = 0.5;
-    p.set_text(ParamId::D, "0.3").unwrap();
+    p.set_text(ParamId::Family(0), "0.3").unwrap();
     assert_eq!(p.lo, 0.5);
 }
 
@@ -115,7 +115,7 @@ fn the_diagram_sweeps_r_or_d() {
     let mut p = Params::default();
     p.set_text(ParamId::Table, "sine").unwrap();
     let e = p.set_text(ParamId::Sweep, "d").unwrap_err();
-    assert!(e.contains("fd:D"), "{e}");
+    assert!(e.contains("valid alpha, r"), "{e}");
 }
 
 /// Every mark drawn on the screen is in the legend.

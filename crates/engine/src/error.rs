@@ -1,6 +1,7 @@
 //! The engine's error type. Messages are one line and name the offending value and the
 //! valid range, so the binary can print them as they are.
 
+use std::borrow::Cow;
 use thiserror::Error;
 
 /// Everything the engine can refuse.
@@ -9,12 +10,12 @@ pub enum EngineError {
     /// A numeric parameter outside its valid range.
     #[error("{name} = {value} is out of range: valid {range}")]
     InvalidParameter {
-        /// The parameter (`alpha`, `r`, `k`, ...).
-        name: &'static str,
+        /// The parameter (`alpha`, `r`, `k`, a table family's parameter ...).
+        name: Cow<'static, str>,
         /// The value given, as messages print it.
         value: String,
         /// The valid range, as refusals state it.
-        range: &'static str,
+        range: Cow<'static, str>,
     },
     /// A piecewise table that cannot be used (not C¹, bad pieces, too large).
     #[error("{0}")]
@@ -36,6 +37,17 @@ pub fn fmt_value(x: f64) -> String {
         format!("{x:e}")
     } else {
         format!("{x}")
+    }
+}
+
+/// At most 40 characters of a user's text, for messages (`…` marks a cut).
+pub fn short_text(text: &str) -> String {
+    const MAX: usize = 40;
+    if text.chars().count() <= MAX {
+        text.to_string()
+    } else {
+        let head: String = text.chars().take(MAX - 1).collect();
+        format!("{head}…")
     }
 }
 

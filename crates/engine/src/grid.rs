@@ -5,39 +5,199 @@
 
 use crate::error::{fmt_value, EngineError};
 use crate::limits;
+use crate::system::System;
+use crate::table::family::MAX_NAME;
+use crate::table::Table;
+use std::fmt;
 
-/// A parameter a grid can run over.
+/// The name of a table family's parameter, held inline (so a [`SweepParam`] is `Copy`).
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
+pub struct ParamName {
+    bytes: [u8; MAX_NAME],
+    len: u8,
+}
+
+impl ParamName {
+    /// The name `text`; None if it is longer than a parameter name can be or not ASCII
+    /// (names are checked where families are made).
+    pub const fn new(text: &str) -> Option<ParamName> {
+        let b = text.as_bytes();
+        if b.len() > MAX_NAME || !text.is_ascii() {
+            return None;
+        }
+        let mut bytes = [0u8; MAX_NAME];
+        let mut i = 0;
+        while i < b.len() {
+            bytes[i] = b[i];
+            i += 1;
+        }
+        Some(ParamName {
+            bytes,
+            len: b.len() as u8,
+        })
+    }
+
+    /// The name as text.
+    pub fn as_str(&self) -> &str {
+        std::str::from_utf8(&self.bytes[..self.len as usize]).expect("names are ASCII")
+    }
+}
+
+impl fmt::Debug for ParamName {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{:?}", self.as_str())
+    }
+}
+
+/// A parameter a grid can run over: α, r, or a parameter of the table's family.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum SweepParam {
     /// The amplitude α.
     Alpha,
     /// The restitution coefficient r.
     R,
-    /// D of the paper's F_D table.
-    D,
+    /// A parameter of the table's family, by name (F_D's D, a table file's own).
+    Table(ParamName),
 }
 
 impl SweepParam {
-    /// Every swept parameter.
-    pub const ALL: [SweepParam; 3] = [SweepParam::Alpha, SweepParam::R, SweepParam::D];
+    /// D of the paper's F_D.
+    pub const D: SweepParam = match ParamName::new("D") {
+        Some(n) => SweepParam::Table(n),
+        None => panic!("a valid name"),
+    };
 
-    /// Lower-case name used in every output format (`alpha`, `r`, `d`).
-    pub fn as_str(self) -> &'static str {
+    /// The parameter of the system or of `table`'s family called `text` (`alpha` or
+    /// `α`, `r`, or a name the family declares; exactly as spelled, else ignoring
+    /// case); the refusal lists the valid names.
+    pub fn parse(text: &str, table: &Table) -> Result<SweepParam, String> {
+        let t = text.trim();
+        if t.eq_ignore_ascii_case("alpha") || t == "α" {
+            return Ok(SweepParam::Alpha);
+        }
+        if t.eq_ignore_ascii_case("r") {
+            return Ok(SweepParam::R);
+        }
+        if let Some((fam, _)) = table.family() {
+            if let Some(i) = fam.param_index(t) {
+                let name = fam.params()[i].name();
+                return Ok(SweepParam::Table(
+                    ParamName::new(name).expect("family names fit"),
+                ));
+            }
+        }
+        Err(format!(
+            "unknown parameter '{}': valid {}",
+            crate::error::short_text(t),
+            SweepParam::names(table)
+        ))
+    }
+
+    /// The valid names for a table, as refusals state them: `alpha, r, D`.
+    pub fn names(table: &Table) -> String {
+        let mut v = vec!["alpha".to_string(), "r".to_string()];
+        if let Some((fam, _)) = table.family() {
+            v.extend(fam.params().iter().map(|p| p.name().to_string()));
+        }
+        v.join(", ")
+    }
+
+    /// Every parameter a grid over `table` can run over: α, r, then the family's.
+    pub fn all(table: &Table) -> Vec<SweepParam> {
+        let mut v = vec![SweepParam::Alpha, SweepParam::R];
+        if let Some((fam, _)) = table.family() {
+            v.extend(
+                fam.params()
+                    .iter()
+                    .map(|p| SweepParam::Table(ParamName::new(p.name()).expect("fits"))),
+            );
+        }
+        v
+    }
+
+    /// The name used in every output format: `alpha`, `r`, or the parameter's own
+    /// name (`D`, `w`).
+    pub fn as_str(&self) -> &str {
         match self {
             SweepParam::Alpha => "alpha",
             SweepParam::R => "r",
-            SweepParam::D => "d",
+            SweepParam::Table(n) => n.as_str(),
         }
     }
 
-    /// The range of the parameter.
-    pub fn limit(self) -> limits::Limit {
+    /// Whether it is a parameter of the table's family.
+    pub fn is_table(&self) -> bool {
+        matches!(self, SweepParam::Table(_))
+    }
+
+    /// Its valid range over `table` (closed), with the text refusals state; None if
+    /// the table has no such parameter.
+    pub fn range(&self, table: &Table) -> Option<(f64, f64)> {
         match self {
-            SweepParam::Alpha => limits::ALPHA,
-            SweepParam::R => limits::R,
-            SweepParam::D => limits::D,
+            SweepParam::Alpha => Some((limits::ALPHA.lo, limits::ALPHA.hi)),
+            SweepParam::R => Some((limits::R.lo, limits::R.hi)),
+            SweepParam::Table(n) => {
+                let (fam, _) = table.family()?;
+                fam.param_index(n.as_str()).map(|i| fam.params()[i].range())
+            }
         }
     }
+
+    /// `x` if it is a valid value over `table`, else the refusal naming the range.
+    pub fn check(&self, table: &Table, x: f64) -> Result<f64, EngineError> {
+        match self {
+            SweepParam::Alpha => limits::ALPHA.check(x),
+            SweepParam::R => limits::R.check(x),
+            SweepParam::Table(n) => {
+                let (fam, _) = table.family().ok_or_else(|| not_a_family(table, n))?;
+                let i = fam
+                    .param_index(n.as_str())
+                    .ok_or_else(|| not_a_family(table, n))?;
+                fam.params()[i].check(x)
+            }
+        }
+    }
+
+    /// The system with this parameter at `value` and the others at `table`, `alpha`,
+    /// `r`: the one place a grid point becomes a system.
+    pub fn system(
+        &self,
+        table: &Table,
+        alpha: f64,
+        r: f64,
+        value: f64,
+    ) -> Result<System, EngineError> {
+        match self {
+            SweepParam::Alpha => System::new(table.clone(), value, r),
+            SweepParam::R => System::new(table.clone(), alpha, value),
+            SweepParam::Table(n) => System::new(table.with_param(n.as_str(), value)?, alpha, r),
+        }
+    }
+
+    /// The table with this parameter at `value` (the table itself for α and r).
+    pub fn table(&self, table: &Table, value: f64) -> Result<Table, EngineError> {
+        match self {
+            SweepParam::Table(n) => table.with_param(n.as_str(), value),
+            _ => Ok(table.clone()),
+        }
+    }
+}
+
+impl fmt::Display for SweepParam {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+fn not_a_family(table: &Table, n: &ParamName) -> EngineError {
+    EngineError::Inconsistent(format!(
+        "table {} has no parameter '{}': its parameters are {}",
+        table.name(),
+        n.as_str(),
+        table
+            .family()
+            .map_or("none".to_string(), |(f, _)| f.param_names())
+    ))
 }
 
 /// Value `i` of `steps` evenly spaced values from `lo` to `hi` (both ends exact): the
@@ -52,19 +212,18 @@ pub fn grid_value(lo: f64, hi: f64, steps: usize, i: usize) -> f64 {
     }
 }
 
-/// Check a window `lo..=hi` of `param`: finite, ordered, both ends in the parameter's
-/// range.
-pub fn check_window(param: SweepParam, lo: f64, hi: f64) -> Result<(), EngineError> {
+/// Check a window `lo..=hi` of `param` over `table`: finite, ordered, both ends in the
+/// parameter's range.
+pub fn check_window(param: SweepParam, table: &Table, lo: f64, hi: f64) -> Result<(), EngineError> {
     if !(lo.is_finite() && hi.is_finite() && lo <= hi) {
         return Err(EngineError::InvalidParameter {
-            name: param.as_str(),
+            name: param.as_str().to_string().into(),
             value: format!("{}..{}", fmt_value(lo), fmt_value(hi)),
-            range: "a window LO..HI with LO ≤ HI",
+            range: "a window LO..HI with LO ≤ HI".into(),
         });
     }
-    let limit = param.limit();
-    limit.check(lo)?;
-    limit.check(hi)?;
+    param.check(table, lo)?;
+    param.check(table, hi)?;
     Ok(())
 }
 
@@ -99,15 +258,20 @@ impl Axis {
 
     /// Check the window ([`check_window`]) and 1 ≤ n ≤ `max_n`; `what` names the
     /// values in the refusal (e.g. "pixels per side").
-    pub fn validate(&self, max_n: usize, what: &'static str) -> Result<(), EngineError> {
+    pub fn validate(
+        &self,
+        table: &Table,
+        max_n: usize,
+        what: &'static str,
+    ) -> Result<(), EngineError> {
         if self.n == 0 || self.n > max_n {
             return Err(EngineError::InvalidParameter {
-                name: "size",
+                name: "size".into(),
                 value: self.n.to_string(),
-                range: what,
+                range: what.into(),
             });
         }
-        check_window(self.param, self.lo, self.hi)
+        check_window(self.param, table, self.lo, self.hi)
     }
 }
 
@@ -153,9 +317,9 @@ impl Shard {
     pub fn validate(&self) -> Result<(), EngineError> {
         if self.count == 0 || self.index >= self.count {
             return Err(EngineError::InvalidParameter {
-                name: "shard",
+                name: "shard".into(),
                 value: format!("{}/{}", self.index + 1, self.count),
-                range: "I/N with 1 ≤ I ≤ N",
+                range: "I/N with 1 ≤ I ≤ N".into(),
             });
         }
         Ok(())
@@ -191,6 +355,19 @@ mod tests {
     }
 
     #[test]
+    fn parameters_are_named_by_the_table() {
+        let t = Table::fd(0.1).unwrap();
+        assert_eq!(SweepParam::parse("d", &t), Ok(SweepParam::D));
+        assert_eq!(SweepParam::parse("α", &t), Ok(SweepParam::Alpha));
+        assert_eq!(SweepParam::D.as_str(), "D");
+        let e = SweepParam::parse("D", &Table::sine()).unwrap_err();
+        assert_eq!(e, "unknown parameter 'D': valid alpha, r");
+        assert_eq!(SweepParam::all(&t).len(), 3);
+        let sys = SweepParam::D.system(&t, 0.5, 0.8, 0.7).unwrap();
+        assert_eq!(sys.table(), &Table::fd(0.7).unwrap());
+    }
+
+    #[test]
     fn grid_values_have_exact_ends() {
         assert_eq!(grid_value(0.1, 0.7, 7, 6), 0.7);
         assert_eq!(grid_value(0.1, 0.7, 7, 0), 0.1);
@@ -203,7 +380,12 @@ mod tests {
         };
         assert_eq!(a.pixel_of(0.6), 9);
         assert_eq!(a.pixel_of(0.0), 0);
-        assert!(check_window(SweepParam::R, 0.5, 1.5).is_err());
-        assert!(check_window(SweepParam::Alpha, 0.6, 0.5).is_err());
+        let t = Table::fd(0.1).unwrap();
+        assert!(check_window(SweepParam::R, &t, 0.5, 1.5).is_err());
+        assert!(check_window(SweepParam::Alpha, &t, 0.6, 0.5).is_err());
+        assert!(check_window(SweepParam::D, &t, 0.2, 0.5).is_ok());
+        let e = check_window(SweepParam::D, &t, 0.2, 1.5).unwrap_err();
+        assert_eq!(e.to_string(), "D = 1.5 is out of range: valid [0, 1]");
+        assert!(check_window(SweepParam::D, &Table::sine(), 0.2, 0.5).is_err());
     }
 }

@@ -53,9 +53,9 @@ impl Limit {
     /// The refusal of `x`.
     pub fn refuse(&self, x: f64) -> EngineError {
         EngineError::InvalidParameter {
-            name: self.name,
+            name: self.name.into(),
             value: crate::error::fmt_value(x),
-            range: self.text,
+            range: self.text.into(),
         }
     }
 }

@@ -181,9 +181,9 @@ impl State {
         limits::PHASE.check(phase)?;
         if !(v.is_finite() && (v - sys.df(phase)).abs() <= limits::MAX_INITIAL) {
             return Err(EngineError::InvalidParameter {
-                name: "v0",
+                name: "v0".into(),
                 value: crate::error::fmt_value(v),
-                range: "|v0 − f'(t0)| ≤ 1000 (velocity relative to the table)",
+                range: "|v0 − f'(t0)| ≤ 1000 (velocity relative to the table)".into(),
             });
         }
         limits::HEIGHT.check(height)?;

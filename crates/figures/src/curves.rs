@@ -122,8 +122,12 @@ pub fn layers(
 /// The curves of `plane` alone: α across, the second parameter up.
 pub fn curves_figure(plane: &Plane, c: &Curves, max_period: usize) -> Figure {
     let mut panel = Panel::new(
-        Axis::new(param_label(SweepParam::Alpha), plane.alpha.0, plane.alpha.1),
-        Axis::new(param_label(plane.second), plane.window.0, plane.window.1),
+        Axis::new(
+            &param_label(SweepParam::Alpha),
+            plane.alpha.0,
+            plane.alpha.1,
+        ),
+        Axis::new(&param_label(plane.second), plane.window.0, plane.window.1),
     );
     let (layers, entries) = layers(c, true, None);
     panel.layers = layers;
@@ -134,9 +138,10 @@ pub fn curves_figure(plane: &Plane, c: &Curves, max_period: usize) -> Figure {
             entries,
         });
     }
-    let (family, fixed) = match plane.second {
-        SweepParam::D => ("$F_D$".to_string(), format!("r = {}", shortest(plane.r))),
-        _ => (super::diagram::table_title(&plane.table), String::new()),
+    let family = super::diagram::family_title(&plane.table, plane.second);
+    let fixed = match plane.second {
+        SweepParam::Table(_) => format!("r = {}", shortest(plane.r)),
+        _ => String::new(),
     };
     panel.title = Some(family);
     let pd_border = c

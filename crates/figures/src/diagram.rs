@@ -146,12 +146,40 @@ pub fn starts_text(spec: &SweepSpec) -> String {
     }
 }
 
-/// The swept parameter's symbol, in markup.
-pub fn param_label(p: SweepParam) -> &'static str {
+/// The swept parameter's symbol, in markup (a family's parameter by its own name,
+/// `w_2` drawn with its subscript).
+pub fn param_label(p: SweepParam) -> String {
     match p {
-        SweepParam::Alpha => "$\u{3b1}$",
-        SweepParam::R => "$r$",
-        SweepParam::D => "$D$",
+        SweepParam::Alpha => "$\u{3b1}$".into(),
+        SweepParam::R => "$r$".into(),
+        SweepParam::Table(n) => format!("${}$", n.as_str()),
+    }
+}
+
+/// The swept parameter's symbol in plain text.
+pub fn param_symbol(p: SweepParam) -> String {
+    match p {
+        SweepParam::Alpha => "\u{3b1}".into(),
+        other => other.as_str().to_string(),
+    }
+}
+
+/// The table's title with `free` left free when it is a parameter of its family: F_D
+/// as the paper writes it, a file's family by its name and the other values.
+pub fn family_title(table: &Table, free: SweepParam) -> String {
+    match free {
+        SweepParam::Table(_) if table.d().is_some() => "$F_D$".into(),
+        SweepParam::Table(n) => plain(&table.name_with_free(n.as_str())),
+        _ => table_title(table),
+    }
+}
+
+/// The table's name with `free` left free when it is a parameter of its family
+/// (`fd:D`), else its name.
+pub fn free_name(table: &Table, free: SweepParam) -> String {
+    match free {
+        SweepParam::Table(n) => table.name_with_free(n.as_str()),
+        _ => table.name().to_string(),
     }
 }
 
@@ -273,7 +301,7 @@ fn panel_of(
     axis: DiagramAxis,
     points: Vec<Layer>,
 ) -> Panel {
-    let mut panel = Panel::new(Axis::new(param_label(spec.param), lo, hi), y);
+    let mut panel = Panel::new(Axis::new(&param_label(spec.param), lo, hi), y);
     if !spans.is_empty() {
         panel.layers.push(Layer::Bands {
             name: "sticking".into(),
@@ -436,23 +464,15 @@ pub fn spec_caption(spec: &SweepSpec) -> String {
     let fixed = match spec.param {
         SweepParam::Alpha => format!("r = {}", spec.r),
         SweepParam::R => format!("\u{3b1} = {}", spec.alpha),
-        SweepParam::D => format!("\u{3b1} = {}, r = {}", spec.alpha, spec.r),
+        SweepParam::Table(_) => format!("\u{3b1} = {}, r = {}", spec.alpha, spec.r),
     };
-    let param = match spec.param {
-        SweepParam::Alpha => "\u{3b1}",
-        SweepParam::R => "r",
-        SweepParam::D => "D",
-    };
+    let param = param_symbol(spec.param);
     let start = starts_text(spec);
     let warm = match spec.warm {
         bouncemap_engine::sweep::Warm::Off => "",
         _ => ", continued from its neighbour",
     };
-    let table = if spec.param == SweepParam::D {
-        "fd:D"
-    } else {
-        spec.table.name()
-    };
+    let table = free_name(&spec.table, spec.param);
     plain(&format!(
         "{table}, {fixed}: the last {} events before t = {} for each of {} values of {param} in [{}, {}], {start}{warm}.",
         spec.keep,
@@ -474,7 +494,7 @@ pub fn diagram_figure(name: &str, diagram: Diagram) -> Figure {
     let fixed = match spec.param {
         SweepParam::Alpha => format!("$r$ = {}", spec.r),
         SweepParam::R => format!("$\u{3b1}$ = {}", spec.alpha),
-        SweepParam::D => format!("$\u{3b1}$ = {}, $r$ = {}", spec.alpha, spec.r),
+        SweepParam::Table(_) => format!("$\u{3b1}$ = {}, $r$ = {}", spec.alpha, spec.r),
     };
     if let Some(t) = &panel.title {
         panel.title = Some(format!("{t}, {fixed}"));

@@ -38,7 +38,7 @@ pub fn lyapunov_figure(diagram: Diagram) -> Figure {
     );
     // Room above the data for the legend.
     y.hi += 0.45 * (y.hi - y.lo);
-    let mut bottom = Panel::new(Axis::new(param_label(spec.param), spec.lo, spec.hi), y);
+    let mut bottom = Panel::new(Axis::new(&param_label(spec.param), spec.lo, spec.hi), y);
     bottom.letter = Some("(b)".into());
     bottom.layers.push(Layer::HLine {
         y: 0.0,

@@ -5,7 +5,7 @@
 //! hide least: the fewest pixels unlike the rest beneath them, no curve if avoidable.
 
 use super::classes::{of_pixel, Class, NO_LANDING};
-use super::diagram::{param_label, table_title};
+use super::diagram::param_label;
 use super::svg::LEGEND_FONT;
 use super::{fmt_count, text, Axis, Color, Corner, Dash, Figure, Layer, Legend, Panel, Swatch};
 use bouncemap_engine::error::fmt_value as shortest;
@@ -73,12 +73,12 @@ pub fn plane_figure(
     let mut curve_points: Vec<[f64; 2]> = Vec::new();
     let mut panel = Panel::new(
         Axis::new(
-            param_label(spec.x.param),
+            &param_label(spec.x.param),
             spec.x.lo - dx / 2.0,
             spec.x.hi + dx / 2.0,
         ),
         Axis::new(
-            param_label(spec.y.param),
+            &param_label(spec.y.param),
             spec.y.lo - dy / 2.0,
             spec.y.hi + dy / 2.0,
         ),
@@ -183,17 +183,14 @@ pub fn plane_figure(
             entries: curve_entries,
         });
     }
-    panel.title = Some(match (spec.x.param, spec.y.param) {
-        (SweepParam::D, _) | (_, SweepParam::D) => "$F_D$".to_string(),
-        _ => table_title(&spec.table),
-    });
+    // A family's parameter on an axis is left free in the title and the caption.
+    let free = [spec.x.param, spec.y.param]
+        .into_iter()
+        .find(SweepParam::is_table)
+        .unwrap_or(SweepParam::Alpha);
+    panel.title = Some(super::diagram::family_title(&spec.table, free));
     // The table and what is fixed, as the diagram's caption begins.
-    let d_axis = spec.x.param == SweepParam::D || spec.y.param == SweepParam::D;
-    let mut head = vec![if d_axis {
-        "fd:D".to_string()
-    } else {
-        spec.table.name().to_string()
-    }];
+    let mut head = vec![super::diagram::free_name(&spec.table, free)];
     for p in [SweepParam::Alpha, SweepParam::R] {
         if p != spec.x.param && p != spec.y.param {
             head.push(match p {

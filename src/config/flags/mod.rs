@@ -5,7 +5,6 @@
 //! engine values.
 
 use super::display::ColorChoice;
-use super::presets::Param;
 use super::rules;
 use super::table_spec::TableSpec;
 use super::windows::{parse_alpha_window, parse_d_family, DFamily};
@@ -316,9 +315,11 @@ pub struct SweepSpecArgs {
     /// D of the fd:D table: a number, or the swept window LO..HI.
     #[arg(long, value_name = "D|LO..HI", allow_hyphen_values = true)]
     pub d: Option<String>,
-    /// The swept parameter [default: the one given as a window].
-    #[arg(long, value_enum)]
-    pub param: Option<Param>,
+    /// The swept parameter: alpha, r, or a parameter of the table's family (F_D's D,
+    /// one a table file declares), as NAME or NAME:LO..HI; a family's parameter is swept
+    /// over its whole range unless a window is given [default: the one given as a window].
+    #[arg(long, value_name = "NAME[:LO..HI]", allow_hyphen_values = true)]
+    pub param: Option<String>,
     /// Number of parameter values; valid 1 to 10000000 [default: 1000].
     #[arg(long, value_parser = rules::STEPS.whole::<usize>(), value_name = "N")]
     pub steps: Option<usize>,

@@ -145,7 +145,6 @@ impl From<&Outcome> for Status {
 #[serde(deny_unknown_fields)]
 pub struct SweepRow {
     pub index: usize,
-    #[serde(alias = "alpha", alias = "r", alias = "d")]
     pub value: f64,
     pub phase: Option<f64>,
     pub v: Option<f64>,
@@ -185,10 +184,21 @@ where
 impl SweepRow {
     /// The csv header of a sweep of `param`, with the `lyapunov` and `attractor`
     /// columns when asked.
-    pub fn header(param: SweepParam, lyapunov: bool, attractors: bool) -> Vec<&'static str> {
+    pub fn header(param: SweepParam, lyapunov: bool, attractors: bool) -> Vec<String> {
+        let mut h: Vec<String> = SweepRow::field_names(lyapunov, attractors)
+            .into_iter()
+            .map(String::from)
+            .collect();
+        h[1] = param.as_str().to_string();
+        h
+    }
+
+    /// The names a csv row is read with: the header with the swept parameter's column
+    /// called `value`.
+    pub fn field_names(lyapunov: bool, attractors: bool) -> Vec<&'static str> {
         let mut h = vec![
             "index",
-            param.as_str(),
+            "value",
             "phase",
             "v",
             "kind",
@@ -472,7 +482,7 @@ impl From<&SweepSpec> for SweepHeader {
     fn from(spec: &SweepSpec) -> SweepHeader {
         let fixed = |p: SweepParam, x: f64| (spec.param != p).then_some(x);
         SweepHeader {
-            table: spec.table.name().to_string(),
+            table: crate::output::text::table_with_free(&spec.table, &[spec.param]),
             param: spec.param.as_str().to_string(),
             lo: spec.lo,
             hi: spec.hi,

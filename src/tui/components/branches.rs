@@ -24,7 +24,7 @@ impl Component for Branches {
 
     fn changed(&mut self, id: ParamId, shared: &mut Shared) {
         use ParamId::*;
-        if matches!(id, Table | D | R | K | Sweep | Lo | Hi) {
+        if matches!(id, Table | Family(_) | R | K | Sweep | Lo | Hi) {
             shared.effect(Effect::Start(Self::TARGET));
         }
     }

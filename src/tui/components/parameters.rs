@@ -1,4 +1,5 @@
-//! The parameters panel: one row per value, the selected one highlighted; ↑/↓ select,
+//! The parameters panel: one row per value (the table family's own parameters below
+//! the table: F_D's D, a table file's), the selected one highlighted; ↑/↓ select,
 //! ←/→ nudge, Enter types an exact value (the row shows the text being typed, and the
 //! valid range below it). Refusals and notes go to the status line, which has the
 //! screen's width. When the rows do not fit (80×24) the panel scrolls with the
@@ -15,7 +16,9 @@ use ratatui::widgets::{Paragraph, Widget, Wrap};
 
 /// The selected row and the text being typed.
 pub struct Parameters {
-    pub selected: usize,
+    /// The selected row (kept when the rows change with the table: a family parameter
+    /// that is gone leaves the table row selected).
+    pub selected: ParamId,
     pub editing: Option<String>,
 }
 
@@ -29,13 +32,23 @@ impl Parameters {
     /// α selected, nothing typed.
     pub fn new() -> Parameters {
         Parameters {
-            selected: 2,
+            selected: ParamId::Alpha,
             editing: None,
         }
     }
 
-    pub fn selected_param(&self) -> ParamId {
-        ParamId::ALL[self.selected]
+    /// The selected row, if the current table has it (else the table row).
+    pub fn selected_param_in(&self, rows: &[ParamId]) -> ParamId {
+        if rows.contains(&self.selected) {
+            self.selected
+        } else {
+            ParamId::Table
+        }
+    }
+
+    /// The index of the selected row among `rows`.
+    fn selected_index(&self, rows: &[ParamId]) -> usize {
+        rows.iter().position(|r| *r == self.selected).unwrap_or(0)
     }
 
     /// A typed key while editing (Enter commits, Esc cancels;
@@ -53,7 +66,7 @@ impl Parameters {
                 if text.trim().is_empty() {
                     return;
                 }
-                let id = self.selected_param();
+                let id = self.selected_param_in(&shared.params.rows());
                 let before = shared.params.clone();
                 let r = shared.params.set_text(id, &text);
                 shared.after_change(id, r, &before);
@@ -73,10 +86,12 @@ impl Component for Parameters {
         if shared.focus != Slot::Params {
             return false;
         }
-        let n = ParamId::ALL.len();
+        let rows = shared.params.rows();
+        let n = rows.len();
+        let i = self.selected_index(&rows);
         match action {
-            Action::Up => self.selected = (self.selected + n - 1) % n,
-            Action::Down => self.selected = (self.selected + 1) % n,
+            Action::Up => self.selected = rows[(i + n - 1) % n],
+            Action::Down => self.selected = rows[(i + 1) % n],
             Action::Left | Action::Right | Action::FineLeft | Action::FineRight => {
                 let dir = if matches!(action, Action::Left | Action::FineLeft) {
                     -1
@@ -84,7 +99,7 @@ impl Component for Parameters {
                     1
                 };
                 let fine = matches!(action, Action::FineLeft | Action::FineRight);
-                let id = self.selected_param();
+                let id = self.selected_param_in(&rows);
                 let before = shared.params.clone();
                 let r = shared.params.nudge(id, dir, fine);
                 shared.after_change(id, r, &before);
@@ -104,11 +119,13 @@ impl Component for Parameters {
         let room = (area.height.saturating_sub(2) as usize)
             .saturating_sub(usize::from(hint))
             .max(1);
-        let n = ParamId::ALL.len();
+        let rows = app.params.rows();
+        let n = rows.len();
+        let selected = self.selected_index(&rows);
         let first = if n <= room {
             0
         } else {
-            self.selected.saturating_sub(room / 2).min(n - room)
+            selected.saturating_sub(room / 2).min(n - room)
         };
         let below = n.saturating_sub(first + room);
         let mut block = panel(app, " Parameters ".into(), focused);
@@ -126,8 +143,8 @@ impl Component for Parameters {
         let label_w = 10usize;
         let w = inner.width as usize;
         let mut lines: Vec<Line> = Vec::new();
-        for (i, id) in ParamId::ALL.iter().enumerate().skip(first).take(room) {
-            let sel = i == self.selected;
+        for (i, id) in rows.iter().enumerate().skip(first).take(room) {
+            let sel = i == selected;
             let value = match (&self.editing, sel) {
                 (Some(text), true) => format!("{text}▏"),
                 _ => app.params.show(*id),
@@ -139,7 +156,7 @@ impl Component for Parameters {
                     crate::tui::params::Params::symbol(app.params.param),
                     id.label()
                 ),
-                _ => id.label().to_string(),
+                _ => app.params.label(*id),
             };
             // Pad by display width (t̂ is two characters in one column).
             let pad = label_w.saturating_sub(Line::from(label.as_str()).width());
@@ -159,7 +176,7 @@ impl Component for Parameters {
             lines.push(Line::styled(
                 format!(
                     "valid {}; Enter sets, Esc cancels",
-                    self.selected_param().range()
+                    app.params.range_of(self.selected_param_in(&rows))
                 ),
                 app.theme.dim(),
             ));

@@ -31,7 +31,6 @@ use crate::tui::plot::{draw_axes, Axes};
 use bouncemap_engine::grid::Axis;
 use bouncemap_engine::grid::SweepParam;
 use bouncemap_engine::plane::{curves, Curves, Plane, PlaneChunk, PlaneSpec};
-use bouncemap_engine::Table;
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::style::{Modifier, Style};
@@ -54,12 +53,13 @@ pub struct PlanePanel {
 }
 
 /// The plane the current parameters ask for on a `grid`: α over the diagram's α window,
-/// D or r up. The current α, D or r are not part of it (they are the cursor).
+/// the table family's first parameter (F_D's D) or r up. The current α, D or r are not
+/// part of it (they are the cursor).
 pub fn plane_spec(params: &Params, grid: (usize, usize)) -> PlaneSpec {
     let (alo, ahi) = if params.param == SweepParam::Alpha {
         (params.lo, params.hi)
     } else {
-        default_window(SweepParam::Alpha, &params.table)
+        default_window(SweepParam::Alpha, &params.table, &params.table())
     };
     let x = Axis {
         param: SweepParam::Alpha,
@@ -67,19 +67,20 @@ pub fn plane_spec(params: &Params, grid: (usize, usize)) -> PlaneSpec {
         hi: ahi,
         n: grid.0.max(1),
     };
-    let fd = params.table.d().is_some();
-    let param = if fd { SweepParam::D } else { SweepParam::R };
-    let (lo, hi) = default_window(param, &params.table);
+    let table = params.table();
+    let param = SweepParam::all(&table)
+        .into_iter()
+        .find(SweepParam::is_table)
+        .unwrap_or(SweepParam::R);
+    let (lo, hi) = default_window(param, &params.table, &table);
+    // The axis's parameter at its window's start: the plane does not depend on the
+    // application's own value of it (that is the cursor).
+    let table = param.table(&table, lo).unwrap_or(table);
     let y = Axis {
         param,
         lo,
         hi,
         n: grid.1.max(1),
-    };
-    let table = if fd {
-        Table::fd(0.0).expect("D = 0 is valid")
-    } else {
-        params.table()
     };
     let mut spec = PlaneSpec::new(table, x, y, alo, params.r);
     // At most the plane's default transient: a preset's paper-length transient (5·10⁶)
@@ -113,7 +114,9 @@ impl PlanePanel {
         // Rounded to 6 decimals (the parameters panel's precision): the same pixel.
         let round = |x: f64| (x * 1e6).round() / 1e6;
         let (alpha, y) = (round(s.x.value(i)), round(s.y.value(j)));
-        let yid = Params::row_of(s.y.param);
+        let Some(yid) = shared.params.row_of(s.y.param) else {
+            return;
+        };
         let before = shared.params.clone();
         let r = shared
             .params
@@ -327,8 +330,8 @@ impl Component for PlanePanel {
         let axes = Axes {
             x: Range::new(spec.x.lo, spec.x.hi),
             y: Range::new(spec.y.lo, spec.y.hi),
-            x_name: crate::tui::params::Params::symbol(spec.x.param),
-            y_name: crate::tui::params::Params::symbol(spec.y.param),
+            x_name: &crate::tui::params::Params::symbol(spec.x.param),
+            y_name: &crate::tui::params::Params::symbol(spec.y.param),
         };
         let plot = draw_axes(inner, buf, axes, LABEL_W, &app.theme);
         let (nx, ny) = p.size();

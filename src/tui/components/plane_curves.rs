@@ -63,7 +63,7 @@ impl Component for PlaneCurves {
         let spec = plane_spec(&shared.params, (2, 2));
         // Started from the application's own D (or r) where it lies in the window.
         let current = match spec.y.param {
-            SweepParam::D => shared.params.table().d(),
+            SweepParam::Table(n) => shared.params.table().param(n.as_str()),
             _ => Some(shared.params.r),
         };
         shared.plane_curves = None;

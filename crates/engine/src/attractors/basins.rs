@@ -55,17 +55,17 @@ impl BasinSpec {
         for (name, n) in [("grid width", self.nx), ("grid height", self.ny)] {
             if n == 0 || n > MAX_SIDE {
                 return Err(EngineError::InvalidParameter {
-                    name,
+                    name: name.into(),
                     value: n.to_string(),
-                    range: "1 ..= 4000 points",
+                    range: "1 ..= 4000 points".into(),
                 });
             }
         }
         if self.nx * self.ny > MAX_CELLS {
             return Err(EngineError::InvalidParameter {
-                name: "grid",
+                name: "grid".into(),
                 value: format!("{}x{}", self.nx, self.ny),
-                range: "at most 1000000 points",
+                range: "at most 1000000 points".into(),
             });
         }
         limits::W_MAX.check(self.w_max)?;

@@ -179,10 +179,12 @@ impl PlaneSpec {
     pub fn system_at(&self, x: f64, y: f64) -> Result<System, EngineError> {
         let alpha = self.param_at(SweepParam::Alpha, x, y).unwrap_or(self.alpha);
         let r = self.param_at(SweepParam::R, x, y).unwrap_or(self.r);
-        let table = match self.param_at(SweepParam::D, x, y) {
-            Some(d) => Table::fd(d)?,
-            None => self.table.clone(),
-        };
+        let mut table = self.table.clone();
+        for (axis, v) in [(self.x.param, x), (self.y.param, y)] {
+            if axis.is_table() {
+                table = axis.table(&table, v)?;
+            }
+        }
         System::new(table, alpha, r)
     }
 
@@ -198,19 +200,22 @@ impl PlaneSpec {
 
     /// Check every setting; the message names the setting, the value and the range.
     pub fn validate(&self) -> Result<(), EngineError> {
-        self.x.validate(MAX_SIDE, "1 ..= 4000 pixels per side")?;
-        self.y.validate(MAX_SIDE, "1 ..= 4000 pixels per side")?;
+        self.x
+            .validate(&self.table, MAX_SIDE, "1 ..= 4000 pixels per side")?;
+        self.y
+            .validate(&self.table, MAX_SIDE, "1 ..= 4000 pixels per side")?;
         if self.x.param == self.y.param {
             return Err(EngineError::Inconsistent(format!(
-                "x and y are both {}: valid two different parameters of alpha, r and d",
-                self.x.param.as_str()
+                "x and y are both {}: valid two different parameters of {}",
+                self.x.param.as_str(),
+                SweepParam::names(&self.table)
             )));
         }
         if self.len() > MAX_CELLS {
             return Err(EngineError::InvalidParameter {
-                name: "size",
+                name: "size".into(),
                 value: format!("{}x{}", self.x.n, self.y.n),
-                range: "at most 1000000 pixels",
+                range: "at most 1000000 pixels".into(),
             });
         }
         let on_axis = |p| self.x.param == p || self.y.param == p;
@@ -219,12 +224,6 @@ impl PlaneSpec {
         }
         if !on_axis(SweepParam::R) {
             limits::R.check(self.r)?;
-        }
-        if on_axis(SweepParam::D) && self.table.d().is_none() {
-            return Err(EngineError::Inconsistent(format!(
-                "table = {}: a d axis needs an fd:D table",
-                self.table.name()
-            )));
         }
         limits::TRANSIENT.check(self.transient as f64)?;
         if let Some(p) = self.periodicity {
@@ -307,7 +306,11 @@ mod tests {
         assert!(s.validate().unwrap_err().to_string().contains("both alpha"));
         let mut s = spec(10, 10);
         s.table = Table::sine();
-        assert!(s.validate().unwrap_err().to_string().contains("fd:D"));
+        let e = s.validate().unwrap_err().to_string();
+        assert_eq!(
+            e, "table sine has no parameter 'D': its parameters are none",
+            "{e}"
+        );
         assert!(spec(2000, 2000).validate().is_err());
         assert!(spec(0, 10).validate().is_err());
         let s = spec(10, 10);

@@ -268,7 +268,7 @@ impl SweepSpec {
         let (alpha, r) = match param {
             SweepParam::Alpha => (lo, r),
             SweepParam::R => (alpha, lo),
-            SweepParam::D => (alpha, r),
+            SweepParam::Table(_) => (alpha, r),
         };
         SweepSpec {
             table,
@@ -298,11 +298,7 @@ impl SweepSpec {
 
     /// The system at a value of the swept parameter.
     pub fn system_at(&self, value: f64) -> Result<System, EngineError> {
-        match self.param {
-            SweepParam::Alpha => System::new(self.table.clone(), value, self.r),
-            SweepParam::R => System::new(self.table.clone(), self.alpha, value),
-            SweepParam::D => System::new(Table::fd(value)?, self.alpha, self.r),
-        }
+        self.param.system(&self.table, self.alpha, self.r, value)
     }
 
     /// The cold initial state for a system of this sweep.
@@ -341,7 +337,7 @@ impl SweepSpec {
     /// Check every setting; the message names the setting, the value and the range.
     pub fn validate(&self) -> Result<(), EngineError> {
         limits::STEPS.check(self.steps as f64)?;
-        crate::grid::check_window(self.param, self.lo, self.hi)?;
+        crate::grid::check_window(self.param, &self.table, self.lo, self.hi)?;
         limits::TRANSIENT.check(self.transient as f64)?;
         limits::KEEP.check(self.keep as f64)?;
         if let Some(p) = self.periodicity {
@@ -349,9 +345,9 @@ impl SweepSpec {
         }
         if !(1..=MAX_STARTS).contains(&self.starts) {
             return Err(EngineError::InvalidParameter {
-                name: "starts",
+                name: "starts".into(),
                 value: self.starts.to_string(),
-                range: "a whole number in [1, 1000]",
+                range: "a whole number in [1, 1000]".into(),
             });
         }
         if self.starts > 1 && self.warm != Warm::Off {
@@ -371,21 +367,25 @@ impl SweepSpec {
             SweepParam::R => {
                 limits::ALPHA.check(self.alpha)?;
             }
-            SweepParam::D => {
+            SweepParam::Table(_) => {
                 limits::ALPHA.check(self.alpha)?;
                 limits::R.check(self.r)?;
-                if self.table.d().is_none() {
-                    return Err(EngineError::Inconsistent(format!(
-                        "table = {}: sweeping D needs an fd:D table",
-                        self.table.name()
-                    )));
-                }
             }
         }
-        // f'(t0) is affine in α and in D and does not depend on r, so checking the
-        // window's ends checks every value's initial state.
-        for v in [self.lo, self.hi] {
-            let sys = self.system_at(v)?;
+        // f'(t0) is affine in α and in a built-in family's parameter (F_D is affine in
+        // D) and does not depend on r, so checking the window's ends checks every
+        // value's initial state; a file's family is checked at every value (its table
+        // may stop being C¹ inside the window), refused at the first that fails.
+        let every =
+            self.param.is_table() && self.table.family().is_some_and(|(f, _)| !f.is_builtin());
+        let ends = [0, self.steps.saturating_sub(1)];
+        let indices: Box<dyn Iterator<Item = usize>> = if every {
+            Box::new(0..self.steps)
+        } else {
+            Box::new(ends.into_iter())
+        };
+        for i in indices {
+            let sys = self.system_at(self.value(i))?;
             self.initial_state(&sys)?;
         }
         Ok(())

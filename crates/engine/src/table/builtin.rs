@@ -1,48 +1,17 @@
 //! The built-in tables by name: the one list that every front end parses table names
 //! against (`sine`, `quad`, `cubic`, `fd:D`), with what each name needs (a parameter,
 //! its range) and the α window in which its (1, 1) orbit lives (where a view of it
-//! opens). A new built-in shape is one more entry here and its constructor in
-//! [`Table`].
+//! opens). A new built-in shape is one more [`Family`] and its entry in [`families`].
 
-use super::Table;
+use super::{Family, Table};
 use crate::error::EngineError;
-use crate::limits;
 use std::fmt;
+use std::sync::Arc;
 
-/// One family of built-in tables.
-#[derive(Clone, Copy, Debug)]
-pub struct Family {
-    /// The name (`sine`), or the prefix before `:` of a family with a parameter (`fd`).
-    pub name: &'static str,
-    /// The family's parameter (F_D's D), if it has one.
-    pub param: Option<limits::Limit>,
-    /// The α window where its (1, 1) orbit, its period doublings and the chaos after
-    /// them lie at r = 0.8 (the paper's Fig. 3 windows).
-    pub alpha_window: (f64, f64),
-    build: fn(f64) -> Result<Table, EngineError>,
+/// Every built-in family, in the order front ends list them.
+pub fn families() -> [&'static Arc<Family>; 2] {
+    [Family::sine(), Family::fd()]
 }
-
-impl PartialEq for Family {
-    fn eq(&self, other: &Family) -> bool {
-        self.name == other.name
-    }
-}
-
-/// Every family, in the order front ends list them.
-pub const FAMILIES: [Family; 2] = [
-    Family {
-        name: "sine",
-        param: None,
-        alpha_window: (0.02, 0.04),
-        build: |_| Ok(Table::sine()),
-    },
-    Family {
-        name: "fd",
-        param: Some(limits::D),
-        alpha_window: (0.45, 0.6),
-        build: Table::fd,
-    },
-];
 
 /// Other names of members of a family: (name, family, parameter).
 const ALIASES: [(&str, &str, f64); 2] = [("quad", "fd", 0.0), ("cubic", "fd", 1.0)];
@@ -53,7 +22,7 @@ pub const NAMES: &str = "sine, quad, cubic, fd:D with D in [0, 1]";
 /// A built-in table by name: its family and, for a family with one, the parameter.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Builtin {
-    family: &'static Family,
+    family: &'static Arc<Family>,
     value: Option<f64>,
 }
 
@@ -69,32 +38,32 @@ impl Builtin {
             Some((n, a)) => (n.trim(), Some(a.trim())),
             None => (s, None),
         };
-        let family = FAMILIES.iter().find(|f| f.name == name)?;
-        Some(match (family.param, arg) {
+        let family = families().into_iter().find(|f| f.name() == name)?;
+        Some(match (family.params().first(), arg) {
             (None, None) => Ok(Builtin {
                 family,
                 value: None,
             }),
             (None, Some(_)) => Err(format!("'{s}': {name} takes no parameter")),
-            (Some(limit), None) => Err(format!(
+            (Some(p), None) => Err(format!(
                 "'{s}': {name} needs its parameter: valid {name}:{} with {} in {}",
-                limit.name.to_uppercase(),
-                limit.name.to_uppercase(),
-                limit.text
+                p.name(),
+                p.name(),
+                p.range_text()
             )),
-            (Some(limit), Some(a)) => {
-                let upper = limit.name.to_uppercase();
-                match a.parse::<f64>() {
-                    Err(_) => Err(format!(
-                        "'{s}': {upper} is not a number: valid {name}:{upper} with {upper} in {}",
-                        limit.text
-                    )),
-                    Ok(x) => limit.check(x).map_err(|e| e.to_string()).map(|x| Builtin {
-                        family,
-                        value: Some(x),
-                    }),
-                }
-            }
+            (Some(p), Some(a)) => match a.parse::<f64>() {
+                Err(_) => Err(format!(
+                    "'{s}': {} is not a number: valid {name}:{} with {} in {}",
+                    p.name(),
+                    p.name(),
+                    p.name(),
+                    p.range_text()
+                )),
+                Ok(x) => p.check(x).map_err(|e| e.to_string()).map(|x| Builtin {
+                    family,
+                    value: Some(x),
+                }),
+            },
         })
     }
 
@@ -103,9 +72,9 @@ impl Builtin {
     /// # Panics
     /// If no family has that name (a programming error: names are this module's).
     pub fn of(name: &str, value: Option<f64>) -> Builtin {
-        let family = FAMILIES
-            .iter()
-            .find(|f| f.name == name)
+        let family = families()
+            .into_iter()
+            .find(|f| f.name() == name)
             .expect("a built-in family");
         Builtin { family, value }
     }
@@ -117,11 +86,12 @@ impl Builtin {
 
     /// The table.
     pub fn table(&self) -> Result<Table, EngineError> {
-        (self.family.build)(self.value.unwrap_or(0.0))
+        let values: Vec<f64> = self.value.into_iter().collect();
+        Family::member(self.family, &values)
     }
 
     /// The family.
-    pub fn family(&self) -> &'static Family {
+    pub fn family(&self) -> &'static Arc<Family> {
         self.family
     }
 
@@ -132,16 +102,15 @@ impl Builtin {
 
     /// D, for a member of the F_D family.
     pub fn d(&self) -> Option<f64> {
-        self.value.filter(|_| self.family.name == "fd")
+        self.value
+            .filter(|_| Arc::ptr_eq(self.family, Family::fd()))
     }
 }
 
 impl fmt::Display for Builtin {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self.value {
-            Some(x) => write!(f, "{}:{}", self.family.name, crate::error::fmt_value(x)),
-            None => f.write_str(self.family.name),
-        }
+        let values: Vec<f64> = self.value.into_iter().collect();
+        f.write_str(&self.family.member_name(&values))
     }
 }
 

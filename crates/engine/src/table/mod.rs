@@ -15,7 +15,10 @@
 mod segment;
 
 pub mod builtin;
+pub mod expr;
+pub mod family;
 
+pub use family::{Family, Param, Variable};
 pub use segment::{Formula, Segment, TAYLOR_TERMS};
 
 use crate::error::EngineError;
@@ -23,6 +26,7 @@ use crate::limits;
 use crate::poly::{Poly, MAX_COEFFS};
 use std::f64::consts::PI;
 use std::fmt;
+use std::sync::Arc;
 
 /// Tolerance for the periodicity, continuity and C¹ checks of a piecewise table.
 pub const C1_TOLERANCE: f64 = 1e-9;
@@ -105,13 +109,22 @@ pub enum Shape {
     Piecewise(Vec<Piece>),
 }
 
+/// Which member of which family a table is.
+#[derive(Clone, Debug, PartialEq)]
+struct Member {
+    family: Arc<Family>,
+    /// One value per parameter of the family, in its order.
+    values: Vec<f64>,
+}
+
 /// A named table shape F(t̂).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Table {
     name: String,
     shape: Shape,
-    /// D for the paper's F_D family, None otherwise.
-    d: Option<f64>,
+    /// The family and parameter values it was built from (every table but one given
+    /// by its pieces alone).
+    member: Option<Member>,
     /// Upper bounds of |F'| and |F''| over a period.
     velocity_bound: f64,
     accel_bound: f64,
@@ -127,7 +140,10 @@ impl Table {
         Table {
             name: "sine".into(),
             shape: Shape::Sine,
-            d: None,
+            member: Some(Member {
+                family: Arc::clone(Family::sine()),
+                values: Vec::new(),
+            }),
             velocity_bound: 2.0 * PI,
             accel_bound: 4.0 * PI * PI,
             range: (-1.0, 1.0),
@@ -136,23 +152,10 @@ impl Table {
     }
 
     /// The paper's F_D, D in [0, 1]: t̂(t̂ − ½)(D t̂ − 1) on [0, ½) and
-    /// (t̂ − ½)(t̂ − 1)(D t̂ + 1 − D) on [½, 1).
+    /// (t̂ − ½)(t̂ − 1)(D t̂ + 1 − D) on [½, 1); the member D of [`Family::fd`].
     pub fn fd(d: f64) -> Result<Table, EngineError> {
         limits::D.check(d)?;
-        let lin = |a: f64, b: f64| Poly::new(&[a, b]);
-        // First piece, s = t̂: s (s − ½)(D s − 1).
-        let p0 = lin(0.0, 1.0).mul(&lin(-0.5, 1.0)).mul(&lin(-1.0, d));
-        // Second piece, s = t̂ − ½: s (s − ½)(D s + D/2 + 1 − D).
-        let p1 = lin(0.0, 1.0)
-            .mul(&lin(-0.5, 1.0))
-            .mul(&lin(1.0 - 0.5 * d, d));
-        let name = if d == 0.0 {
-            "fd:0".to_string()
-        } else {
-            format!("fd:{d}")
-        };
-        let pieces = vec![Piece::new(0.0, 0.5, p0), Piece::new(0.5, 1.0, p1)];
-        Ok(Table::from_pieces(name, pieces, Some(d)))
+        Family::member(Family::fd(), &[d])
     }
 
     /// A piecewise-polynomial table from its pieces: (start phase, coefficients in
@@ -162,109 +165,52 @@ impl Table {
     /// and across the wrap from 1 to 0 (within [`C1_TOLERANCE`]). Refusals name the
     /// piece or the breakpoint.
     pub fn piecewise(name: &str, pieces: &[(f64, Vec<f64>)]) -> Result<Table, EngineError> {
-        let bad = |msg: String| EngineError::InvalidTable(msg);
-        if pieces.is_empty() {
-            return Err(bad("no [[piece]] given (need at least one)".into()));
-        }
-        let mut prev = -1.0;
-        for (i, (start, coeffs)) in pieces.iter().enumerate() {
-            let start = *start;
-            if !(0.0..1.0).contains(&start) || !start.is_finite() {
-                return Err(bad(format!(
-                    "piece {} starts at {}, outside [0, 1)",
-                    i + 1,
-                    crate::error::fmt_value(start)
-                )));
-            }
-            if i == 0 && start != 0.0 {
-                return Err(bad(format!("the first piece must start at 0, not {start}")));
-            }
-            if start <= prev {
-                return Err(bad(format!(
-                    "piece starts must increase: piece {} starts at {start} after {prev}",
-                    i + 1
-                )));
-            }
-            prev = start;
-            if coeffs.is_empty() || coeffs.len() > MAX_TABLE_DEGREE + 1 {
-                return Err(bad(format!(
-                    "piece {} has {} coefficients; allowed 1 to {} (degree up to {})",
-                    i + 1,
-                    coeffs.len(),
-                    MAX_TABLE_DEGREE + 1,
-                    MAX_TABLE_DEGREE
-                )));
-            }
-            if let Some(c) = coeffs.iter().find(|c| !c.is_finite()) {
-                return Err(bad(format!(
-                    "piece {} has a non-finite coefficient {c}",
-                    i + 1
-                )));
-            }
-        }
-        let n = pieces.len();
-        // Coefficients so large that the extrema of F, F', F'' cannot be computed in
-        // f64 (products overflow) are refused here; the system checks the extrema.
-        for (i, (start, coeffs)) in pieces.iter().enumerate() {
-            let end = if i + 1 < n { pieces[i + 1].0 } else { 1.0 };
-            let p = Poly::new(coeffs).shift(*start);
-            let (len, mut q) = (end - start, p);
-            for order in 0..3 {
-                // |q(s)| ≤ Σ |q_k| len^k on [0, len].
-                let crude: f64 = q
-                    .coeffs()
-                    .iter()
-                    .enumerate()
-                    .map(|(k, c)| c.abs() * len.powi(k as i32))
-                    .sum();
-                if crude.is_nan() || crude > MAX_COEFFICIENT_SIZE {
-                    return Err(bad(format!(
-                        "piece {}: its derivative of order {order} reaches {} in size: valid at most {MAX_COEFFICIENT_SIZE:e}",
-                        i + 1,
-                        crate::error::fmt_value(crude)
-                    )));
-                }
-                q = q.derivative();
-            }
-        }
-        let built: Vec<Piece> = (0..n)
-            .map(|i| {
-                let start = pieces[i].0;
-                let end = if i + 1 < n { pieces[i + 1].0 } else { 1.0 };
-                Piece::new(start, end, Poly::new(&pieces[i].1).shift(start))
-            })
-            .collect();
-        // Continuity and C¹ at every breakpoint, including the wrap from 1 back to 0.
-        for i in 0..n {
-            let left = &built[i];
-            let right = &built[(i + 1) % n];
-            let at = if i + 1 < n { right.start } else { 0.0 };
-            for (order, (pl, pr)) in [(&left.f, &right.f), (&left.d1, &right.d1)]
-                .into_iter()
-                .enumerate()
-            {
-                let jump = pr.eval(0.0) - pl.eval(left.len());
-                if jump.abs() > C1_TOLERANCE || !jump.is_finite() {
-                    let what = if order == 0 {
-                        "F (continuity)"
-                    } else {
-                        "F' (C¹)"
-                    };
-                    let place = if i + 1 < n {
-                        format!("breakpoint t̂ = {at}")
-                    } else {
-                        "the wrap from t̂ = 1 to t̂ = 0 (periodicity)".to_string()
-                    };
-                    return Err(bad(format!(
-                        "not C¹ at {place}: derivative order {order} ({what}) jumps by {jump:.3e} (tolerance {C1_TOLERANCE:e})"
-                    )));
-                }
-            }
-        }
-        Ok(Table::from_pieces(name.to_string(), built, None))
+        let built = checked_pieces(pieces, Variable::Phase)?;
+        Ok(Table::from_pieces(name.to_string(), built))
     }
 
-    fn from_pieces(name: String, pieces: Vec<Piece>, d: Option<f64>) -> Table {
+    /// The member of this table's family with parameter `name` (exactly as spelled,
+    /// else ignoring case) set to `value` and the others kept; refused if the table has
+    /// no such parameter, or the value is out of its range or makes no valid table.
+    pub fn with_param(&self, name: &str, value: f64) -> Result<Table, EngineError> {
+        let member = self.member.as_ref().ok_or_else(|| no_param(self, name))?;
+        let i = member
+            .family
+            .param_index(name)
+            .ok_or_else(|| no_param(self, name))?;
+        let mut values = member.values.clone();
+        values[i] = value;
+        Family::member(&member.family, &values)
+    }
+
+    /// The value of parameter `name` (exactly as spelled, else ignoring case), if the
+    /// table's family has it.
+    pub fn param(&self, name: &str) -> Option<f64> {
+        let m = self.member.as_ref()?;
+        m.family.param_index(name).map(|i| m.values[i])
+    }
+
+    /// Its name with parameter `name` left free, as a caption names a sweep or plane
+    /// over it (`fd:D`, `asym (w, h = 0.3)`); its own name if it has no such parameter.
+    pub fn name_with_free(&self, name: &str) -> String {
+        match &self.member {
+            Some(m) => match m.family.param_index(name) {
+                Some(i) => m.family.member_name_free(&m.values, i),
+                None => self.name.clone(),
+            },
+            None => self.name.clone(),
+        }
+    }
+
+    /// The family it is a member of, and the values of the family's parameters (None
+    /// for a table given by its pieces alone).
+    pub fn family(&self) -> Option<(&Arc<Family>, &[f64])> {
+        self.member
+            .as_ref()
+            .map(|m| (&m.family, m.values.as_slice()))
+    }
+
+    fn from_pieces(name: String, pieces: Vec<Piece>) -> Table {
         let range = pieces
             .iter()
             .fold((f64::INFINITY, f64::NEG_INFINITY), |a, q| {
@@ -277,7 +223,7 @@ impl Table {
             range,
             max_degree: pieces.iter().map(|p| p.f.degree()).max().unwrap_or(0),
             shape: Shape::Piecewise(pieces),
-            d,
+            member: None,
         }
     }
 
@@ -291,9 +237,10 @@ impl Table {
         &self.shape
     }
 
-    /// D if this is the paper's F_D.
+    /// D if this is a member of the paper's F_D.
     pub fn d(&self) -> Option<f64> {
-        self.d
+        let m = self.member.as_ref()?;
+        Arc::ptr_eq(&m.family, Family::fd()).then(|| m.values[0])
     }
 
     /// The pieces of a piecewise table (empty for the sine).
@@ -421,6 +368,130 @@ impl Table {
         }
         None
     }
+}
+
+/// The pieces of a piecewise table from (start, coefficients in `variable`), checked
+/// as [`Table::piecewise`] states.
+fn checked_pieces(
+    pieces: &[(f64, Vec<f64>)],
+    variable: Variable,
+) -> Result<Vec<Piece>, EngineError> {
+    let local = |start: f64, coeffs: &[f64]| match variable {
+        Variable::Phase => Poly::new(coeffs).shift(start),
+        Variable::Local => Poly::new(coeffs),
+    };
+    let bad = |msg: String| EngineError::InvalidTable(msg);
+    if pieces.is_empty() {
+        return Err(bad("no [[piece]] given (need at least one)".into()));
+    }
+    let mut prev = -1.0;
+    for (i, (start, coeffs)) in pieces.iter().enumerate() {
+        let start = *start;
+        if !(0.0..1.0).contains(&start) || !start.is_finite() {
+            return Err(bad(format!(
+                "piece {} starts at {}, outside [0, 1)",
+                i + 1,
+                crate::error::fmt_value(start)
+            )));
+        }
+        if i == 0 && start != 0.0 {
+            return Err(bad(format!("the first piece must start at 0, not {start}")));
+        }
+        if start <= prev {
+            return Err(bad(format!(
+                "piece starts must increase: piece {} starts at {start} after {prev}",
+                i + 1
+            )));
+        }
+        prev = start;
+        if coeffs.is_empty() || coeffs.len() > MAX_TABLE_DEGREE + 1 {
+            return Err(bad(format!(
+                "piece {} has {} coefficients; allowed 1 to {} (degree up to {})",
+                i + 1,
+                coeffs.len(),
+                MAX_TABLE_DEGREE + 1,
+                MAX_TABLE_DEGREE
+            )));
+        }
+        if let Some(c) = coeffs.iter().find(|c| !c.is_finite()) {
+            return Err(bad(format!(
+                "piece {} has a non-finite coefficient {c}",
+                i + 1
+            )));
+        }
+    }
+    let n = pieces.len();
+    // Coefficients so large that the extrema of F, F', F'' cannot be computed in
+    // f64 (products overflow) are refused here; the system checks the extrema.
+    for (i, (start, coeffs)) in pieces.iter().enumerate() {
+        let end = if i + 1 < n { pieces[i + 1].0 } else { 1.0 };
+        let p = local(*start, coeffs);
+        let (len, mut q) = (end - start, p);
+        for order in 0..3 {
+            // |q(s)| ≤ Σ |q_k| len^k on [0, len].
+            let crude: f64 = q
+                .coeffs()
+                .iter()
+                .enumerate()
+                .map(|(k, c)| c.abs() * len.powi(k as i32))
+                .sum();
+            if crude.is_nan() || crude > MAX_COEFFICIENT_SIZE {
+                return Err(bad(format!(
+                    "piece {}: its derivative of order {order} reaches {} in size: valid at most {MAX_COEFFICIENT_SIZE:e}",
+                    i + 1,
+                    crate::error::fmt_value(crude)
+                )));
+            }
+            q = q.derivative();
+        }
+    }
+    let built: Vec<Piece> = (0..n)
+        .map(|i| {
+            let start = pieces[i].0;
+            let end = if i + 1 < n { pieces[i + 1].0 } else { 1.0 };
+            Piece::new(start, end, local(start, &pieces[i].1))
+        })
+        .collect();
+    // Continuity and C¹ at every breakpoint, including the wrap from 1 back to 0.
+    for i in 0..n {
+        let left = &built[i];
+        let right = &built[(i + 1) % n];
+        let at = if i + 1 < n { right.start } else { 0.0 };
+        for (order, (pl, pr)) in [(&left.f, &right.f), (&left.d1, &right.d1)]
+            .into_iter()
+            .enumerate()
+        {
+            let jump = pr.eval(0.0) - pl.eval(left.len());
+            if jump.abs() > C1_TOLERANCE || !jump.is_finite() {
+                let what = if order == 0 {
+                    "F (continuity)"
+                } else {
+                    "F' (C¹)"
+                };
+                let place = if i + 1 < n {
+                    format!("breakpoint t̂ = {at}")
+                } else {
+                    "the wrap from t̂ = 1 to t̂ = 0 (periodicity)".to_string()
+                };
+                return Err(bad(format!(
+                    "not C¹ at {place}: derivative order {order} ({what}) jumps by {jump:.3e} (tolerance {C1_TOLERANCE:e})"
+                )));
+            }
+        }
+    }
+    Ok(built)
+}
+
+fn no_param(table: &Table, name: &str) -> EngineError {
+    let names = table
+        .member
+        .as_ref()
+        .map_or("none".to_string(), |m| m.family.param_names());
+    EngineError::Inconsistent(format!(
+        "table {} has no parameter '{}': its parameters are {names}",
+        table.name,
+        crate::error::short_text(name)
+    ))
 }
 
 /// Max |G| over the pieces for a derivative G (given with its own derivative):

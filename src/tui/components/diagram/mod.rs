@@ -409,12 +409,12 @@ impl Component for Diagram {
 
     fn changed(&mut self, id: ParamId, shared: &mut Shared) {
         let p = &shared.params;
-        let swept = Params::row_of(p.param);
+        let swept = p.row_of(p.param);
         match id.touches() {
             Touch::System => {
                 self.cursor = Diagram::current(shared);
                 // A sweep does not depend on the value it sweeps: only its line moves.
-                if id != swept {
+                if Some(id) != swept {
                     shared.effect(Effect::Start(Self::TARGET));
                 }
             }
@@ -538,7 +538,7 @@ impl Component for Diagram {
         let axes = Axes {
             x,
             y,
-            x_name: Params::symbol(app.params.param),
+            x_name: &Params::symbol(app.params.param),
             y_name: match self.axis {
                 Axis::Phase => "t̂",
                 Axis::Velocity => "v",

@@ -6,7 +6,7 @@
 use super::Diagram;
 use crate::tui::components::Shared;
 use crate::tui::keymap::Action;
-use crate::tui::params::{ParamId, Params};
+use crate::tui::params::ParamId;
 
 /// A window to go back to.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -35,9 +35,11 @@ impl Diagram {
         self.ycursor = (self.ycursor + dir as f64 * y.span() / rows).clamp(y.lo, y.hi);
     }
 
-    /// Set the swept parameter (α, r or D) to the cursor.
+    /// Set the swept parameter (α, r or a family's) to the cursor.
     pub fn set_value_to_cursor(&mut self, shared: &mut Shared) {
-        let id = Params::row_of(shared.params.param);
+        let Some(id) = shared.params.row_of(shared.params.param) else {
+            return;
+        };
         let before = shared.params.clone();
         let r = shared.params.set_text(id, &format!("{}", self.cursor));
         shared.after_change(id, r, &before);
@@ -99,17 +101,9 @@ impl Diagram {
     /// Zoom to [lo, hi] (clamped to the swept parameter's range), pushing the current
     /// window.
     pub fn zoom_to(&mut self, lo: f64, hi: f64, shared: &mut Shared) {
-        let limit = shared.params.window_rule().limit;
-        let lo = lo.max(if limit.lo_open {
-            limit.lo + 1e-9
-        } else {
-            limit.lo
-        });
-        let hi = hi.min(if limit.hi_open {
-            limit.hi - 1e-9
-        } else {
-            limit.hi
-        });
+        let (min, max) = shared.params.window_bounds();
+        let lo = lo.max(min);
+        let hi = hi.min(max);
         if hi - lo <= 1e-9 || hi.is_nan() || lo.is_nan() {
             shared.say("zoom: the window is empty; mark two different values", true);
             return;

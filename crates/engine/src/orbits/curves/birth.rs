@@ -87,8 +87,11 @@ pub(super) fn birth_curves(plane: &Plane, k: u32) -> Vec<Curve> {
     // or not admissible.
     let at = |p: f64| -> Result<CurvePoint, CurveEnd> {
         let (table, r) = match plane.second {
-            SweepParam::D => (Table::fd(p).map_err(|_| CurveEnd::Window)?, plane.r),
-            _ => (plane.table.clone(), p),
+            SweepParam::R => (plane.table.clone(), p),
+            other => (
+                other.table(&plane.table, p).map_err(|_| CurveEnd::Window)?,
+                plane.r,
+            ),
         };
         match alpha_birth(&table, r, k) {
             None => Err(CurveEnd::Window),

@@ -191,10 +191,10 @@ fn seed_at(
     report: &mut dyn FnMut(usize),
 ) -> Result<(), EngineError> {
     report(out.curves.len());
-    plane.second.limit().check(p)?;
+    plane.second.check(&plane.table, p)?;
     let (table, r) = match plane.second {
-        SweepParam::D => (Table::fd(p)?, plane.r),
-        _ => (plane.table.clone(), p),
+        SweepParam::R => (plane.table.clone(), p),
+        other => (other.table(&plane.table, p)?, plane.r),
     };
     let (start, max_period) = match seeds {
         Seeds::FromFixed { k, max_period, .. } => (Start::Fixed { k }, max_period),

@@ -106,42 +106,35 @@ pub const MAX_STEPS: usize = 2000;
 /// The plane the curves live in: α on one axis, r or D on the other.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Plane {
-    /// The table (for `second` = D, an F_D table: its D is replaced).
+    /// The table (for `second` a parameter of its family, that parameter is replaced).
     pub table: Table,
     /// r (replaced when `second` is r).
     pub r: f64,
     /// The α window.
     pub alpha: (f64, f64),
-    /// The second parameter: [`SweepParam::R`] or [`SweepParam::D`].
+    /// The second parameter: [`SweepParam::R`] or a parameter of the table's family
+    /// (F_D's [`SweepParam::D`]).
     pub second: SweepParam,
     /// Its window.
     pub window: (f64, f64),
 }
 
 impl Plane {
-    /// Check the plane: windows ordered and inside the parameters' ranges, D only for an
-    /// F_D table.
+    /// Check the plane: windows ordered and inside the parameters' ranges, a family
+    /// parameter only of the table's family.
     pub fn check(&self) -> Result<(), EngineError> {
         let bad = EngineError::Inconsistent;
         if self.second == SweepParam::Alpha {
-            return Err(bad(
-                "the second parameter of a curve must be r or d, not alpha".into(),
-            ));
-        }
-        if self.second == SweepParam::D && self.table.d().is_none() {
             return Err(bad(format!(
-                "d is a parameter of the fd:D tables only, and the table is {}",
-                self.table.name()
+                "the second parameter of a curve must be one of {}, not alpha",
+                SweepParam::names(&self.table).trim_start_matches("alpha, ")
             )));
         }
-        for (lim, (lo, hi)) in [
-            (crate::limits::ALPHA, self.alpha),
-            (self.second.limit(), self.window),
-        ] {
-            lim.check(lo)?;
-            lim.check(hi)?;
+        for (param, (lo, hi)) in [(SweepParam::Alpha, self.alpha), (self.second, self.window)] {
+            param.check(&self.table, lo)?;
+            param.check(&self.table, hi)?;
             if lo.partial_cmp(&hi) != Some(std::cmp::Ordering::Less) {
-                return Err(bad(format!("the {} window needs LO < HI", lim.name)));
+                return Err(bad(format!("the {param} window needs LO < HI")));
             }
         }
         Ok(())
@@ -149,22 +142,22 @@ impl Plane {
 
     /// The system at (α, p).
     pub fn system(&self, alpha: f64, p: f64) -> Result<System, EngineError> {
-        match self.second {
-            SweepParam::D => System::new(Table::fd(p)?, alpha, self.r),
-            _ => System::new(self.table.clone(), alpha, p),
-        }
+        self.second.system(&self.table, alpha, self.r, p)
     }
 
-    /// The phases where f'' jumps anywhere on the plane: for F_D, those of D = 0, ½
-    /// and `p` (F_1 is C² at ½, the others are not).
+    /// The phases where f'' jumps on the plane near `p`: those of the table at `p`,
+    /// and for a family parameter also at the window's ends and middle (F_1 is C² at
+    /// ½ where the other F_D are not: a curve crossing D = 1 still meets ½).
     fn jumps(&self, p: f64) -> Vec<f64> {
-        let mut out = match self.second {
-            SweepParam::D => [0.0, 0.5, p]
+        let mut out = if self.second.is_table() {
+            let (lo, hi) = self.window;
+            [lo, 0.5 * (lo + hi), hi, p]
                 .iter()
-                .filter_map(|&d| Table::fd(d).ok())
+                .filter_map(|&v| self.second.table(&self.table, v).ok())
                 .flat_map(|t| jump_phases(&t))
-                .collect(),
-            _ => jump_phases(&self.table),
+                .collect()
+        } else {
+            jump_phases(&self.table)
         };
         out.sort_by(f64::total_cmp);
         out.dedup();
