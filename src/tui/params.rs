@@ -443,7 +443,15 @@ impl Params {
     pub fn show(&self, id: ParamId) -> String {
         let n = |x: f64| fmt_num(x);
         match id {
-            ParamId::Table => self.table_label(),
+            // A file's parameters are rows of their own: its family's name alone.
+            ParamId::Table => match &self.table {
+                TableSpec::File(_) => self
+                    .loaded
+                    .family()
+                    .map_or(self.loaded.name(), |(f, _)| f.name())
+                    .to_string(),
+                _ => self.table_label(),
+            },
             ParamId::Family(i) => self
                 .loaded
                 .family()

@@ -20,6 +20,7 @@ mod orbits_cli;
 mod plane_cli;
 mod reliability;
 mod sweep_cli;
+mod table_families;
 mod table_files;
 mod trust_cli;
 mod tui_attractors;

@@ -230,6 +230,18 @@ impl PlaneSpec {
             p.validate()?;
         }
         self.shard.validate()?;
+        // A file's family may stop being C¹ inside a window: every value along an axis
+        // of its parameters is checked, in order (built-in families are C¹ over their
+        // whole ranges).
+        for axis in [&self.x, &self.y] {
+            let file_family =
+                axis.param.is_table() && self.table.family().is_some_and(|(f, _)| !f.is_builtin());
+            if file_family {
+                for i in 0..axis.n {
+                    axis.param.table(&self.table, axis.value(i))?;
+                }
+            }
+        }
         // Every corner's system (the ranges are checked, so only a table beyond the
         // solver's bounds at the largest α can fail here).
         for (x, y) in [

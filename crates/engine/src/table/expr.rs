@@ -127,6 +127,11 @@ impl Expr {
         !self.root.uses_param()
     }
 
+    /// Whether it uses parameter `i`.
+    pub fn uses(&self, i: usize) -> bool {
+        self.root.uses(i)
+    }
+
     /// The value with parameter `i` set to `values[i]`; None if a constant cannot be
     /// held by the type (f64: overflow to infinity).
     pub fn eval<N: Number>(&self, values: &[N]) -> Option<N> {
@@ -148,6 +153,17 @@ impl Node {
             Node::Neg(a) | Node::Pow(a, _) => a.uses_param(),
             Node::Add(a, b) | Node::Sub(a, b) | Node::Mul(a, b) | Node::Div(a, b) => {
                 a.uses_param() || b.uses_param()
+            }
+        }
+    }
+
+    fn uses(&self, i: usize) -> bool {
+        match self {
+            Node::Const(_) => false,
+            Node::Param(j) => *j == i,
+            Node::Neg(a) | Node::Pow(a, _) => a.uses(i),
+            Node::Add(a, b) | Node::Sub(a, b) | Node::Mul(a, b) | Node::Div(a, b) => {
+                a.uses(i) || b.uses(i)
             }
         }
     }
@@ -417,6 +433,8 @@ mod tests {
         assert_eq!(eval("1 - D/2", &names, &[0.5, 0.0]), 0.75);
         assert_eq!(eval("w_2 * D", &names, &[3.0, 2.0]), 6.0);
         assert!(!Expr::parse("D", &names).unwrap().is_constant());
+        assert!(Expr::parse("1 + w_2^2", &names).unwrap().uses(1));
+        assert!(!Expr::parse("1 + w_2^2", &names).unwrap().uses(0));
         assert!(Expr::parse("2*3", &names).unwrap().is_constant());
     }
 

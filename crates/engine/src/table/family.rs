@@ -318,6 +318,16 @@ impl Family {
         }
     }
 
+    /// The first piece (1-based) whose start moves with parameter `i`, if any.
+    pub fn breakpoint_moved_by(&self, i: usize) -> Option<usize> {
+        match &self.template {
+            Template::Sine => None,
+            Template::Pieces { pieces, .. } => {
+                pieces.iter().position(|p| p.start.uses(i)).map(|k| k + 1)
+            }
+        }
+    }
+
     /// Every parameter at its default.
     pub fn defaults(&self) -> Vec<f64> {
         self.params.iter().map(|p| p.default).collect()

@@ -130,11 +130,35 @@ impl Plane {
                 SweepParam::names(&self.table).trim_start_matches("alpha, ")
             )));
         }
+        // The tracer follows impacts to breakpoints at fixed phases: a parameter that
+        // moves a breakpoint cannot be the second axis (yet).
+        if let SweepParam::Table(n) = self.second {
+            if let Some((fam, _)) = self.table.family() {
+                let moved = fam
+                    .param_index(n.as_str())
+                    .and_then(|i| fam.breakpoint_moved_by(i));
+                if let Some(piece) = moved {
+                    return Err(bad(format!(
+                        "curves along {n}: the table's piece {piece} starts at a phase that moves with {n}, and curves are followed with fixed breakpoints: valid a parameter the breakpoints do not depend on (sweeps and planes over {n} are exact)",
+                        n = n.as_str()
+                    )));
+                }
+            }
+        }
         for (param, (lo, hi)) in [(SweepParam::Alpha, self.alpha), (self.second, self.window)] {
             param.check(&self.table, lo)?;
             param.check(&self.table, hi)?;
             if lo.partial_cmp(&hi) != Some(std::cmp::Ordering::Less) {
                 return Err(bad(format!("the {param} window needs LO < HI")));
+            }
+        }
+        // A file's family may stop being C¹ inside the window: checked at 101 values in
+        // order, the first that fails refused (built-in families are C¹ throughout).
+        if self.second.is_table() && self.table.family().is_some_and(|(f, _)| !f.is_builtin()) {
+            let (lo, hi) = self.window;
+            for i in 0..=100 {
+                let v = crate::grid::grid_value(lo, hi, 101, i);
+                self.second.table(&self.table, v)?;
             }
         }
         Ok(())
