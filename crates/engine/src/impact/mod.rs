@@ -131,7 +131,7 @@ impl FlightSolver {
     }
 
     /// The next contact after `launch`; `sys` is the system this solver was prepared for.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn landing(&self, sys: &System, launch: &Launch) -> Result<Landing, FlightError> {
         match &self.kind {
             Kind::Grid => grid::grid_landing(sys, launch),
