@@ -7,8 +7,7 @@
 use crate::config::flags::CascadeArgs;
 use crate::config::InputError;
 use crate::output::records::{
-    csv_writer, CascadeDoc, FamilyDoc, FamilyRecord, FamilyRow, LevelRecord, LevelRow,
-    FEIGENBAUM_DELTA,
+    csv_writer, CascadeDoc, FamilyDoc, FamilyRecord, FamilyRow, LevelRecord, FEIGENBAUM_DELTA,
 };
 use crate::output::sink::Sink;
 use crate::output::Format;
@@ -75,7 +74,9 @@ fn single(
                     .map(|e| e.1),
                 feigenbaum_delta: FEIGENBAUM_DELTA,
                 levels: c.as_ref().map_or(Vec::new(), |c| {
-                    c.levels.iter().map(LevelRecord::from).collect()
+                    (0..c.levels.len())
+                        .map(|i| LevelRecord::new(c, i))
+                        .collect()
                 }),
                 unborn: c.as_ref().ok().and_then(|c| c.unborn.clone()),
             };
@@ -83,10 +84,10 @@ fn single(
             writeln!(out)?;
         }
         Format::Csv => {
-            let mut w = csv_writer(&mut *out, &LevelRow::HEADER)?;
+            let mut w = csv_writer(&mut *out, &LevelRecord::HEADER)?;
             if let Ok(c) = &c {
                 for i in 0..c.levels.len() {
-                    w.serialize(LevelRow::new(c, i))?;
+                    w.serialize(LevelRecord::new(c, i))?;
                 }
             }
             w.flush()?;

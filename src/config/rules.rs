@@ -130,20 +130,7 @@ pub const TOLERANCE: Rule = rule("tolerance", "tolerance", limits::TOLERANCE, 1e
 /// End of `lyapunov`'s transient, in table periods.
 pub const LYAPUNOV_TRANSIENT: Rule = rule("transient", "transient", limits::TRANSIENT, 1e4);
 /// Impacts over which `lyapunov` measures an unsettled orbit.
-pub const IMPACTS: Rule = rule(
-    "impacts",
-    "impacts",
-    Limit {
-        name: "impacts",
-        lo: 1.0,
-        hi: 1e10,
-        lo_open: false,
-        hi_open: false,
-        whole: true,
-        text: "a whole number in [1, 1e10]",
-    },
-    1e5,
-);
+pub const IMPACTS: Rule = rule("impacts", "impacts", limits::IMPACTS, 1e5);
 /// End of each basin start's transient, in table periods.
 pub const BASIN_TRANSIENT: Rule = rule("transient", "transient", limits::TRANSIENT, 5e3);
 /// End of each pixel's transient of a plane, in table periods.
@@ -157,20 +144,7 @@ pub const PLANE_TRANSIENT: Rule = rule(
 /// computed per system: max(1, 2α·max|F'|), clamped into the range).
 pub const W_MAX: Rule = rule("w-max", "W", limits::W_MAX, 1.0);
 /// Initial conditions per value of a sweep.
-pub const STARTS: Rule = rule(
-    "starts",
-    "starts",
-    Limit {
-        name: "starts",
-        lo: 1.0,
-        hi: 1000.0,
-        lo_open: false,
-        hi_open: false,
-        whole: true,
-        text: "a whole number in [1, 1000]",
-    },
-    1.0,
-);
+pub const STARTS: Rule = rule("starts", "starts", limits::STARTS, 1.0);
 /// Events `orbit` prints.
 pub const BOUNCES: Rule = rule("bounces", "bounces", COUNT, 1000.0);
 /// Events `orbit` computes first without printing.
@@ -231,20 +205,7 @@ pub const DEPTH: Rule = rule("depth", "depth", limits::CASCADE_DEPTH, 6.0);
 /// D values of `cascade --d LO..HI:N`.
 pub const D_COUNT: Rule = rule("d count", "D values", limits::D_COUNT, 1.0);
 /// D of `scaling` (the (2, 2k) branch needs f''' ≠ 0, so D > 0).
-pub const SCALING_D: Rule = rule(
-    "d",
-    "D",
-    Limit {
-        name: "D",
-        lo: 0.0,
-        hi: 1.0,
-        lo_open: true,
-        hi_open: false,
-        whole: false,
-        text: "(0, 1]",
-    },
-    0.1,
-);
+pub const SCALING_D: Rule = rule("d", "D", limits::SCALING_D, 0.1);
 /// Points of a log-spaced D range.
 pub const D_POINTS: Rule = rule(
     "points",

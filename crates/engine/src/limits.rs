@@ -108,6 +108,12 @@ pub const R: Limit = Limit {
     whole: false,
     text: "(0, 1) (open interval)",
 };
+/// Initial conditions per value of a sweep (`SweepSpec::starts`).
+pub const STARTS: Limit = whole("starts", 1.0, 1000.0, "a whole number in [1, 1000]");
+/// Impacts over which an unsettled orbit's exponents are measured.
+pub const IMPACTS: Limit = whole("impacts", 1.0, 1e10, "a whole number in [1, 1e10]");
+/// D of the scaling laws (the (2, 2k) branch needs f''' ≠ 0, so D > 0).
+pub const SCALING_D: Limit = open_closed("D", 0.0, 1.0, "(0, 1]");
 /// D of the paper's F_D.
 pub const D: Limit = Limit {
     name: "D",

@@ -41,33 +41,28 @@ impl<'de> Deserialize<'de> for Exponent {
     }
 }
 
-/// The kind of an attractor.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum AttractorKind {
-    Periodic,
-    Sticking,
-    Chaotic,
-    /// No cycle found, negative exponent: periodic, longer than 4096 events or
-    /// converging too slowly for the transient.
-    Converging,
-    Unsettled,
-    Resting,
-    Escaping,
-}
+/// The engine's kind of an attractor, written by its name (`periodic`, `chaotic`, ...)
+/// in every format: `#[serde(with = "kind_name")]`.
+pub mod kind_name {
+    use bouncemap_engine::attractors::Kind;
+    use serde::{Deserialize, Deserializer, Serializer};
 
-impl From<bouncemap_engine::attractors::Kind> for AttractorKind {
-    fn from(k: bouncemap_engine::attractors::Kind) -> Self {
-        use bouncemap_engine::attractors::Kind as K;
-        match k {
-            K::Periodic => AttractorKind::Periodic,
-            K::Sticking => AttractorKind::Sticking,
-            K::Chaotic => AttractorKind::Chaotic,
-            K::Converging => AttractorKind::Converging,
-            K::Unsettled => AttractorKind::Unsettled,
-            K::Resting => AttractorKind::Resting,
-            K::Escaping => AttractorKind::Escaping,
-        }
+    pub fn serialize<S: Serializer>(k: &Kind, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(k.as_str())
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Kind, D::Error> {
+        let name = String::deserialize(d)?;
+        Kind::ALL
+            .into_iter()
+            .find(|k| k.as_str() == name)
+            .ok_or_else(|| {
+                let all: Vec<&str> = Kind::ALL.iter().map(|k| k.as_str()).collect();
+                serde::de::Error::custom(format!(
+                    "unknown attractor kind '{name}': valid {}",
+                    all.join(", ")
+                ))
+            })
     }
 }
 
@@ -75,7 +70,8 @@ impl From<bouncemap_engine::attractors::Kind> for AttractorKind {
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct LyapunovRow {
     /// What the orbit settled on.
-    pub kind: AttractorKind,
+    #[serde(with = "kind_name")]
+    pub kind: bouncemap_engine::attractors::Kind,
     /// Events and table periods per cycle, for cycles.
     pub events: Option<usize>,
     pub periods: Option<i64>,
@@ -131,7 +127,7 @@ impl LyapunovRow {
         let none = Exponent(None);
         let inf = Exponent(Some(f64::NEG_INFINITY));
         let mut row = LyapunovRow {
-            kind: found.kind.into(),
+            kind: found.kind,
             events: found.events,
             periods: found.periods,
             method: None,
@@ -201,7 +197,8 @@ pub struct LyapunovDoc<'a> {
 pub struct AttractorRecord {
     /// 1, 2, …: largest basin first.
     pub id: usize,
-    pub kind: AttractorKind,
+    #[serde(with = "kind_name")]
+    pub kind: bouncemap_engine::attractors::Kind,
     pub events: Option<usize>,
     pub periods: Option<i64>,
     /// A point on it: phase and velocity right after an event.
@@ -238,7 +235,7 @@ impl AttractorRecord {
         let claimed = resolved != Some(false);
         AttractorRecord {
             id,
-            kind: kind.into(),
+            kind,
             events: cycle.0.filter(|_| claimed),
             periods: cycle.1.filter(|_| claimed),
             phase: point.map(|p| p.0),

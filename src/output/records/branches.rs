@@ -2,7 +2,7 @@
 //! points, how each 2ⁿ branch ends, one row per D of a family).
 
 use super::ComplexRecord;
-use bouncemap_engine::orbits::cascade::{Cascade, Level};
+use bouncemap_engine::orbits::cascade::Cascade;
 use bouncemap_engine::orbits::continuation::{Branch, Special};
 use bouncemap_engine::orbits::periodic::CyclePoint;
 use serde::Serialize;
@@ -216,7 +216,8 @@ impl ContinueRow {
     }
 }
 
-/// One 2ⁿ branch of a cascade.
+/// One 2ⁿ branch of a cascade: a json level and a csv row alike (`delta` is δ at the
+/// αₙ where it ends by period doubling, where defined).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct LevelRecord {
     pub period: usize,
@@ -228,10 +229,26 @@ pub struct LevelRecord {
     pub persists: Option<bool>,
     /// At a border collision: what happens there (see `SpecialRecord::crossing`).
     pub crossing: Option<&'static str>,
+    pub delta: Option<f64>,
 }
 
-impl From<&Level> for LevelRecord {
-    fn from(l: &Level) -> Self {
+impl LevelRecord {
+    /// The csv header, in the fields' order.
+    pub const HEADER: [&'static str; 9] = [
+        "period",
+        "alpha_start",
+        "end",
+        "alpha_end",
+        "phase",
+        "impact",
+        "persists",
+        "crossing",
+        "delta",
+    ];
+
+    /// Level `i` of the cascade (δ at αᵢ₊₁ is δ index i − 1).
+    pub fn new(c: &Cascade, i: usize) -> Self {
+        let l = &c.levels[i];
         LevelRecord {
             period: l.period,
             alpha_start: l.alpha_start,
@@ -241,6 +258,7 @@ impl From<&Level> for LevelRecord {
             impact: l.end.impact,
             persists: l.end.persists(),
             crossing: l.end.collision.map(|c| c.crossing.as_str()),
+            delta: i.checked_sub(1).and_then(|j| c.deltas.get(j)).copied(),
         }
     }
 }
@@ -263,51 +281,6 @@ pub struct CascadeDoc<'a> {
     pub levels: Vec<LevelRecord>,
     /// Why the cascade stops at its last αₙ with no doubled branch, if it does.
     pub unborn: Option<String>,
-}
-
-/// `cascade --format csv` (one table): one row per 2ⁿ branch; `alpha_pd` is αₙ where
-/// it ends by period doubling, `delta` the ratio δ at that αₙ where defined.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct LevelRow {
-    pub period: usize,
-    pub alpha_start: f64,
-    pub end: &'static str,
-    pub alpha_end: f64,
-    pub phase: f64,
-    pub impact: usize,
-    pub persists: Option<bool>,
-    pub crossing: Option<&'static str>,
-    pub delta: Option<f64>,
-}
-
-impl LevelRow {
-    pub const HEADER: [&'static str; 9] = [
-        "period",
-        "alpha_start",
-        "end",
-        "alpha_end",
-        "phase",
-        "impact",
-        "persists",
-        "crossing",
-        "delta",
-    ];
-
-    /// Row `i` of the cascade (δ at αᵢ₊₁ is δ index i − 1).
-    pub fn new(c: &Cascade, i: usize) -> Self {
-        let l = LevelRecord::from(&c.levels[i]);
-        LevelRow {
-            period: l.period,
-            alpha_start: l.alpha_start,
-            end: l.end,
-            alpha_end: l.alpha_end,
-            phase: l.phase,
-            impact: l.impact,
-            persists: l.persists,
-            crossing: l.crossing,
-            delta: i.checked_sub(1).and_then(|j| c.deltas.get(j)).copied(),
-        }
-    }
 }
 
 /// One D of `cascade --d`: how far the cascade goes and how it is interrupted.

@@ -91,8 +91,6 @@ pub const PAPER_TRANSIENT: u64 = 5_000_000;
 pub const PAPER_KEEP: usize = 100;
 /// Default preview transient of pass 0, in periods.
 pub const DEFAULT_PREVIEW: u64 = 1_000;
-/// The most initial conditions per value.
-pub const MAX_STARTS: usize = 1000;
 /// Impacts over which an unsettled value's exponent is measured (QR).
 pub const LYAPUNOV_SAMPLE: u64 = 10_000;
 
@@ -343,13 +341,7 @@ impl SweepSpec {
         if let Some(p) = self.periodicity {
             p.validate()?;
         }
-        if !(1..=MAX_STARTS).contains(&self.starts) {
-            return Err(EngineError::InvalidParameter {
-                name: "starts".into(),
-                value: self.starts.to_string(),
-                range: "a whole number in [1, 1000]".into(),
-            });
-        }
+        limits::STARTS.check(self.starts as f64)?;
         if self.starts > 1 && self.warm != Warm::Off {
             return Err(EngineError::Inconsistent(format!(
                 "starts = {} needs cold starts: continuation follows one orbit from value to value, several starts look for every attractor at each value",
