@@ -4,7 +4,7 @@
 
 use crate::config::display::ColorMode;
 use crate::output::classes::Class;
-use bouncemap_figures::basins as attractor_palette;
+use bouncemap_figures::classes as attractor_palette;
 use ratatui::style::{Color, Modifier, Style};
 
 /// The attractors' colours among the 16 system colours: the nearest hue of each of the
@@ -183,7 +183,7 @@ impl Theme {
     /// all-attractors diagram: the figures' palette ([`attractor_palette`]); None
     /// without colour.
     pub fn attractor_color(&self, n: usize) -> Option<Color> {
-        let bouncemap_figures::Color(r, g, b) = attractor_palette::colour(n + 1);
+        let bouncemap_figures::Color(r, g, b) = attractor_palette::attractor_colour(n + 1);
         let i = n % ATTRACTOR_16.len();
         self.pick(
             ATTRACTOR_16[i],
@@ -236,7 +236,7 @@ mod tests {
         assert_eq!(ATTRACTOR_16.len(), attractor_palette::PALETTE.len());
         let t = Theme::new(ColorMode::TrueColor);
         for n in 0..10 {
-            let bouncemap_figures::Color(r, g, b) = attractor_palette::colour(n + 1);
+            let bouncemap_figures::Color(r, g, b) = attractor_palette::attractor_colour(n + 1);
             assert_eq!(t.attractor_color(n), Some(Color::Rgb(r, g, b)));
         }
         let c = Class::Chaotic.rgb();

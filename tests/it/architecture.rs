@@ -1,8 +1,8 @@
-//! The layering of both crates, checked from their sources. In the engine and in the
-//! binary, among the modules of every parent (the crate's top-level modules; the
+//! The layering of the three crates, checked from their sources. In the engine, the
+//! figures crate and the binary, among the modules of every parent (the crate's top-level modules; the
 //! children of each of those) the "uses" graph has no cycle; and the crate's top-level
 //! modules use only modules of their own layer or the layers below it ([`ENGINE_LAYERS`],
-//! [`BINARY_LAYERS`]). A path `crate::a::b`, `super::x` or `self::y` in a file counts as
+//! [`FIGURES_LAYERS`], [`BINARY_LAYERS`]). A path `crate::a::b`, `super::x` or `self::y` in a file counts as
 //! a use of the module it names.
 
 use std::collections::{BTreeMap, BTreeSet};
@@ -153,6 +153,19 @@ const ENGINE_LAYERS: &[&[&str]] = &[
     &["sweep", "plane"],
 ];
 
+/// The figures crate's top-level modules, bottom layer first (the engine lies below
+/// them all): the data model and how numbers and text are set; what colours and names
+/// an orbit or a parameter; drawing (SVG, PNG, the terminal's images); the builders of
+/// each kind of figure.
+const FIGURES_LAYERS: &[&[&str]] = &[
+    &["model", "format", "text"],
+    &["classes", "labels"],
+    &["svg", "raster", "terminal"],
+    &[
+        "diagram", "basins", "curves", "lyapunov", "phase", "plane", "scaling", "shapes",
+    ],
+];
+
 /// The binary's top-level modules, bottom layer first (the engine lies below them all).
 const BINARY_LAYERS: &[&[&str]] = &[&["output"], &["config"], &["commands", "tui", "docs"]];
 
@@ -193,6 +206,10 @@ fn engine_src() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("crates/engine/src")
 }
 
+fn figures_src() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("crates/figures/src")
+}
+
 fn binary_src() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("src")
 }
@@ -227,6 +244,16 @@ fn assert_layered(src: &Path, layers: &[&[&str]]) {
 #[test]
 fn the_engine_uses_only_layers_below() {
     assert_layered(&engine_src(), ENGINE_LAYERS);
+}
+
+#[test]
+fn the_figures_crate_uses_only_layers_below() {
+    assert_layered(&figures_src(), FIGURES_LAYERS);
+}
+
+#[test]
+fn no_figures_module_uses_a_sibling_that_uses_it_back() {
+    assert_no_cycle(&figures_src());
 }
 
 #[test]

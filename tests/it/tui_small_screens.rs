@@ -252,7 +252,7 @@ fn an_export_after_all_attractors_says_so_and_colours_by_attractor() {
         svg.contains("attractor 1 (largest basin at its value)"),
         "legend"
     );
-    let blue = bouncemap_figures::basins::colour(1).hex();
+    let blue = bouncemap_figures::classes::attractor_colour(1).hex();
     assert!(svg.contains(&blue), "attractor 1's colour {blue}");
     std::fs::remove_dir_all(&dir).unwrap();
 }

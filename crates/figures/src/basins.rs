@@ -5,31 +5,11 @@
 //! how pictures number and name attractors ([`numbers`], [`describe`], [`exponent`]),
 //! which the text pictures and the terminal application share.
 
-use super::{significant, Axis, Color, Corner, Figure, Layer, Legend, Marker, Panel, Swatch};
+use crate::format::significant;
+use crate::model::{Axis, Color, Corner, Figure, Layer, Legend, Marker, Panel, Swatch};
 use bouncemap_engine::attractors::basins::{BasinSpec, Basins};
 use bouncemap_engine::attractors::{Attractor, Kind, Registry};
 use bouncemap_engine::error::fmt_value as shortest;
-
-/// Colours of attractors 1, 2, … (repeated beyond the list), chosen to stay apart in
-/// print and for the common colour-vision deficiencies.
-pub const PALETTE: [Color; 8] = [
-    Color(31, 89, 180),
-    Color(230, 120, 20),
-    Color(44, 150, 44),
-    Color(204, 37, 41),
-    Color(140, 86, 180),
-    Color(140, 90, 60),
-    Color(220, 110, 180),
-    Color(120, 160, 200),
-];
-
-/// Starts that come to rest or escape: not an attractor of their own.
-pub const REST: Color = Color(200, 200, 200);
-
-/// The colour of attractor number `n` (1-based).
-pub fn colour(n: usize) -> Color {
-    PALETTE[(n.max(1) - 1) % PALETTE.len()]
-}
 
 /// The numbering of a registry's attractors: `number[id]` (1-based, largest basin
 /// first, see [`Registry::ranked`]).
@@ -88,9 +68,9 @@ pub fn basins_figure(spec: &BasinSpec, basins: &Basins) -> Figure {
         let a = &reg.attractors()[id];
         let n = number[id];
         let color = if is_attractor(a.kind) {
-            colour(n)
+            crate::classes::attractor_colour(n)
         } else {
-            REST
+            crate::classes::REST
         };
         panel.layers.push(Layer::Cells {
             name: format!("attractor {n}: {}", describe(a)),
@@ -130,7 +110,7 @@ pub fn basins_figure(spec: &BasinSpec, basins: &Basins) -> Figure {
     }
     panel.title = Some(format!(
         "{}, $\u{3b1}$ = {}, $r$ = {}",
-        super::diagram::table_title(spec.sys.table()),
+        crate::labels::table_title(spec.sys.table()),
         shortest(spec.sys.alpha()),
         shortest(spec.sys.r())
     ));

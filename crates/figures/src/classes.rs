@@ -17,6 +17,7 @@
 //! colour per class in the figures, the text pictures and the terminal application
 //! alike ([`Class::rgb`], and [`Class::ansi256`] its nearest of 256).
 
+use crate::model::Color;
 use bouncemap_engine::attractors::{Kind, CHAOS_FLOOR};
 use bouncemap_engine::plane::Pixel;
 use bouncemap_engine::run::precision::Precision;
@@ -222,6 +223,27 @@ pub fn of_attractor(a: &ValueAttractor) -> Option<Class> {
         Kind::Unsettled => Some(Class::Unresolved),
         Kind::Escaping => None,
     }
+}
+
+/// Colours of attractors 1, 2, … (repeated beyond the list), chosen to stay apart in
+/// print and for the common colour-vision deficiencies.
+pub const PALETTE: [Color; 8] = [
+    Color(31, 89, 180),
+    Color(230, 120, 20),
+    Color(44, 150, 44),
+    Color(204, 37, 41),
+    Color(140, 86, 180),
+    Color(140, 90, 60),
+    Color(220, 110, 180),
+    Color(120, 160, 200),
+];
+
+/// Starts that come to rest or escape: not an attractor of their own.
+pub const REST: Color = Color(200, 200, 200);
+
+/// The colour of attractor number `n` (1-based).
+pub fn attractor_colour(n: usize) -> Color {
+    PALETTE[(n.max(1) - 1) % PALETTE.len()]
 }
 
 #[cfg(test)]

@@ -5,8 +5,8 @@
 //! gives the same lines for drawing over a plane (`figure plane --curves`), in black.
 
 use super::classes::Class;
-use super::diagram::param_label;
-use super::{Axis, Color, Corner, Dash, Figure, Layer, Legend, Marker, Panel, Swatch};
+use crate::labels::param_label;
+use crate::model::{Axis, Color, Corner, Dash, Figure, Layer, Legend, Marker, Panel, Swatch};
 use bouncemap_engine::error::fmt_value as shortest;
 use bouncemap_engine::grid::SweepParam;
 use bouncemap_engine::orbits::curves::{CurveKind, Curves, Plane};
@@ -138,7 +138,7 @@ pub fn curves_figure(plane: &Plane, c: &Curves, max_period: usize) -> Figure {
             entries,
         });
     }
-    let family = super::diagram::family_title(&plane.table, plane.second);
+    let family = crate::labels::family_title(&plane.table, plane.second);
     let fixed = match plane.second {
         SweepParam::Table(_) => format!("r = {}", shortest(plane.r)),
         _ => String::new(),

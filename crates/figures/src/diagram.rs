@@ -11,15 +11,16 @@
 
 use super::classes::{self, Class};
 use super::text::plain;
-use super::{
-    fmt_count, Axis, Color, Corner, Dash, DensityGrid, Figure, Layer, Legend, Marker, Panel,
-    Swatch, COLUMN, FULL_WIDTH,
+use crate::format::fmt_count;
+use crate::labels::{free_name, param_label, param_symbol, table_title};
+use crate::model::{
+    Axis, Color, Corner, Dash, DensityGrid, Figure, Layer, Legend, Marker, Panel, Swatch, COLUMN,
+    FULL_WIDTH,
 };
 use bouncemap_engine::error::fmt_value as shortest;
 use bouncemap_engine::grid::SweepParam;
 use bouncemap_engine::run::Outcome;
 use bouncemap_engine::sweep::{SweepSpec, ValueResult};
-use bouncemap_engine::Table;
 
 /// What the diagram's vertical axis shows.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -40,7 +41,7 @@ pub enum Colouring {
     #[default]
     Class,
     /// With several starts: the attractor each point lies on (1 = largest basin), in
-    /// the basins' colours ([`crate::basins::colour`]).
+    /// the basins' colours ([`crate::classes::attractor_colour`]).
     Attractor,
     /// Hit density only (the paper's black dots).
     Density,
@@ -68,7 +69,7 @@ impl Colouring {
                 let (r, g, b) = Class::ALL[l.min(Class::ALL.len() - 1)].rgb();
                 Color(r, g, b)
             }
-            Colouring::Attractor => crate::basins::colour(l + 1),
+            Colouring::Attractor => crate::classes::attractor_colour(l + 1),
             Colouring::Density => Color::BLACK,
         }
     }
@@ -143,53 +144,6 @@ pub fn starts_text(spec: &SweepSpec) -> String {
         )
     } else {
         format!("each started {first}")
-    }
-}
-
-/// The swept parameter's symbol, in markup (a family's parameter by its own name,
-/// `w_2` drawn with its subscript).
-pub fn param_label(p: SweepParam) -> String {
-    match p {
-        SweepParam::Alpha => "$\u{3b1}$".into(),
-        SweepParam::R => "$r$".into(),
-        SweepParam::Table(n) => format!("${}$", n.as_str()),
-    }
-}
-
-/// The swept parameter's symbol in plain text.
-pub fn param_symbol(p: SweepParam) -> String {
-    match p {
-        SweepParam::Alpha => "\u{3b1}".into(),
-        other => other.as_str().to_string(),
-    }
-}
-
-/// The table's title with `free` left free when it is a parameter of its family: F_D
-/// as the paper writes it, a file's family by its name and the other values.
-pub fn family_title(table: &Table, free: SweepParam) -> String {
-    match free {
-        SweepParam::Table(_) if table.d().is_some() => "$F_D$".into(),
-        SweepParam::Table(n) => plain(&table.name_with_free(n.as_str())),
-        _ => table_title(table),
-    }
-}
-
-/// The table's name with `free` left free when it is a parameter of its family
-/// (`fd:D`), else its name.
-pub fn free_name(table: &Table, free: SweepParam) -> String {
-    match free {
-        SweepParam::Table(n) => table.name_with_free(n.as_str()),
-        _ => table.name().to_string(),
-    }
-}
-
-/// The table's name as the paper writes it: F_D with its D, sin 2πt, or the file's
-/// name.
-pub fn table_title(table: &Table) -> String {
-    match table.d() {
-        Some(d) => format!("$F_{{{d}}}$"),
-        None if table.name() == "sine" => "$F$ = sin 2\u{3c0}$t$".into(),
-        None => plain(table.name()),
     }
 }
 
@@ -571,6 +525,7 @@ mod tests {
     use super::*;
     use bouncemap_engine::map::EventKind;
     use bouncemap_engine::run::Point as SweepPoint;
+    use bouncemap_engine::Table;
 
     fn value(index: usize, value: f64, sticking: bool) -> ValueResult {
         ValueResult {

@@ -3,8 +3,11 @@
 //! finite values, zero dashed; values whose exponent is −∞ (the orbit sticks: the
 //! stick collapses every perturbation) are open circles on the lower edge.
 
-use super::diagram::{param_label, spec_caption, Diagram, STICKING_NOTE};
-use super::{Axis, Color, Corner, Dash, Figure, Layer, Legend, Marker, Panel, Swatch, COLUMN};
+use super::diagram::{spec_caption, Diagram, STICKING_NOTE};
+use crate::labels::param_label;
+use crate::model::{
+    Axis, Color, Corner, Dash, Figure, Layer, Legend, Marker, Panel, Swatch, COLUMN,
+};
 
 /// The two panels: (a) the diagram, (b) λ₁ against the same parameter (the diagram's
 /// sweep measures exponents).

@@ -2,7 +2,7 @@
 //! density dots.
 
 use super::text::plain;
-use super::{Axis, Color, Figure, Layer, Panel, COLUMN};
+use crate::model::{Axis, Color, Figure, Layer, Panel, COLUMN};
 
 /// The phase plot of `points` (phase t̂, velocity v after the event), with `caption`
 /// (plain text: the system and the orbit) below it.

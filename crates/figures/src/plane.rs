@@ -5,9 +5,11 @@
 //! hide least: the fewest pixels unlike the rest beneath them, no curve if avoidable.
 
 use super::classes::{of_pixel, Class, NO_LANDING};
-use super::diagram::param_label;
 use super::svg::LEGEND_FONT;
-use super::{fmt_count, text, Axis, Color, Corner, Dash, Figure, Layer, Legend, Panel, Swatch};
+use super::text;
+use crate::format::fmt_count;
+use crate::labels::param_label;
+use crate::model::{Axis, Color, Corner, Dash, Figure, Layer, Legend, Panel, Swatch};
 use bouncemap_engine::error::fmt_value as shortest;
 use bouncemap_engine::grid::SweepParam;
 use bouncemap_engine::plane::{Curves, Pixel, PlaneSpec};
@@ -188,9 +190,9 @@ pub fn plane_figure(
         .into_iter()
         .find(SweepParam::is_table)
         .unwrap_or(SweepParam::Alpha);
-    panel.title = Some(super::diagram::family_title(&spec.table, free));
+    panel.title = Some(crate::labels::family_title(&spec.table, free));
     // The table and what is fixed, as the diagram's caption begins.
-    let mut head = vec![super::diagram::free_name(&spec.table, free)];
+    let mut head = vec![crate::labels::free_name(&spec.table, free)];
     for p in [SweepParam::Alpha, SweepParam::R] {
         if p != spec.x.param && p != spec.y.param {
             head.push(match p {

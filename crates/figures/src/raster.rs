@@ -3,7 +3,7 @@
 //! pHYs chunk) so it prints at the size it was made for.
 
 use super::text::{FAMILY, FONT_MONO, FONT_MONO_BOLD, FONT_OBLIQUE, FONT_REGULAR, MONO_FAMILY};
-use super::FigureError;
+use crate::model::FigureError;
 use resvg::{tiny_skia, usvg};
 use std::sync::{Arc, OnceLock};
 

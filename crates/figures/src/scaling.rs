@@ -4,9 +4,9 @@
 //! corrected). The numbers are [`bouncemap_engine::orbits::scaling::scaling_row`]'s,
 //! the same as `bouncemap scaling` prints.
 
-use super::{
-    fmt_fixed, Axis, Color, Corner, Dash, Figure, Layer, Legend, Marker, Panel, Swatch, COLUMN,
-    FULL_WIDTH,
+use crate::format::fmt_fixed;
+use crate::model::{
+    Axis, Color, Corner, Dash, Figure, Layer, Legend, Marker, Panel, Swatch, COLUMN, FULL_WIDTH,
 };
 use bouncemap_engine::orbits::scaling::{
     analytic_intercepts_corrected, analytic_intercepts_paper, log_spaced, Fit, ScalingRow,

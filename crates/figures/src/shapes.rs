@@ -2,7 +2,7 @@
 //! the breakpoint t̂ = ½ dashed. Each piece is drawn on its own, so the jump of F̈_D at
 //! t̂ = 0 and ½ shows as a jump, not as a steep line.
 
-use super::{Axis, Color, Corner, Dash, Figure, Layer, Legend, Panel, Swatch, FULL_WIDTH};
+use crate::model::{Axis, Color, Corner, Dash, Figure, Layer, Legend, Panel, Swatch, FULL_WIDTH};
 use bouncemap_engine::{EngineError, Table};
 
 /// The values of D shown.

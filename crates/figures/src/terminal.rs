@@ -4,9 +4,9 @@
 //! shapes, so they join up cell to cell and need no glyph from the font (DejaVu Sans
 //! Mono has no braille).
 
+use crate::model::FigureError;
 use crate::raster;
 use crate::text::MONO_FAMILY;
-use crate::FigureError;
 use std::fmt::Write;
 
 /// One character cell.

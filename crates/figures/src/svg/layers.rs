@@ -3,7 +3,7 @@
 
 use super::{dasharray, hundredths, marker_el, n, Frame};
 use super::{DOT_ALPHA, DOT_CELL, DOT_LEVELS, DOT_RADIUS};
-use crate::{Color, Layer, Panel};
+use crate::model::{Color, Layer, Panel};
 use std::collections::BTreeMap;
 use std::fmt::Write;
 

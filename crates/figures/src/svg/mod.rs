@@ -10,7 +10,7 @@
 //! overlaid dots, 1 − (1 − a)ⁿ.
 
 use super::text::{self, Level};
-use super::{Axis, Color, Corner, Dash, Figure, Legend, Marker, Panel, Scale, Swatch};
+use crate::model::{Axis, Color, Corner, Dash, Figure, Legend, Marker, Panel, Scale, Swatch};
 use std::fmt::Write;
 
 mod layers;
@@ -179,7 +179,7 @@ fn linear_ticks(lo: f64, hi: f64, length: f64, horizontal: bool) -> Ticks {
             let major: Vec<(f64, String)> = (first..=last)
                 .map(|k| {
                     let v = k as f64 * step;
-                    (v, super::fmt_fixed(v, dec))
+                    (v, crate::format::fmt_fixed(v, dec))
                 })
                 .collect();
             let gap = length * step / span;
@@ -213,8 +213,8 @@ fn linear_ticks(lo: f64, hi: f64, length: f64, horizontal: bool) -> Ticks {
     }
     best.unwrap_or_else(|| Ticks {
         major: vec![
-            (lo, super::fmt_fixed(lo, decimals(span / 2.0) + 1)),
-            (hi, super::fmt_fixed(hi, decimals(span / 2.0) + 1)),
+            (lo, crate::format::fmt_fixed(lo, decimals(span / 2.0) + 1)),
+            (hi, crate::format::fmt_fixed(hi, decimals(span / 2.0) + 1)),
         ],
         minor: Vec::new(),
     })
@@ -230,7 +230,7 @@ fn log_ticks(lo: f64, hi: f64) -> Ticks {
             let label = if k == 0 {
                 "1".to_string()
             } else {
-                format!("10$^{{{}}}$", super::fmt_fixed(k as f64, 0))
+                format!("10$^{{{}}}$", crate::format::fmt_fixed(k as f64, 0))
             };
             t.major.push((v, label));
         }
