@@ -341,55 +341,37 @@ impl Family {
 
     /// The name of the member with these values: `fd:0.1`, `sine`, `asym (w = 0.2)`.
     pub fn member_name(&self, values: &[f64]) -> String {
-        if self.params.is_empty() {
-            return self.name.clone();
-        }
-        if self.builtin {
-            let v: Vec<String> = values.iter().map(|&x| fmt_value(x + 0.0)).collect();
-            return format!("{}:{}", self.name, v.join(","));
-        }
-        let v: Vec<String> = self
-            .params
-            .iter()
-            .zip(values)
-            .map(|(p, &x)| format!("{} = {}", p.name, fmt_value(x + 0.0)))
-            .collect();
-        format!("{} ({})", self.name, v.join(", "))
+        self.name_with(values, None)
     }
 
     /// The name of the members with these values but parameter `free` left free, as
     /// a caption names a sweep or a plane over it: `fd:D`, `asym (w, h = 0.3)`.
     pub fn member_name_free(&self, values: &[f64], free: usize) -> String {
-        if self.builtin {
-            let v: Vec<String> = self
-                .params
-                .iter()
-                .zip(values)
-                .enumerate()
-                .map(|(i, (p, &x))| {
-                    if i == free {
-                        p.name.clone()
-                    } else {
-                        fmt_value(x + 0.0)
-                    }
-                })
-                .collect();
-            return format!("{}:{}", self.name, v.join(","));
+        self.name_with(values, Some(free))
+    }
+
+    /// The family's name with each parameter's value, or its name where it is `free`:
+    /// `name:v,...` for a built-in family, `name (p = v, ...)` for a file's.
+    fn name_with(&self, values: &[f64], free: Option<usize>) -> String {
+        if self.params.is_empty() {
+            return self.name.clone();
         }
-        let v: Vec<String> = self
+        let parts: Vec<String> = self
             .params
             .iter()
             .zip(values)
             .enumerate()
-            .map(|(i, (p, &x))| {
-                if i == free {
-                    p.name.clone()
-                } else {
-                    format!("{} = {}", p.name, fmt_value(x + 0.0))
-                }
+            .map(|(i, (p, &x))| match (Some(i) == free, self.builtin) {
+                (true, _) => p.name.clone(),
+                (false, true) => fmt_value(x + 0.0),
+                (false, false) => format!("{} = {}", p.name, fmt_value(x + 0.0)),
             })
             .collect();
-        format!("{} ({})", self.name, v.join(", "))
+        if self.builtin {
+            format!("{}:{}", self.name, parts.join(","))
+        } else {
+            format!("{} ({})", self.name, parts.join(", "))
+        }
     }
 
     /// The member with parameter i at `values[i]`, checked: each value in its range,
