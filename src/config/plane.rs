@@ -36,19 +36,7 @@ pub fn parse_axis(flag: &str, s: &str, n: usize, table: &Table) -> Result<Axis, 
     let (a, b) = window
         .split_once("..")
         .ok_or_else(|| refuse("not a window: valid PARAM:LO..HI".into()))?;
-    let value = |t: &str| -> Result<f64, InputError> {
-        match param {
-            SweepParam::Alpha => rules::ALPHA.parse(t).map_err(&refuse),
-            SweepParam::R => rules::R.parse(t).map_err(&refuse),
-            SweepParam::Table(_) => {
-                let x = t
-                    .trim()
-                    .parse::<f64>()
-                    .map_err(|_| refuse(format!("'{}' is not a number", t.trim())))?;
-                param.check(table, x).map_err(|e| refuse(e.to_string()))
-            }
-        }
-    };
+    let value = |t: &str| rules::param_value(param, table, t).map_err(&refuse);
     let (lo, hi) = (value(a)?, value(b)?);
     if lo > hi {
         return Err(refuse(

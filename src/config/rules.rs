@@ -8,7 +8,9 @@
 //! each front end puts its own name in front (`--alpha`, `defaults.alpha`, `α`).
 
 use crate::output::text::quoted;
+use bouncemap_engine::grid::SweepParam;
 use bouncemap_engine::limits::{self, Limit};
+use bouncemap_engine::Table;
 
 /// One settable number.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -29,28 +31,7 @@ impl Rule {
     /// beyond f64, hexadecimal, digit separators and empty text are refused, each with
     /// the valid range; −0 is 0.
     pub fn parse(&self, text: &str) -> Result<f64, String> {
-        let t = text.trim();
-        let what = if self.limit.whole {
-            "a whole number"
-        } else {
-            "a number"
-        };
-        let decimal = !t.is_empty()
-            && t.chars()
-                .all(|c| c.is_ascii_digit() || matches!(c, '+' | '-' | '.' | 'e' | 'E'));
-        let x: f64 = t
-            .parse()
-            .ok()
-            .filter(|_| decimal)
-            .ok_or_else(|| format!("{} is not {what}: valid {}", quoted(t), self.limit.text))?;
-        if !x.is_finite() {
-            return Err(format!(
-                "{} is out of range: valid {}",
-                quoted(t),
-                self.limit.text
-            ));
-        }
-        self.check(x)
+        self.check(number(text, self.limit.whole, self.limit.text)?)
     }
 
     /// Check a number against the range (−0 is 0).
@@ -80,6 +61,41 @@ impl Rule {
             let x = self.parse(s)?;
             T::try_from(x as u64)
                 .map_err(|_| format!("{} is out of range: valid {}", quoted(s), self.limit.text))
+        }
+    }
+}
+
+/// A decimal number typed as `text` (whole numbers may be written as 5e6), not yet
+/// checked against a range: NaN, infinities, numbers beyond f64, hexadecimal, digit
+/// separators and empty text are refused, naming the valid `range`.
+fn number(text: &str, whole: bool, range: &str) -> Result<f64, String> {
+    let t = text.trim();
+    let what = if whole { "a whole number" } else { "a number" };
+    let decimal = !t.is_empty()
+        && t.chars()
+            .all(|c| c.is_ascii_digit() || matches!(c, '+' | '-' | '.' | 'e' | 'E'));
+    let x: f64 = t
+        .parse()
+        .ok()
+        .filter(|_| decimal)
+        .ok_or_else(|| format!("{} is not {what}: valid {range}", quoted(t)))?;
+    if !x.is_finite() {
+        return Err(format!("{} is out of range: valid {range}", quoted(t)));
+    }
+    Ok(if x == 0.0 { 0.0 } else { x })
+}
+
+/// A value of `param` over `table` typed as `text`: α and r through their rules, a
+/// parameter of the table's family through the one number parser and its declared
+/// range. The refusal names the value and the range, not the setting.
+pub fn param_value(param: SweepParam, table: &Table, text: &str) -> Result<f64, String> {
+    match param {
+        SweepParam::Alpha => ALPHA.parse(text),
+        SweepParam::R => R.parse(text),
+        SweepParam::Table(n) => {
+            let p = table.family_param(n.as_str()).map_err(|e| e.to_string())?;
+            let x = number(text, false, &p.range_text())?;
+            p.check(x).map_err(|e| e.to_string())
         }
     }
 }

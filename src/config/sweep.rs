@@ -72,13 +72,7 @@ fn parse_param_flag(
     let (a, b) = w
         .split_once("..")
         .ok_or_else(|| refuse("not a window: valid NAME:LO..HI".into()))?;
-    let num = |t: &str| -> Result<f64, InputError> {
-        let x = t
-            .trim()
-            .parse::<f64>()
-            .map_err(|_| refuse(format!("'{}' is not a number", t.trim())))?;
-        param.check(table, x).map_err(|e| refuse(e.to_string()))
-    };
+    let num = |t: &str| rules::param_value(param, table, t).map_err(&refuse);
     let (lo, hi) = (num(a)?, num(b)?);
     if lo > hi {
         return Err(refuse(

@@ -14,7 +14,7 @@ use crate::config::presets::Preset;
 use crate::config::rules::{self, Rule};
 use crate::config::table_spec::{table_range, TableSpec};
 use crate::output::text::{quoted, shortest};
-use bouncemap_engine::grid::SweepParam;
+use bouncemap_engine::grid::{ParamName, SweepParam};
 use bouncemap_engine::orbits::stability_windows;
 use bouncemap_engine::sweep::Warm;
 use bouncemap_engine::table::builtin::{families, Builtin};
@@ -335,24 +335,6 @@ impl Params {
         }
     }
 
-    /// `x` parsed from `text` and checked as a value of the swept parameter.
-    fn window_value(&self, text: &str) -> Result<f64, String> {
-        match self.param {
-            SweepParam::Alpha => rules::ALPHA.parse(text),
-            SweepParam::R => rules::R.parse(text),
-            SweepParam::Table(_) => {
-                let x = text.trim().parse::<f64>().map_err(|_| {
-                    format!(
-                        "{} is not a number: valid {}",
-                        quoted(text.trim()),
-                        self.window_range()
-                    )
-                })?;
-                self.param.check(&self.loaded, x).map_err(|e| e.to_string())
-            }
-        }
-    }
-
     /// The table these parameters name.
     pub fn table(&self) -> Table {
         self.loaded.clone()
@@ -385,6 +367,20 @@ impl Params {
                 .iter()
                 .position(|p| p.name() == n.as_str())
                 .map(|i| ParamId::Family(i as u8)),
+        }
+    }
+
+    /// The parameter a row edits (the rows of α, r and the family's parameters).
+    pub fn param_of(&self, id: ParamId) -> Option<SweepParam> {
+        match id {
+            ParamId::Alpha => Some(SweepParam::Alpha),
+            ParamId::R => Some(SweepParam::R),
+            ParamId::Family(i) => self
+                .family_params()
+                .get(i as usize)
+                .and_then(|p| ParamName::new(p.name()))
+                .map(SweepParam::Table),
+            _ => None,
         }
     }
 
@@ -625,17 +621,14 @@ impl Params {
                 Ok(())
             }
             ParamId::Lo | ParamId::Hi => {
-                let x = self.window_value(t).map_err(refuse)?;
+                let x = rules::param_value(self.param, &self.loaded, t).map_err(refuse)?;
                 self.set_value(id, x)
             }
             ParamId::Family(_) => {
-                let x = t.parse::<f64>().map_err(|_| {
-                    refuse(format!(
-                        "{} is not a number: valid {}",
-                        quoted(t),
-                        self.range_of(id)
-                    ))
-                })?;
+                let param = self
+                    .param_of(id)
+                    .ok_or_else(|| refuse("the table has no such parameter".into()))?;
+                let x = rules::param_value(param, &self.loaded, t).map_err(refuse)?;
                 self.set_value(id, x)
             }
             ParamId::V0 if t == "auto" || t.is_empty() => {
@@ -686,18 +679,14 @@ impl Params {
             ParamId::Table | ParamId::Sweep | ParamId::Start => {
                 unreachable!("the table, sweep and start rows are not numeric")
             }
-            ParamId::Family(i) => {
-                let name = self
-                    .family_params()
-                    .get(i as usize)
-                    .map(|p| p.name().to_string())
+            ParamId::Family(_) => {
+                let param = self
+                    .param_of(id)
                     .ok_or_else(|| format!("{label}: the table has no such parameter"))?;
-                let table = self
-                    .loaded
-                    .with_param(&name, x)
+                let table = param
+                    .table(&self.loaded, x)
                     .map_err(|e| format!("{label}: {e}"))?;
-                let spec = self.table.with_value(&name, x);
-                next.set_table(spec, table);
+                next.set_table(self.table.with_value(param.as_str(), x), table);
             }
             ParamId::Alpha => next.alpha = x,
             ParamId::R => next.r = x,

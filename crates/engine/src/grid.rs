@@ -130,16 +130,13 @@ impl SweepParam {
         matches!(self, SweepParam::Table(_))
     }
 
-    /// Its valid range over `table` (closed), with the text refusals state; None if
-    /// the table has no such parameter.
+    /// Its valid range over `table` (its ends; α's and r's lower ends are open); None
+    /// if the table has no such parameter.
     pub fn range(&self, table: &Table) -> Option<(f64, f64)> {
         match self {
             SweepParam::Alpha => Some((limits::ALPHA.lo, limits::ALPHA.hi)),
             SweepParam::R => Some((limits::R.lo, limits::R.hi)),
-            SweepParam::Table(n) => {
-                let (fam, _) = table.family()?;
-                fam.param_index(n.as_str()).map(|i| fam.params()[i].range())
-            }
+            SweepParam::Table(n) => table.family_param(n.as_str()).ok().map(|p| p.range()),
         }
     }
 
@@ -148,13 +145,7 @@ impl SweepParam {
         match self {
             SweepParam::Alpha => limits::ALPHA.check(x),
             SweepParam::R => limits::R.check(x),
-            SweepParam::Table(n) => {
-                let (fam, _) = table.family().ok_or_else(|| not_a_family(table, n))?;
-                let i = fam
-                    .param_index(n.as_str())
-                    .ok_or_else(|| not_a_family(table, n))?;
-                fam.params()[i].check(x)
-            }
+            SweepParam::Table(n) => table.family_param(n.as_str())?.check(x),
         }
     }
 
@@ -187,17 +178,6 @@ impl fmt::Display for SweepParam {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.as_str())
     }
-}
-
-fn not_a_family(table: &Table, n: &ParamName) -> EngineError {
-    EngineError::Inconsistent(format!(
-        "table {} has no parameter '{}': its parameters are {}",
-        table.name(),
-        n.as_str(),
-        table
-            .family()
-            .map_or("none".to_string(), |(f, _)| f.param_names())
-    ))
 }
 
 /// Value `i` of `steps` evenly spaced values from `lo` to `hi` (both ends exact): the

@@ -173,14 +173,35 @@ impl Table {
     /// else ignoring case) set to `value` and the others kept; refused if the table has
     /// no such parameter, or the value is out of its range or makes no valid table.
     pub fn with_param(&self, name: &str, value: f64) -> Result<Table, EngineError> {
-        let member = self.member.as_ref().ok_or_else(|| no_param(self, name))?;
-        let i = member
-            .family
-            .param_index(name)
-            .ok_or_else(|| no_param(self, name))?;
+        let (member, i) = self.member_param(name)?;
         let mut values = member.values.clone();
         values[i] = value;
         Family::member(&member.family, &values)
+    }
+
+    /// The declaration of parameter `name` (exactly as spelled, else ignoring case) in
+    /// the table's family; refused, naming the parameters there are, if it has none.
+    pub fn family_param(&self, name: &str) -> Result<&Param, EngineError> {
+        let (member, i) = self.member_param(name)?;
+        Ok(&member.family.params()[i])
+    }
+
+    /// The table's family membership and the index of parameter `name` in it.
+    fn member_param(&self, name: &str) -> Result<(&Member, usize), EngineError> {
+        let refuse = || {
+            let names = self
+                .member
+                .as_ref()
+                .map_or("none".to_string(), |m| m.family.param_names());
+            EngineError::Inconsistent(format!(
+                "table {} has no parameter '{}': its parameters are {names}",
+                self.name,
+                crate::error::short_text(name)
+            ))
+        };
+        let member = self.member.as_ref().ok_or_else(refuse)?;
+        let i = member.family.param_index(name).ok_or_else(refuse)?;
+        Ok((member, i))
     }
 
     /// The value of parameter `name` (exactly as spelled, else ignoring case), if the
@@ -480,18 +501,6 @@ fn checked_pieces(
         }
     }
     Ok(built)
-}
-
-fn no_param(table: &Table, name: &str) -> EngineError {
-    let names = table
-        .member
-        .as_ref()
-        .map_or("none".to_string(), |m| m.family.param_names());
-    EngineError::Inconsistent(format!(
-        "table {} has no parameter '{}': its parameters are {names}",
-        table.name,
-        crate::error::short_text(name)
-    ))
 }
 
 /// Max |G| over the pieces for a derivative G (given with its own derivative):
