@@ -78,6 +78,7 @@
 //! * `criticality.rs`: the flip's normal-form coefficient ([`criticality()`]).
 
 pub mod birth;
+mod corrector;
 mod criticality;
 mod find;
 mod merge;

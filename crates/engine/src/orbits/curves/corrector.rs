@@ -1,0 +1,347 @@
+//! The corrector of one two-parameter curve: the condition G of the exactly solved
+//! cycle at a point of the plane ([`Eval`]), its gradient by central differences,
+//! Newton's method on (G = 0, c·y = d) with the cycle solved at fixed parameters, and
+//! the extended system (the cycle's equations with the condition, in α, p, t₀, v₀) for
+//! folds and where the fixed solve fails. [`super::trace`] steps along the curve with it.
+
+use super::criticality::criticality;
+use super::{CurveKind, CurvePoint, Plane, CONDITION_TOLERANCE};
+use crate::linalg::solve;
+use crate::orbits::periodic::{self, cycle, map_for, pass, CyclePoint, PassError};
+use crate::system::System;
+use crate::time::signed_distance;
+
+/// The cycle and the condition at a point of the plane.
+#[derive(Clone, Debug)]
+pub(super) struct Eval {
+    pub(super) y: [f64; 2],
+    pub(super) sys: System,
+    pub(super) pt: CyclePoint,
+    pub(super) g: f64,
+}
+
+pub(super) struct Tracer<'a> {
+    pub(super) plane: &'a Plane,
+    pub(super) kind: CurveKind,
+    pub(super) n: usize,
+    pub(super) k: u32,
+    pub(super) jumps: Vec<f64>,
+}
+
+impl Tracer<'_> {
+    pub(super) fn eval(&self, y: [f64; 2], guess: &CyclePoint) -> Result<Eval, PassError> {
+        let sys = self
+            .plane
+            .system(y[0], y[1])
+            .map_err(|_| PassError::BadLaunch)?;
+        let pt = cycle(&sys, self.n, self.k, guess.t0, guess.velocities[0])?;
+        // The same cycle, not another one nearby: the launch moved continuously.
+        if moved(&pt, guess) > 0.05 {
+            return Err(PassError::NoConvergence);
+        }
+        let g = self.kind.condition(&sys, &pt);
+        if !g.is_finite() {
+            return Err(PassError::NoConvergence);
+        }
+        Ok(Eval { y, sys, pt, g })
+    }
+
+    /// ∇G by central differences, the cycle re-solved at each.
+    pub(super) fn gradient(&self, e: &Eval) -> Result<[f64; 2], PassError> {
+        let mut grad = [0.0; 2];
+        for (i, g) in grad.iter_mut().enumerate() {
+            let h = 1e-7 * (1.0 + e.y[i].abs());
+            let mut plus = e.y;
+            let mut minus = e.y;
+            plus[i] += h;
+            minus[i] -= h;
+            let valid = |y: [f64; 2]| self.plane.system(y[0], y[1]).is_ok();
+            // A border collision's condition has its kink on the curve itself (f''
+            // jumps where the impact crosses the breakpoint): its slope is taken on
+            // the point's side, or Newton's method converges only linearly.
+            if matches!(self.kind, CurveKind::BorderCollision { .. }) && e.g != 0.0 {
+                let same = |y: [f64; 2]| -> Result<Option<f64>, PassError> {
+                    if !valid(y) {
+                        return Ok(None);
+                    }
+                    let gy = self.eval(y, &e.pt)?.g;
+                    Ok(((gy < 0.0) == (e.g < 0.0) && gy != 0.0).then_some(gy))
+                };
+                if let Some(gp) = same(plus)? {
+                    *g = (gp - e.g) / h;
+                    continue;
+                }
+                if let Some(gm) = same(minus)? {
+                    *g = (e.g - gm) / h;
+                    continue;
+                }
+            }
+            // Central where the cycle exists on both sides; one-sided at the end of the
+            // parameter's range (D = 0 or 1) or where the cycle ends on one side (at a
+            // grazing the flight would cross the table beyond the curve).
+            let at = |y: [f64; 2]| valid(y).then(|| self.eval(y, &e.pt).ok()).flatten();
+            *g = match (at(plus), at(minus)) {
+                (Some(p), Some(m)) => (p.g - m.g) / (2.0 * h),
+                (Some(p), None) => (p.g - e.g) / h,
+                (None, Some(m)) => (e.g - m.g) / h,
+                (None, None) => return Err(PassError::NoConvergence),
+            };
+        }
+        if !(grad[0].is_finite() && grad[1].is_finite()) || grad == [0.0, 0.0] {
+            return Err(PassError::NoConvergence);
+        }
+        Ok(grad)
+    }
+
+    /// Newton's method on (G = 0, c·y = d) from `y`.
+    pub(super) fn correct(
+        &self,
+        y: [f64; 2],
+        c: [f64; 2],
+        d: f64,
+        guess: &CyclePoint,
+    ) -> Result<(Eval, [f64; 2]), PassError> {
+        let found = if self.kind == CurveKind::Fold {
+            self.correct_fold(y, c, d, guess)
+        } else {
+            let fixed = self.correct_fixed(y, c, d, guess);
+            let extended = !matches!(self.kind, CurveKind::Grazing | CurveKind::Birth);
+            match fixed {
+                Err(first) if extended => self.correct_fold(y, c, d, guess).map_err(|_| first),
+                other => other,
+            }
+        };
+        // A doubled cycle that has collapsed onto the one of half its period is that
+        // cycle, not this curve's: the curve ends before it (a collapse). And the cycle
+        // found must be the one guessed, moved on continuously, not another one the
+        // extended system slid to.
+        match found {
+            Ok((e, _)) if collapsed(&e.pt) && !collapsed(guess) => Err(PassError::NoConvergence),
+            Ok((e, _)) if moved(&e.pt, guess) > 0.05 => Err(PassError::NoConvergence),
+            other => other,
+        }
+    }
+
+    /// [`Self::correct`] with the cycle solved at fixed parameters at every iterate.
+    pub(super) fn correct_fixed(
+        &self,
+        y: [f64; 2],
+        c: [f64; 2],
+        d: f64,
+        guess: &CyclePoint,
+    ) -> Result<(Eval, [f64; 2]), PassError> {
+        let mut e = self.eval(y, guess)?;
+        for _ in 0..20 {
+            let grad = self.gradient(&e)?;
+            let a = [grad, c];
+            let b = [e.g, c[0] * e.y[0] + c[1] * e.y[1] - d];
+            let step = solve(a, b).ok_or(PassError::NoConvergence)?;
+            let size = step[0].abs().max(step[1].abs());
+            if !size.is_finite() || size > 0.5 {
+                return Err(PassError::NoConvergence);
+            }
+            // Backtracking: where the full step leaves the cycle's domain (a grazing or
+            // a vanishing impact velocity beyond the curve), shorter ones approach the
+            // curve from its own side.
+            let mut lambda = 1.0;
+            let next = loop {
+                let yn = [e.y[0] - lambda * step[0], e.y[1] - lambda * step[1]];
+                match self.eval(yn, &e.pt) {
+                    Ok(n) => break n,
+                    Err(err) if lambda < 1e-3 => return Err(err),
+                    Err(_) => lambda *= 0.5,
+                }
+            };
+            e = next;
+            // Converged when the step is at rounding level, or when both equations
+            // already hold to it (at a border the gradient has a kink, and Newton's
+            // method creeps the last digits). The cycle is solved to about 1e-14, so G
+            // is known to about 1e-13: the point is taken to 1e-12.
+            let tiny = 1e-12 * (1.0 + e.y[0].abs().max(e.y[1].abs()));
+            let held = e.g.abs() < 1e-12 && (c[0] * e.y[0] + c[1] * e.y[1] - d).abs() < tiny;
+            if lambda * size < tiny || held {
+                if e.g.abs() > CONDITION_TOLERANCE {
+                    return Err(PassError::NoConvergence);
+                }
+                let grad = self.gradient(&e)?;
+                return Ok((e, grad));
+            }
+        }
+        Err(PassError::NoConvergence)
+    }
+
+    /// The condition from a pass of the map at x = (α, p, t₀, v₀), whether or not the
+    /// orbit closes yet (None for the kinds that need the closed cycle: grazing,
+    /// birth).
+    pub(super) fn pass_condition(
+        &self,
+        sys: &System,
+        x: [f64; 4],
+        p: &periodic::Pass,
+    ) -> Option<f64> {
+        let tr = p.monodromy[0][0] + p.monodromy[1][1];
+        let det = sys.r().powi(2 * self.n as i32);
+        match self.kind {
+            CurveKind::PeriodDoubling => Some(1.0 + tr + det),
+            CurveKind::Fold => Some(1.0 - tr + det),
+            CurveKind::BorderCollision { impact, breakpoint } => {
+                let ph = if impact == 0 {
+                    crate::time::wrap_phase(x[2])
+                } else {
+                    *p.phases.get(impact - 1)?
+                };
+                Some(signed_distance(ph, breakpoint))
+            }
+            CurveKind::StickingOnset => Some(
+                p.impact_speeds
+                    .iter()
+                    .cloned()
+                    .fold(f64::INFINITY, f64::min),
+            ),
+            CurveKind::Grazing | CurveKind::Birth => None,
+        }
+    }
+
+    /// The extended system at x = (α, p, t₀, v₀): the cycle's residual
+    /// (tₙ − t₀ − k, vₙ − v₀) and the condition, with the pass.
+    pub(super) fn fold_system(&self, x: [f64; 4]) -> Result<([f64; 3], periodic::Pass), PassError> {
+        let sys = self
+            .plane
+            .system(x[0], x[1])
+            .map_err(|_| PassError::BadLaunch)?;
+        let mut map = map_for(&sys);
+        let p = pass(&mut map, x[2], x[3], self.n, self.k)?;
+        let g = self
+            .pass_condition(&sys, x, &p)
+            .filter(|g| g.is_finite())
+            .ok_or(PassError::NoConvergence)?;
+        Ok(([p.residual[0], p.residual[1], g], p))
+    }
+
+    /// Newton's method on the extended system (the cycle's equations and the
+    /// condition, in α, p, t₀, v₀) with c·(α, p) = d. At a fold the cycle cannot be
+    /// solved at fixed parameters (M − I is singular), so a fold curve is always solved
+    /// with them; the other kinds come here where the cycle at fixed parameters cannot
+    /// be solved (a curve passing where its cycle's branch folds over the parameters).
+    /// The map's own derivatives give the cycle equations' columns in α, t₀ and v₀;
+    /// forward differences give the p column and the condition's row.
+    pub(super) fn correct_fold(
+        &self,
+        y: [f64; 2],
+        c: [f64; 2],
+        d: f64,
+        guess: &CyclePoint,
+    ) -> Result<(Eval, [f64; 2]), PassError> {
+        let mut x = [y[0], y[1], guess.t0, guess.velocities[0]];
+        let jacobian = |x: [f64; 4], f: [f64; 3], p: &periodic::Pass| {
+            let m = p.monodromy;
+            let mut j = [
+                [p.alpha_column[0], 0.0, m[0][0] - 1.0, m[0][1]],
+                [p.alpha_column[1], 0.0, m[1][0], m[1][1] - 1.0],
+                [0.0; 4],
+            ];
+            for col in 0..4 {
+                let h = 1e-7 * (1.0 + x[col].abs());
+                let mut xp = x;
+                xp[col] += h;
+                let (fp, _) = self.fold_system(xp)?;
+                j[2][col] = (fp[2] - f[2]) / h;
+                if col == 1 {
+                    j[0][1] = (fp[0] - f[0]) / h;
+                    j[1][1] = (fp[1] - f[1]) / h;
+                }
+            }
+            Ok::<_, PassError>(j)
+        };
+        for _ in 0..30 {
+            let (f, p) = self.fold_system(x)?;
+            let j = jacobian(x, f, &p)?;
+            let a = [j[0], j[1], j[2], [c[0], c[1], 0.0, 0.0]];
+            let b = [f[0], f[1], f[2], c[0] * x[0] + c[1] * x[1] - d];
+            let step = solve(a, b).ok_or(PassError::NoConvergence)?;
+            let size = step.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            if !size.is_finite() || size > 0.5 {
+                return Err(PassError::NoConvergence);
+            }
+            for i in 0..4 {
+                x[i] -= step[i];
+            }
+            if size < 1e-12 * (1.0 + x[3].abs()) {
+                let (f, p) = self.fold_system(x)?;
+                if f[2].abs() > CONDITION_TOLERANCE {
+                    return Err(PassError::NoConvergence);
+                }
+                let sys = self
+                    .plane
+                    .system(x[0], x[1])
+                    .map_err(|_| PassError::BadLaunch)?;
+                let pt = periodic::accept(&sys, [x[0], x[2], x[3]], self.n, self.k, &p)?;
+                // The curve's tangent in (α, p): the null vector of the extended
+                // system's Jacobian, normalised on (α, p); returned as the gradient it is
+                // orthogonal to.
+                let j = jacobian(x, f, &p)?;
+                let a = [j[0], j[1], j[2], [1.0, 0.0, 0.0, 0.0]];
+                let a2 = [j[0], j[1], j[2], [0.0, 1.0, 0.0, 0.0]];
+                let t = solve(a, [0.0, 0.0, 0.0, 1.0])
+                    .filter(|t| t.iter().all(|v| v.is_finite()))
+                    .or_else(|| solve(a2, [0.0, 0.0, 0.0, 1.0]))
+                    .ok_or(PassError::NoConvergence)?;
+                let e = Eval {
+                    y: [x[0], x[1]],
+                    sys,
+                    pt,
+                    g: f[2],
+                };
+                return Ok((e, [t[1], -t[0]]));
+            }
+        }
+        Err(PassError::NoConvergence)
+    }
+
+    /// Distances of every impact to every breakpoint, except the curve's own.
+    pub(super) fn border_tests(&self, pt: &CyclePoint) -> Vec<f64> {
+        let own = match self.kind {
+            CurveKind::BorderCollision { impact, breakpoint } => Some((impact, breakpoint)),
+            _ => None,
+        };
+        let mut out = Vec::with_capacity(pt.n * self.jumps.len());
+        for (i, &ph) in pt.phases.iter().enumerate() {
+            for &b in &self.jumps {
+                out.push(if own == Some((i, b)) {
+                    1.0
+                } else {
+                    signed_distance(ph, b)
+                });
+            }
+        }
+        out
+    }
+
+    pub(super) fn point(&self, e: Eval) -> CurvePoint {
+        let criticality = (self.kind == CurveKind::PeriodDoubling)
+            .then(|| criticality(&e.sys, &e.pt))
+            .flatten();
+        CurvePoint {
+            alpha: e.y[0],
+            p: e.y[1],
+            cycle: e.pt,
+            condition: e.g,
+            criticality,
+        }
+    }
+}
+
+/// Whether a doubled cycle has collapsed onto the cycle of half its period (its return
+/// after half its impacts is zero to 1e-7).
+pub(super) fn collapsed(pt: &CyclePoint) -> bool {
+    pt.half_return
+        .is_some_and(|[dt, dv]| dt.abs().max(dv.abs()) <= 1e-7)
+}
+
+/// How far a cycle's launch moved from `guess`'s: in phase, and in velocity relative to
+/// its size.
+fn moved(pt: &CyclePoint, guess: &CyclePoint) -> f64 {
+    signed_distance(pt.phases[0], guess.phases[0])
+        .abs()
+        .max((pt.velocities[0] - guess.velocities[0]).abs() / (1.0 + guess.velocities[0].abs()))
+}
