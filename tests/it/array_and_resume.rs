@@ -2,6 +2,7 @@
 //! variables) and `--resume` (a part already there is left alone), against the real
 //! binary. Slurm is not needed: its variables are set as Slurm sets them.
 
+use crate::scratch::s;
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
@@ -43,14 +44,7 @@ fn refused(o: &Output, want: &str) {
 }
 
 fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("bouncemap-array-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
+    crate::scratch::dir("array", name)
 }
 
 fn read(p: &Path) -> String {

@@ -3,6 +3,7 @@
 //! the analytic lines and the diagrams against closed forms, and bad input refused
 //! with one line and nothing written. Diagrams run at `--quick` fidelity.
 
+pub(crate) use crate::scratch::s;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
@@ -22,14 +23,7 @@ pub(crate) fn ok(o: &Output) {
 }
 
 pub(crate) fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("bouncemap-figure-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-pub(crate) fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
+    crate::scratch::dir("figure", name)
 }
 
 /// A decoded PNG: width, height, pixels per metre, RGB rows.

@@ -3,6 +3,7 @@
 //! fuzz of every subcommand's flags with values no user should type, in bounded time
 //! and memory.
 
+use crate::scratch::s;
 use std::io::Read;
 use std::os::unix::process::ExitStatusExt;
 use std::path::{Path, PathBuf};
@@ -14,14 +15,7 @@ fn bin() -> Command {
 }
 
 fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("bouncemap-hostile-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
+    crate::scratch::dir("hostile", name)
 }
 
 /// How a run ended: exit code (or the signal), stdout, stderr, peak memory in bytes and

@@ -4,6 +4,7 @@
 //! command, the progress interval, every ending signal, a long `curves` search, an r
 //! axis without `--r`, huge config values, non-UTF-8 paths, `--resume` on a directory).
 
+use crate::scratch::s;
 use std::os::unix::fs::PermissionsExt;
 use std::os::unix::process::{CommandExt, ExitStatusExt};
 use std::path::{Path, PathBuf};
@@ -15,14 +16,7 @@ fn bin() -> Command {
 }
 
 fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("bouncemap-hostile3-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
+    crate::scratch::dir("hostile3", name)
 }
 
 /// Run to the end: (exit code, stdout, stderr).

@@ -19,6 +19,7 @@ mod merge_stream;
 mod orbits_cli;
 mod plane_cli;
 mod reliability;
+mod scratch;
 mod sweep_cli;
 mod table_families;
 mod table_files;

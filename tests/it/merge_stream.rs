@@ -3,20 +3,14 @@
 //! as it runs) stays a small fraction of their size (it was three times their size), and
 //! what it writes is still the unsharded run's file but for the shard line.
 
+use crate::scratch::s;
 use std::io::{BufRead, BufReader};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::Duration;
 
 fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("bouncemap-merge-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
+    crate::scratch::dir("merge", name)
 }
 
 /// Run the binary to its end: its exit code, stderr and peak memory in bytes (its own

@@ -1,6 +1,7 @@
 //! Nothing lost, nothing wrong, never stuck: each reproduction of a way to lose data, to
 //! get a wrong merged file with status 0, or to hang, run against the real binary.
 
+use crate::scratch::s;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
@@ -14,14 +15,7 @@ fn run(args: &[&str]) -> Output {
 }
 
 fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("bouncemap-rel-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
+    crate::scratch::dir("rel", name)
 }
 
 /// Exit 2 with one line of stderr containing `want`.

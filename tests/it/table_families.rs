@@ -251,12 +251,11 @@ fn the_skewed_family_doubles_where_the_closed_form_says() {
     assert!(err.contains("moves with w"), "{err}");
 }
 
+/// `text` written to a file of its own scratch directory: its path.
 fn tmp_file(name: &str, text: &str) -> String {
-    let dir = std::env::temp_dir().join(format!("bouncemap-families-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let p = dir.join(name);
+    let p = crate::scratch::dir("families", name).join(name);
     std::fs::write(&p, text).unwrap();
-    p.to_str().unwrap().to_string()
+    crate::scratch::s(&p).to_string()
 }
 
 /// The skewed parabola with the wrong factor on its falling piece: C¹ only at w = ½.
