@@ -46,20 +46,26 @@ pub fn parse_axis(flag: &str, s: &str, n: usize, table: &Table) -> Result<Axis, 
     Ok(Axis { param, lo, hi, n })
 }
 
-/// The parameter name of an axis text `NAME:LO..HI` (before the table is known).
-fn axis_name(s: &str) -> &str {
-    s.trim().split_once(':').map_or("", |(n, _)| n.trim())
-}
-
-/// `--table` of a plane or curves: `fd` names the F_D family (its D is an axis), else
-/// any table name. A table whose name gives a value to a parameter that is an axis
-/// would have it replaced: refused instead of dropped.
-fn plane_table(text: &str, axes: [&str; 2]) -> Result<(TableSpec, Table), InputError> {
+/// `--table` of a plane or curves, loaded: `fd` names the F_D family (at the default
+/// D, which its axis replaces), else any table name.
+fn table_of(text: &str) -> Result<(TableSpec, Table), InputError> {
     let spec = match text.trim() {
         "fd" => TableSpec::fd(rules::D.default),
         t => TableSpec::parse(t).map_err(|e| InputError(format!("--table: {e}")))?,
     };
     let table = spec.load()?;
+    Ok((spec, table))
+}
+
+/// The parameter name of an axis text `NAME:LO..HI` (before the table is known).
+fn axis_name(s: &str) -> &str {
+    s.trim().split_once(':').map_or("", |(n, _)| n.trim())
+}
+
+/// `--table` of a plane ([`table_of`]). A table whose name gives a value to a parameter
+/// that is an axis would have it replaced: refused instead of dropped.
+fn plane_table(text: &str, axes: [&str; 2]) -> Result<(TableSpec, Table), InputError> {
+    let (spec, table) = table_of(text)?;
     for name in axes {
         if let Ok(SweepParam::Table(n)) = SweepParam::parse(name, &table) {
             if text.trim() != "fd" && spec.sets(n.as_str()) {
@@ -134,11 +140,7 @@ pub fn curves_plane(
     args: &super::flags::CurvesSpecArgs,
 ) -> Result<(bouncemap_engine::orbits::curves::Plane, f64), InputError> {
     let fd_family = args.table.trim() == "fd";
-    let table_spec = match args.table.trim() {
-        "fd" => TableSpec::fd(rules::D.default),
-        t => TableSpec::parse(t).map_err(|e| InputError(format!("--table: {e}")))?,
-    };
-    let table = table_spec.load()?;
+    let (table_spec, table) = table_of(&args.table)?;
     let x = parse_axis("x", &args.x, 2, &table)?;
     let y = parse_axis("y", &args.y, 2, &table)?;
     if x.param != SweepParam::Alpha {

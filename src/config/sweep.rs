@@ -55,17 +55,24 @@ fn flag_param(flag: &str) -> SweepParam {
 }
 
 /// `--param NAME` or `--param NAME:LO..HI`: the name, and the window if given (each end
-/// checked against the parameter's range over `table`).
+/// checked against the parameter's range over `table`, which `source` names in the
+/// refusal of a name it does not have).
 fn parse_param_flag(
     s: &str,
     table: &Table,
+    source: &str,
 ) -> Result<(SweepParam, Option<(f64, f64)>), InputError> {
     let refuse = |m: String| InputError(format!("--param {}: {m}", quoted(s)));
     let (name, window) = match s.split_once(':') {
         Some((n, w)) => (n, Some(w)),
         None => (s, None),
     };
-    let param = SweepParam::parse(name, table).map_err(refuse)?;
+    let param = SweepParam::parse(name, table).map_err(|_| {
+        refuse(format!(
+            "{source} has no such parameter: valid {}",
+            SweepParam::names(table)
+        ))
+    })?;
     let Some(w) = window else {
         return Ok((param, None));
     };
@@ -131,15 +138,7 @@ pub fn sweep_spec_from(args: &SweepSpecArgs, part: Shard) -> Result<SweepSpec, I
     };
     let (flagged, flag_window) = match &args.param {
         Some(s) => {
-            let name = s.split_once(':').map_or(s.as_str(), |(n, _)| n);
-            if SweepParam::parse(name, &table).is_err() {
-                return Err(InputError(format!(
-                    "--param {}: {source} has no such parameter: valid {}",
-                    quoted(s),
-                    SweepParam::names(&table)
-                )));
-            }
-            let (q, w) = parse_param_flag(s, &table)?;
+            let (q, w) = parse_param_flag(s, &table, &source)?;
             (Some(q), w)
         }
         None => (None, None),
