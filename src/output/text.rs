@@ -62,16 +62,17 @@ pub fn shown_path(path: &std::path::Path) -> String {
 
 /// The table as every output names it when `free` (an axis, the swept parameter) may
 /// be a parameter of its family: F_D as `fd` (its D is the axis), a file's family with
-/// that parameter left free (`asym (w, h = 0.3)`), else the table's own name.
+/// that parameter left free as figures name it (`asym (w, h = 0.3)`), else the table's
+/// own name.
 pub fn table_with_free(
     table: &bouncemap_engine::Table,
     free: &[bouncemap_engine::grid::SweepParam],
 ) -> String {
-    use bouncemap_engine::grid::SweepParam;
-    match free.iter().find(|p| p.is_table()) {
+    let param = free.iter().copied().find(|p| p.is_table());
+    match param {
         Some(_) if table.d().is_some() => "fd".to_string(),
-        Some(SweepParam::Table(n)) => table.name_with_free(n.as_str()),
-        _ => table.name().to_string(),
+        Some(p) => bouncemap_figures::labels::free_name(table, p),
+        None => table.name().to_string(),
     }
 }
 
