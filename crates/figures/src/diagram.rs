@@ -12,7 +12,7 @@
 use super::classes::{self, Class};
 use super::text::plain;
 use crate::format::fmt_count;
-use crate::labels::{free_name, param_label, param_symbol, table_title};
+use crate::labels::{family_title, free_name, param_label, param_symbol};
 use crate::model::{
     Axis, Color, Corner, Dash, DensityGrid, Figure, Layer, Legend, Marker, Panel, Swatch, COLUMN,
     FULL_WIDTH,
@@ -273,11 +273,7 @@ fn panel_of(
         }
     }
     panel.layers.extend(points);
-    panel.title = Some(if spec.param == SweepParam::D {
-        "$F_D$".to_string()
-    } else {
-        table_title(&spec.table)
-    });
+    panel.title = Some(family_title(&spec.table, spec.param));
     panel
 }
 
@@ -523,6 +519,7 @@ pub fn fig3(panels: Vec<Diagram>) -> Figure {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::labels::table_title;
     use bouncemap_engine::map::EventKind;
     use bouncemap_engine::run::Point as SweepPoint;
     use bouncemap_engine::Table;

@@ -52,3 +52,26 @@ pub fn table_title(table: &Table) -> String {
         None => plain(table.name()),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use bouncemap_engine::table::{Family, Param, Variable};
+    use std::sync::Arc;
+
+    #[test]
+    fn a_swept_family_parameter_is_left_free_in_the_title() {
+        let fd = Table::fd(0.1).unwrap();
+        assert_eq!(family_title(&fd, SweepParam::D), "$F_D$");
+        assert_eq!(family_title(&fd, SweepParam::Alpha), "$F_{0.1}$");
+        assert_eq!(free_name(&fd, SweepParam::D), "fd:D");
+        let params = vec![Param::new("w", 0.5, 0.0, 1.0).unwrap()];
+        let pieces = [("0".to_string(), vec!["w".to_string()])];
+        let fam = Arc::new(Family::piecewise("flat", params, Variable::Phase, &pieces).unwrap());
+        let t = Family::member(&fam, &[0.5]).unwrap();
+        let w = SweepParam::parse("w", &t).unwrap();
+        assert_eq!(family_title(&t, w), "flat (w)");
+        assert_eq!(family_title(&t, SweepParam::R), "flat (w = 0.5)");
+        assert_eq!(param_label(w), "$w$");
+    }
+}

@@ -103,7 +103,7 @@ pub enum FigureName {
     /// A two-parameter map: `plane`'s flags (--table, --x PARAM:LO..HI, --y PARAM:LO..HI, ...), the pixels as --pixels WxH.
     #[command(allow_negative_numbers = true)]
     Plane(Box<FigurePlaneArgs>),
-    /// Two-parameter bifurcation curves alone: `curves`' flags (--table, --x alpha:LO..HI, --y r:LO..HI or d:LO..HI, ...).
+    /// Two-parameter bifurcation curves alone: `curves`' flags (--table, --x alpha:LO..HI, --y r:LO..HI or a table parameter NAME:LO..HI, ...).
     #[command(allow_negative_numbers = true)]
     Curves(Box<CurvesSpecArgs>),
 }

@@ -80,7 +80,7 @@ pub enum Command {
     Continue(ContinueArgs),
     /// The period-doubling cascade: αₙ, the Feigenbaum ratios, how each 2ⁿ branch ends.
     Cascade(CascadeArgs),
-    /// Two-parameter bifurcation curves over (α, r) or (α, D): period doublings, folds,
+    /// Two-parameter bifurcation curves over (α, r) or (α, D or a table file's parameter): period doublings, folds,
     /// border collisions, grazings, and their codimension-two points.
     #[command(allow_negative_numbers = true)]
     Curves(CurvesArgs),
@@ -92,7 +92,7 @@ pub enum Command {
     /// Basins of attraction: which attractor each start (t̂0, w0) ends on.
     #[command(allow_negative_numbers = true)]
     Basins(BasinsArgs),
-    /// A two-parameter map: every pixel one (α, D) or (α, r) pair, coloured by its orbit.
+    /// A two-parameter map: every pixel one (α, r), (α, D) or (α, a table parameter) pair, coloured by its orbit.
     #[command(allow_negative_numbers = true)]
     Plane(PlaneArgs),
     /// Join `sweep --shard I/N` or `plane --shard I/N` output files into one.

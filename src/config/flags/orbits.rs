@@ -82,14 +82,15 @@ pub struct CurvesArgs {
 #[derive(Args, Debug, Clone)]
 pub struct CurvesSpecArgs {
     /// Table shape: sine, quad (= fd:0), cubic (= fd:1), fd:D with D in [0, 1], or
-    /// PATH.toml; with a d axis, fd (the family) or fd:D, D the value the curves are
-    /// started from.
+    /// PATH.toml[:NAME=VALUE,...]; with a D axis, fd (the family) or fd:D, D the value
+    /// the curves are started from (a file's parameter alike: the value it is given,
+    /// else the window's middle).
     #[arg(long, default_value = rules::DEFAULT_TABLE, value_name = "TABLE")]
     pub table: String,
     /// The horizontal axis: alpha:LO..HI.
     #[arg(long, value_name = "alpha:LO..HI")]
     pub x: String,
-    /// The vertical axis, the second parameter: r:LO..HI or d:LO..HI.
+    /// The vertical axis, the second parameter: r:LO..HI, or NAME:LO..HI with NAME a parameter of the table's family (F_D's D, a table file's).
     #[arg(long, value_name = "PARAM:LO..HI")]
     pub y: String,
     /// Coefficient of restitution r; valid (0, 1) [default: 0.8]. With an r axis, the

@@ -28,13 +28,14 @@ pub enum PlaneStartArg {
 /// What a plane is of: `plane`'s and `figure plane`'s shared flags.
 #[derive(Args, Debug, Clone)]
 pub struct PlaneSpecArgs {
-    /// Table shape: fd (the F_D family, for a d axis), fd:D, sine, quad, cubic or PATH.toml.
+    /// Table shape: fd (the F_D family, for a D axis), fd:D, sine, quad, cubic or
+    /// PATH.toml[:NAME=VALUE,...] (a file's parameter on an axis takes no value here).
     #[arg(long, default_value = "fd", value_name = "TABLE")]
     pub table: String,
-    /// The horizontal axis: PARAM:LO..HI with PARAM alpha, r or d.
+    /// The horizontal axis: PARAM:LO..HI with PARAM alpha, r or a parameter of the table's family (D for fd).
     #[arg(long, value_name = "PARAM:LO..HI", allow_hyphen_values = true)]
     pub x: String,
-    /// The vertical axis: PARAM:LO..HI with PARAM alpha, r or d.
+    /// The vertical axis: PARAM:LO..HI with PARAM alpha, r or a parameter of the table's family (D for fd).
     #[arg(long, value_name = "PARAM:LO..HI", allow_hyphen_values = true)]
     pub y: String,
     /// Amplitude α where it is not an axis; valid (0, 1000] [default: 0.45].
@@ -66,7 +67,7 @@ pub struct FigurePlaneArgs {
     pub pixels: (usize, usize),
     /// Also draw the two-parameter curves (as `bouncemap curves`) of every branch of the
     /// (1, 1) solution up to period P over the pixels, with their codimension-two points;
-    /// the axes must be alpha and r or d; P valid 1 to 4096.
+    /// the axes must be alpha and r or a table parameter; P valid 1 to 4096.
     #[arg(long, value_parser = rules::CONTINUE_MAX_PERIOD.whole::<usize>(), value_name = "P")]
     pub curves: Option<usize>,
 }
@@ -95,7 +96,7 @@ pub struct PlaneArgs {
     pub format: PlaneFormat,
     /// With --format braille: also mark the two-parameter curves (as `bouncemap
     /// curves`) of every branch of the (1, 1) solution up to period P over the picture;
-    /// the axes must be alpha and r or d; P valid 1 to 4096.
+    /// the axes must be alpha and r or a table parameter; P valid 1 to 4096.
     #[arg(long, value_parser = rules::CONTINUE_MAX_PERIOD.whole::<usize>(), value_name = "P")]
     pub curves: Option<usize>,
     #[command(flatten)]
