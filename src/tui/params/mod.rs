@@ -4,7 +4,7 @@
 //! typed text through the shared rule for it ([`crate::config::rules`], the same ranges
 //! and messages as the command line) and knows its coarse and fine steps; a refused
 //! value leaves everything unchanged and comes back as a one-line message naming the
-//! valid range. The rows themselves (their rules, labels and ranges) are [`rows`].
+//! valid range. The rows themselves (their rules, labels and ranges) are [`ParamId`].
 //!
 //! Where α goes when the table's kind changes or a preset loads: just below α_PD of the
 //! (1, k) solution when that lies in the window (the last stable period-1 value, the
