@@ -48,6 +48,22 @@ impl Rule {
         }
     }
 
+    /// A flag's help text: `what` it sets, then the valid range as every refusal states
+    /// it, so the help and the refusals cannot disagree.
+    pub fn help(&self, what: &str) -> String {
+        format!("{what}; valid {}.", self.limit.text)
+    }
+
+    /// [`Rule::help`] for a setting without a clap default (presets and the config file
+    /// may set it), naming the default.
+    pub fn help_default(&self, what: &str) -> String {
+        format!(
+            "{what}; valid {} [default: {}].",
+            self.limit.text,
+            bouncemap_engine::error::fmt_value(self.default)
+        )
+    }
+
     /// A clap value parser for an f64 setting.
     pub fn real(&'static self) -> impl Fn(&str) -> Result<f64, String> + Clone + Send + Sync {
         move |s| self.parse(s)

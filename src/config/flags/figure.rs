@@ -24,8 +24,7 @@ pub struct FigureArgs {
     /// (3.4 in) or the page width (7 in) of a two-column paper].
     #[arg(long, global = true, value_parser = parse_size, value_name = "WxH")]
     pub size: Option<(f64, f64)>,
-    /// Pixels per inch of a PNG; valid 50 to 600 [default: 300].
-    #[arg(long, global = true, value_parser = rules::DPI.whole::<u32>(), value_name = "N")]
+    #[arg(help = rules::DPI.help_default("Pixels per inch of a PNG"), long, global = true, value_parser = rules::DPI.whole::<u32>(), value_name = "N")]
     pub dpi: Option<u32>,
     /// A preview in seconds: fewer values and a shorter transient.
     #[arg(long, global = true)]

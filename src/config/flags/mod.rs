@@ -40,14 +40,11 @@ pub struct TuiArgs {
     /// Start with this table: sine, quad, cubic, fd:D or PATH.toml.
     #[arg(long = "table", value_name = "TABLE", value_parser = TableSpec::parse)]
     pub tui_table: Option<TableSpec>,
-    /// Start with this amplitude α; valid (0, 1000].
-    #[arg(long = "alpha", value_parser = rules::ALPHA.real(), value_name = "A")]
+    #[arg(help = rules::ALPHA.help("Start with this amplitude α"), long = "alpha", value_parser = rules::ALPHA.real(), value_name = "A")]
     pub tui_alpha: Option<f64>,
-    /// Start with this restitution r; valid (0, 1).
-    #[arg(long = "r", value_parser = rules::R.real(), value_name = "R")]
+    #[arg(help = rules::R.help("Start with this restitution r"), long = "r", value_parser = rules::R.real(), value_name = "R")]
     pub tui_r: Option<f64>,
-    /// Frame cap while interacting, frames per second; valid 1..=60 [default: 15].
-    #[arg(long, value_parser = rules::FPS.whole::<u32>(), value_name = "N")]
+    #[arg(help = rules::FPS.help_default("Frame cap while interacting, frames per second"), long, value_parser = rules::FPS.whole::<u32>(), value_name = "N")]
     pub fps: Option<u32>,
     /// Colours: auto (NO_COLOR honoured, else 256), never, 16, 256, truecolor.
     #[arg(long, value_parser = ColorChoice::parse, value_name = "MODE")]
@@ -127,14 +124,11 @@ pub struct GenerateDocsArgs {
 /// The physical system: table shape, amplitude and restitution.
 #[derive(Args, Debug, Clone)]
 pub struct SystemArgs {
-    /// Table shape: sine, quad (= fd:0), cubic (= fd:1), fd:D with D in [0, 1], or PATH.toml.
-    #[arg(long, default_value = rules::DEFAULT_TABLE, value_parser = TableSpec::parse, value_name = "TABLE")]
+    #[arg(long, help = table_help(""), default_value = rules::DEFAULT_TABLE, value_parser = TableSpec::parse, value_name = "TABLE")]
     pub table: TableSpec,
-    /// Amplitude α of the table, f(t) = α F(t); valid (0, 1000].
-    #[arg(long, default_value_t = rules::ALPHA.default, value_parser = rules::ALPHA.real(), value_name = "A")]
+    #[arg(long, help = rules::ALPHA.help("Amplitude α of the table, f(t) = α F(t)"), default_value_t = rules::ALPHA.default, value_parser = rules::ALPHA.real(), value_name = "A")]
     pub alpha: f64,
-    /// Coefficient of restitution r; valid (0, 1).
-    #[arg(long, default_value_t = rules::R.default, value_parser = rules::R.real(), value_name = "R")]
+    #[arg(help = rules::R.help("Coefficient of restitution r"), long, default_value_t = rules::R.default, value_parser = rules::R.real(), value_name = "R")]
     pub r: f64,
 }
 
@@ -160,15 +154,11 @@ impl From<SolverArg> for Solver {
 /// Where the ball starts.
 #[derive(Args, Debug, Clone)]
 pub struct InitialArgs {
-    /// Initial phase t̂0 in [0, 1).
-    #[arg(long, default_value_t = rules::T0.default, value_parser = rules::T0.real(), value_name = "PHASE")]
+    #[arg(help = rules::T0.help("Initial phase t̂0"), long, default_value_t = rules::T0.default, value_parser = rules::T0.real(), value_name = "PHASE")]
     pub t0: f64,
-    /// Initial velocity v0, in [-7300, 7300] and at most 1000 from the table's f'(t0)
-    /// (default: f'(t0) + 0.5, a short hop leaving the table).
-    #[arg(long, value_parser = rules::V0.real(), value_name = "V", allow_hyphen_values = true)]
+    #[arg(help = rules::V0.help("Initial velocity v0, at most 1000 from the table's f'(t0) (default: f'(t0) + 0.5, a short hop leaving the table)"), long, value_parser = rules::V0.real(), value_name = "V", allow_hyphen_values = true)]
     pub v0: Option<f64>,
-    /// Initial height above the table, in [0, 1000].
-    #[arg(long, default_value_t = rules::Z0.default, value_parser = rules::Z0.real(), value_name = "Z")]
+    #[arg(help = rules::Z0.help("Initial height z0"), long, default_value_t = rules::Z0.default, value_parser = rules::Z0.real(), value_name = "Z")]
     pub z0: f64,
 }
 
@@ -179,12 +169,9 @@ pub struct OrbitArgs {
     pub system: SystemArgs,
     #[command(flatten)]
     pub initial: InitialArgs,
-    /// Number of events to print; valid a whole number ≥ 0 (at most 1e15).
-    #[arg(long, default_value_t = rules::BOUNCES.default as u64, value_parser = rules::BOUNCES.whole::<u64>(), value_name = "N")]
+    #[arg(help = rules::BOUNCES.help("Number of events to print"), long, default_value_t = rules::BOUNCES.default as u64, value_parser = rules::BOUNCES.whole::<u64>(), value_name = "N")]
     pub bounces: u64,
-    /// Number of events to compute first without printing them; valid a whole number ≥ 0
-    /// (at most 1e15).
-    #[arg(long, default_value_t = rules::SKIP.default as u64, value_parser = rules::SKIP.whole::<u64>(), value_name = "M")]
+    #[arg(help = rules::SKIP.help("Number of events to compute first without printing them"), long, default_value_t = rules::SKIP.default as u64, value_parser = rules::SKIP.whole::<u64>(), value_name = "M")]
     pub skip: u64,
     /// Next-impact solver.
     #[arg(long, value_enum, default_value_t = SolverArg::Exact)]
@@ -236,11 +223,9 @@ pub struct PartArgs {
 /// `--width` and `--height`: the size of a text picture (`sweep`, `plane`, `basins`).
 #[derive(Args, Debug, Clone, Default)]
 pub struct TextSizeArgs {
-    /// Braille width in characters; valid 10 to 2000 [default: the terminal's].
-    #[arg(long, value_parser = rules::CELLS.whole::<u16>(), value_name = "COLS")]
+    #[arg(help = rules::CELLS.help("Braille width (default: the terminal's)"), long, value_parser = rules::CELLS.whole::<u16>(), value_name = "COLS")]
     pub width: Option<u16>,
-    /// Braille height in lines; valid 10 to 2000 [default: the terminal's].
-    #[arg(long, value_parser = rules::CELLS.whole::<u16>(), value_name = "LINES")]
+    #[arg(help = rules::CELLS.help("Braille height in lines (default: the terminal's)"), long, value_parser = rules::CELLS.whole::<u16>(), value_name = "LINES")]
     pub height: Option<u16>,
 }
 
@@ -320,15 +305,11 @@ pub struct SweepSpecArgs {
     /// over its whole range unless a window is given [default: the one given as a window].
     #[arg(long, value_name = "NAME[:LO..HI]", allow_hyphen_values = true)]
     pub param: Option<String>,
-    /// Number of parameter values; valid 1 to 10000000 [default: 1000].
-    #[arg(long, value_parser = rules::STEPS.whole::<usize>(), value_name = "N")]
+    #[arg(help = rules::STEPS.help_default("Number of parameter values"), long, value_parser = rules::STEPS.whole::<usize>(), value_name = "N")]
     pub steps: Option<usize>,
-    /// End of the transient T in table periods; points are the last events before T;
-    /// valid 1 to 1e12 [default: 5000000, the paper's].
-    #[arg(long, value_parser = rules::TRANSIENT.whole::<u64>(), value_name = "PERIODS")]
+    #[arg(help = rules::TRANSIENT.help_default("End of the transient T in table periods (the default is the paper's); points are the last events before T"), long, value_parser = rules::TRANSIENT.whole::<u64>(), value_name = "PERIODS")]
     pub transient: Option<u64>,
-    /// Events recorded per value; valid 1 to 1000000 [default: 100].
-    #[arg(long, value_parser = rules::KEEP.whole::<usize>(), value_name = "M")]
+    #[arg(help = rules::KEEP.help_default("Events recorded per value"), long, value_parser = rules::KEEP.whole::<usize>(), value_name = "M")]
     pub keep: Option<usize>,
     #[command(flatten)]
     pub initial: InitialArgs,
@@ -345,24 +326,17 @@ pub struct SweepSpecArgs {
     /// Run every value to the full transient (no periodicity early stop).
     #[arg(long)]
     pub no_early_stop: bool,
-    /// Longest cycle (in events) the early stop detects; valid 1 to 4096.
-    #[arg(long, default_value_t = rules::MAX_PERIOD.default as usize, value_parser = rules::MAX_PERIOD.whole::<usize>(), value_name = "P")]
+    #[arg(help = rules::MAX_PERIOD.help("Longest cycle (in events) the early stop detects"), long, default_value_t = rules::MAX_PERIOD.default as usize, value_parser = rules::MAX_PERIOD.whole::<usize>(), value_name = "P")]
     pub max_period: usize,
-    /// Agreement in phase and velocity promised by the early stop; valid (0, 1e-3].
-    #[arg(long, default_value_t = rules::TOLERANCE.default, value_parser = rules::TOLERANCE.real(), value_name = "TOL")]
+    #[arg(help = rules::TOLERANCE.help("Agreement in phase and velocity promised by the early stop"), long, default_value_t = rules::TOLERANCE.default, value_parser = rules::TOLERANCE.real(), value_name = "TOL")]
     pub tolerance: f64,
     /// Add a `lyapunov` column: the largest Lyapunov exponent per impact of each
     /// value's orbit (exact on cycles, QR over 10⁴ impacts otherwise; -inf when it sticks).
     #[arg(long)]
     pub lyapunov: bool,
-    /// Initial conditions per value: the start above and N − 1 more spread over the
-    /// basin box (t̂0 ∈ [0, 1), w0 ∈ [0, W]); adds an `attractor` column; valid 1 to 1000
-    /// [default: 1].
-    #[arg(long, value_parser = rules::STARTS.whole::<usize>(), value_name = "N")]
+    #[arg(help = rules::STARTS.help_default("Initial conditions per value: the start above and N − 1 more spread over the basin box (t̂0 ∈ [0, 1), w0 ∈ [0, W]); adds an `attractor` column"), long, value_parser = rules::STARTS.whole::<usize>(), value_name = "N")]
     pub starts: Option<usize>,
-    /// Top W of the extra starts' launch velocities; valid (0, 1000] [default: max(1,
-    /// 2α·max|F'|), at most 1000].
-    #[arg(long, value_parser = rules::W_MAX.real(), value_name = "W")]
+    #[arg(help = rules::W_MAX.help("Top W of the extra starts' launch velocities (default: max(1, 2α·max|F'|), clamped into the range)"), long, value_parser = rules::W_MAX.real(), value_name = "W")]
     pub w_max: Option<f64>,
 }
 
@@ -381,6 +355,13 @@ pub struct SweepArgs {
     pub run: RunArgs,
 }
 
+/// `--impacts` of `lyapunov`: what it sets, then how the measurement streams.
+const IMPACTS_HELP: &str = "Impacts measured by QR on an orbit that has not settled on a cycle";
+const IMPACTS_MORE: &str = "The measurement streams: memory does not grow with M (the QR sums, 16 \
+    block means and the cells the orbit visits: typically a few MB, at most about 90 MB where it \
+    visits a million cells, as --check states), time does (about 2 s per 10⁷ impacts on one \
+    core, so 1e10 takes half an hour or more), with progress on stderr; Ctrl-C stops it.";
+
 /// `bouncemap lyapunov`.
 #[derive(Args, Debug, Clone)]
 pub struct LyapunovArgs {
@@ -392,19 +373,9 @@ pub struct LyapunovArgs {
     /// do with this flag, instead of --t0/--v0/--z0.
     #[arg(long)]
     pub near_fixed_point: bool,
-    /// End of the transient in table periods (an orbit that settles on a cycle earlier
-    /// stops there); valid 1 to 1e12.
-    #[arg(long, default_value_t = rules::LYAPUNOV_TRANSIENT.default as u64, value_parser = rules::LYAPUNOV_TRANSIENT.whole::<u64>(), value_name = "PERIODS")]
+    #[arg(help = rules::LYAPUNOV_TRANSIENT.help("End of the transient in table periods (an orbit that settles on a cycle earlier stops there)"), long, default_value_t = rules::LYAPUNOV_TRANSIENT.default as u64, value_parser = rules::LYAPUNOV_TRANSIENT.whole::<u64>(), value_name = "PERIODS")]
     pub transient: u64,
-    /// Impacts measured by QR on an orbit that has not settled on a cycle; valid 1 to
-    /// 1e10.
-    ///
-    /// The measurement streams: memory does not grow with M (the QR sums, 16 block
-    /// means and the cells the orbit visits: typically a few MB, at most about 90 MB
-    /// where it visits a million cells, as --check states), time does (about 2 s per 10⁷
-    /// impacts on one core, so 1e10 takes half an hour or more), with progress on
-    /// stderr; Ctrl-C stops it.
-    #[arg(long, default_value_t = rules::IMPACTS.default as u64, value_parser = rules::IMPACTS.whole::<u64>(), value_name = "M")]
+    #[arg(help = rules::IMPACTS.help(IMPACTS_HELP), long_help = format!("{}\n\n{IMPACTS_MORE}", rules::IMPACTS.help(IMPACTS_HELP)), long, default_value_t = rules::IMPACTS.default as u64, value_parser = rules::IMPACTS.whole::<u64>(), value_name = "M")]
     pub impacts: u64,
     /// Run the full transient and measure by QR even on a cycle (a second method).
     #[arg(long)]
@@ -433,16 +404,11 @@ pub enum BasinsFormat {
 pub struct BasinsSpecArgs {
     #[command(flatten)]
     pub system: SystemArgs,
-    /// Starts along t̂0 × along w0, e.g. 200x100; at most 4000 per side and 10⁶ in all.
-    #[arg(long, default_value = rules::BASINS_GRID, value_parser = parse_grid, value_name = "NXxNY")]
+    #[arg(help = grid_help("Starts along t̂0 × along w0, e.g. 200x100"), long, default_value = rules::BASINS_GRID, value_parser = parse_grid, value_name = "NXxNY")]
     pub grid: (usize, usize),
-    /// Top W of the launch velocities w0 = v0 − f'(t̂0) ∈ [0, W]; valid (0, 1000]
-    /// [default: max(1, 2α·max|F'|), twice the table's largest velocity].
-    #[arg(long, value_parser = rules::W_MAX.real(), value_name = "W")]
+    #[arg(help = rules::W_MAX.help("Top W of the launch velocities w0 = v0 − f'(t̂0) ∈ [0, W] (default: max(1, 2α·max|F'|), twice the table's largest velocity, clamped into the range)"), long, value_parser = rules::W_MAX.real(), value_name = "W")]
     pub w_max: Option<f64>,
-    /// End of each start's transient in table periods (early stop on cycles); valid 1 to
-    /// 1e12.
-    #[arg(long, default_value_t = rules::BASIN_TRANSIENT.default as u64, value_parser = rules::BASIN_TRANSIENT.whole::<u64>(), value_name = "PERIODS")]
+    #[arg(help = rules::BASIN_TRANSIENT.help("End of each start's transient in table periods (early stop on cycles)"), long, default_value_t = rules::BASIN_TRANSIENT.default as u64, value_parser = rules::BASIN_TRANSIENT.whole::<u64>(), value_name = "PERIODS")]
     pub transient: u64,
 }
 
@@ -471,6 +437,22 @@ pub struct SidesText<'a> {
     pub cells: &'a str,
     /// An example ("200x100").
     pub example: &'a str,
+}
+
+/// `--table`'s help: the built-in tables, F_D's range of D from the engine's limit, then
+/// `after` (what else the command accepts there).
+pub fn table_help(after: &str) -> String {
+    format!(
+        "Table shape: sine, quad (= fd:0), cubic (= fd:1), fd:D with D in {}, or PATH.toml{after}.",
+        bouncemap_engine::limits::D.text
+    )
+}
+
+/// A grid flag's help: `what` it sets, then the picture's limits as the refusal states
+/// them.
+pub fn grid_help(what: &str) -> String {
+    use bouncemap_engine::picture::{MAX_CELLS, MAX_SIDE};
+    format!("{what}; each side at most {MAX_SIDE} and at most {MAX_CELLS} in all.")
 }
 
 /// `WxH`: the sides of a picture, each in 1..=`MAX_SIDE`, at most `MAX_CELLS`
@@ -585,6 +567,65 @@ pub struct BenchArgs {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Every "valid ..." in a flag's help is a range some rule states, so the help and
+    /// the refusals read the same: a range written by hand into a help text fails here.
+    #[test]
+    fn help_ranges_are_the_rules_ranges() {
+        use clap::CommandFactory;
+        let texts: Vec<&str> = [
+            rules::ALPHA,
+            rules::R,
+            rules::D,
+            rules::K,
+            rules::T0,
+            rules::V0,
+            rules::Z0,
+            rules::STEPS,
+            rules::TRANSIENT,
+            rules::KEEP,
+            rules::MAX_PERIOD,
+            rules::TOLERANCE,
+            rules::IMPACTS,
+            rules::W_MAX,
+            rules::STARTS,
+            rules::BOUNCES,
+            rules::THREADS,
+            rules::FPS,
+            rules::CELLS,
+            rules::CYCLE_N,
+            rules::CURVE_SEEDS,
+            rules::DEPTH,
+            rules::D_COUNT,
+            rules::SCALING_D,
+            rules::D_POINTS,
+            rules::FIG_SIDE,
+            rules::DPI,
+        ]
+        .iter()
+        .map(|rule| rule.limit.text)
+        .collect();
+        fn walk(cmd: &clap::Command, texts: &[&str], seen: &mut usize) {
+            for arg in cmd.get_arguments() {
+                let help = arg.get_help().map(|h| h.to_string()).unwrap_or_default();
+                if let Some((_, range)) = help.split_once("; valid ") {
+                    *seen += 1;
+                    assert!(
+                        texts.iter().any(|t| range.starts_with(t)),
+                        "--{} of {}: \"{range}\" is not a rule's range",
+                        arg.get_id(),
+                        cmd.get_name()
+                    );
+                }
+            }
+            for sub in cmd.get_subcommands() {
+                walk(sub, texts, seen);
+            }
+        }
+        let mut seen = 0;
+        walk(&Cli::command(), &texts, &mut seen);
+        assert!(seen > 40, "only {seen} ranged flags found");
+    }
 
     #[test]
     fn shard_parsing_is_one_based() {

@@ -8,8 +8,7 @@ use super::*;
 pub struct FixedArgs {
     #[command(flatten)]
     pub system: SystemArgs,
-    /// Periods per bounce of the (1, k) solution; valid 1 to 100.
-    #[arg(long, default_value_t = rules::K.default as u32, value_parser = rules::K.whole::<u32>(), value_name = "K")]
+    #[arg(help = rules::K.help("Periods per bounce of the (1, k) solution"), long, default_value_t = rules::K.default as u32, value_parser = rules::K.whole::<u32>(), value_name = "K")]
     pub k: u32,
     /// Output format.
     #[arg(long, value_enum, default_value_t = Format::Text)]
@@ -21,8 +20,7 @@ pub struct FixedArgs {
 pub struct TwoCycleArgs {
     #[command(flatten)]
     pub system: SystemArgs,
-    /// k of the (1, k) solution the (2, 2k) one surrounds; valid 1 to 100.
-    #[arg(long, default_value_t = rules::K.default as u32, value_parser = rules::K.whole::<u32>(), value_name = "K")]
+    #[arg(help = rules::K.help("k of the (1, k) solution the (2, 2k) one surrounds"), long, default_value_t = rules::K.default as u32, value_parser = rules::K.whole::<u32>(), value_name = "K")]
     pub k: u32,
     /// Output format.
     #[arg(long, value_enum, default_value_t = Format::Text)]
@@ -41,11 +39,9 @@ pub enum FromArg {
 /// `bouncemap continue`.
 #[derive(Args, Debug, Clone)]
 pub struct ContinueArgs {
-    /// Table shape: sine, quad (= fd:0), cubic (= fd:1), fd:D with D in [0, 1], or PATH.toml.
-    #[arg(long, default_value = rules::DEFAULT_TABLE, value_parser = TableSpec::parse, value_name = "TABLE")]
+    #[arg(long, help = super::table_help(""), default_value = rules::DEFAULT_TABLE, value_parser = TableSpec::parse, value_name = "TABLE")]
     pub table: TableSpec,
-    /// Coefficient of restitution r; valid (0, 1).
-    #[arg(long, default_value_t = rules::R.default, value_parser = rules::R.real(), value_name = "R")]
+    #[arg(help = rules::R.help("Coefficient of restitution r"), long, default_value_t = rules::R.default, value_parser = rules::R.real(), value_name = "R")]
     pub r: f64,
     /// The α window LO..HI, each in (0, 1000], LO < HI.
     #[arg(long, value_parser = parse_alpha_window, value_name = "LO..HI")]
@@ -53,13 +49,11 @@ pub struct ContinueArgs {
     /// Start on the (1, k) solution or on the (2, 2k) one [default: fixed].
     #[arg(long, value_enum, conflicts_with_all = ["n", "t0", "v0"])]
     pub from: Option<FromArg>,
-    /// k: of the (1, k) solution with --from, of the (n, k) cycle with --n; valid 1 to 100.
-    #[arg(long, default_value_t = rules::K.default as u32, value_parser = rules::K.whole::<u32>(), value_name = "K")]
+    #[arg(help = rules::K.help("k: of the (1, k) solution with --from, of the (n, k) cycle with --n"), long, default_value_t = rules::K.default as u32, value_parser = rules::K.whole::<u32>(), value_name = "K")]
     pub k: u32,
     #[command(flatten)]
     pub guess: CycleGuessArgs,
-    /// No doubled branch is started beyond this period; valid 1 to 4096.
-    #[arg(long, default_value_t = rules::CONTINUE_MAX_PERIOD.default as usize, value_parser = rules::CONTINUE_MAX_PERIOD.whole::<usize>(), value_name = "P")]
+    #[arg(help = rules::CONTINUE_MAX_PERIOD.help("No doubled branch is started beyond this period"), long, default_value_t = rules::CONTINUE_MAX_PERIOD.default as usize, value_parser = rules::CONTINUE_MAX_PERIOD.whole::<usize>(), value_name = "P")]
     pub max_period: usize,
     /// Output format.
     #[arg(long, value_enum, default_value_t = Format::Text)]
@@ -81,11 +75,7 @@ pub struct CurvesArgs {
 /// The plane and the seeds of `curves` (and `figure curves`).
 #[derive(Args, Debug, Clone)]
 pub struct CurvesSpecArgs {
-    /// Table shape: sine, quad (= fd:0), cubic (= fd:1), fd:D with D in [0, 1], or
-    /// PATH.toml[:NAME=VALUE,...]; with a D axis, fd (the family) or fd:D, D the value
-    /// the curves are started from (a file's parameter alike: the value it is given,
-    /// else the window's middle).
-    #[arg(long, default_value = rules::DEFAULT_TABLE, value_name = "TABLE")]
+    #[arg(long, help = super::table_help("[:NAME=VALUE,...]; with a D axis, fd (the family) or fd:D, D the value the curves are started from (a file's parameter alike: the value it is given, else the window's middle)"), default_value = rules::DEFAULT_TABLE, value_name = "TABLE")]
     pub table: String,
     /// The horizontal axis: alpha:LO..HI.
     #[arg(long, value_name = "alpha:LO..HI")]
@@ -93,20 +83,13 @@ pub struct CurvesSpecArgs {
     /// The vertical axis, the second parameter: r:LO..HI, or NAME:LO..HI with NAME a parameter of the table's family (F_D's D, a table file's).
     #[arg(long, value_name = "PARAM:LO..HI")]
     pub y: String,
-    /// Coefficient of restitution r; valid (0, 1) [default: 0.8]. With an r axis, the
-    /// value the curves are started from (default: the window's middle).
-    #[arg(long, value_parser = rules::R.real(), value_name = "R")]
+    #[arg(help = rules::R.help_default("Coefficient of restitution r (with an r axis, the value the curves are started from, by default the window's middle)"), long, value_parser = rules::R.real(), value_name = "R")]
     pub r: Option<f64>,
-    /// k of the (1, k) solution whose branches are followed; valid 1 to 100.
-    #[arg(long, default_value_t = rules::K.default as u32, value_parser = rules::K.whole::<u32>(), value_name = "K")]
+    #[arg(help = rules::K.help("k of the (1, k) solution whose branches are followed"), long, default_value_t = rules::K.default as u32, value_parser = rules::K.whole::<u32>(), value_name = "K")]
     pub k: u32,
-    /// No doubled branch is started beyond this period; valid 1 to 4096.
-    #[arg(long, default_value_t = rules::CONTINUE_MAX_PERIOD.default as usize, value_parser = rules::CONTINUE_MAX_PERIOD.whole::<usize>(), value_name = "P")]
+    #[arg(help = rules::CONTINUE_MAX_PERIOD.help("No doubled branch is started beyond this period"), long, default_value_t = rules::CONTINUE_MAX_PERIOD.default as usize, value_parser = rules::CONTINUE_MAX_PERIOD.whole::<usize>(), value_name = "P")]
     pub max_period: usize,
-    /// Besides the starting value, seed on grids of the second parameter's window, the
-    /// first of about this many values, then finer (up to 129 values) until two finer
-    /// grids find no new curve; valid 1 to 64 (1: the starting value only).
-    #[arg(long, default_value_t = rules::CURVE_SEEDS.default as usize, value_parser = rules::CURVE_SEEDS.whole::<usize>(), value_name = "N")]
+    #[arg(help = rules::CURVE_SEEDS.help("Besides the starting value, seed on grids of the second parameter's window, the first of about this many values, then finer (up to 129 values) until two finer grids find no new curve (1: the starting value only)"), long, default_value_t = rules::CURVE_SEEDS.default as usize, value_parser = rules::CURVE_SEEDS.whole::<usize>(), value_name = "N")]
     pub seeds: usize,
     #[command(flatten)]
     pub guess: CycleGuessArgs,
@@ -117,15 +100,11 @@ pub struct CurvesSpecArgs {
 /// the second parameter); k is the command's --k.
 #[derive(Args, Debug, Clone, Default)]
 pub struct CycleGuessArgs {
-    /// Impacts of the (n, k) cycle to start on (with --t0 and --v0, a guess at α = LO);
-    /// valid 1 to 1024.
-    #[arg(long, value_parser = rules::CYCLE_N.whole::<usize>(), value_name = "N", requires_all = ["t0", "v0"])]
+    #[arg(help = rules::CYCLE_N.help("Impacts of the (n, k) cycle to start on (with --t0 and --v0, a guess at α = LO)"), long, value_parser = rules::CYCLE_N.whole::<usize>(), value_name = "N", requires_all = ["t0", "v0"])]
     pub n: Option<usize>,
-    /// The guess's launch phase t̂0 in [0, 1).
-    #[arg(long, value_parser = rules::T0.real(), value_name = "PHASE", requires = "n")]
+    #[arg(help = rules::T0.help("The guess's launch phase t̂0"), long, value_parser = rules::T0.real(), value_name = "PHASE", requires = "n")]
     pub t0: Option<f64>,
-    /// The guess's launch velocity v0 (right after an impact), in [-7300, 7300].
-    #[arg(long, value_parser = rules::V0.real(), value_name = "V", allow_hyphen_values = true, requires = "n")]
+    #[arg(help = rules::V0.help("The guess's launch velocity v0 (right after an impact)"), long, value_parser = rules::V0.real(), value_name = "V", allow_hyphen_values = true, requires = "n")]
     pub v0: Option<f64>,
 }
 
@@ -139,17 +118,13 @@ impl CycleGuessArgs {
 /// `bouncemap cascade`.
 #[derive(Args, Debug, Clone)]
 pub struct CascadeArgs {
-    /// Table shape: sine, quad (= fd:0), cubic (= fd:1), fd:D with D in [0, 1], or PATH.toml.
-    #[arg(long, default_value = rules::DEFAULT_TABLE, value_parser = TableSpec::parse, value_name = "TABLE", conflicts_with = "d")]
+    #[arg(long, help = super::table_help(""), default_value = rules::DEFAULT_TABLE, value_parser = TableSpec::parse, value_name = "TABLE", conflicts_with = "d")]
     pub table: TableSpec,
-    /// Coefficient of restitution r; valid (0, 1).
-    #[arg(long, default_value_t = rules::R.default, value_parser = rules::R.real(), value_name = "R")]
+    #[arg(help = rules::R.help("Coefficient of restitution r"), long, default_value_t = rules::R.default, value_parser = rules::R.real(), value_name = "R")]
     pub r: f64,
-    /// k of the (1, k) solution the cascade starts from; valid 1 to 100.
-    #[arg(long, default_value_t = rules::K.default as u32, value_parser = rules::K.whole::<u32>(), value_name = "K")]
+    #[arg(help = rules::K.help("k of the (1, k) solution the cascade starts from"), long, default_value_t = rules::K.default as u32, value_parser = rules::K.whole::<u32>(), value_name = "K")]
     pub k: u32,
-    /// Period doublings looked for; valid 1 to 12.
-    #[arg(long, default_value_t = rules::DEPTH.default as usize, value_parser = rules::DEPTH.whole::<usize>(), value_name = "N")]
+    #[arg(help = rules::DEPTH.help("Period doublings looked for"), long, default_value_t = rules::DEPTH.default as usize, value_parser = rules::DEPTH.whole::<usize>(), value_name = "N")]
     pub depth: usize,
     /// A family of fd:D tables instead of --table: LO..HI:N, N equally spaced D in
     /// [0, 1] (one row per D).
@@ -171,11 +146,9 @@ pub struct ScalingArgs {
         help = "Values of D for F_D: a list (0.001,0.01,0.1) or a log-spaced range LO..HI[:N] (default N = 13); each in (0, 1]"
     )]
     pub d: DList,
-    /// Coefficient of restitution r; valid (0, 1).
-    #[arg(long, default_value_t = rules::R.default, value_parser = rules::R.real(), value_name = "R")]
+    #[arg(help = rules::R.help("Coefficient of restitution r"), long, default_value_t = rules::R.default, value_parser = rules::R.real(), value_name = "R")]
     pub r: f64,
-    /// k of the (1, k) solution; valid 1 to 100.
-    #[arg(long, default_value_t = rules::K.default as u32, value_parser = rules::K.whole::<u32>(), value_name = "K")]
+    #[arg(help = rules::K.help("k of the (1, k) solution"), long, default_value_t = rules::K.default as u32, value_parser = rules::K.whole::<u32>(), value_name = "K")]
     pub k: u32,
     /// Output format.
     #[arg(long, value_enum, default_value_t = Format::Text)]

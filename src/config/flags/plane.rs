@@ -38,15 +38,11 @@ pub struct PlaneSpecArgs {
     /// The vertical axis: PARAM:LO..HI with PARAM alpha, r or a parameter of the table's family (D for fd).
     #[arg(long, value_name = "PARAM:LO..HI", allow_hyphen_values = true)]
     pub y: String,
-    /// Amplitude α where it is not an axis; valid (0, 1000] [default: 0.45].
-    #[arg(long, value_parser = rules::ALPHA.real(), value_name = "A")]
+    #[arg(help = rules::ALPHA.help_default("Amplitude α where it is not an axis"), long, value_parser = rules::ALPHA.real(), value_name = "A")]
     pub alpha: Option<f64>,
-    /// Restitution r where it is not an axis; valid (0, 1) [default: 0.8].
-    #[arg(long, value_parser = rules::R.real(), value_name = "R")]
+    #[arg(help = rules::R.help_default("Restitution r where it is not an axis"), long, value_parser = rules::R.real(), value_name = "R")]
     pub r: Option<f64>,
-    /// End of each pixel's transient in table periods (early stop on cycles); valid 1 to
-    /// 1e12.
-    #[arg(long, default_value_t = rules::PLANE_TRANSIENT.default as u64, value_parser = rules::PLANE_TRANSIENT.whole::<u64>(), value_name = "PERIODS")]
+    #[arg(help = rules::PLANE_TRANSIENT.help("End of each pixel's transient in table periods (early stop on cycles)"), long, default_value_t = rules::PLANE_TRANSIENT.default as u64, value_parser = rules::PLANE_TRANSIENT.whole::<u64>(), value_name = "PERIODS")]
     pub transient: u64,
     /// Where each pixel's orbit starts.
     #[arg(long, value_enum, default_value_t = PlaneStartArg::NearFixedPoint)]
@@ -62,13 +58,9 @@ pub struct PlaneSpecArgs {
 pub struct FigurePlaneArgs {
     #[command(flatten)]
     pub spec: PlaneSpecArgs,
-    /// Pixels along x × along y, e.g. 400x200; at most 4000 per side and 10⁶ in all.
-    #[arg(long, default_value = rules::PLANE_SIZE, value_parser = parse_plane_size, value_name = "WxH")]
+    #[arg(help = super::grid_help("Pixels along x × along y, e.g. 400x200"), long, default_value = rules::PLANE_SIZE, value_parser = parse_plane_size, value_name = "WxH")]
     pub pixels: (usize, usize),
-    /// Also draw the two-parameter curves (as `bouncemap curves`) of every branch of the
-    /// (1, 1) solution up to period P over the pixels, with their codimension-two points;
-    /// the axes must be alpha and r or a table parameter; P valid 1 to 4096.
-    #[arg(long, value_parser = rules::CONTINUE_MAX_PERIOD.whole::<usize>(), value_name = "P")]
+    #[arg(help = rules::CONTINUE_MAX_PERIOD.help("Also draw the two-parameter curves (as `bouncemap curves`) of every branch of the (1, 1) solution up to period P over the pixels, with their codimension-two points; the axes must be alpha and r or a table parameter"), long, value_parser = rules::CONTINUE_MAX_PERIOD.whole::<usize>(), value_name = "P")]
     pub curves: Option<usize>,
 }
 
@@ -88,16 +80,12 @@ pub struct FigurePlaneArgs {
 pub struct PlaneArgs {
     #[command(flatten)]
     pub spec: PlaneSpecArgs,
-    /// Pixels along x × along y, e.g. 400x200; at most 4000 per side and 10⁶ in all.
-    #[arg(long, default_value = rules::PLANE_SIZE, value_parser = parse_plane_size, value_name = "WxH")]
+    #[arg(help = super::grid_help("Pixels along x × along y, e.g. 400x200"), long, default_value = rules::PLANE_SIZE, value_parser = parse_plane_size, value_name = "WxH")]
     pub size: (usize, usize),
     /// Output format.
     #[arg(long, value_enum, default_value_t = PlaneFormat::Csv)]
     pub format: PlaneFormat,
-    /// With --format braille: also mark the two-parameter curves (as `bouncemap
-    /// curves`) of every branch of the (1, 1) solution up to period P over the picture;
-    /// the axes must be alpha and r or a table parameter; P valid 1 to 4096.
-    #[arg(long, value_parser = rules::CONTINUE_MAX_PERIOD.whole::<usize>(), value_name = "P")]
+    #[arg(help = rules::CONTINUE_MAX_PERIOD.help("With --format braille: also mark the two-parameter curves (as `bouncemap curves`) of every branch of the (1, 1) solution up to period P over the picture; the axes must be alpha and r or a table parameter"), long, value_parser = rules::CONTINUE_MAX_PERIOD.whole::<usize>(), value_name = "P")]
     pub curves: Option<usize>,
     #[command(flatten)]
     pub part: PartArgs,
