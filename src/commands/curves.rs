@@ -277,8 +277,8 @@ fn describe(kind: &CurveKind) -> String {
         CurveKind::BorderCollision { impact, breakpoint } => {
             format!("border collision (BC) of impact {impact} at phase {breakpoint}")
         }
-        CurveKind::Grazing => "grazing (G)".into(),
-        CurveKind::StickingOnset => "onset of sticking (S)".into(),
+        CurveKind::Grazing { landing: false } => "grazing (G)".into(),
+        CurveKind::Grazing { landing: true } => "grazing at a landing (G)".into(),
         CurveKind::Birth => "birth of the pair (B, closed form)".into(),
     }
 }

@@ -131,7 +131,7 @@ pub fn curve_mark(kind: &CurveKind) -> char {
         CurveKind::PeriodDoubling => '•',
         CurveKind::Fold | CurveKind::Birth => '~',
         CurveKind::BorderCollision { .. } => '×',
-        CurveKind::Grazing | CurveKind::StickingOnset => '¦',
+        CurveKind::Grazing { .. } => '¦',
     }
 }
 

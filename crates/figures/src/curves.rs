@@ -16,7 +16,7 @@ pub fn dash(kind: &CurveKind) -> Dash {
     match kind {
         CurveKind::PeriodDoubling => Dash::Solid,
         CurveKind::BorderCollision { .. } => Dash::Dashed,
-        CurveKind::Grazing | CurveKind::StickingOnset => Dash::Dotted,
+        CurveKind::Grazing { .. } => Dash::Dotted,
         CurveKind::Fold | CurveKind::Birth => Dash::DashDot,
     }
 }
@@ -39,8 +39,7 @@ fn kind_text(kind: &CurveKind) -> &'static str {
     match kind {
         CurveKind::PeriodDoubling => "period doubling",
         CurveKind::BorderCollision { .. } => "border collision",
-        CurveKind::Grazing => "grazing",
-        CurveKind::StickingOnset => "onset of sticking",
+        CurveKind::Grazing { .. } => "grazing",
         CurveKind::Fold => "fold",
         CurveKind::Birth => "birth of the pair",
     }

@@ -15,7 +15,7 @@ fn joined(v: &[f64]) -> String {
     v.iter().map(f64::to_string).collect::<Vec<_>>().join(";")
 }
 
-/// A special point: PD, fold, border collision, grazing, onset of sticking, window exit.
+/// A special point: PD, fold, border collision, grazing, window exit.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct SpecialRecord {
     pub kind: &'static str,

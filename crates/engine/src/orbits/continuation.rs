@@ -5,7 +5,7 @@
 //! every branch reached ([`Branch`]): its points ([`CyclePoint`]: α, impact phases,
 //! launch velocities, multipliers, stable flag), its special points and how each end
 //! came about ([`Special`]: period doubling PD, fold F, border collision BC, grazing,
-//! onset of sticking, leaving the window, with α, phase and the point there). The work
+//! leaving the window, with α, phase and the point there). The work
 //! is bounded by [`Options`] (steps per branch, period, branches); the fig. 3 windows
 //! take a few milliseconds to tens of milliseconds, so it can run in the background on
 //! every parameter change.
@@ -23,8 +23,9 @@
 //! are watched for a sign change, and the first one is located by a bracketed root in
 //! the arclength (to a few ulps, far below 1e-10 in α). A step the corrector cannot take
 //! is halved down to [`H_MIN`]; if even that fails the branch ends by grazing (a flight
-//! touches the table), by the onset of sticking (a stick or a vanishing impact velocity
-//! inside the cycle), or as not converged, whichever the last point shows. At a period
+//! touches the table, inside it or at a landing whose impact velocity vanishes; a
+//! regular cycle cannot turn into a stick, see [`crate::orbits::curves`]), or as not
+//! converged, whichever the last point shows. At a period
 //! doubling the branch continues (unstable) and, up to [`Options::max_period`], the
 //! doubled branch is started from the located point along the multiplier's eigenvector
 //! (none at a degenerate period doubling, where f''' = 0). A doubled branch followed back
@@ -817,11 +818,11 @@ impl Family {
                     .total_cmp(&self.impact_speed(pt, b))
             })
             .unwrap_or(0);
-        if let PassError::Stick { phase } | PassError::Grazing { phase } = e {
-            return special(Kind::StickingOnset, pt, phase, slowest);
+        if let PassError::Grazing { phase } = e {
+            return special(Kind::Grazing, pt, phase, slowest);
         }
-        if pt.min_impact_speed < 1e-6 {
-            return special(Kind::StickingOnset, pt, pt.phases[slowest], slowest);
+        if pt.min_impact_speed < GRAZING_SPEED {
+            return special(Kind::Grazing, pt, pt.phases[slowest], slowest);
         }
         let sys = self.map.system().clone();
         let (gap, phase) = super::periodic::min_interior_gap(&sys, pt);
@@ -964,6 +965,10 @@ pub fn holds(sp: &Special) -> bool {
         None => true,
     }
 }
+
+/// A branch that ends with a relative impact velocity below this ends at a grazing
+/// landing (the tangent map grows as 1/|u| there).
+pub const GRAZING_SPEED: f64 = 1e-6;
 
 /// Cycle points closer than this are one (the accuracy of a long cycle's impacts,
 /// below which the continuity test reads nothing).

@@ -17,10 +17,11 @@ pub enum Kind {
     Fold,
     /// An impact phase reaches a breakpoint of the table where f'' jumps.
     BorderCollision,
-    /// A flight touches the table: the impact sequence would change.
+    /// A flight touches the table (inside it, or at its landing, whose relative
+    /// velocity vanishes): the impact sequence would change. A regular cycle's impact
+    /// velocity vanishes only so, never at the onset of a stick (see
+    /// [`crate::orbits::curves`]).
     Grazing,
-    /// An impact velocity vanishes or a stick appears inside the cycle.
-    StickingOnset,
     /// α reaches an end of the window.
     WindowExit,
     /// The corrector failed with no sign of the above.
@@ -41,7 +42,6 @@ impl Kind {
             Kind::Fold => "fold",
             Kind::BorderCollision => "border_collision",
             Kind::Grazing => "grazing",
-            Kind::StickingOnset => "sticking_onset",
             Kind::WindowExit => "window_exit",
             Kind::NoConvergence => "no_convergence",
             Kind::Lost => "lost",
@@ -56,7 +56,6 @@ impl Kind {
             Kind::Fold => "F",
             Kind::BorderCollision => "BC",
             Kind::Grazing => "G",
-            Kind::StickingOnset => "S",
             Kind::WindowExit => "W",
             Kind::NoConvergence => "NC",
             Kind::Lost => "?",
@@ -73,9 +72,9 @@ pub struct Special {
     /// Where, in α.
     pub alpha: f64,
     /// The phase concerned: the breakpoint at a border collision, the touching phase at
-    /// a grazing, the slowest impact's at the onset of sticking, t̂₀ otherwise.
+    /// a grazing (the slowest impact's at a grazing landing), t̂₀ otherwise.
     pub phase: f64,
-    /// Which impact of the cycle (0 = the launch's) for a border collision or sticking.
+    /// Which impact of the cycle (0 = the launch's) for a border collision or a grazing landing.
     pub impact: usize,
     /// The cycle at the point (the last good one where the branch could not go on).
     pub point: CyclePoint,

@@ -9,13 +9,13 @@
 //! * [`periodic`]: (n, k) cycles of the exact map by Newton's method on n steps of it,
 //!   with their multipliers; every accepted point returns within 1e-11.
 //! * [`continuation`]: pseudo-arclength continuation of cycles in α with period
-//!   doubling, fold, border collision, grazing, onset of sticking and window exits
+//!   doubling, fold, border collision, grazing and window exits
 //!   located, and branch switching onto doubled branches ([`continuation::branches`]).
 //! * [`curves`]: two-parameter curves of period doublings, folds, border collisions
 //!   and grazings over (α, r) or (α, D), with their codimension-two points and the
 //!   flip's criticality.
 //! * [`events`]: the special points of a branch (PD, fold, border collision, grazing,
-//!   onset of sticking, window exit) and the helpers that locate them.
+//!   window exit) and the helpers that locate them.
 //! * [`cascade`]: the period-doubling cascade from a (1, k) solution: α₁ < α₂ < …, how
 //!   each 2ⁿ branch ends, and the Feigenbaum ratios.
 //! * [`scaling`]: the power laws ΔT ∝ Δκ and Δt ∝ Δκ^½ near the period-doubling point

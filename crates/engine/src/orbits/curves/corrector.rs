@@ -105,7 +105,7 @@ impl Tracer<'_> {
             self.correct_fold(y, c, d, guess)
         } else {
             let fixed = self.correct_fixed(y, c, d, guess);
-            let extended = !matches!(self.kind, CurveKind::Grazing | CurveKind::Birth);
+            let extended = !matches!(self.kind, CurveKind::Grazing { .. } | CurveKind::Birth);
             match fixed {
                 Err(first) if extended => self.correct_fold(y, c, d, guess).map_err(|_| first),
                 other => other,
@@ -192,13 +192,13 @@ impl Tracer<'_> {
                 };
                 Some(signed_distance(ph, breakpoint))
             }
-            CurveKind::StickingOnset => Some(
+            CurveKind::Grazing { landing: true } => Some(
                 p.impact_speeds
                     .iter()
                     .cloned()
                     .fold(f64::INFINITY, f64::min),
             ),
-            CurveKind::Grazing | CurveKind::Birth => None,
+            CurveKind::Grazing { landing: false } | CurveKind::Birth => None,
         }
     }
 

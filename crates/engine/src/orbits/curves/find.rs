@@ -13,7 +13,7 @@ use super::merge::{codim2_once, dedupe};
 const SAME_CURVE: f64 = 5e-4;
 use super::trace::follow;
 use super::*;
-use crate::orbits::continuation::{branches, Kind, Options, Start};
+use crate::orbits::continuation::{branches, Kind, Options, Start, GRAZING_SPEED};
 
 /// Follow every curve reachable from `seeds` in `plane`.
 pub fn curves(plane: &Plane, seeds: Seeds) -> Result<Curves, EngineError> {
@@ -213,12 +213,10 @@ fn seed_at(
     };
     for b in &found {
         let ends = [&b.begin, &b.end];
-        let specials = b.specials.iter().chain(ends.into_iter().filter(|s| {
-            matches!(
-                s.kind,
-                Kind::BorderCollision | Kind::Grazing | Kind::Fold | Kind::StickingOnset
-            )
-        }));
+        let specials = b.specials.iter().chain(
+            ends.into_iter()
+                .filter(|s| matches!(s.kind, Kind::BorderCollision | Kind::Grazing | Kind::Fold)),
+        );
         for s in specials {
             let kind = match s.kind {
                 Kind::PeriodDoubling => CurveKind::PeriodDoubling,
@@ -227,8 +225,10 @@ fn seed_at(
                     impact: s.impact,
                     breakpoint: s.phase,
                 },
-                Kind::Grazing => CurveKind::Grazing,
-                Kind::StickingOnset => CurveKind::StickingOnset,
+                // The continuation's own criterion: a landing turned tangential.
+                Kind::Grazing => CurveKind::Grazing {
+                    landing: s.point.min_impact_speed < GRAZING_SPEED,
+                },
                 _ => continue,
             };
             // A doubled branch's birth is its parent's period doubling.

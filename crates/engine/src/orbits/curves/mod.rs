@@ -18,9 +18,18 @@
 //! * border collision: G = the signed phase distance of one impact to one breakpoint
 //!   where f'' jumps;
 //! * grazing: G = the smallest interior height of the ball above the table over the
-//!   cycle's flights;
-//! * onset of sticking: G = the smallest relative impact velocity of the cycle (a
-//!   landing turning tangential).
+//!   cycle's flights (a flight touching the table: beyond, the cycle gains an impact),
+//!   or, seen from the other side, the smallest relative impact velocity (a landing
+//!   turning tangential: beyond, the cycle loses that impact).
+//!
+//! There is no curve of an onset of sticking. A flight touches the table tangentially
+//! (at a landing, or inside it) only where its height above the table, h ≥ 0 with
+//! h = h' = 0 there, has h'' = −1 − αF'' ≥ 0: where the table accelerates downwards at
+//! least as fast as gravity. There the touching ball leaves the table at once; a stick
+//! needs αF'' > −1. So the impact velocity of a regular (n, k) cycle vanishes only at a
+//! grazing, never where a stick begins (a low hop would need a launch velocity r|u|
+//! that vanishes with the landing before it, back to a flight of finite length). The
+//! case αF'' = −1 exactly is of codimension two.
 //!
 //! The cycle is solved exactly at each (α, p) by Newton's method on the map
 //! ([`crate::orbits::periodic::cycle`], re-verified by the 1e-11 return), warm-started from the
@@ -215,11 +224,14 @@ pub enum CurveKind {
         /// The breakpoint's phase.
         breakpoint: f64,
     },
-    /// A flight touches the table at an interior point.
-    Grazing,
-    /// An impact's relative velocity reaches zero: the landing becomes tangential, and
-    /// beyond it the ball chatters and sticks.
-    StickingOnset,
+    /// A flight touches the table: inside the flight (`landing` false: its smallest
+    /// height above the table reaches zero), or at its landing (`landing` true: the
+    /// relative impact velocity reaches zero). Either way α F'' ≤ −1 there, so the
+    /// ball leaves the table at once (see the module's note on sticking).
+    Grazing {
+        /// Whether the touching is a landing turning tangential.
+        landing: bool,
+    },
     /// The (1, k) pair is born (α max F' = (k/2)(1 − r)/(1 + r)): in closed form
     /// ([`birth`]).
     Birth,
@@ -232,8 +244,7 @@ impl CurveKind {
             CurveKind::PeriodDoubling => "period_doubling",
             CurveKind::Fold => "fold",
             CurveKind::BorderCollision { .. } => "border_collision",
-            CurveKind::Grazing => "grazing",
-            CurveKind::StickingOnset => "sticking_onset",
+            CurveKind::Grazing { .. } => "grazing",
             CurveKind::Birth => "birth",
         }
     }
@@ -244,8 +255,7 @@ impl CurveKind {
             CurveKind::PeriodDoubling => "PD",
             CurveKind::Fold => "F",
             CurveKind::BorderCollision { .. } => "BC",
-            CurveKind::Grazing => "G",
-            CurveKind::StickingOnset => "S",
+            CurveKind::Grazing { .. } => "G",
             CurveKind::Birth => "B",
         }
     }
@@ -259,11 +269,11 @@ impl CurveKind {
                 .phases
                 .get(impact)
                 .map_or(f64::NAN, |&ph| signed_distance(ph, breakpoint)),
-            CurveKind::StickingOnset => pt.min_impact_speed,
+            CurveKind::Grazing { landing: true } => pt.min_impact_speed,
             CurveKind::Birth => {
                 sys.alpha() * birth::max_slope(sys.table()).0 - birth::slope_at_birth(sys.r(), pt.k)
             }
-            CurveKind::Grazing => {
+            CurveKind::Grazing { landing: false } => {
                 let g = min_interior_gap(sys, pt).0;
                 if g.is_finite() {
                     g

@@ -294,7 +294,7 @@ impl Tracer<'_> {
         codim2.push(Codim2 {
             kind: match self.kind {
                 CurveKind::Fold | CurveKind::Birth => Codim2Kind::FoldBorder,
-                CurveKind::Grazing | CurveKind::StickingOnset => Codim2Kind::GrazingBorder,
+                CurveKind::Grazing { .. } => Codim2Kind::GrazingBorder,
                 CurveKind::BorderCollision { .. } if collapsed(&cur.cycle) => Codim2Kind::Collapse,
                 CurveKind::BorderCollision { .. } => Codim2Kind::DoubleBorder,
                 CurveKind::PeriodDoubling => Codim2Kind::PdBorder,
