@@ -151,7 +151,9 @@ impl Action {
             Action::StepTen => "bounce: step ten impacts",
             Action::StepBack => "bounce: step back through history",
             Action::RestartOrbit => "bounce: restart from the initial state",
-            Action::ToggleAxis => "diagram: plot phase t̂ or velocity v",
+            Action::ToggleAxis => {
+                "diagram: plot phase t̂ or velocity v; plane: the vertical parameter (r, D, a table file's)"
+            }
             Action::MarkWindow => "diagram: mark a corner; the second zooms (window or box)",
             Action::ZoomIn => "diagram: zoom in about the cursor",
             Action::ZoomOut => "diagram: zoom out about the cursor",
@@ -160,7 +162,7 @@ impl Action {
             Action::AllAttractors => "diagram: all attractors (8 starts per value) or one start",
             Action::ToggleBasins => "basins of attraction in place of the phase plot (and back)",
             Action::TableView => "the table: F, F′, F″ with breakpoints, t̂* and release phases",
-            Action::TogglePlane => "the (α, D) or (α, r) plane in place of the diagram (and back)",
+            Action::TogglePlane => "the plane of α and D, r or a family's parameter (t: which) in place of the diagram (and back)",
             Action::PlaneCurves => {
                 "plane: two-parameter curves (PD, fold, BC, grazing) over it, on/off"
             }

@@ -261,7 +261,8 @@ fn the_curves_key_draws_the_two_parameter_curves_over_the_plane() {
     let fx = a.take_effects();
     assert!(fx.contains(&Effect::Start(Target::PlaneCurves)), "{fx:?}");
     // What the background work computes, delivered as the worker would.
-    let spec = bouncemap::tui::components::plane::plane_spec(&a.shared.params, (2, 2));
+    let spec =
+        bouncemap::tui::components::plane::plane_spec(&a.shared.params, (2, 2), a.shared.plane_y);
     let (plane, seeds) = bouncemap::config::plane::plane_curves(&spec, 1, 4, None).unwrap();
     let found = bouncemap_engine::orbits::curves::curves(&plane, seeds).unwrap();
     assert!(found
@@ -296,4 +297,50 @@ fn the_curves_key_draws_the_two_parameter_curves_over_the_plane() {
     assert!(near >= 10, "{near}: {s}");
     a.handle(Action::PlaneCurves);
     assert!(!a.shared.show_plane_curves && a.shared.plane_curves.is_none());
+}
+
+/// `t` in the plane view turns the vertical axis to the next parameter: F_D's D, then
+/// r, then D again; with a two-parameter family file, each of its parameters and r in
+/// turn. Each turn restarts the plane, whose spec then has that axis over the
+/// parameter's whole range (r over its plane window).
+#[test]
+fn t_turns_the_planes_vertical_axis_through_r_and_the_familys_parameters() {
+    let mut a = app(ColorMode::None);
+    filled(&mut a, 120, 40);
+    let y = |a: &App| a.panels.plane.spec_for(&a.shared).y.param;
+    assert_eq!(y(&a), SweepParam::D);
+    let turn = |a: &mut App| {
+        a.handle(Action::ToggleAxis);
+        let fx = a.take_effects();
+        assert!(fx.contains(&Effect::Start(Target::Plane)), "{fx:?}");
+        // As the runtime would: the plane restarted on the new spec.
+        let spec = a.panels.plane.spec_for(&a.shared);
+        a.panels.plane.view.spec = Some(spec.clone());
+        spec
+    };
+    let s = turn(&mut a);
+    assert_eq!(s.y.param, SweepParam::R);
+    assert!(s.y.lo > 0.0 && s.y.hi < 1.0 && s.y.lo < s.y.hi);
+    assert_eq!(turn(&mut a).y.param, SweepParam::D);
+
+    let skewed = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/tables/skewed.toml");
+    a.shared
+        .params
+        .set_text(bouncemap::tui::params::ParamId::Table, skewed)
+        .unwrap();
+    let table = a.shared.params.table();
+    let w = SweepParam::parse("w", &table).unwrap();
+    let d = SweepParam::parse("D", &table).unwrap();
+    // The D chosen for F_D is the file's D too: the same name.
+    assert_eq!(y(&a), d);
+    let seen: Vec<SweepParam> = (0..3).map(|_| turn(&mut a).y.param).collect();
+    assert_eq!(seen, [SweepParam::R, w, d]);
+    let s = a.panels.plane.spec_for(&a.shared);
+    assert_eq!((s.y.lo, s.y.hi), (0.0, 1.0));
+    // Back to the sine, which has no family: r.
+    a.shared
+        .params
+        .set_text(bouncemap::tui::params::ParamId::Table, "sine")
+        .unwrap();
+    assert_eq!(y(&a), SweepParam::R);
 }

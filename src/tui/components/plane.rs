@@ -52,10 +52,22 @@ pub struct PlanePanel {
     pub cursor: (usize, usize),
 }
 
+/// The parameters the plane's vertical axis can be, for `table`: r and the table
+/// family's own (F_D's D, a table file's).
+pub fn vertical_params(table: &bouncemap_engine::Table) -> Vec<SweepParam> {
+    let mut all: Vec<SweepParam> = SweepParam::all(table)
+        .into_iter()
+        .filter(|p| *p != SweepParam::Alpha)
+        .collect();
+    // The family's parameters first: the default is its first one.
+    all.sort_by_key(|p| !p.is_table());
+    all
+}
+
 /// The plane the current parameters ask for on a `grid`: α over the diagram's α window,
-/// the table family's first parameter (F_D's D) or r up. The current α, D or r are not
-/// part of it (they are the cursor).
-pub fn plane_spec(params: &Params, grid: (usize, usize)) -> PlaneSpec {
+/// `y` up if the table has it, else the table family's first parameter (F_D's D) or r.
+/// The current α, D or r are not part of it (they are the cursor).
+pub fn plane_spec(params: &Params, grid: (usize, usize), y: Option<SweepParam>) -> PlaneSpec {
     let (alo, ahi) = if params.param == SweepParam::Alpha {
         (params.lo, params.hi)
     } else {
@@ -68,9 +80,10 @@ pub fn plane_spec(params: &Params, grid: (usize, usize)) -> PlaneSpec {
         n: grid.0.max(1),
     };
     let table = params.table();
-    let param = SweepParam::all(&table)
-        .into_iter()
-        .find(SweepParam::is_table)
+    let choices = vertical_params(&table);
+    let param = y
+        .filter(|p| choices.contains(p))
+        .or(choices.first().copied())
         .unwrap_or(SweepParam::R);
     let (lo, hi) = default_window(param, &params.table, &table);
     // The axis's parameter at its window's start: the plane does not depend on the
@@ -94,7 +107,7 @@ pub fn plane_spec(params: &Params, grid: (usize, usize)) -> PlaneSpec {
 impl PlanePanel {
     /// The plane the current parameters ask for at the pane's size.
     pub fn spec_for(&self, shared: &Shared) -> PlaneSpec {
-        plane_spec(&shared.params, self.view.grid())
+        plane_spec(&shared.params, self.view.grid(), shared.plane_y)
     }
 
     /// The cursor at the application's current α and D (or r).
@@ -261,12 +274,30 @@ impl Component for PlanePanel {
                 shared.effect(Effect::Start(Target::Diagram));
                 shared.say("plane: the diagram sweeps α at the point chosen", false);
             }
+            Action::ToggleAxis => {
+                // The next vertical parameter: r and the family's own, in turn.
+                let table = shared.params.table();
+                let choices = vertical_params(&table);
+                let now = self.view.spec.as_ref().map(|s| s.y.param);
+                let at = choices.iter().position(|p| Some(*p) == now);
+                let next = choices[at.map_or(0, |i| (i + 1) % choices.len())];
+                shared.plane_y = Some(next);
+                shared.effect(Effect::Start(Self::TARGET));
+                if shared.show_plane_curves {
+                    shared.effect(Effect::Start(
+                        <super::plane_curves::PlaneCurves as Registered>::TARGET,
+                    ));
+                }
+                shared.say(
+                    format!("plane: {} up (t: the next parameter)", next.as_str()),
+                    false,
+                );
+            }
             // The diagram's other keys do nothing while the plane is shown.
             Action::ZoomIn
             | Action::ZoomOut
             | Action::ZoomBack
             | Action::MarkWindow
-            | Action::ToggleAxis
             | Action::Colouring
             | Action::AllAttractors => {}
             _ => return false,

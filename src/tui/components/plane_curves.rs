@@ -60,7 +60,7 @@ impl Component for PlaneCurves {
             self.pending = false;
             return;
         }
-        let spec = plane_spec(&shared.params, (2, 2));
+        let spec = plane_spec(&shared.params, (2, 2), shared.plane_y);
         // Started from the application's own D (or r) where it lies in the window.
         let current = match spec.y.param {
             SweepParam::Table(n) => shared.params.table().param(n.as_str()),

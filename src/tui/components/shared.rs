@@ -13,6 +13,7 @@ use crate::tui::layout::Slot;
 use crate::tui::params::{ParamId, Params};
 use crate::tui::skeleton::Skeleton;
 use crate::tui::theme::Theme;
+use bouncemap_engine::grid::SweepParam;
 use bouncemap_engine::orbits::periodic::CyclePoint;
 use bouncemap_engine::System;
 
@@ -77,6 +78,9 @@ pub struct Shared {
     pub plane_curves: Option<Result<bouncemap_engine::orbits::curves::Curves, String>>,
     /// Whether the plane view draws the two-parameter curves.
     pub show_plane_curves: bool,
+    /// The plane view's vertical parameter as chosen with `t` (None, or one the table
+    /// does not have: its family's first parameter, else r).
+    pub plane_y: Option<SweepParam>,
     pub branches: Option<Result<Skeleton, String>>,
     /// The continued branch nearest the diagram's cursor (its index) and its cycle at
     /// the cursor's α, while the diagram has the focus.
@@ -113,6 +117,7 @@ impl Shared {
             branches: None,
             plane_curves: None,
             show_plane_curves: false,
+            plane_y: None,
             under_cursor: None,
             at_cursor: None,
             show_times: true,
