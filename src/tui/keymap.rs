@@ -151,9 +151,7 @@ impl Action {
             Action::StepTen => "bounce: step ten impacts",
             Action::StepBack => "bounce: step back through history",
             Action::RestartOrbit => "bounce: restart from the initial state",
-            Action::ToggleAxis => {
-                "diagram: plot phase t̂ or velocity v; plane: the vertical parameter (r, D, a table file's)"
-            }
+            Action::ToggleAxis => "diagram: phase t̂ or velocity v; plane: next vertical axis",
             Action::MarkWindow => "diagram: mark a corner; the second zooms (window or box)",
             Action::ZoomIn => "diagram: zoom in about the cursor",
             Action::ZoomOut => "diagram: zoom out about the cursor",
@@ -162,13 +160,9 @@ impl Action {
             Action::AllAttractors => "diagram: all attractors (8 starts per value) or one start",
             Action::ToggleBasins => "basins of attraction in place of the phase plot (and back)",
             Action::TableView => "the table: F, F′, F″ with breakpoints, t̂* and release phases",
-            Action::TogglePlane => "the plane of α and D, r or a family's parameter (t: which) in place of the diagram (and back)",
-            Action::PlaneCurves => {
-                "plane: two-parameter curves (PD, fold, BC, grazing) over it, on/off"
-            }
-            Action::CyclePanels => {
-                "under 100 columns: show the bottom panel left out (phase, stability, bounce)"
-            }
+            Action::TogglePlane => "the α × D plane (t: another axis) in place of the diagram",
+            Action::PlaneCurves => "plane: two-parameter curves (PD, fold, BC, G) on/off",
+            Action::CyclePanels => "narrow screen: show the bottom panel left out",
             Action::Messages => "the messages so far, each in full (the status line cuts them)",
             Action::Legend => "what every mark, line and colour on the screen means",
             Action::Presets => "presets: the paper's figures",
@@ -523,6 +517,32 @@ impl Keymap {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The help overlay spans the screen inside its border: at 80 columns every line of
+    /// it (the keys, padded as the overlay pads them, and the description) fits in 78.
+    #[test]
+    fn every_help_line_fits_an_80_column_terminal() {
+        let help = Keymap::default().help();
+        let key_w = help
+            .iter()
+            .map(|(k, _)| k.chars().count())
+            .max()
+            .unwrap()
+            .min(24);
+        let long: Vec<String> = help
+            .iter()
+            .map(|(k, d)| {
+                (
+                    k,
+                    d,
+                    1 + key_w.max(k.chars().count()) + 2 + d.chars().count(),
+                )
+            })
+            .filter(|(_, _, w)| *w > 78)
+            .map(|(k, d, w)| format!("{k}: {d} ({w} columns)"))
+            .collect();
+        assert!(long.is_empty(), "{long:#?}");
+    }
 
     fn ev(code: KeyCode, m: KeyModifiers) -> KeyEvent {
         KeyEvent::new(code, m)
