@@ -23,11 +23,11 @@ use crate::config::table_spec::TableSpec;
 use crate::config::InputError;
 use crate::output::sink::Sink;
 use bouncemap_engine::jobs::{available_cores, Control, Executor};
-use bouncemap_engine::map::{Event, EventKind, ImpactMap, State};
 use bouncemap_engine::orbits;
 use bouncemap_engine::run::Outcome;
 use bouncemap_engine::sweep::{self, SweepJob, SweepSpec};
 use bouncemap_engine::table::Shape;
+use bouncemap_engine::{Event, EventKind, ImpactMap, State};
 use bouncemap_engine::{Solver, System};
 use std::io::Write;
 use std::time::{Duration, Instant};
@@ -258,7 +258,7 @@ struct CurveRow {
 /// Every curve up to [`CURVES_PERIOD`] of the F_D (α, D) plane and the sine's (α, r)
 /// plane, each timed `runs` times (the median).
 fn curve_timings(runs: usize) -> Result<Vec<CurveRow>, InputError> {
-    use bouncemap_engine::grid::SweepParam;
+    use bouncemap_engine::jobs::grid::SweepParam;
     use bouncemap_engine::orbits::curves::{curves, Plane, Seeds};
     let planes = [
         (
@@ -598,7 +598,7 @@ fn one_step_comparison(sys: &System, n: usize) -> (f64, usize, usize) {
         let s = *exact.state();
         let Ok(e) = exact.step() else { break };
         // Compare flights only: the grid solver has no sticking of its own.
-        if s.mode != bouncemap_engine::Mode::Flying || e.kind != EventKind::Impact {
+        if s.mode() != bouncemap_engine::Mode::Flying || e.kind != EventKind::Impact {
             continue;
         }
         let mut grid = ImpactMap::new(sys.clone(), Solver::Grid, s);

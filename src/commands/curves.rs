@@ -257,7 +257,7 @@ pub fn seeds(args: &CurvesSpecArgs, at: f64) -> Seeds {
 /// very small and very large magnitudes); empty for none.
 fn num(x: f64) -> String {
     if x.is_finite() {
-        bouncemap_engine::error::fmt_value(x)
+        bouncemap_engine::fmt_value(x)
     } else {
         String::new()
     }

@@ -5,8 +5,8 @@
 
 use super::progress::Progress;
 use crate::output::sink::check_stdout;
+use bouncemap_engine::jobs::picture::{Cells, Chunk, Filled};
 use bouncemap_engine::jobs::{Batch, Handle, Summary};
-use bouncemap_engine::picture::{Cells, Chunk, Filled};
 use std::sync::mpsc::RecvTimeoutError;
 use std::time::{Duration, Instant};
 

@@ -15,7 +15,7 @@ use crate::config::presets::preset;
 use crate::config::{self, InputError};
 use crate::output::sink::AtomicFile;
 use bouncemap_engine::attractors::basins::BasinSpec;
-use bouncemap_engine::grid::Shard;
+use bouncemap_engine::jobs::grid::Shard;
 use bouncemap_engine::jobs::{Control, Executor, Progress as JobProgress};
 use bouncemap_engine::orbits::curves::curves;
 use bouncemap_engine::orbits::scaling::{log_spaced, scaling_row, ScalingRow};

@@ -181,7 +181,7 @@ pub fn compute(spec: &PlaneSpec, executor: &Executor) -> anyhow::Result<Plane> {
 }
 
 fn title(spec: &PlaneSpec) -> String {
-    let axis = |a: &bouncemap_engine::grid::Axis| {
+    let axis = |a: &bouncemap_engine::jobs::grid::Axis| {
         format!(
             "{} ∈ [{}, {}] ({})",
             a.param.as_str(),

@@ -14,7 +14,7 @@ use crate::output::part_file::{
     differing_setting, opens_as, read_part, shard_name, spec_text, FileKind, Layout, TOOL,
 };
 use crate::output::to_stderr;
-use bouncemap_engine::grid::Shard;
+use bouncemap_engine::jobs::grid::Shard;
 use clap::ValueEnum;
 use std::path::Path;
 

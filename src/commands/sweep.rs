@@ -208,8 +208,8 @@ fn braille_size(args: &SweepArgs) -> (u16, u16) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use bouncemap_engine::grid::Shard;
-    use bouncemap_engine::grid::SweepParam;
+    use bouncemap_engine::jobs::grid::Shard;
+    use bouncemap_engine::jobs::grid::SweepParam;
     use bouncemap_engine::sweep::Warm;
     use bouncemap_engine::Table;
 

@@ -7,9 +7,9 @@ use super::sweep::shard;
 use super::table_spec::TableSpec;
 use super::InputError;
 use crate::output::text::quoted;
-use bouncemap_engine::grid::Axis;
-use bouncemap_engine::grid::Shard;
-use bouncemap_engine::grid::SweepParam;
+use bouncemap_engine::jobs::grid::Axis;
+use bouncemap_engine::jobs::grid::Shard;
+use bouncemap_engine::jobs::grid::SweepParam;
 use bouncemap_engine::plane::{PlaneSpec, PlaneStart};
 use bouncemap_engine::Table;
 

@@ -6,7 +6,7 @@
 use super::rules;
 use super::table_spec::TableSpec;
 use super::InputError;
-use bouncemap_engine::grid::SweepParam;
+use bouncemap_engine::jobs::grid::SweepParam;
 use bouncemap_engine::sweep::{InitialSpec, SweepSpec};
 use serde::Deserialize;
 

@@ -8,7 +8,7 @@
 //! each front end puts its own name in front (`--alpha`, `defaults.alpha`, `α`).
 
 use crate::output::text::quoted;
-use bouncemap_engine::grid::SweepParam;
+use bouncemap_engine::jobs::grid::SweepParam;
 use bouncemap_engine::limits::{self, Limit};
 use bouncemap_engine::Table;
 
@@ -42,7 +42,7 @@ impl Rule {
         } else {
             Err(format!(
                 "{} is out of range: valid {}",
-                bouncemap_engine::error::fmt_value(x),
+                bouncemap_engine::fmt_value(x),
                 self.limit.text
             ))
         }
@@ -60,7 +60,7 @@ impl Rule {
         format!(
             "{what}; valid {} [default: {}].",
             self.limit.text,
-            bouncemap_engine::error::fmt_value(self.default)
+            bouncemap_engine::fmt_value(self.default)
         )
     }
 

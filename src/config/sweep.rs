@@ -8,7 +8,7 @@ use super::table_spec::TableSpec;
 use super::InputError;
 use crate::config::flags::{ShardArg, SweepArgs, SweepSpecArgs};
 use crate::output::text::quoted;
-use bouncemap_engine::grid::{Shard, SweepParam};
+use bouncemap_engine::jobs::grid::{Shard, SweepParam};
 use bouncemap_engine::run::detect::Periodicity;
 use bouncemap_engine::sweep::{InitialSpec, SweepSpec, Warm};
 use bouncemap_engine::Table;

@@ -182,7 +182,7 @@ impl fmt::Display for TableSpec {
                 f.write_str(&spec.path)?;
                 for (i, (n, v)) in spec.set.iter().enumerate() {
                     let sep = if i == 0 { ':' } else { ',' };
-                    write!(f, "{sep}{n}={}", bouncemap_engine::error::fmt_value(*v))?;
+                    write!(f, "{sep}{n}={}", bouncemap_engine::fmt_value(*v))?;
                 }
                 Ok(())
             }

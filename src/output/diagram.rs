@@ -4,7 +4,7 @@
 
 use super::hitgrid::{HitGrid, Marker, Range};
 use super::text::shortest;
-use bouncemap_engine::grid::SweepParam;
+use bouncemap_engine::jobs::grid::SweepParam;
 use bouncemap_engine::run::Outcome;
 use bouncemap_engine::sweep::{SweepSpec, ValueResult, Warm};
 
@@ -71,7 +71,7 @@ impl BrailleDiagram {
                 None => format!(
                     "at t0 = {}, v0 = f'(t0) + {}",
                     shortest(spec.initial.t0),
-                    shortest(bouncemap_engine::map::DEFAULT_HOP)
+                    shortest(bouncemap_engine::DEFAULT_HOP)
                 ),
             }
         };

@@ -30,11 +30,11 @@ mod tests {
 
     #[test]
     fn the_terminal_views_export_as_svg_and_png() {
-        use bouncemap_engine::grid::SweepParam;
-        use bouncemap_engine::map::EventKind;
+        use bouncemap_engine::jobs::grid::SweepParam;
         use bouncemap_engine::run::Outcome;
         use bouncemap_engine::run::Point as SweepPoint;
         use bouncemap_engine::sweep::{SweepSpec, ValueResult};
+        use bouncemap_engine::EventKind;
         let spec = SweepSpec::new(
             bouncemap_engine::Table::fd(0.1).unwrap(),
             0.45,

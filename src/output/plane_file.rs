@@ -23,8 +23,8 @@
 use super::classes::{of_pixel, Class, NO_LANDING};
 use super::part_file::{clip, FileKind, Layout, PartWriter};
 use super::records::{solver_name, EarlyStop, Exponent};
-use bouncemap_engine::grid::grid_value;
-use bouncemap_engine::grid::Shard;
+use bouncemap_engine::jobs::grid::grid_value;
+use bouncemap_engine::jobs::grid::Shard;
 use bouncemap_engine::plane::{Curves, Pixel, PlaneSpec};
 use bouncemap_engine::run::Outcome;
 use serde::{Deserialize, Serialize};
@@ -68,7 +68,7 @@ pub struct PlaneHeader {
 impl From<&PlaneSpec> for PlaneHeader {
     fn from(s: &PlaneSpec) -> PlaneHeader {
         let on_axis = |name: &str| s.x.param.as_str() == name || s.y.param.as_str() == name;
-        let axis = |a: &bouncemap_engine::grid::Axis| AxisRecord {
+        let axis = |a: &bouncemap_engine::jobs::grid::Axis| AxisRecord {
             param: a.param.as_str().to_string(),
             lo: a.lo,
             hi: a.hi,

@@ -148,7 +148,7 @@ pub fn mark_curves(grid: &mut [Vec<Cell>], spec: &PlaneSpec, c: &TwoParameterCur
     if rows == 0 || cols == 0 {
         return;
     }
-    let alpha_on_x = spec.x.param == bouncemap_engine::grid::SweepParam::Alpha;
+    let alpha_on_x = spec.x.param == bouncemap_engine::jobs::grid::SweepParam::Alpha;
     let cell = |a: f64, q: f64| -> Option<(usize, usize)> {
         let (x, y) = if alpha_on_x { (a, q) } else { (q, a) };
         let fx = (x - spec.x.lo) / (spec.x.hi - spec.x.lo);

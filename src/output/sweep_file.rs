@@ -3,7 +3,7 @@
 //! line and checksum are there). Here: the sweep's rows and values, and what is
 //! particular to a sweep: a value is one or more csv rows (one per recorded point) or
 //! one json object, and belongs to a shard by its index
-//! ([`Shard::holds`](bouncemap_engine::grid::Shard::holds)).
+//! ([`Shard::holds`](bouncemap_engine::jobs::grid::Shard::holds)).
 //!
 //! ```text
 //! # bouncemap 0.1.0 sweep
@@ -23,7 +23,7 @@
 pub use super::part_file::Layout;
 use super::part_file::{clip, shard_name, FileKind, PartWriter};
 use super::records::{PointRecord, SweepHeader, SweepRow, SweepValue};
-use bouncemap_engine::grid::{grid_value, Shard};
+use bouncemap_engine::jobs::grid::{grid_value, Shard};
 use bouncemap_engine::sweep::{chain_len, ValueResult, Warm};
 use std::io::{self, Write};
 

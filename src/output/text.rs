@@ -6,7 +6,7 @@
 pub use bouncemap_figures::significant;
 
 /// A complex number with 12 decimals: `re` or `re±imi`.
-pub fn complex(z: bouncemap_engine::linalg::Complex) -> String {
+pub fn complex(z: bouncemap_engine::Complex) -> String {
     if z.im == 0.0 {
         format!("{:.12}", z.re)
     } else {
@@ -17,7 +17,7 @@ pub fn complex(z: bouncemap_engine::linalg::Complex) -> String {
 /// The shortest decimal that reads back to the same f64, in exponent form where that is
 /// shorter (for messages, labels and captions).
 pub fn shortest(x: f64) -> String {
-    bouncemap_engine::error::fmt_value(x)
+    bouncemap_engine::fmt_value(x)
 }
 
 /// `text` with control characters (escape codes, newlines) written as escapes, so a
@@ -66,7 +66,7 @@ pub fn shown_path(path: &std::path::Path) -> String {
 /// own name.
 pub fn table_with_free(
     table: &bouncemap_engine::Table,
-    free: &[bouncemap_engine::grid::SweepParam],
+    free: &[bouncemap_engine::jobs::grid::SweepParam],
 ) -> String {
     let param = free.iter().copied().find(|p| p.is_table());
     match param {

@@ -38,7 +38,7 @@ use crate::config::files::{read_text, SMALL_FILE};
 use crate::config::rules;
 use crate::output::hitgrid::Marker;
 use crate::output::text::shortest;
-use bouncemap_engine::grid::SweepParam;
+use bouncemap_engine::jobs::grid::SweepParam;
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};

@@ -146,10 +146,10 @@ const ENGINE_LAYERS: &[&[&str]] = &[
     &["system"],
     &["impact"],
     &["map", "tangent"],
-    &["jobs", "grid"],
+    &["jobs"],
     &["orbits"],
     &["run"],
-    &["attractors", "picture"],
+    &["attractors"],
     &["sweep", "plane"],
 ];
 
@@ -318,5 +318,26 @@ fn assert_no_cycle(src: &Path) {
                 );
             }
         }
+    }
+}
+
+/// The engine's face is a handful of modules (the rest internal, their items
+/// re-exported at the root), and neither library crate may use `unsafe`.
+#[test]
+fn the_engines_face_is_a_handful_of_modules_and_the_libraries_forbid_unsafe() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let lib = std::fs::read_to_string(root.join("crates/engine/src/lib.rs")).unwrap();
+    let public: Vec<&str> = lib
+        .lines()
+        .filter_map(|l| l.strip_prefix("pub mod "))
+        .collect();
+    assert!(
+        public.len() <= 8,
+        "{} public modules: {public:?}",
+        public.len()
+    );
+    for krate in ["crates/engine/src/lib.rs", "crates/figures/src/lib.rs"] {
+        let text = std::fs::read_to_string(root.join(krate)).unwrap();
+        assert!(text.contains("#![forbid(unsafe_code)]"), "{krate}");
     }
 }

@@ -367,7 +367,7 @@ fn bad_family_files_get_one_line_with_the_place() {
 #[test]
 fn the_parameter_panel_lists_and_edits_a_familys_parameters() {
     use bouncemap::tui::params::{ParamId, Params};
-    use bouncemap_engine::grid::SweepParam;
+    use bouncemap_engine::jobs::grid::SweepParam;
     let mut p = Params::default();
     // F_D: its D is the row below the table.
     assert_eq!(p.rows()[1], ParamId::Family(0));

@@ -16,7 +16,7 @@ use bouncemap::tui::keymap::{Action, Key, Keymap};
 use bouncemap::tui::params::{ParamId, Params};
 use bouncemap::tui::theme::Theme;
 use bouncemap_engine::attractors::basins::{BasinSpec, Basins, BasinsJob};
-use bouncemap_engine::grid::SweepParam;
+use bouncemap_engine::jobs::grid::SweepParam;
 use bouncemap_engine::jobs::{Control, Executor};
 use bouncemap_engine::sweep::{self, SweepSpec};
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};

@@ -129,7 +129,7 @@ fn the_branch_under_the_cursor_is_the_two_cycle_with_its_multipliers() {
     );
     assert!(p.stable);
     // Multipliers: the same pair (their product is det = r⁴ either way).
-    let m = |c: [bouncemap_engine::linalg::Complex; 2]| {
+    let m = |c: [bouncemap_engine::Complex; 2]| {
         let mut v: Vec<(f64, f64)> = c.iter().map(|z| (z.re, z.im.abs())).collect();
         v.sort_by(|x, y| x.partial_cmp(y).unwrap());
         v

@@ -6,7 +6,7 @@ use crate::tui_common::app;
 use bouncemap::output::hitgrid::Marker;
 use bouncemap::tui::components::diagram::Diagram;
 use bouncemap::tui::components::{Registered, Target, Workers};
-use bouncemap_engine::grid::SweepParam;
+use bouncemap_engine::jobs::grid::SweepParam;
 use bouncemap_engine::jobs::Executor;
 use bouncemap_engine::sweep::{SweepJob, SweepSpec};
 use bouncemap_engine::Table;

@@ -188,8 +188,8 @@ fn a_chattering_sequence_is_shown_over_at_least_a_third_of_a_period() {
     assert!(c.span.1 - c.span.0 >= MIN_SPAN - 1e-12, "{:?}", c.span);
     // The four last flights alone are far shorter than that.
     let n = history.len();
-    let four = (history[n - 1].period - history[n - 5].period) as f64
-        + (history[n - 1].phase - history[n - 5].phase);
+    let four = (history[n - 1].period() - history[n - 5].period()) as f64
+        + (history[n - 1].phase() - history[n - 5].phase());
     assert!(four < MIN_SPAN, "{four}");
 }
 

@@ -14,7 +14,7 @@ use bouncemap::tui::components::{JobMsg, Msg, Workers};
 use bouncemap::tui::keymap::{Action, Keymap};
 use bouncemap::tui::params::Params;
 use bouncemap::tui::theme::Theme;
-use bouncemap_engine::grid::SweepParam;
+use bouncemap_engine::jobs::grid::SweepParam;
 use bouncemap_engine::jobs::{Control, Executor};
 use bouncemap_engine::plane::{curves, Plane, PlaneJob};
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};

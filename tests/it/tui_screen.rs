@@ -99,7 +99,7 @@ fn the_diagram_sweeps_r_or_d() {
     assert_eq!(a.selected_param(), ParamId::Sweep);
     a.handle(Action::Right);
     let spec = a.panels.diagram.sweep_spec(&a.shared);
-    assert_eq!(spec.param, bouncemap_engine::grid::SweepParam::R);
+    assert_eq!(spec.param, bouncemap_engine::jobs::grid::SweepParam::R);
     assert_eq!((spec.lo, spec.hi), (a.shared.params.lo, a.shared.params.hi));
     assert!(a.take_effects().contains(&Effect::Start(Target::Diagram)));
     // Changing r now moves only the line; changing α restarts the sweep.

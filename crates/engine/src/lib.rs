@@ -3,23 +3,25 @@
 //! values, and everything but the executor's workers is synchronous.
 //!
 //! # What a library user needs
-//! * **The system**: a [`Table`] (the sine, the paper's F_D, checked piecewise
-//!   polynomials) with α and r is a [`System`], validated on construction;
-//!   [`limits`] holds every accepted range.
-//! * **The map**: [`ImpactMap`] steps a [`State`] from event to event (impact, stick,
-//!   release) exactly, with chattering and sticking handled; [`next_landing`] is one
-//!   flight; [`tangent`] the Jacobian of one event.
+//! The face is eight modules and the items at the root; everything else is internal.
+//! * **The system**, at the root: a [`Table`] (the sine, the paper's F_D, checked
+//!   piecewise polynomials, families with named parameters: [`table`]) with α and r is a
+//!   [`System`], validated on construction; [`limits`] holds every accepted range.
+//! * **The map**, at the root: [`ImpactMap`] steps a [`State`] from event to event
+//!   (impact, stick, release) exactly, with chattering and sticking handled;
+//!   [`next_landing`] is one flight; [`tangent`] the Jacobian of one event; time is
+//!   (period, phase), at most [`MAX_EVENT_PERIOD`] periods.
 //! * **Orbits**: [`orbits`] — the (1, k) solutions and their stability windows, the
 //!   (2, 2k) solutions, (n, k) cycles by Newton's method, continuation in α with its
-//!   special points, the period-doubling cascade, the paper's scaling laws.
+//!   special points, two-parameter curves, the period-doubling cascade, the paper's
+//!   scaling laws.
 //! * **Runs and attractors**: [`run`] runs one orbit to the end of its transient and
 //!   detects the cycle it settles on; [`attractors`] says what it settled on, its
 //!   Lyapunov exponents, and which starts share an attractor (basins).
 //! * **Computations over many items**: [`jobs`] (the executor: passes, generations,
-//!   pause), [`grid`] (parameter grids and shards), [`sweep`] (bifurcation diagrams),
-//!   [`picture`] (coarse-to-fine pictures over a grid: [`plane`] and the basins).
-//! * **Numerics every part shares**: [`time`] ((period, phase) time), [`linalg`]
-//!   (small solves and 2 × 2 eigenvalues).
+//!   pause; [`jobs::grid`], parameter grids and shards; [`jobs::picture`],
+//!   coarse-to-fine pictures over a grid), [`sweep`] (bifurcation diagrams), [`plane`]
+//!   (two-parameter maps).
 //!
 //! ```
 //! use bouncemap_engine::{ImpactMap, Solver, State, System, Table};
@@ -49,30 +51,30 @@
 #![forbid(unsafe_code)]
 
 pub mod attractors;
-pub mod error;
-pub mod grid;
 pub mod jobs;
 pub mod limits;
-pub mod linalg;
-pub mod map;
 pub mod orbits;
-pub mod picture;
 pub mod plane;
 pub mod run;
 pub mod sweep;
-pub mod system;
 pub mod table;
-pub mod tangent;
-pub mod time;
 
+mod error;
 mod exact_sum;
 mod impact;
+mod linalg;
+mod map;
 mod poly;
+mod system;
+mod tangent;
 #[cfg(test)]
 mod test_rng;
+mod time;
 
-pub use error::EngineError;
+pub use error::{fmt_value, short_text, EngineError};
 pub use impact::{next_landing, FlightError, Landing, Launch, Solver};
-pub use map::{Event, EventKind, Halt, ImpactMap, Mode, State, DEFAULT_HOP};
+pub use linalg::{eigenvalues_2x2, Complex, Mat2};
+pub use map::{Event, EventKind, Halt, ImpactMap, Mode, State, DEFAULT_HOP, MAX_EVENT_PERIOD};
 pub use system::{kappa_c, System};
 pub use table::Table;
+pub use tangent::{flight, tangent, Flight, Tangent};

@@ -96,7 +96,7 @@ pub enum Halt {
         /// Phase, in [0, 1).
         phase: f64,
     },
-    /// The next event would lie beyond [`MAX_PERIOD`] periods, where (period, phase)
+    /// The next event would lie beyond [`MAX_EVENT_PERIOD`] periods, where (period, phase)
     /// stops being exact; never reached from accepted inputs (transients ≤ 10¹², flights
     /// bounded), but checked so time can never wrap.
     TimeOutOfRange {
@@ -109,16 +109,16 @@ pub enum Halt {
 
 /// The largest |period| an event may have: 2⁵², so that `period as f64 + phase` and
 /// every sum of periods the engine forms stay exact and far from i64 overflow.
-pub const MAX_PERIOD: i64 = 1 << 52;
+pub const MAX_EVENT_PERIOD: i64 = 1 << 52;
 
 /// The largest |period| a flight may start from: every flight the accepted inputs allow
 /// lasts far less than 2⁴⁰ periods (velocities and heights are bounded), so its landing
-/// stays within [`MAX_PERIOD`]. One comparison per flight, on the launch.
-const MAX_LAUNCH_PERIOD: i64 = MAX_PERIOD - (1 << 40);
+/// stays within [`MAX_EVENT_PERIOD`]. One comparison per flight, on the launch.
+const MAX_LAUNCH_PERIOD: i64 = MAX_EVENT_PERIOD - (1 << 40);
 
 /// Whether an event time is inside the exact range.
 fn in_range(period: i64) -> bool {
-    (-MAX_PERIOD..=MAX_PERIOD).contains(&period)
+    (-MAX_EVENT_PERIOD..=MAX_EVENT_PERIOD).contains(&period)
 }
 
 impl std::fmt::Display for Halt {
@@ -149,26 +149,53 @@ pub enum Mode {
     Stuck,
 }
 
-/// The state right after the last event.
+/// The state right after the last event. Its fields are read through accessors: a
+/// state is made only by [`State::launch`], [`State::start`] or the map, so its phase
+/// lies in [0, 1), its period within [`MAX_EVENT_PERIOD`] and its relative velocity w is
+/// v − f'(t) as the map keeps it, exactly.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct State {
-    /// Whole table periods of the event time.
-    pub period: i64,
-    /// Phase in [0, 1).
-    pub phase: f64,
-    /// Ball velocity.
-    pub v: f64,
-    /// Velocity relative to the table, v − f'(t), kept exactly.
-    pub w: f64,
-    /// Height above the table (nonzero only for an initial state).
-    pub height: f64,
-    /// In flight or riding on the table.
-    pub mode: Mode,
+    pub(crate) period: i64,
+    pub(crate) phase: f64,
+    pub(crate) v: f64,
+    pub(crate) w: f64,
+    pub(crate) height: f64,
+    pub(crate) mode: Mode,
     /// After a failed lift-off: look for a release strictly after this instant.
     release_after: bool,
 }
 
 impl State {
+    /// Whole table periods of the event time.
+    pub fn period(&self) -> i64 {
+        self.period
+    }
+
+    /// Phase in [0, 1).
+    pub fn phase(&self) -> f64 {
+        self.phase
+    }
+
+    /// Ball velocity.
+    pub fn v(&self) -> f64 {
+        self.v
+    }
+
+    /// Velocity relative to the table, v − f'(t), kept exactly.
+    pub fn w(&self) -> f64 {
+        self.w
+    }
+
+    /// Height above the table (nonzero only for an initial state).
+    pub fn height(&self) -> f64 {
+        self.height
+    }
+
+    /// In flight or riding on the table.
+    pub fn mode(&self) -> Mode {
+        self.mode
+    }
+
     /// A ball launched from the table at (period, phase) with velocity `v`, `height`
     /// above the table. With height 0 it must not move into the table: v ≥ f'(t).
     pub fn launch(

@@ -65,3 +65,18 @@ pub fn phase_distance(a: f64, b: f64) -> f64 {
     let d = (a - b).abs();
     d.min(1.0 - d)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// (period, phase) normalisation saturates instead of wrapping.
+    #[test]
+    fn normalisation_saturates_at_the_ends_of_i64() {
+        assert_eq!(normalize(i64::MAX, 2.5), (i64::MAX, 0.5));
+        assert_eq!(normalize(i64::MIN, -2.5), (i64::MIN, 0.5));
+        assert_eq!(normalize(5, 1e300).0, i64::MAX);
+        assert_eq!(normalize(5, 2.25), (7, 0.25));
+        assert_eq!(normalize(5, -0.75), (4, 0.25));
+    }
+}

@@ -9,7 +9,7 @@ use crate::format::significant;
 use crate::model::{Axis, Color, Corner, Figure, Layer, Legend, Marker, Panel, Swatch};
 use bouncemap_engine::attractors::basins::{BasinSpec, Basins};
 use bouncemap_engine::attractors::{Attractor, Kind, Registry};
-use bouncemap_engine::error::fmt_value as shortest;
+use bouncemap_engine::fmt_value as shortest;
 
 /// The numbering of a registry's attractors: `number[id]` (1-based, largest basin
 /// first, see [`Registry::ranked`]).

@@ -7,8 +7,8 @@
 use super::classes::Class;
 use crate::labels::param_label;
 use crate::model::{Axis, Color, Corner, Dash, Figure, Layer, Legend, Marker, Panel, Swatch};
-use bouncemap_engine::error::fmt_value as shortest;
-use bouncemap_engine::grid::SweepParam;
+use bouncemap_engine::fmt_value as shortest;
+use bouncemap_engine::jobs::grid::SweepParam;
 use bouncemap_engine::orbits::curves::{CurveKind, Curves, Plane};
 
 /// The pattern of a curve's kind.

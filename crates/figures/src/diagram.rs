@@ -17,8 +17,8 @@ use crate::model::{
     Axis, Color, Corner, Dash, DensityGrid, Figure, Layer, Legend, Marker, Panel, Swatch, COLUMN,
     FULL_WIDTH,
 };
-use bouncemap_engine::error::fmt_value as shortest;
-use bouncemap_engine::grid::SweepParam;
+use bouncemap_engine::fmt_value as shortest;
+use bouncemap_engine::jobs::grid::SweepParam;
 use bouncemap_engine::run::Outcome;
 use bouncemap_engine::sweep::{SweepSpec, ValueResult};
 
@@ -520,8 +520,8 @@ pub fn fig3(panels: Vec<Diagram>) -> Figure {
 mod tests {
     use super::*;
     use crate::labels::table_title;
-    use bouncemap_engine::map::EventKind;
     use bouncemap_engine::run::Point as SweepPoint;
+    use bouncemap_engine::EventKind;
     use bouncemap_engine::Table;
 
     fn value(index: usize, value: f64, sticking: bool) -> ValueResult {

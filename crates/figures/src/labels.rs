@@ -3,7 +3,7 @@
 //! file's family with a parameter left free).
 
 use crate::text::plain;
-use bouncemap_engine::grid::SweepParam;
+use bouncemap_engine::jobs::grid::SweepParam;
 use bouncemap_engine::Table;
 
 /// The swept parameter's symbol, in markup (a family's parameter by its own name,

@@ -22,7 +22,7 @@
 //!
 //! ```
 //! use bouncemap_engine::jobs::Executor;
-//! use bouncemap_engine::grid::SweepParam;
+//! use bouncemap_engine::jobs::grid::SweepParam;
 //! use bouncemap_engine::sweep::{collect, SweepSpec};
 //! use bouncemap_engine::Table;
 //! use bouncemap_figures::{diagram, render, ImageFormat, DEFAULT_DPI};

@@ -10,8 +10,8 @@ use super::text;
 use crate::format::fmt_count;
 use crate::labels::param_label;
 use crate::model::{Axis, Color, Corner, Dash, Figure, Layer, Legend, Panel, Swatch};
-use bouncemap_engine::error::fmt_value as shortest;
-use bouncemap_engine::grid::SweepParam;
+use bouncemap_engine::fmt_value as shortest;
+use bouncemap_engine::jobs::grid::SweepParam;
 use bouncemap_engine::plane::{Curves, Pixel, PlaneSpec};
 
 /// The colour of a class in print: the one palette ([`Class::rgb`]).
@@ -41,7 +41,7 @@ pub fn plane_figure(
     continued: Option<Continued<'_>>,
 ) -> Figure {
     let curves = if continued.is_some() { None } else { curves };
-    let step = |a: &bouncemap_engine::grid::Axis| {
+    let step = |a: &bouncemap_engine::jobs::grid::Axis| {
         if a.n > 1 {
             (a.hi - a.lo) / (a.n - 1) as f64
         } else {
@@ -320,7 +320,7 @@ fn describe(c: Class) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use bouncemap_engine::grid::Axis as GridAxis;
+    use bouncemap_engine::jobs::grid::Axis as GridAxis;
 
     /// The classes' legend sits beside the frame (it would hide part of the map in any
     /// corner); given the continued curves, the analytic ones they hold are not drawn

@@ -11,7 +11,7 @@ use super::windows::{parse_alpha_window, parse_d_family, DFamily};
 use crate::output::hitgrid::Marker;
 use crate::output::text::quoted;
 use crate::output::Format;
-use bouncemap_engine::grid::Shard;
+use bouncemap_engine::jobs::grid::Shard;
 use bouncemap_engine::Solver;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
@@ -451,14 +451,14 @@ pub fn table_help(after: &str) -> String {
 /// A grid flag's help: `what` it sets, then the picture's limits as the refusal states
 /// them.
 pub fn grid_help(what: &str) -> String {
-    use bouncemap_engine::picture::{MAX_CELLS, MAX_SIDE};
+    use bouncemap_engine::jobs::picture::{MAX_CELLS, MAX_SIDE};
     format!("{what}; each side at most {MAX_SIDE} and at most {MAX_CELLS} in all.")
 }
 
 /// `WxH`: the sides of a picture, each in 1..=`MAX_SIDE`, at most `MAX_CELLS`
 /// cells; `text` names them in the refusal.
 pub fn parse_sides(s: &str, text: SidesText<'_>) -> Result<(usize, usize), String> {
-    use bouncemap_engine::picture::{MAX_CELLS, MAX_SIDE};
+    use bouncemap_engine::jobs::picture::{MAX_CELLS, MAX_SIDE};
     let SidesText {
         what,
         form,

@@ -53,7 +53,7 @@ pub use join::{join, JoinError, Joined};
 pub use read::{opens_as, read_part, Again, Body, Part};
 pub use reread::Reread;
 
-use bouncemap_engine::grid::Shard;
+use bouncemap_engine::jobs::grid::Shard;
 use serde::de::{self, DeserializeOwned, DeserializeSeed, MapAccess, Visitor};
 use serde::ser::SerializeStruct;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};

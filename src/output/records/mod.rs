@@ -4,13 +4,13 @@
 //! would be `null` in json). Records that `merge` reads back also derive `Deserialize`,
 //! and their enums refuse anything but the documented names.
 
-use bouncemap_engine::grid::SweepParam;
-use bouncemap_engine::linalg::Complex;
+use bouncemap_engine::jobs::grid::SweepParam;
 use bouncemap_engine::orbits::{FixedPoint, StabilityWindow};
 use bouncemap_engine::run::precision::Precision;
 use bouncemap_engine::run::Outcome;
 use bouncemap_engine::run::Point as SweepPoint;
 use bouncemap_engine::sweep::{SweepSpec, ValueResult, Warm};
+use bouncemap_engine::Complex;
 use bouncemap_engine::{Event, EventKind, Solver};
 use serde::{Deserialize, Serialize};
 use std::io::Write;
@@ -259,7 +259,7 @@ impl SweepRow {
                 // Each attractor's own: a sticking or resting one, a stick or release
                 // among its points, or an exponent of −∞.
                 use bouncemap_engine::attractors::Kind as A;
-                use bouncemap_engine::map::EventKind;
+                use bouncemap_engine::EventKind;
                 let sticking = matches!(a.kind, A::Sticking | A::Resting)
                     || pts.iter().any(|p| p.kind != EventKind::Impact)
                     || a.lyapunov == Some(f64::NEG_INFINITY);

@@ -183,7 +183,7 @@ fn first_shown(history: &[State]) -> usize {
     let mut from = n - 1;
     while from > 0 && n - 1 - from < SHOWN_MAX {
         let s = &history[from];
-        let span = (last.period - s.period) as f64 + (last.phase - s.phase);
+        let span = (last.period() - s.period()) as f64 + (last.phase() - s.phase());
         if n - 1 - from >= SHOWN && span >= MIN_SPAN {
             break;
         }
@@ -200,8 +200,8 @@ pub fn curves(sys: &System, history: &[State], samples: usize) -> Option<Curves>
         return None;
     }
     let from = first_shown(history);
-    let base = history[from].period;
-    let t_of = |s: &State| (s.period - base) as f64 + s.phase;
+    let base = history[from].period();
+    let t_of = |s: &State| (s.period() - base) as f64 + s.phase();
     let (t_start, t_end) = (t_of(&history[from]), t_of(&history[n - 1]));
     let span = (t_end - t_start).max(1e-9);
     let mut table = Vec::with_capacity(samples + 1);
@@ -218,10 +218,10 @@ pub fn curves(sys: &System, history: &[State], samples: usize) -> Option<Curves>
             .clamp(2.0, 4096.0) as usize;
         for i in 0..=m {
             let t = ta + (tb - ta) * i as f64 / m as f64;
-            let z = match a.mode {
+            let z = match a.mode() {
                 Mode::Flying => {
                     let s = t - ta;
-                    sys.f(a.phase) + a.height + a.v * s - s * s / 2.0
+                    sys.f(a.phase()) + a.height() + a.v() * s - s * s / 2.0
                 }
                 Mode::Stuck => sys.f(t.rem_euclid(1.0)),
             };
@@ -235,7 +235,7 @@ pub fn curves(sys: &System, history: &[State], samples: usize) -> Option<Curves>
         table,
         ball,
         events: Vec::new(),
-        now: (t_end, sys.f(last.phase) + last.height),
+        now: (t_end, sys.f(last.phase()) + last.height()),
     })
 }
 
@@ -243,7 +243,7 @@ pub fn curves(sys: &System, history: &[State], samples: usize) -> Option<Curves>
 /// decimals.
 fn num(x: f64, wide: bool) -> String {
     if wide {
-        bouncemap_engine::error::fmt_value(x)
+        bouncemap_engine::fmt_value(x)
     } else {
         format!("{x:.6}")
     }
@@ -316,8 +316,8 @@ fn render(b: &Bounce, app: &Shared, area: Rect, buf: &mut Buffer) {
                 Span::styled("start", app.theme.focus()),
                 Span::styled(" (dim: the next flight)", app.theme.dim()),
             ]));
-            lines.push(Line::from(format!("t̂{gap}{}", num(s.phase, below))));
-            lines.push(Line::from(format!("v{gap}{}", num(s.v, below))));
+            lines.push(Line::from(format!("t̂{gap}{}", num(s.phase(), below))));
+            lines.push(Line::from(format!("v{gap}{}", num(s.v(), below))));
         }
     }
     lines.push(Line::styled(hint, app.theme.dim()));

@@ -8,7 +8,7 @@
 use super::{Component, Effect, Registered, Shared, Workers};
 use crate::tui::params::ParamId;
 use crate::tui::skeleton::{compute, Skeleton};
-use bouncemap_engine::grid::SweepParam;
+use bouncemap_engine::jobs::grid::SweepParam;
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 

@@ -10,7 +10,7 @@
 //! asks for, its colours and text fallback, its legend and extras.
 
 use super::{Address, Effect, JobMsg, Shared, Target, Workers};
-use bouncemap_engine::picture::{Cells, Chunk, Filled};
+use bouncemap_engine::jobs::picture::{Cells, Chunk, Filled};
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::style::{Color, Style};

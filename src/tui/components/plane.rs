@@ -28,8 +28,8 @@ use crate::tui::keymap::Action;
 use crate::tui::layout::{plot_area_within, Slot};
 use crate::tui::params::{default_window, ParamId, Params};
 use crate::tui::plot::{draw_axes, Axes};
-use bouncemap_engine::grid::Axis;
-use bouncemap_engine::grid::SweepParam;
+use bouncemap_engine::jobs::grid::Axis;
+use bouncemap_engine::jobs::grid::SweepParam;
 use bouncemap_engine::plane::{curves, Curves, Plane, PlaneChunk, PlaneSpec};
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
@@ -284,9 +284,7 @@ impl Component for PlanePanel {
                 shared.plane_y = Some(next);
                 shared.effect(Effect::Start(Self::TARGET));
                 if shared.show_plane_curves {
-                    shared.effect(Effect::Start(
-                        <super::plane_curves::PlaneCurves as Registered>::TARGET,
-                    ));
+                    shared.effect(Effect::Start(Target::PlaneCurves));
                 }
                 shared.say(
                     format!("plane: {} up (t: the next parameter)", next.as_str()),

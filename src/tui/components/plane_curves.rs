@@ -10,7 +10,7 @@ use super::plane::plane_spec;
 use super::{Component, Effect, Registered, Shared, Workers};
 use crate::tui::keymap::Action;
 use crate::tui::params::ParamId;
-use bouncemap_engine::grid::SweepParam;
+use bouncemap_engine::jobs::grid::SweepParam;
 use bouncemap_engine::orbits::curves::curves;
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;

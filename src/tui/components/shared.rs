@@ -13,7 +13,7 @@ use crate::tui::layout::Slot;
 use crate::tui::params::{ParamId, Params};
 use crate::tui::skeleton::Skeleton;
 use crate::tui::theme::Theme;
-use bouncemap_engine::grid::SweepParam;
+use bouncemap_engine::jobs::grid::SweepParam;
 use bouncemap_engine::orbits::periodic::CyclePoint;
 use bouncemap_engine::System;
 

@@ -210,7 +210,7 @@ fn modulus_signed(x: f64) -> String {
     if x.is_finite() && (1e-3..1e4).contains(&x.abs()) {
         format!("{x:.4}")
     } else {
-        bouncemap_engine::error::fmt_value(x)
+        bouncemap_engine::fmt_value(x)
     }
 }
 
@@ -219,7 +219,7 @@ fn modulus(x: f64) -> String {
     if x.is_finite() && (1e-3..1e4).contains(&x) {
         format!("{x:.4}")
     } else {
-        bouncemap_engine::error::fmt_value(x)
+        bouncemap_engine::fmt_value(x)
     }
 }
 

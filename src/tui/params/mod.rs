@@ -18,7 +18,7 @@ use crate::config::presets::Preset;
 use crate::config::rules;
 use crate::config::table_spec::TableSpec;
 use crate::output::text::{quoted, shortest};
-use bouncemap_engine::grid::{ParamName, SweepParam};
+use bouncemap_engine::jobs::grid::{ParamName, SweepParam};
 use bouncemap_engine::orbits::stability_windows;
 use bouncemap_engine::sweep::Warm;
 use bouncemap_engine::table::builtin::{families, Builtin};

@@ -2,7 +2,7 @@
 //! run to its attractor, as a [`Job`](crate::jobs::Job).
 //!
 //! Grid point (i, j) starts at t̂0 = (i + ½)/nx, w0 = W (j + ½)/ny (cell centres), with
-//! v0 = f'(t̂0) + w0, on the table. The job is a [picture](crate::picture), coarse to
+//! v0 = f'(t̂0) + w0, on the table. The job is a [picture](crate::jobs::picture), coarse to
 //! fine: pass 0 the points with i and j multiples of 8, then 4, 2 and 1, in chunks of
 //! [`CHUNK`] points, so a viewer can draw a complete rough picture early and refine it.
 //! [`Basins`] assigns attractors on the consumer's side, chunk by chunk in the job's own
@@ -11,8 +11,10 @@
 
 use super::{settle, Found, Registry, Settle};
 use crate::error::EngineError;
+use crate::jobs::picture::{
+    Cells, Chunk, Filled, Picture, PictureJob, Sequencer, MAX_CELLS, MAX_SIDE,
+};
 use crate::limits;
-use crate::picture::{Cells, Chunk, Filled, Picture, PictureJob, Sequencer, MAX_CELLS, MAX_SIDE};
 use crate::run::start::launch;
 use crate::system::System;
 

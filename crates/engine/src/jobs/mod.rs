@@ -27,8 +27,15 @@
 //! [`Executor::start_windowed`] lets at most `window` items of the last pass run ahead of
 //! what the consumer has acknowledged ([`Handle::ack`]): a consumer that writes results
 //! in item order holds at most `window` of them.
+//!
+//! # What jobs run over
+//! [`grid`]: the parameter grids (what a value or a pixel is, its system) and the shards
+//! of a grid; [`picture`]: the coarse-to-fine pictures over a grid that the plane and the
+//! basins fill in.
 
 mod gate;
+pub mod grid;
+pub mod picture;
 
 pub use gate::{Gate, POLL};
 

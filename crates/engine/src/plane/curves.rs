@@ -7,7 +7,7 @@
 //! not end by period doubling, no branch, a smooth table).
 
 use super::PlaneSpec;
-use crate::grid::SweepParam;
+use crate::jobs::grid::SweepParam;
 use crate::orbits::fixed::stability_window;
 use crate::orbits::two_cycle::border_collision;
 

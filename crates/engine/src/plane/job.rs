@@ -4,10 +4,10 @@
 use super::{Pixel, PlaneSpec, CHUNK, KEEP, LYAPUNOV_SAMPLE};
 use crate::attractors::{self, Settle};
 use crate::error::EngineError;
-use crate::grid::Shard;
+use crate::jobs::grid::Shard;
+use crate::jobs::picture::{Cells, Chunk, Filled, Picture, PictureJob};
 use crate::jobs::{Control, Executor};
 use crate::map::ImpactMap;
-use crate::picture::{Cells, Chunk, Filled, Picture, PictureJob};
 use crate::run::{Advance, OrbitRun};
 
 /// One work item's results: (pixel index, result); a pixel whose system or start is

@@ -15,7 +15,7 @@
 //! memory is a few dozen bytes per pixel.
 //!
 //! # Coarse to fine
-//! The plane is a [picture](crate::picture): four passes, the pixels whose i and j are
+//! The plane is a [picture](crate::jobs::picture): four passes, the pixels whose i and j are
 //! multiples of 8, then of 4, of 2, and the rest, in chunks of [`CHUNK`] pixels handed
 //! out spread over the pass. A viewer draws every pixel from the nearest coarser one
 //! computed so far ([`Plane::preview`]) and so has a complete rough picture after the
@@ -32,9 +32,9 @@ pub use curves::{curves, Curves};
 pub use job::{collect, Plane, PlaneCells, PlaneChunk, PlaneJob};
 
 use crate::error::EngineError;
-use crate::grid::Axis;
-use crate::grid::{Shard, SweepParam};
 use crate::impact::Solver;
+use crate::jobs::grid::Axis;
+use crate::jobs::grid::{Shard, SweepParam};
 use crate::limits;
 use crate::map::State;
 use crate::run::detect::Periodicity;
@@ -46,8 +46,8 @@ use crate::table::Table;
 
 /// Pixels per work item.
 pub const CHUNK: usize = 16;
-pub use crate::picture::STRIDES;
-use crate::picture::{MAX_CELLS, MAX_SIDE};
+pub use crate::jobs::picture::STRIDES;
+use crate::jobs::picture::{MAX_CELLS, MAX_SIDE};
 /// The default size.
 pub const DEFAULT_SIZE: (usize, usize) = (400, 200);
 /// Default end of the transient, in table periods.

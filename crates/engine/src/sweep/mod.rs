@@ -44,7 +44,7 @@
 //!
 //! ```
 //! use bouncemap_engine::jobs::{Control, Executor};
-//! use bouncemap_engine::grid::SweepParam;
+//! use bouncemap_engine::jobs::grid::SweepParam;
 //! use bouncemap_engine::run::Outcome;
 //! use bouncemap_engine::sweep::{self, SweepSpec};
 //! use bouncemap_engine::Table;
@@ -71,8 +71,8 @@ pub use job::{SweepJob, ValueAttractor, ValueResult};
 
 use crate::attractors::{self, Registry};
 use crate::error::EngineError;
-use crate::grid::{grid_value, Shard, SweepParam};
 use crate::impact::Solver;
+use crate::jobs::grid::{grid_value, Shard, SweepParam};
 use crate::jobs::{Batch, Control, Executor, Handle};
 use crate::limits;
 use crate::map::State;
@@ -335,7 +335,7 @@ impl SweepSpec {
     /// Check every setting; the message names the setting, the value and the range.
     pub fn validate(&self) -> Result<(), EngineError> {
         limits::STEPS.check(self.steps as f64)?;
-        crate::grid::check_window(self.param, &self.table, self.lo, self.hi)?;
+        crate::jobs::grid::check_window(self.param, &self.table, self.lo, self.hi)?;
         limits::TRANSIENT.check(self.transient as f64)?;
         limits::KEEP.check(self.keep as f64)?;
         if let Some(p) = self.periodicity {

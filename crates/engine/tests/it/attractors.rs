@@ -7,7 +7,7 @@
 use bouncemap_engine::attractors::basins::{self, BasinSpec};
 use bouncemap_engine::attractors::lyapunov::{log_moduli, Method, Spectrum};
 use bouncemap_engine::attractors::{settle, Kind, Settle};
-use bouncemap_engine::grid::SweepParam;
+use bouncemap_engine::jobs::grid::SweepParam;
 use bouncemap_engine::jobs::Executor;
 use bouncemap_engine::orbits::fixed::fixed_points;
 use bouncemap_engine::run::start::near_fixed_point;
@@ -126,17 +126,17 @@ fn a_chaotic_orbit_sums_to_two_ln_r_and_matches_two_nearby_orbits() {
         // Put b back at distance d0 from a along the separation.
         let sa = *a.state();
         let (pt, pv) = (dt / d * d0, dv / d * d0);
-        let t = sa.phase + pt;
+        let t = sa.phase() + pt;
         let (per, ph) = if t >= 1.0 {
-            (sa.period + 1, t - 1.0)
+            (sa.period() + 1, t - 1.0)
         } else if t < 0.0 {
-            (sa.period - 1, t + 1.0)
+            (sa.period() - 1, t + 1.0)
         } else {
-            (sa.period, t)
+            (sa.period(), t)
         };
         // b leaves the table at its own time with the relative velocity a has plus the
         // separation: stay above the table.
-        let vb = (sa.v + pv).max(sys.df(ph));
+        let vb = (sa.v() + pv).max(sys.df(ph));
         b.set_state(State::launch(&sys, per, ph, vb, 0.0).unwrap());
     }
     let benettin = total / n as f64;

@@ -2,8 +2,7 @@
 //! cascade, checked against the closed forms (`fixed`), the (2, 2k) Newton solutions
 //! (`two_cycle`), the map itself (stepping and finite differences) and simulation.
 
-use bouncemap_engine::linalg::eigenvalues_2x2;
-use bouncemap_engine::map::{EventKind, ImpactMap, State};
+use bouncemap_engine::eigenvalues_2x2;
 use bouncemap_engine::orbits::border::Crossing;
 use bouncemap_engine::orbits::cascade::cascade;
 use bouncemap_engine::orbits::continuation::{branches, point_at, Branch, Kind, Options, Start};
@@ -12,9 +11,10 @@ use bouncemap_engine::orbits::{border_collision, stability_window, two_cycle};
 use bouncemap_engine::run::detect::Periodicity;
 use bouncemap_engine::run::Outcome;
 use bouncemap_engine::run::{Advance, OrbitRun};
-use bouncemap_engine::system::System;
 use bouncemap_engine::table::Table;
 use bouncemap_engine::Solver;
+use bouncemap_engine::System;
+use bouncemap_engine::{EventKind, ImpactMap, State};
 
 const R: f64 = 0.8;
 
@@ -42,8 +42,8 @@ fn step_return(table: &Table, p: &CyclePoint) -> (f64, f64) {
         );
     }
     let s = m.state();
-    let dt = (s.period - p.k as i64) as f64 + (s.phase - p.phases[0]);
-    (dt.abs(), (s.v - p.velocities[0]).abs())
+    let dt = (s.period() - p.k as i64) as f64 + (s.phase() - p.phases[0]);
+    (dt.abs(), (s.v() - p.velocities[0]).abs())
 }
 
 #[test]
@@ -179,7 +179,7 @@ fn fd_monodromy(table: &Table, p: &CyclePoint, h: f64) -> [[f64; 2]; 2] {
             m.step().unwrap();
         }
         let s = m.state();
-        (s.period as f64 + s.phase, s.v)
+        (s.period() as f64 + s.phase(), s.v())
     };
     let (tp, vp) = run(h, 0.0);
     let (tm, vm) = run(-h, 0.0);

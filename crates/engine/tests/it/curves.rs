@@ -3,17 +3,17 @@
 //! one-parameter continuation at points of each curve and on both sides of each
 //! codimension-two point, and simulation of the doubled orbit past a flip.
 
-use bouncemap_engine::grid::SweepParam;
-use bouncemap_engine::map::{ImpactMap, State};
+use bouncemap_engine::jobs::grid::SweepParam;
 use bouncemap_engine::orbits::continuation::{branches, Kind, Options, Special, Start};
 use bouncemap_engine::orbits::curves::{
     curves, Codim2Kind, Curve, CurvePoint, Curves, Plane, Seeds,
 };
 use bouncemap_engine::orbits::fixed::stability_window;
 use bouncemap_engine::orbits::two_cycle::border_collision;
-use bouncemap_engine::system::System;
 use bouncemap_engine::table::Table;
 use bouncemap_engine::Solver;
+use bouncemap_engine::System;
+use bouncemap_engine::{ImpactMap, State};
 use std::sync::OnceLock;
 
 fn fd_plane() -> &'static (Plane, Curves) {

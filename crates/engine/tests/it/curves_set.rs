@@ -4,13 +4,13 @@
 //! against closed forms, `fixed_points` and the one-parameter continuation.
 
 use super::curves::of;
-use bouncemap_engine::grid::SweepParam;
+use bouncemap_engine::jobs::grid::SweepParam;
 use bouncemap_engine::orbits::continuation::{branches, Kind, Options, Special, Start};
 use bouncemap_engine::orbits::curves::{
     curves, Codim2Kind, Curve, CurvePoint, Curves, Plane, Seeds,
 };
-use bouncemap_engine::system::System;
 use bouncemap_engine::table::Table;
+use bouncemap_engine::System;
 
 /// The (1, 1) birth line is one whole curve, on the closed form α = (1 − r)/(1 + r) /
 /// (2 max F') at every point (F_D's max F' = ½ at t̂ = 0 for every D; the sine's 2π),

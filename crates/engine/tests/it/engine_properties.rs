@@ -118,14 +118,20 @@ fn two_sum(a: f64, b: f64) -> (f64, f64) {
 /// Evaluated in double-double so that long flights (v τ ≫ 1) add no rounding of their own.
 fn gap(sys: &System, from: &State, period: i64, phase: f64) -> f64 {
     // τ = Δperiod + phase − phase0, exactly as (t, tl).
-    let (d, de) = two_sum(phase, -from.phase);
-    let (t0, te) = two_sum((period - from.period) as f64, d);
+    let (d, de) = two_sum(phase, -from.phase());
+    let (t0, te) = two_sum((period - from.period()) as f64, d);
     let (t, tl) = two_sum(t0, te + de);
-    let vt = from.v * t;
-    let vt_err = from.v.mul_add(t, -vt) + from.v * tl;
+    let vt = from.v() * t;
+    let vt_err = from.v().mul_add(t, -vt) + from.v() * tl;
     let half_t2 = 0.5 * t * t;
     let half_t2_err = (0.5 * t).mul_add(t, -half_t2) + t * tl;
-    let terms = [sys.f(from.phase), from.height, vt, -half_t2, -sys.f(phase)];
+    let terms = [
+        sys.f(from.phase()),
+        from.height(),
+        vt,
+        -half_t2,
+        -sys.f(phase),
+    ];
     let (mut s, mut err) = (0.0, vt_err - half_t2_err);
     for x in terms {
         let (ns, e) = two_sum(s, x);
@@ -146,8 +152,8 @@ fn sample_flight(sys: &System, from: &State, tau_end: f64) -> Result<(), String>
         if !(tau > 0.0 && tau < tau_end) {
             continue;
         }
-        let t = from.phase + tau;
-        let (period, phase) = (from.period + t.floor() as i64, t - t.floor());
+        let t = from.phase() + tau;
+        let (period, phase) = (from.period() + t.floor() as i64, t - t.floor());
         let g = gap(sys, from, period, phase);
         if g < -1e-12 {
             return Err(format!(
@@ -174,7 +180,7 @@ fn check_orbit(sys: System, t0: f64, hop: f64, z0: f64, events: usize) -> Result
         if !(e.phase.is_finite() && e.v.is_finite() && (0.0..1.0).contains(&e.phase)) {
             return Err(format!("bad event {e:?}"));
         }
-        let tau = (e.period - from.period) as f64 + (e.phase - from.phase);
+        let tau = (e.period - from.period()) as f64 + (e.phase - from.phase());
         if tau < 0.0 {
             return Err(format!("time went backwards: {from:?} -> {e:?}"));
         }
@@ -185,7 +191,7 @@ fn check_orbit(sys: System, t0: f64, hop: f64, z0: f64, events: usize) -> Result
             }
         }
         // Flights follow impacts and releases; after a stick the ball rides the table.
-        if from.mode == bouncemap_engine::Mode::Flying && e.kind != EventKind::Stick {
+        if from.mode() == bouncemap_engine::Mode::Flying && e.kind != EventKind::Stick {
             sample_flight(&sys, &from, tau)?;
         }
     }

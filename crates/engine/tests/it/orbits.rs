@@ -2,7 +2,7 @@
 //! corrected approximation, border collisions and the scaling fits, checked against
 //! closed forms, the impact map itself, finite differences and the paper's numbers.
 
-use bouncemap_engine::linalg::eigenvalues_2x2;
+use bouncemap_engine::eigenvalues_2x2;
 use bouncemap_engine::orbits::fixed::{fixed_point_at, stable_by_band};
 use bouncemap_engine::orbits::scaling::{exact_fits, log_spaced, PAPER_FIG4_FITS};
 use bouncemap_engine::orbits::two_cycle::period_doubling_candidate;

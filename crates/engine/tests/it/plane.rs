@@ -3,11 +3,11 @@
 //! unsharded result, the first pass is a complete coarse picture, and a cancelled plane
 //! stops.
 
-use bouncemap_engine::grid::Axis;
-use bouncemap_engine::grid::Shard;
-use bouncemap_engine::grid::SweepParam;
+use bouncemap_engine::jobs::grid::Axis;
+use bouncemap_engine::jobs::grid::Shard;
+use bouncemap_engine::jobs::grid::SweepParam;
+use bouncemap_engine::jobs::picture::STRIDES;
 use bouncemap_engine::jobs::{Control, Executor};
-use bouncemap_engine::picture::STRIDES;
 use bouncemap_engine::plane::{self, Plane, PlaneJob, PlaneSpec};
 use bouncemap_engine::sweep::{self, SweepSpec};
 use bouncemap_engine::Table;

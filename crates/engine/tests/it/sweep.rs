@@ -2,8 +2,8 @@
 //! full transient, closed-form (1, 1) fixed points, and the cancellation and pause
 //! contracts.
 
-use bouncemap_engine::grid::Shard;
-use bouncemap_engine::grid::SweepParam;
+use bouncemap_engine::jobs::grid::Shard;
+use bouncemap_engine::jobs::grid::SweepParam;
 use bouncemap_engine::jobs::{Control, Executor};
 use bouncemap_engine::run::detect::Periodicity;
 use bouncemap_engine::run::Outcome;

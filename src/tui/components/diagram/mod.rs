@@ -23,7 +23,7 @@ use crate::tui::keymap::Action;
 use crate::tui::layout::{plot_area_within, Slot};
 use crate::tui::params::{fmt_num, ParamId, Params, StartMode, Touch};
 use crate::tui::plot::{draw_axes, render, Axes};
-use bouncemap_engine::grid::SweepParam;
+use bouncemap_engine::jobs::grid::SweepParam;
 use bouncemap_engine::sweep::{InitialSpec, SweepBatch, SweepJob, SweepSpec, ValueResult};
 use colouring::{point_labels, Colouring, LabelGrid};
 use ratatui::buffer::Buffer;

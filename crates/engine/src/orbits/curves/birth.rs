@@ -8,7 +8,7 @@
 //! closed-form launch (t̂ of max F', v = k/2) re-verified by the exact map's return.
 
 use super::{Curve, CurveEnd, CurveKind, CurvePoint, Plane};
-use crate::grid::SweepParam;
+use crate::jobs::grid::SweepParam;
 use crate::orbits::fixed::lands_after;
 use crate::orbits::periodic::{accept, map_for, pass, CyclePoint};
 use crate::system::System;

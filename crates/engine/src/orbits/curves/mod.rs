@@ -100,7 +100,7 @@ use super::continuation::Special;
 use super::events::jump_phases;
 use super::periodic::{min_interior_gap, CyclePoint, PassError};
 use crate::error::EngineError;
-use crate::grid::SweepParam;
+use crate::jobs::grid::SweepParam;
 use crate::system::System;
 use crate::table::Table;
 use crate::time::signed_distance;
@@ -167,7 +167,7 @@ impl Plane {
         if self.second.is_table() && self.table.family().is_some_and(|(f, _)| !f.is_builtin()) {
             let (lo, hi) = self.window;
             for i in 0..=100 {
-                let v = crate::grid::grid_value(lo, hi, 101, i);
+                let v = crate::jobs::grid::grid_value(lo, hi, 101, i);
                 self.second.table(&self.table, v)?;
             }
         }

@@ -14,7 +14,7 @@
 //! depends on the order it takes cells in (the basins' attractor numbering) takes them
 //! through a [`Sequencer`], so nothing depends on timing.
 
-use crate::grid::Shard;
+use crate::jobs::grid::Shard;
 use crate::jobs::{Context, Job, Pass};
 use std::collections::BTreeMap;
 
