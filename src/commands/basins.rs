@@ -8,9 +8,10 @@
 
 use super::drive::fill;
 use super::progress::Progress;
-use crate::config::flags::{BasinsArgs, BasinsFormat};
+use crate::config::run::BasinsRun;
 use crate::config::{self, InputError};
 use crate::output::basin_map;
+use crate::output::part_file::Layout;
 use crate::output::records::{csv_writer, AttractorRecord, BasinRow, BasinsDoc};
 use crate::output::sink::Sink;
 use crate::output::text::shortest;
@@ -18,26 +19,21 @@ use bouncemap_engine::attractors::basins::{BasinSpec, Basins, BasinsJob};
 use bouncemap_engine::jobs::{Control, Executor};
 use std::io::Write;
 
-pub fn run(args: &BasinsArgs) -> anyhow::Result<()> {
-    let spec = config::basin_spec(&args.spec)?;
-    if args.run.check.check {
-        let (workers, threads) = config::threads_plan(args.run.workers.threads);
-        let what = match args.format {
-            BasinsFormat::Csv => "csv",
-            BasinsFormat::Json => "json",
-            BasinsFormat::Braille => "the braille picture",
-        };
+pub fn run(run: &BasinsRun) -> anyhow::Result<()> {
+    let BasinsRun { spec, job } = run;
+    if job.check {
+        let (workers, threads) = job.threads_plan();
         return super::print_plan(&[
-            format!("basins of {} starts: {}", spec.len(), title(&spec)),
+            format!("basins of {} starts: {}", spec.len(), title(spec)),
             threads,
-            config::memory_plan(memory_bound(&spec, workers, args)),
-            super::output_plan(args.output.out.as_deref(), what)?,
+            config::memory_plan(memory_bound(run, workers)),
+            super::output_plan(job.out.as_deref(), job.what("the braille picture"))?,
         ]);
     }
-    let threads = config::threads(args.run.workers.threads)?;
-    let mut sink = Sink::open(args.output.out.as_deref()).map_err(InputError)?;
-    let basins = compute(&spec, &Executor::new(threads)?)?;
-    write(&spec, &basins, args, &mut sink).map_err(|e| sink.describe(e))?;
+    let threads = job.threads()?;
+    let mut sink = Sink::open(job.out.as_deref()).map_err(InputError)?;
+    let basins = compute(spec, &Executor::new(threads)?)?;
+    write(run, &basins, &mut sink).map_err(|e| sink.describe(e))?;
     sink.finish()
 }
 
@@ -47,19 +43,17 @@ pub fn run(args: &BasinsArgs) -> anyhow::Result<()> {
 /// numbered (a few MB measured), the writer (a row at a time, or the text picture) and
 /// the process. Large blocks are returned to the system as they are freed
 /// ([`super::release_large_blocks`]).
-fn memory_bound(spec: &BasinSpec, threads: usize, args: &BasinsArgs) -> u64 {
+fn memory_bound(run: &BasinsRun, threads: usize) -> u64 {
+    let spec = &run.spec;
     use bouncemap_engine::attractors::identify_bytes;
     use bouncemap_engine::run::OrbitRun;
     use std::mem::size_of;
     let starts = spec.len() as u64;
     let labels = starts * (size_of::<Option<u32>>() + size_of::<usize>()) as u64;
     let worker = OrbitRun::bytes(1, spec.settle.periodicity) + identify_bytes(spec.settle.sample);
-    let writer = match args.format {
-        BasinsFormat::Braille => {
-            let (w, h) = config::text_size(&args.run.text, || None);
-            super::picture_bytes(w, h)
-        }
-        _ => super::WRITER_BYTES,
+    let writer = match run.job.layout {
+        None => super::picture_bytes(run.job.text.0, run.job.text.1),
+        Some(_) => super::WRITER_BYTES,
     };
     super::BASE_BYTES
         + threads as u64 * (worker + super::THREAD_BYTES)
@@ -92,16 +86,12 @@ fn title(spec: &BasinSpec) -> String {
     )
 }
 
-fn write(
-    spec: &BasinSpec,
-    basins: &Basins,
-    args: &BasinsArgs,
-    out: &mut Sink,
-) -> anyhow::Result<()> {
+fn write(run: &BasinsRun, basins: &Basins, out: &mut Sink) -> anyhow::Result<()> {
+    let spec = &run.spec;
     let reg = basins.registry();
     let number = basin_map::numbers(reg);
-    match args.format {
-        BasinsFormat::Csv => {
+    match run.job.layout {
+        Some(Layout::Csv) => {
             let mut w = csv_writer(&mut *out, &BasinRow::HEADER)?;
             for (k, l) in basins.labels().iter().enumerate() {
                 let (t0, w0) = spec.start(k);
@@ -113,7 +103,7 @@ fn write(
             }
             w.flush()?;
         }
-        BasinsFormat::Json => {
+        Some(Layout::Json) => {
             let doc = BasinsDoc {
                 table: spec.sys.table().name(),
                 alpha: spec.sys.alpha(),
@@ -142,8 +132,8 @@ fn write(
             serde_json::to_writer(&mut *out, &doc)?;
             writeln!(out)?;
         }
-        BasinsFormat::Braille => {
-            let (w, h) = config::text_size(&args.run.text, || None);
+        None => {
+            let (w, h) = run.job.text;
             for line in basin_map::lines(basins, &title(spec), spec.w_max, w as usize, h as usize) {
                 writeln!(out, "{line}")?;
             }

@@ -10,9 +10,9 @@
 //! progress on stderr; a closed standard output or a signal stops it.
 
 use super::progress::Progress;
-use crate::config::flags::LyapunovArgs;
-use crate::config::{self, InputError};
-use crate::output::records::{csv_writer, InitialRecord, LyapunovDoc, LyapunovRow};
+use crate::config;
+use crate::config::run::LyapunovRun;
+use crate::output::records::{csv_writer, LyapunovDoc, LyapunovRow};
 use crate::output::sink::check_stdout;
 use crate::output::sink::Sink;
 use crate::output::text::significant;
@@ -20,50 +20,29 @@ use crate::output::Format;
 use bouncemap_engine::attractors::lyapunov::{Method, Spectrum};
 use bouncemap_engine::attractors::{self, Found, Settle};
 use bouncemap_engine::jobs::Progress as JobProgress;
-use bouncemap_engine::run::detect::Periodicity;
-use bouncemap_engine::run::start::near_fixed_point;
 use bouncemap_engine::run::{Advance, OrbitRun};
 use bouncemap_engine::{ImpactMap, State, System};
 use std::io::{self, Write};
 use std::time::{Duration, Instant};
 
-pub fn run(args: &LyapunovArgs) -> anyhow::Result<()> {
-    let sys = config::system(&args.system)?;
-    let (start, initial) = if args.near_fixed_point {
-        let s = near_fixed_point(&sys).ok_or_else(|| {
-            InputError(format!(
-                "--near-fixed-point: table {} at alpha = {} has no (1,1) solution to start next to (valid from the birth alpha that `bouncemap fixed` prints)",
-                sys.table().name(),
-                sys.alpha()
-            ))
-        })?;
-        (s, InitialRecord::Named("near-fixed-point".into()))
-    } else {
-        let s = config::start(&sys, &args.initial)?;
-        (
-            s,
-            InitialRecord::State {
-                t0: args.initial.t0,
-                v0: args.initial.v0,
-                z0: args.initial.z0,
-            },
-        )
-    };
-    let settle = Settle {
-        transient: args.transient,
-        periodicity: (!args.no_early_stop).then(Periodicity::default),
-        sample: args.impacts,
-        solver: bouncemap_engine::Solver::Exact,
-    };
-    if args.check.check {
+pub fn run(run: &LyapunovRun) -> anyhow::Result<()> {
+    let LyapunovRun {
+        sys,
+        start,
+        initial,
+        settle,
+        ..
+    } = run;
+    let sys = sys.clone();
+    if run.check {
         return super::print_plan(&[
             format!(
                 "lyapunov of one orbit of table {} at alpha {}, r {}: transient {} periods, then up to {} impacts measured by QR",
                 sys.table().name(),
                 sys.alpha(),
                 sys.r(),
-                args.transient,
-                args.impacts
+                settle.transient,
+                settle.sample
             ),
             // The measurement streams: the orbit, the cells its sample visits (at most
             // a million, whatever the impacts), the process.
@@ -79,17 +58,17 @@ pub fn run(args: &LyapunovArgs) -> anyhow::Result<()> {
     // Standard output is this run's output before the measurement starts, so its
     // progress knows whether the results stream into another program.
     let mut out = Sink::stdout();
-    let found = measure(&sys, start, &settle)?;
+    let found = measure(&sys, *start, settle)?;
     let row = LyapunovRow::new(&found, sys.r());
     let written = (|| -> anyhow::Result<()> {
-        match args.format {
+        match run.format {
             Format::Json => {
                 let doc = LyapunovDoc {
                     table: sys.table().name(),
                     alpha: sys.alpha(),
                     r: sys.r(),
-                    start: initial,
-                    transient: args.transient,
+                    start: initial.clone(),
+                    transient: settle.transient,
                     result: row,
                 };
                 serde_json::to_writer(&mut out, &doc)?;
@@ -100,7 +79,7 @@ pub fn run(args: &LyapunovArgs) -> anyhow::Result<()> {
                 w.serialize(&row)?;
                 w.flush()?;
             }
-            Format::Text => text(&mut out, &sys, &found, args)?,
+            Format::Text => text(&mut out, &sys, &found, settle.transient)?,
         }
         Ok(())
     })();
@@ -176,7 +155,7 @@ fn text(
     out: &mut impl Write,
     sys: &bouncemap_engine::System,
     found: &Found,
-    args: &LyapunovArgs,
+    transient: u64,
 ) -> io::Result<()> {
     writeln!(
         out,
@@ -184,7 +163,7 @@ fn text(
         sys.table().name(),
         sys.alpha(),
         sys.r(),
-        args.transient
+        transient
     )?;
     let unresolved = found.precision.is_some_and(|p| !p.resolved);
     let period = match (found.events, found.periods) {

@@ -25,6 +25,7 @@ pub mod scaling;
 pub mod sweep;
 pub mod two_cycle;
 
+use crate::config;
 use crate::config::flags::Command;
 use crate::config::InputError;
 use crate::output::sink::Sink;
@@ -44,10 +45,10 @@ pub fn run(cmd: Command) -> anyhow::Result<()> {
         Command::Continue(a) => continuation::run(&a),
         Command::Cascade(a) => cascade::run(&a),
         Command::Curves(a) => curves::run(&a),
-        Command::Sweep(a) => sweep::run(&a),
-        Command::Lyapunov(a) => lyapunov::run(&a),
-        Command::Basins(a) => basins::run(&a),
-        Command::Plane(a) => plane::run(&a),
+        Command::Sweep(a) => sweep::run(&config::run::sweep(&a)?),
+        Command::Lyapunov(a) => lyapunov::run(&config::run::lyapunov(&a)?),
+        Command::Basins(a) => basins::run(&config::run::basins(&a)?),
+        Command::Plane(a) => plane::run(&config::run::plane(&a)?),
         Command::Merge(a) => merge::run(&a),
         Command::Bench(a) => bench::run(&a),
         Command::Figure(a) => figure::run(&a),

@@ -10,7 +10,7 @@ use super::drive::fill;
 use super::progress::Progress;
 use super::resume;
 use super::{picture_bytes, BASE_BYTES, THREAD_BYTES, WRITER_BYTES};
-use crate::config::flags::PlaneArgs;
+use crate::config::run::PlaneRun;
 use crate::config::{self, InputError};
 use crate::output::part_file::{shard_name, PartWriter};
 use crate::output::plane_file::{self, CurvesRecord, PlaneFile, PlaneHeader};
@@ -21,40 +21,28 @@ use bouncemap_engine::jobs::{Control, Executor};
 use bouncemap_engine::plane::{curves, Plane, PlaneJob, PlaneSpec};
 use std::io::Write;
 
-pub fn run(args: &PlaneArgs) -> anyhow::Result<()> {
-    let spec = config::plane::plane_spec(args)?;
-    // The two-parameter curves go over the text picture only: the csv and json files
-    // are the pixels (their numbers come from `bouncemap curves`).
-    let two_parameter = match args.curves {
-        Some(_) if resume::part_layout(args.format).is_some() => {
-            return Err(InputError(
-                "--curves: the curves are drawn over the braille picture: valid with --format braille (their numbers: bouncemap curves)".into(),
-            )
-            .into())
-        }
-        Some(p) => Some(config::plane::plane_curves(&spec, 1, p, None)?),
-        None => None,
-    };
-    if args.run.check.check {
-        return check(args, &spec);
+pub fn run(run: &PlaneRun) -> anyhow::Result<()> {
+    let PlaneRun { spec, job, .. } = run;
+    if job.check {
+        return check(run);
     }
-    let threads = config::threads(args.run.workers.threads)?;
-    let header = PlaneHeader::from(&spec);
-    if resume::already_written::<PlaneFile>(&args.part, args.format, &header, spec.shard)? {
+    let threads = job.threads()?;
+    let header = PlaneHeader::from(spec);
+    if resume::already_written::<PlaneFile>(job, &header, spec.shard)? {
         return Ok(());
     }
-    config::check_memory(memory_bound(args, &spec, threads), "this plane")?;
-    let mut sink = Sink::open(args.part.output.out.as_deref()).map_err(InputError)?;
-    let plane = compute(&spec, &Executor::new(threads)?)?;
-    let curves = curves(&spec);
-    let two_parameter = match two_parameter {
+    config::check_memory(memory_bound(run, threads), "this plane")?;
+    let mut sink = Sink::open(job.out.as_deref()).map_err(InputError)?;
+    let plane = compute(spec, &Executor::new(threads)?)?;
+    let curves = curves(spec);
+    let two_parameter = match &run.curves {
         Some((cplane, seeds)) => Some(
-            bouncemap_engine::orbits::curves::curves(&cplane, seeds).map_err(InputError::from)?,
+            bouncemap_engine::orbits::curves::curves(cplane, *seeds).map_err(InputError::from)?,
         ),
         None => None,
     };
     let write = |sink: &mut Sink| -> anyhow::Result<()> {
-        match resume::part_layout(args.format) {
+        match job.layout {
             Some(layout) => {
                 let curves_text = match &curves {
                     Some(c) => serde_json::to_string(&CurvesRecord::from(c))?,
@@ -63,29 +51,29 @@ pub fn run(args: &PlaneArgs) -> anyhow::Result<()> {
                 let mut w = PartWriter::<_, PlaneFile>::begin(
                     &mut *sink,
                     layout,
-                    &PlaneHeader::from(&spec),
+                    &PlaneHeader::from(spec),
                     &shard_name(spec.shard),
                     spec.shard_len(),
                     &[&curves_text],
                 )?;
-                for row in plane_file::rows(&spec, plane.pixels()) {
+                for row in plane_file::rows(spec, plane.pixels()) {
                     w.value(&row)?;
                 }
                 w.end()?;
             }
             None => {
-                let (w, h) = config::text_size(&args.run.text, || None);
+                let (w, h) = job.text;
                 // Colour on a terminal unless NO_COLOR is set; glyphs in files and pipes.
                 use std::io::IsTerminal;
-                let colour = args.part.output.out.is_none()
+                let colour = job.out.is_none()
                     && std::io::stdout().is_terminal()
                     && std::env::var_os("NO_COLOR").is_none_or(|v| v.is_empty());
                 let lines = plane_map::lines(
-                    &spec,
+                    spec,
                     &plane,
                     curves.as_ref(),
                     two_parameter.as_ref(),
-                    &title(&spec),
+                    &title(spec),
                     w as usize,
                     h as usize,
                     colour,
@@ -102,7 +90,8 @@ pub fn run(args: &PlaneArgs) -> anyhow::Result<()> {
 }
 
 /// `--check`: what the run would do, checked as it would be, nothing computed.
-fn check(args: &PlaneArgs, spec: &PlaneSpec) -> anyhow::Result<()> {
+fn check(run: &PlaneRun) -> anyhow::Result<()> {
+    let PlaneRun { spec, job, .. } = run;
     let mut plan = vec![format!(
         "plane of {} pixels (shard {} of {}): {}",
         spec.shard_len(),
@@ -110,18 +99,17 @@ fn check(args: &PlaneArgs, spec: &PlaneSpec) -> anyhow::Result<()> {
         spec.x.n * spec.y.n,
         title(spec)
     )];
-    let (threads, line) = config::threads_plan(args.run.workers.threads);
+    let (threads, line) = job.threads_plan();
     plan.push(line);
-    plan.push(config::memory_plan(memory_bound(args, spec, threads)));
+    plan.push(config::memory_plan(memory_bound(run, threads)));
     let header = PlaneHeader::from(spec);
-    let what = match resume::part_layout(args.format) {
-        Some(l) => l.name(),
-        None => "the braille picture",
-    };
-    if resume::already_written::<PlaneFile>(&args.part, args.format, &header, spec.shard)? {
+    if resume::already_written::<PlaneFile>(job, &header, spec.shard)? {
         plan.push("--resume: the part is already there: nothing to compute".into());
     } else {
-        plan.push(super::output_plan(args.part.output.out.as_deref(), what)?);
+        plan.push(super::output_plan(
+            job.out.as_deref(),
+            job.what("the braille picture"),
+        )?);
     }
     super::print_plan(&plan)
 }
@@ -132,7 +120,8 @@ fn check(args: &PlaneArgs, spec: &PlaneSpec) -> anyhow::Result<()> {
 /// what measuring its exponent takes, the two-parameter curves, the writer (a row at a
 /// time, or the text picture) and the process. Large blocks are returned to the system
 /// as they are freed ([`super::release_large_blocks`]).
-fn memory_bound(args: &PlaneArgs, spec: &PlaneSpec, threads: usize) -> u64 {
+fn memory_bound(run: &PlaneRun, threads: usize) -> u64 {
+    let spec = &run.spec;
     use bouncemap_engine::plane::{Pixel, KEEP, LYAPUNOV_SAMPLE};
     use bouncemap_engine::run::{OrbitRun, Point};
     use std::mem::size_of;
@@ -148,14 +137,11 @@ fn memory_bound(args: &PlaneArgs, spec: &PlaneSpec, threads: usize) -> u64 {
     let worker = OrbitRun::bytes(KEEP, spec.periodicity)
         + KEEP as u64 * size_of::<Point>() as u64
         + exponent;
-    let writer = match resume::part_layout(args.format) {
+    let writer = match run.job.layout {
         Some(_) => WRITER_BYTES,
-        None => {
-            let (w, h) = config::text_size(&args.run.text, || None);
-            picture_bytes(w, h)
-        }
+        None => picture_bytes(run.job.text.0, run.job.text.1),
     };
-    let curves = if args.curves.is_some() {
+    let curves = if run.curves.is_some() {
         CURVES_BYTES
     } else {
         0

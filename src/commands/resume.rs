@@ -8,45 +8,33 @@
 //! a device) is left to the output's own rules.
 
 use crate::config::files::{open_existing_output, read_again, LARGE_FILE};
-use crate::config::flags::PartArgs;
+use crate::config::run::Job;
 use crate::config::InputError;
 use crate::output::part_file::{
     differing_setting, opens_as, read_part, shard_name, spec_text, FileKind, Layout, TOOL,
 };
 use crate::output::to_stderr;
 use bouncemap_engine::jobs::grid::Shard;
-use clap::ValueEnum;
 use std::path::Path;
 
-/// The layout an output format writes: csv or json (a part file), None for any other
-/// (braille text).
-pub fn part_layout(format: impl ValueEnum) -> Option<Layout> {
-    match format.to_possible_value()?.get_name() {
-        "csv" => Some(Layout::Csv),
-        "json" => Some(Layout::Json),
-        _ => None,
-    }
-}
-
-/// With `--resume` (in `args`): whether `--out` already holds this run's part (kind
-/// `K`, settings `header`, shard `shard`, written as `format` writes), so the run can end
+/// With `--resume` (in `job`): whether `--out` already holds this run's part (kind
+/// `K`, settings `header`, shard `shard`, in the job's layout), so the run can end
 /// at once. Says on stderr what it found. `--resume` needs `--out` and a format whose
 /// files can be verified (csv or json).
 pub fn already_written<K: FileKind>(
-    args: &PartArgs,
-    format: impl ValueEnum,
+    job: &Job,
     header: &K::Header,
     shard: Shard,
 ) -> Result<bool, InputError> {
-    if !args.resume {
+    if !job.resume {
         return Ok(false);
     }
-    let layout = part_layout(format).ok_or_else(|| {
+    let layout = job.layout.ok_or_else(|| {
         InputError(
             "--resume with --format braille: valid with --format csv or json, whose files can be verified".into(),
         )
     })?;
-    let out = args.output.out.as_deref().ok_or_else(|| {
+    let out = job.out.as_deref().ok_or_else(|| {
         InputError(
             "--resume without --out: valid with --out FILE, the file to check and write".into(),
         )

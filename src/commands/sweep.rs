@@ -14,7 +14,7 @@ use super::drive::drive_job;
 use super::progress::Progress;
 use super::resume;
 use super::{picture_bytes, BASE_BYTES, THREAD_BYTES, WRITER_BYTES};
-use crate::config::flags::SweepArgs;
+use crate::config::run::SweepRun;
 use crate::config::{self, check_memory, InputError};
 use crate::output::diagram::BrailleDiagram;
 use crate::output::part_file::{shard_name, spec_text, Layout};
@@ -30,25 +30,23 @@ use std::io::Write;
 /// when the workers can be kept busy with less.
 pub const WINDOW_BYTES: u64 = 64 << 20;
 
-pub fn run(args: &SweepArgs) -> anyhow::Result<()> {
-    let spec = config::sweep::sweep_spec(args)?;
-    if args.run.check.check {
-        return check(args, &spec);
+pub fn run(run: &SweepRun) -> anyhow::Result<()> {
+    let SweepRun { spec, job } = run;
+    if job.check {
+        return check(run);
     }
-    let threads = config::threads(args.run.workers.threads)?;
-    let header = SweepHeader::from(&spec);
-    if resume::already_written::<SweepFile>(&args.part, args.format, &header, spec.shard)? {
+    let threads = job.threads()?;
+    let header = SweepHeader::from(spec);
+    if resume::already_written::<SweepFile>(job, &header, spec.shard)? {
         return Ok(());
     }
-    let layout = resume::part_layout(args.format);
-    let size = braille_size(args);
-    let (window, memory) = budget(&spec, threads, writer_bytes(layout, size));
+    let (window, memory) = budget(spec, threads, writer_bytes(job.layout, job.text));
     check_memory(memory, "this sweep")?;
-    let mut sink = Sink::open(args.part.output.out.as_deref()).map_err(InputError)?;
+    let mut sink = Sink::open(job.out.as_deref()).map_err(InputError)?;
     let executor = Executor::new(threads)?;
-    let result = match layout {
-        Some(layout) => stream(&spec, &executor, window, &mut sink, layout),
-        None => braille(&spec, &executor, window, &mut sink, size),
+    let result = match job.layout {
+        Some(layout) => stream(spec, &executor, window, &mut sink, layout),
+        None => braille(spec, &executor, window, &mut sink, job.text),
     };
     result.map_err(|e| sink.describe(e))?;
     sink.finish()
@@ -85,7 +83,8 @@ fn writer_bytes(layout: Option<Layout>, (w, h): (u16, u16)) -> u64 {
 }
 
 /// `--check`: what the run would do, checked as it would be, nothing computed.
-fn check(args: &SweepArgs, spec: &SweepSpec) -> anyhow::Result<()> {
+fn check(run: &SweepRun) -> anyhow::Result<()> {
+    let SweepRun { spec, job } = run;
     let header = SweepHeader::from(spec);
     let mut plan = vec![format!(
         "sweep of {} values (shard {} of {}): {}",
@@ -94,18 +93,17 @@ fn check(args: &SweepArgs, spec: &SweepSpec) -> anyhow::Result<()> {
         spec.steps,
         spec_text(&header)
     )];
-    let (threads, line) = config::threads_plan(args.run.workers.threads);
+    let (threads, line) = job.threads_plan();
     plan.push(line);
-    let writer = writer_bytes(resume::part_layout(args.format), braille_size(args));
+    let writer = writer_bytes(job.layout, job.text);
     plan.push(config::memory_plan(budget(spec, threads, writer).1));
-    let what = match resume::part_layout(args.format) {
-        Some(l) => l.name(),
-        None => "the braille diagram",
-    };
-    if resume::already_written::<SweepFile>(&args.part, args.format, &header, spec.shard)? {
+    if resume::already_written::<SweepFile>(job, &header, spec.shard)? {
         plan.push("--resume: the part is already there: nothing to compute".into());
     } else {
-        plan.push(super::output_plan(args.part.output.out.as_deref(), what)?);
+        plan.push(super::output_plan(
+            job.out.as_deref(),
+            job.what("the braille diagram"),
+        )?);
     }
     super::print_plan(&plan)
 }
@@ -194,15 +192,6 @@ fn braille(
         writeln!(sink, "{line}")?;
     }
     Ok(())
-}
-
-/// The diagram's size: the text picture's, COLUMNS wide if the terminal's is unknown, at
-/// least 20 × 6.
-fn braille_size(args: &SweepArgs) -> (u16, u16) {
-    let (w, h) = config::text_size(&args.run.text, || {
-        std::env::var("COLUMNS").ok().and_then(|c| c.parse().ok())
-    });
-    (w.max(20), h.max(6))
 }
 
 #[cfg(test)]

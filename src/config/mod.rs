@@ -26,6 +26,7 @@ pub mod flags;
 pub mod plane;
 pub mod presets;
 pub mod rules;
+pub mod run;
 pub mod sweep;
 pub mod table_spec;
 pub mod windows;

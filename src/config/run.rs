@@ -1,0 +1,224 @@
+//! The commands that run a job over many items (`sweep`, `plane`, `basins`) and
+//! `lyapunov`, settled from their flags once: the validated specification and how the
+//! run goes ([`Job`]: check only or compute, worker threads, where it writes and in
+//! which layout, the text picture's size, `--resume`). The commands read these and
+//! never their flags, as ripgrep's flags become one settled set of arguments before any
+//! work starts.
+
+use super::flags::{BasinsArgs, BasinsFormat, LyapunovArgs, PlaneArgs, SweepArgs, TextSizeArgs};
+use super::InputError;
+use crate::output::part_file::Layout;
+use crate::output::records::InitialRecord;
+use crate::output::Format;
+use bouncemap_engine::attractors::basins::BasinSpec;
+use bouncemap_engine::attractors::Settle;
+use bouncemap_engine::orbits::curves::{Plane as CurvesPlane, Seeds};
+use bouncemap_engine::plane::PlaneSpec;
+use bouncemap_engine::run::detect::Periodicity;
+use bouncemap_engine::run::start::near_fixed_point;
+use bouncemap_engine::sweep::SweepSpec;
+use bouncemap_engine::{State, System};
+use clap::ValueEnum;
+
+/// How a job-running command runs, settled from its flags.
+#[derive(Clone, Debug)]
+pub struct Job {
+    /// `--check`: state the plan, compute nothing.
+    pub check: bool,
+    /// `--threads`, if given (resolved against the machine by [`Job::threads`]).
+    requested_threads: Option<usize>,
+    /// `--out`: the file written, or standard output.
+    pub out: Option<String>,
+    /// The file layout (csv or json), or None for the braille text picture.
+    pub layout: Option<Layout>,
+    /// The text picture's width and height in character cells.
+    pub text: (u16, u16),
+    /// `--resume`: leave a complete, verified part that is already there.
+    pub resume: bool,
+}
+
+impl Job {
+    /// The worker threads on this machine: `--threads`, else Slurm's CPUs for the
+    /// task, else one per core (see [`super::threads`]).
+    pub fn threads(&self) -> Result<usize, InputError> {
+        super::threads(self.requested_threads)
+    }
+
+    /// The threads a `--check` plans for, and its plan line (a refusal on this machine
+    /// is stated, not returned: the run may be meant for another one).
+    pub fn threads_plan(&self) -> (usize, String) {
+        super::threads_plan(self.requested_threads)
+    }
+
+    /// What the output is, for a plan line: the layout's name or `picture`.
+    pub fn what<'a>(&self, picture: &'a str) -> &'a str {
+        match self.layout {
+            Some(l) => l.name(),
+            None => picture,
+        }
+    }
+}
+
+/// `sweep`, settled.
+#[derive(Clone, Debug)]
+pub struct SweepRun {
+    /// The diagram to compute, validated.
+    pub spec: SweepSpec,
+    /// How it runs.
+    pub job: Job,
+}
+
+/// `plane`, settled.
+#[derive(Clone, Debug)]
+pub struct PlaneRun {
+    /// The plane to compute, validated.
+    pub spec: PlaneSpec,
+    /// `--curves P`: the two-parameter curves to draw over the text picture, and their
+    /// seeds.
+    pub curves: Option<(CurvesPlane, Seeds)>,
+    /// How it runs.
+    pub job: Job,
+}
+
+/// `basins`, settled.
+#[derive(Clone, Debug)]
+pub struct BasinsRun {
+    /// The basin picture to compute, validated.
+    pub spec: BasinSpec,
+    /// How it runs.
+    pub job: Job,
+}
+
+/// The layout an output format writes: csv or json (a part file), None for any other
+/// (braille text).
+pub fn part_layout(format: impl ValueEnum) -> Option<Layout> {
+    match format.to_possible_value()?.get_name() {
+        "csv" => Some(Layout::Csv),
+        "json" => Some(Layout::Json),
+        _ => None,
+    }
+}
+
+/// `sweep`'s flags and preset, settled. The diagram's text picture is the terminal's
+/// size, COLUMNS wide if the terminal's is unknown, at least 20 × 6.
+pub fn sweep(args: &SweepArgs) -> Result<SweepRun, InputError> {
+    let spec = super::sweep::sweep_spec(args)?;
+    let (w, h) = super::text_size(&args.run.text, || {
+        std::env::var("COLUMNS").ok().and_then(|c| c.parse().ok())
+    });
+    let job = Job {
+        check: args.run.check.check,
+        requested_threads: args.run.workers.threads,
+        out: args.part.output.out.clone(),
+        layout: part_layout(args.format),
+        text: (w.max(20), h.max(6)),
+        resume: args.part.resume,
+    };
+    Ok(SweepRun { spec, job })
+}
+
+/// `plane`'s flags, settled. `--curves` goes with the text picture only: the csv and
+/// json files are the pixels (their curves' numbers come from `bouncemap curves`).
+pub fn plane(args: &PlaneArgs) -> Result<PlaneRun, InputError> {
+    let spec = super::plane::plane_spec(args)?;
+    let layout = part_layout(args.format);
+    let curves = match args.curves {
+        Some(_) if layout.is_some() => {
+            return Err(InputError(
+                "--curves: the curves are drawn over the braille picture: valid with --format braille (their numbers: bouncemap curves)".into(),
+            ))
+        }
+        Some(p) => Some(super::plane::plane_curves(&spec, 1, p, None)?),
+        None => None,
+    };
+    let job = Job {
+        check: args.run.check.check,
+        requested_threads: args.run.workers.threads,
+        out: args.part.output.out.clone(),
+        layout,
+        text: text(&args.run.text),
+        resume: args.part.resume,
+    };
+    Ok(PlaneRun { spec, curves, job })
+}
+
+/// `basins`' flags, settled.
+pub fn basins(args: &BasinsArgs) -> Result<BasinsRun, InputError> {
+    let spec = super::basin_spec(&args.spec)?;
+    let layout = match args.format {
+        BasinsFormat::Csv => Some(Layout::Csv),
+        BasinsFormat::Json => Some(Layout::Json),
+        BasinsFormat::Braille => None,
+    };
+    let job = Job {
+        check: args.run.check.check,
+        requested_threads: args.run.workers.threads,
+        out: args.output.out.clone(),
+        layout,
+        text: text(&args.run.text),
+        resume: false,
+    };
+    Ok(BasinsRun { spec, job })
+}
+
+/// `lyapunov`, settled.
+#[derive(Clone, Debug)]
+pub struct LyapunovRun {
+    /// The system.
+    pub sys: System,
+    /// The orbit's start.
+    pub start: State,
+    /// The start as the output names it.
+    pub initial: InitialRecord,
+    /// The transient, the early stop and the impacts measured.
+    pub settle: Settle,
+    /// `--check`: state the plan, compute nothing.
+    pub check: bool,
+    /// The output format.
+    pub format: Format,
+}
+
+/// `lyapunov`'s flags, settled: `--near-fixed-point` refused where the system has no
+/// (1, 1) solution.
+pub fn lyapunov(args: &LyapunovArgs) -> Result<LyapunovRun, InputError> {
+    let sys = super::system(&args.system)?;
+    let (start, initial) = if args.near_fixed_point {
+        let s = near_fixed_point(&sys).ok_or_else(|| {
+            InputError(format!(
+                "--near-fixed-point: table {} at alpha = {} has no (1,1) solution to start next to (valid from the birth alpha that `bouncemap fixed` prints)",
+                sys.table().name(),
+                sys.alpha()
+            ))
+        })?;
+        (s, InitialRecord::Named("near-fixed-point".into()))
+    } else {
+        let s = super::start(&sys, &args.initial)?;
+        (
+            s,
+            InitialRecord::State {
+                t0: args.initial.t0,
+                v0: args.initial.v0,
+                z0: args.initial.z0,
+            },
+        )
+    };
+    let settle = Settle {
+        transient: args.transient,
+        periodicity: (!args.no_early_stop).then(Periodicity::default),
+        sample: args.impacts,
+        solver: bouncemap_engine::Solver::Exact,
+    };
+    Ok(LyapunovRun {
+        sys,
+        start,
+        initial,
+        settle,
+        check: args.check.check,
+        format: args.format,
+    })
+}
+
+/// A text picture's size: the flags', else the terminal's.
+fn text(args: &TextSizeArgs) -> (u16, u16) {
+    super::text_size(args, || None)
+}
