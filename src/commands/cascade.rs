@@ -4,7 +4,7 @@
 //! `--d LO..HI:N`, one row per fd:D table: the answer to the paper's open question of
 //! which 2ⁿ branch ends by border collision.
 
-use crate::config::flags::CascadeArgs;
+use crate::config::run::{CascadeRun, CascadeTables};
 use crate::config::InputError;
 use crate::output::records::{
     csv_writer, CascadeDoc, FamilyDoc, FamilyRecord, FamilyRow, LevelRecord, FEIGENBAUM_DELTA,
@@ -17,7 +17,7 @@ use bouncemap_engine::table::Table;
 use std::io::Write;
 
 /// The cascade of one table: Ok(Err(reason)) when it has none.
-fn one(table: &Table, args: &CascadeArgs) -> Result<Result<Cascade, String>, InputError> {
+fn one(table: &Table, args: &CascadeRun) -> Result<Result<Cascade, String>, InputError> {
     match cascade(table, args.r, args.k, args.depth) {
         Ok(c) => Ok(Ok(c)),
         Err(NoStart::Invalid(e)) => Err(e.into()),
@@ -25,20 +25,22 @@ fn one(table: &Table, args: &CascadeArgs) -> Result<Result<Cascade, String>, Inp
     }
 }
 
-pub fn run(args: &CascadeArgs) -> anyhow::Result<()> {
+pub fn run(args: &CascadeRun) -> anyhow::Result<()> {
     let mut out = Sink::stdout();
     let written = (|| -> anyhow::Result<()> {
-        if let Some(ds) = &args.d {
-            let mut rows = Vec::with_capacity(ds.0.len());
-            for &d in &ds.0 {
-                let c = one(&Table::fd(d).map_err(InputError::from)?, args)?;
-                rows.push(FamilyRecord::new(d, c.as_ref().map_err(Clone::clone)));
+        match &args.tables {
+            CascadeTables::Family(tables) => {
+                let mut rows = Vec::with_capacity(tables.len());
+                for (d, table) in tables {
+                    let c = one(table, args)?;
+                    rows.push(FamilyRecord::new(*d, c.as_ref().map_err(Clone::clone)));
+                }
+                family(&mut out, args, rows)?;
             }
-            family(&mut out, args, rows)?;
-        } else {
-            let table = args.table.load()?;
-            let c = one(&table, args)?;
-            single(&mut out, args, &table, c)?;
+            CascadeTables::One(table) => {
+                let c = one(table, args)?;
+                single(&mut out, args, table, c)?;
+            }
         }
         Ok(())
     })();
@@ -47,7 +49,7 @@ pub fn run(args: &CascadeArgs) -> anyhow::Result<()> {
 
 fn single(
     out: &mut impl Write,
-    args: &CascadeArgs,
+    args: &CascadeRun,
     table: &Table,
     c: Result<Cascade, String>,
 ) -> anyhow::Result<()> {
@@ -163,7 +165,7 @@ fn single(
     Ok(())
 }
 
-fn family(out: &mut impl Write, args: &CascadeArgs, rows: Vec<FamilyRecord>) -> anyhow::Result<()> {
+fn family(out: &mut impl Write, args: &CascadeRun, rows: Vec<FamilyRecord>) -> anyhow::Result<()> {
     match args.format {
         Format::Json => {
             let doc = FamilyDoc {

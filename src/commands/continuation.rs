@@ -3,32 +3,29 @@
 //! branches started at period doublings), its points with multipliers and stability,
 //! its special points and how it ends.
 
-use crate::config::flags::{ContinueArgs, FromArg};
+use crate::config::run::ContinueRun;
 use crate::config::InputError;
 use crate::output::records::{csv_writer, BranchRecord, ContinueDoc, ContinueRow};
 use crate::output::sink::Sink;
 use crate::output::text::complex;
 use crate::output::Format;
-use bouncemap_engine::orbits::continuation::{branches, Branch, NoStart, Options, Special, Start};
+use bouncemap_engine::orbits::continuation::{branches, Branch, NoStart, Special, Start};
 use std::io::{self, Write};
 
-pub fn run(args: &ContinueArgs) -> anyhow::Result<()> {
-    let table = args.table.load()?;
-    let start = match (args.from, args.guess.cycle()) {
-        (_, Some((n, t0, v0))) => Start::Point {
-            n,
-            k: args.k,
-            t0,
-            v0,
-        },
-        (Some(FromArg::TwoCycle), ..) => Start::TwoCycle { k: args.k },
-        _ => Start::Fixed { k: args.k },
+pub fn run(run: &ContinueRun) -> anyhow::Result<()> {
+    let ContinueRun {
+        table,
+        r,
+        alpha,
+        start,
+        options,
+        format,
+    } = run;
+    let (r, alpha, start) = (*r, *alpha, *start);
+    let k = match start {
+        Start::Fixed { k } | Start::TwoCycle { k } | Start::Point { k, .. } => k,
     };
-    let opts = Options {
-        max_period: args.max_period,
-        ..Options::default()
-    };
-    let (found, reason) = match branches(&table, args.r, args.alpha, start, opts) {
+    let (found, reason) = match branches(table, r, alpha, start, *options) {
         Ok(b) => (b, None),
         Err(NoStart::Invalid(e)) => return Err(InputError::from(e).into()),
         // An unstable (1, k) solution is not a start of its own, but it can be followed
@@ -37,8 +34,7 @@ pub fn run(args: &ContinueArgs) -> anyhow::Result<()> {
             Vec::new(),
             Some(format!(
                 "{why}; to follow an unstable one, start on it as a cycle: --n 1 --k {k} --t0 PHASE --v0 {v} with PHASE from `bouncemap fixed --k {k} --alpha A` at an A where it exists, and a window from A",
-                k = args.k,
-                v = 0.5 * args.k as f64
+                v = 0.5 * k as f64
             )),
         ),
         Err(NoStart::NotFound(why)) => (Vec::new(), Some(why)),
@@ -50,13 +46,13 @@ pub fn run(args: &ContinueArgs) -> anyhow::Result<()> {
     };
     let mut out = Sink::stdout();
     let written = (|| -> anyhow::Result<()> {
-        match args.format {
+        match format {
             Format::Json => {
                 let doc = ContinueDoc {
                     table: table.name(),
-                    r: args.r,
-                    alpha_lo: args.alpha.0,
-                    alpha_hi: args.alpha.1,
+                    r,
+                    alpha_lo: alpha.0,
+                    alpha_hi: alpha.1,
                     start: start_text,
                     found: reason.is_none(),
                     reason,
@@ -88,9 +84,9 @@ pub fn run(args: &ContinueArgs) -> anyhow::Result<()> {
                     out,
                     "table {}  r {}  alpha {}..{}  start {}",
                     table.name(),
-                    args.r,
-                    args.alpha.0,
-                    args.alpha.1,
+                    r,
+                    alpha.0,
+                    alpha.1,
                     start_text
                 )?;
                 if let Some(why) = reason {

@@ -5,8 +5,7 @@
 //! codimension-two points located on it.
 
 use super::progress::Progress;
-use crate::config::flags::{CurvesArgs, CurvesSpecArgs};
-use crate::config::plane::curves_plane;
+use crate::config::run::CurvesRun;
 use crate::config::InputError;
 use crate::output::records::csv_writer;
 use crate::output::sink::Sink;
@@ -17,16 +16,22 @@ use bouncemap_engine::orbits::curves::{
 use serde_json::json;
 use std::io::{self, Write};
 
-pub fn run(cli: &CurvesArgs) -> anyhow::Result<()> {
-    let args = &cli.spec;
-    let (plane, at) = curves_plane(args)?;
-    let mut out = Sink::open(cli.output.out.as_deref()).map_err(InputError)?;
-    let found = follow_with_progress(&plane, seeds(args, at), &title(&plane, at, args))
-        .map_err(InputError::from)?;
+pub fn run(run: &CurvesRun) -> anyhow::Result<()> {
+    let CurvesRun {
+        plane,
+        seeds,
+        r,
+        out,
+        format,
+    } = run;
+    let (plane, seeds, at) = (plane, *seeds, seeds.at());
+    let mut out = Sink::open(out.as_deref()).map_err(InputError)?;
+    let found =
+        follow_with_progress(plane, seeds, &title(plane, &seeds)).map_err(InputError::from)?;
     let y = plane.second.as_str();
     let written = (|| -> anyhow::Result<()> {
-        match cli.format {
-            Format::Text => text(&mut out, &plane, at, args, &found)?,
+        match format {
+            Format::Text => text(&mut out, plane, &seeds, &found)?,
             Format::Csv => {
                 let header = [
                     "row",
@@ -101,15 +106,15 @@ pub fn run(cli: &CurvesArgs) -> anyhow::Result<()> {
             }
             Format::Json => {
                 let doc = json!({
-                    "table": table_label(&plane),
-                    "r": args.r,
+                    "table": table_label(plane),
+                    "r": r,
                     "alpha": [plane.alpha.0, plane.alpha.1],
                     "second": y,
                     "window": [plane.window.0, plane.window.1],
                     "start": at,
-                    "k": args.k,
-                    "max_period": args.max_period,
-                    "seeds": args.seeds,
+                    "k": seeds.k(),
+                    "max_period": seeds.max_period(),
+                    "seeds": seeds.count(),
                     "curves": found.curves.iter().enumerate().map(|(i, c)| {
                         let (impact, bp) = match c.kind {
                             CurveKind::BorderCollision { impact, breakpoint } => (Some(impact), Some(breakpoint)),
@@ -207,7 +212,8 @@ fn follow_with_progress(
 }
 
 /// The run in one line, for the log's first line.
-fn title(plane: &Plane, at: f64, args: &CurvesSpecArgs) -> String {
+fn title(plane: &Plane, seeds: &Seeds) -> String {
+    let at = seeds.at();
     format!(
         "table {}, alpha {}..{}, {} {}..{}, started at {} = {at}, {}",
         table_label(plane),
@@ -217,11 +223,17 @@ fn title(plane: &Plane, at: f64, args: &CurvesSpecArgs) -> String {
         plane.window.0,
         plane.window.1,
         plane.second.as_str(),
-        match args.guess.cycle() {
-            Some((n, t0, v0)) => format!("the ({n}, {}) branch near t0 = {t0}, v0 = {v0}", args.k),
-            _ => format!(
-                "(1, {}) branches up to period {}, seeded on grids from {} values",
-                args.k, args.max_period, args.seeds
+        match *seeds {
+            Seeds::Point { n, k, t0, v0, .. } => {
+                format!("the ({n}, {k}) branch near t0 = {t0}, v0 = {v0}")
+            }
+            Seeds::FromFixed {
+                k,
+                max_period,
+                count,
+                ..
+            } => format!(
+                "(1, {k}) branches up to period {max_period}, seeded on grids from {count} values"
             ),
         }
     )
@@ -231,26 +243,6 @@ fn title(plane: &Plane, at: f64, args: &CurvesSpecArgs) -> String {
 /// the family with it left free (F_D as `fd`), else the table's own name.
 fn table_label(plane: &Plane) -> String {
     crate::output::text::table_with_free(&plane.table, &[plane.second])
-}
-
-/// The seeds `args` ask for, started at `at`: the (1, k) branches, or one (n, k)
-/// cycle's.
-pub fn seeds(args: &CurvesSpecArgs, at: f64) -> Seeds {
-    match args.guess.cycle() {
-        Some((n, t0, v0)) => Seeds::Point {
-            n,
-            k: args.k,
-            t0,
-            v0,
-            at,
-        },
-        None => Seeds::FromFixed {
-            k: args.k,
-            max_period: args.max_period,
-            at,
-            count: args.seeds,
-        },
-    }
 }
 
 /// A number as every csv field prints it: the shortest exact form (exponent form for
@@ -283,13 +275,8 @@ fn describe(kind: &CurveKind) -> String {
     }
 }
 
-fn text(
-    out: &mut impl Write,
-    plane: &Plane,
-    at: f64,
-    args: &CurvesSpecArgs,
-    found: &Curves,
-) -> io::Result<()> {
+fn text(out: &mut impl Write, plane: &Plane, seeds: &Seeds, found: &Curves) -> io::Result<()> {
+    let at = seeds.at();
     let y = plane.second.as_str();
     writeln!(
         out,
@@ -304,17 +291,19 @@ fn text(
         plane.alpha.1,
         plane.window.0,
         plane.window.1,
-        match args.guess.cycle() {
-            Some((n, t0, v0)) => format!("the ({n}, {}) branch near t0 = {t0}, v0 = {v0}", args.k),
-            _ => format!("(1, {}) branches up to period {}", args.k, args.max_period),
+        match *seeds {
+            Seeds::Point { n, k, t0, v0, .. } => {
+                format!("the ({n}, {k}) branch near t0 = {t0}, v0 = {v0}")
+            }
+            Seeds::FromFixed { k, max_period, .. } => {
+                format!("(1, {k}) branches up to period {max_period}")
+            }
         },
-        if args.seeds > 1 && args.guess.n.is_none() {
-            format!(
-                " and on grids of the window from {} values, finer until no new curve appears",
-                args.seeds
-            )
-        } else {
-            String::new()
+        match *seeds {
+            Seeds::FromFixed { count, .. } if count > 1 => format!(
+                " and on grids of the window from {count} values, finer until no new curve appears"
+            ),
+            _ => String::new(),
         }
     )?;
     writeln!(

@@ -108,10 +108,7 @@ pub fn run(args: &FigureArgs) -> anyhow::Result<()> {
     }
     // The two-parameter curves: of `figure curves`, or over a plane (`--curves P`).
     let curves_task = match &args.name {
-        FigureName::Curves(a) => {
-            let (plane, at) = config::plane::curves_plane(a)?;
-            Some((plane, super::curves::seeds(a, at)))
-        }
+        FigureName::Curves(a) => Some(config::plane::curves_plane(a)?),
         FigureName::Plane(a) => match (a.curves, &plane_spec) {
             (Some(p), Some(spec)) => Some(config::plane::plane_curves(spec, 1, p, None)?),
             _ => None,

@@ -10,6 +10,7 @@ use crate::output::text::quoted;
 use bouncemap_engine::jobs::grid::Axis;
 use bouncemap_engine::jobs::grid::Shard;
 use bouncemap_engine::jobs::grid::SweepParam;
+use bouncemap_engine::orbits::curves::Seeds;
 use bouncemap_engine::plane::{PlaneSpec, PlaneStart};
 use bouncemap_engine::Table;
 
@@ -132,13 +133,14 @@ pub fn plane_spec_from(
     Ok(spec)
 }
 
-/// `curves`' flags into the engine's plane of two parameters and the second
-/// parameter's value the curves are started from: the x axis must be α, the y axis r
-/// or d (d with the F_D family: `--table fd` starts from the window's middle, `fd:D`
-/// from D, which must lie in the window; an r axis starts from `--r`).
+/// `curves`' flags into the engine's plane of two parameters and the seeds the curves
+/// are started from, at the second parameter's starting value: the x axis must be α,
+/// the y axis r or a family parameter (with the F_D family, `--table fd` starts from
+/// the window's middle, `fd:D` from D, which must lie in the window; an r axis starts
+/// from `--r`).
 pub fn curves_plane(
     args: &super::flags::CurvesSpecArgs,
-) -> Result<(bouncemap_engine::orbits::curves::Plane, f64), InputError> {
+) -> Result<(bouncemap_engine::orbits::curves::Plane, Seeds), InputError> {
     let fd_family = args.table.trim() == "fd";
     let (table_spec, table) = table_of(&args.table)?;
     let x = parse_axis("x", &args.x, 2, &table)?;
@@ -211,7 +213,27 @@ pub fn curves_plane(
         window: (y.lo, y.hi),
     };
     plane.check()?;
-    Ok((plane, at))
+    Ok((plane, seeds(args, at)))
+}
+
+/// The seeds `args` ask for, started at `at`: the (1, k) branches, or one (n, k)
+/// cycle's.
+fn seeds(args: &super::flags::CurvesSpecArgs, at: f64) -> Seeds {
+    match args.guess.cycle() {
+        Some((n, t0, v0)) => Seeds::Point {
+            n,
+            k: args.k,
+            t0,
+            v0,
+            at,
+        },
+        None => Seeds::FromFixed {
+            k: args.k,
+            max_period: args.max_period,
+            at,
+            count: args.seeds,
+        },
+    }
 }
 
 /// The two-parameter curves that cover a plane's picture (`plane --curves`, `figure

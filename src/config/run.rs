@@ -1,23 +1,27 @@
-//! The commands that run a job over many items (`sweep`, `plane`, `basins`) and
-//! `lyapunov`, settled from their flags once: the validated specification and how the
+//! The commands that run a job over many items (`sweep`, `plane`, `basins`),
+//! `lyapunov`, `curves`, `continue` and `cascade`, settled from their flags once: the validated specification and how the
 //! run goes ([`Job`]: check only or compute, worker threads, where it writes and in
 //! which layout, the text picture's size, `--resume`). The commands read these and
 //! never their flags, as ripgrep's flags become one settled set of arguments before any
 //! work starts.
 
-use super::flags::{BasinsArgs, BasinsFormat, LyapunovArgs, PlaneArgs, SweepArgs, TextSizeArgs};
+use super::flags::{
+    BasinsArgs, BasinsFormat, CascadeArgs, ContinueArgs, CurvesArgs, FromArg, LyapunovArgs,
+    PlaneArgs, SweepArgs, TextSizeArgs,
+};
 use super::InputError;
 use crate::output::part_file::Layout;
 use crate::output::records::InitialRecord;
 use crate::output::Format;
 use bouncemap_engine::attractors::basins::BasinSpec;
 use bouncemap_engine::attractors::Settle;
+use bouncemap_engine::orbits::continuation::{Options, Start};
 use bouncemap_engine::orbits::curves::{Plane as CurvesPlane, Seeds};
 use bouncemap_engine::plane::PlaneSpec;
 use bouncemap_engine::run::detect::Periodicity;
 use bouncemap_engine::run::start::near_fixed_point;
 use bouncemap_engine::sweep::SweepSpec;
-use bouncemap_engine::{State, System};
+use bouncemap_engine::{State, System, Table};
 use clap::ValueEnum;
 
 /// How a job-running command runs, settled from its flags.
@@ -214,6 +218,119 @@ pub fn lyapunov(args: &LyapunovArgs) -> Result<LyapunovRun, InputError> {
         initial,
         settle,
         check: args.check.check,
+        format: args.format,
+    })
+}
+
+/// `curves`, settled.
+#[derive(Clone, Debug)]
+pub struct CurvesRun {
+    /// The plane of α and the second parameter, with its windows.
+    pub plane: CurvesPlane,
+    /// What the curves are started from, at the second parameter's starting value.
+    pub seeds: Seeds,
+    /// `--r`, as given (none with an r axis started from the window's middle).
+    pub r: Option<f64>,
+    /// `--out`: the file written, or standard output.
+    pub out: Option<String>,
+    /// The output format.
+    pub format: Format,
+}
+
+/// `curves`' flags, settled.
+pub fn curves(args: &CurvesArgs) -> Result<CurvesRun, InputError> {
+    let (plane, seeds) = super::plane::curves_plane(&args.spec)?;
+    Ok(CurvesRun {
+        plane,
+        seeds,
+        r: args.spec.r,
+        out: args.output.out.clone(),
+        format: args.format,
+    })
+}
+
+/// `continue`, settled.
+#[derive(Clone, Debug)]
+pub struct ContinueRun {
+    /// The table.
+    pub table: Table,
+    /// Restitution.
+    pub r: f64,
+    /// The α window.
+    pub alpha: (f64, f64),
+    /// What the continuation starts from.
+    pub start: Start,
+    /// Its bounds.
+    pub options: Options,
+    /// The output format.
+    pub format: Format,
+}
+
+/// `continue`'s flags, settled: a guessed cycle (`--n`, `--t0`, `--v0`) before
+/// `--from`, else the (1, k) solution.
+pub fn continuation(args: &ContinueArgs) -> Result<ContinueRun, InputError> {
+    let start = match (args.from, args.guess.cycle()) {
+        (_, Some((n, t0, v0))) => Start::Point {
+            n,
+            k: args.k,
+            t0,
+            v0,
+        },
+        (Some(FromArg::TwoCycle), ..) => Start::TwoCycle { k: args.k },
+        _ => Start::Fixed { k: args.k },
+    };
+    Ok(ContinueRun {
+        table: args.table.load()?,
+        r: args.r,
+        alpha: args.alpha,
+        start,
+        options: Options {
+            max_period: args.max_period,
+            ..Options::default()
+        },
+        format: args.format,
+    })
+}
+
+/// The tables a cascade runs on: one, or F_D at each D of `--d LO..HI:N`.
+#[derive(Clone, Debug)]
+pub enum CascadeTables {
+    /// `--table`.
+    One(Table),
+    /// (D, F_D) for each D.
+    Family(Vec<(f64, Table)>),
+}
+
+/// `cascade`, settled.
+#[derive(Clone, Debug)]
+pub struct CascadeRun {
+    /// Its tables.
+    pub tables: CascadeTables,
+    /// Restitution.
+    pub r: f64,
+    /// k of the (1, k) solution it starts from.
+    pub k: u32,
+    /// Period doublings looked for.
+    pub depth: usize,
+    /// The output format.
+    pub format: Format,
+}
+
+/// `cascade`'s flags, settled.
+pub fn cascade(args: &CascadeArgs) -> Result<CascadeRun, InputError> {
+    let tables = match &args.d {
+        Some(ds) => CascadeTables::Family(
+            ds.0.iter()
+                .map(|&d| Ok((d, Table::fd(d)?)))
+                .collect::<Result<_, bouncemap_engine::EngineError>>()?,
+        ),
+        None => CascadeTables::One(args.table.load()?),
+    };
+    Ok(CascadeRun {
+        tables,
+        r: args.r,
+        k: args.k,
+        depth: args.depth,
         format: args.format,
     })
 }

@@ -522,6 +522,28 @@ pub enum Seeds {
 }
 
 impl Seeds {
+    /// The second parameter's value the curves are started from.
+    pub fn at(&self) -> f64 {
+        match *self {
+            Seeds::FromFixed { at, .. } | Seeds::Point { at, .. } => at,
+        }
+    }
+
+    /// k of the (1, k) solution, or of the (n, k) cycle.
+    pub fn k(&self) -> u32 {
+        match *self {
+            Seeds::FromFixed { k, .. } | Seeds::Point { k, .. } => k,
+        }
+    }
+
+    /// How many values of the second parameter are seeded at (1 for a cycle's branch).
+    pub fn count(&self) -> usize {
+        match *self {
+            Seeds::FromFixed { count, .. } => count,
+            Seeds::Point { .. } => 1,
+        }
+    }
+
     /// The longest cycle followed: `max_period`, or the cycle's n.
     pub fn max_period(&self) -> usize {
         match *self {
