@@ -9,33 +9,8 @@
 //! rounds once, in the order written (left to right, powers by repeated
 //! multiplication), so the same text gives the same bits wherever it is evaluated.
 
+pub use crate::real::Number;
 use std::fmt;
-use std::ops::{Add, Div, Mul, Neg, Sub};
-
-/// A number type expressions can be evaluated in.
-pub trait Number:
-    Clone
-    + Add<Output = Self>
-    + Sub<Output = Self>
-    + Mul<Output = Self>
-    + Div<Output = Self>
-    + Neg<Output = Self>
-{
-    /// The value of a decimal constant (digits, an optional fraction and exponent),
-    /// rounded as the type rounds; None if the type cannot hold it.
-    fn from_decimal(text: &str) -> Option<Self>;
-    /// One.
-    fn one() -> Self;
-}
-
-impl Number for f64 {
-    fn from_decimal(text: &str) -> Option<f64> {
-        text.parse::<f64>().ok().filter(|x| x.is_finite())
-    }
-    fn one() -> f64 {
-        1.0
-    }
-}
 
 /// The largest |exponent| of a power: enough for any polynomial coefficient, small
 /// enough that evaluation is a handful of multiplications.
@@ -132,10 +107,16 @@ impl Expr {
         self.root.uses(i)
     }
 
-    /// The value with parameter `i` set to `values[i]`; None if a constant cannot be
-    /// held by the type (f64: overflow to infinity).
-    pub fn eval<N: Number>(&self, values: &[N]) -> Option<N> {
-        self.root.eval(values)
+    /// The value in f64 with parameter `i` set to `values[i]`; None if a constant
+    /// overflows to infinity.
+    pub fn eval(&self, values: &[f64]) -> Option<f64> {
+        self.root.eval(values, &())
+    }
+
+    /// The value in `N` at the precision of `ctx`, parameter `i` set to `values[i]`;
+    /// None if a constant cannot be held by the type.
+    pub fn eval_in<N: Number>(&self, values: &[N], ctx: &N::Context) -> Option<N> {
+        self.root.eval(values, ctx)
     }
 }
 
@@ -168,23 +149,23 @@ impl Node {
         }
     }
 
-    fn eval<N: Number>(&self, values: &[N]) -> Option<N> {
+    fn eval<N: Number>(&self, values: &[N], ctx: &N::Context) -> Option<N> {
         Some(match self {
-            Node::Const(t) => N::from_decimal(t)?,
+            Node::Const(t) => N::from_decimal(t, ctx)?,
             Node::Param(i) => values[*i].clone(),
-            Node::Neg(a) => -a.eval(values)?,
-            Node::Add(a, b) => a.eval(values)? + b.eval(values)?,
-            Node::Sub(a, b) => a.eval(values)? - b.eval(values)?,
-            Node::Mul(a, b) => a.eval(values)? * b.eval(values)?,
-            Node::Div(a, b) => a.eval(values)? / b.eval(values)?,
+            Node::Neg(a) => -a.eval(values, ctx)?,
+            Node::Add(a, b) => a.eval(values, ctx)? + b.eval(values, ctx)?,
+            Node::Sub(a, b) => a.eval(values, ctx)? - b.eval(values, ctx)?,
+            Node::Mul(a, b) => a.eval(values, ctx)? * b.eval(values, ctx)?,
+            Node::Div(a, b) => a.eval(values, ctx)? / b.eval(values, ctx)?,
             Node::Pow(a, n) => {
-                let x = a.eval(values)?;
-                let mut acc = N::one();
+                let x = a.eval(values, ctx)?;
+                let mut acc = N::one(ctx);
                 for _ in 0..n.unsigned_abs() {
                     acc = acc * x.clone();
                 }
                 if *n < 0 {
-                    N::one() / acc
+                    N::one(ctx) / acc
                 } else {
                     acc
                 }
@@ -382,7 +363,7 @@ impl Parser<'_> {
             }
         }
         let text: String = self.chars[start..self.at].iter().collect();
-        if f64::from_decimal(&text).is_none() {
+        if f64::from_decimal(&text, &()).is_none() {
             return Err(ExprError {
                 message: format!("{text} is too large for a number"),
                 column: start + 1,
@@ -496,14 +477,18 @@ mod tests {
             }
         }
         impl Number for Text {
-            fn from_decimal(t: &str) -> Option<Text> {
+            type Context = ();
+            fn from_decimal(t: &str, _: &()) -> Option<Text> {
                 Some(Text(t.to_string()))
             }
-            fn one() -> Text {
+            fn one(_: &()) -> Text {
                 Text("1".into())
             }
         }
         let e = Expr::parse("0.1 * D - 2", &["D"]).unwrap();
-        assert_eq!(e.eval(&[Text("d".into())]).unwrap().0, "((0.1 * d) - 2)");
+        assert_eq!(
+            e.eval_in(&[Text("d".into())], &()).unwrap().0,
+            "((0.1 * d) - 2)"
+        );
     }
 }
