@@ -65,6 +65,7 @@ mod impact;
 mod linalg;
 mod map;
 mod poly;
+mod precise;
 mod real;
 mod system;
 mod tangent;
@@ -76,6 +77,10 @@ pub use error::{fmt_value, short_text, EngineError};
 pub use impact::{next_landing, FlightError, Landing, Launch, Solver};
 pub use linalg::{eigenvalues_2x2, Complex, Mat2};
 pub use map::{Event, EventKind, Halt, ImpactMap, Mode, State, DEFAULT_HOP, MAX_EVENT_PERIOD};
+pub use precise::{
+    PreciseEvent, PreciseHalt, PreciseMap, PreciseRefusal, PreciseState, PreciseSystem,
+    PRECISE_MAX_DEGREE,
+};
 pub use real::{bits_for_digits, Big, Number, Real};
 pub use system::{kappa_c, System};
 pub use table::Table;

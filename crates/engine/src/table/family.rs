@@ -9,7 +9,7 @@
 //! breakpoint and the wrap): so the C¹ check runs at every parameter value used, and a
 //! refusal names the values (`at w = 0.35: not C¹ at breakpoint ...`).
 
-use super::expr::{Expr, ExprError};
+use super::expr::{Expr, ExprError, Number};
 use super::{Piece, Table, MAX_TABLE_DEGREE};
 use crate::error::{fmt_value, EngineError};
 use crate::limits;
@@ -435,6 +435,59 @@ impl Family {
             numbers.push((start, coeffs));
         }
         super::checked_pieces(&numbers, *variable).map_err(at)
+    }
+}
+
+/// One piece of a member at any precision: where it starts and ends in phase, and F on
+/// it as a polynomial in the piece's own variable s = t̂ − start (ascending powers).
+#[derive(Clone, Debug)]
+pub struct PieceIn<N> {
+    /// Phase where the piece starts.
+    pub start: N,
+    /// Phase where it ends (the next piece's start, or 1).
+    pub end: N,
+    /// F's coefficients in s.
+    pub coeffs: Vec<N>,
+}
+
+impl Family {
+    /// The member's pieces at `values` (each parameter's value in `N`, as the caller read
+    /// it at the precision of `ctx`: a decimal parameter exactly, then rounded once),
+    /// evaluated in `N`: every constant of the expressions read at that precision, and
+    /// coefficients written in the phase shifted to the piece's own variable in `N`.
+    /// None for the sine (not piecewise) or a constant `N` cannot hold. The checks (C¹,
+    /// ranges) are the f64 member's ([`Family::member`]), made at the same values.
+    pub fn pieces_in<N: Number>(&self, values: &[N], ctx: &N::Context) -> Option<Vec<PieceIn<N>>> {
+        let Template::Pieces { variable, pieces } = &self.template else {
+            return None;
+        };
+        let mut out: Vec<PieceIn<N>> = Vec::with_capacity(pieces.len());
+        for p in pieces {
+            let start = p.start.eval_in(values, ctx)?;
+            let mut coeffs = p
+                .coeffs
+                .iter()
+                .map(|c| c.eval_in(values, ctx))
+                .collect::<Option<Vec<N>>>()?;
+            if *variable == Variable::Phase {
+                // p(start + s): Taylor shift by repeated synthetic division.
+                let n = coeffs.len();
+                for k in 0..n {
+                    for j in (k..n - 1).rev() {
+                        coeffs[j] = coeffs[j].clone() + start.clone() * coeffs[j + 1].clone();
+                    }
+                }
+            }
+            if let Some(prev) = out.last_mut() {
+                prev.end = start.clone();
+            }
+            out.push(PieceIn {
+                end: N::one(ctx),
+                start,
+                coeffs,
+            });
+        }
+        Some(out)
     }
 }
 

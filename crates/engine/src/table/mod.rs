@@ -18,7 +18,7 @@ pub mod builtin;
 pub mod expr;
 pub mod family;
 
-pub use family::{Family, Param, Variable};
+pub use family::{Family, Param, PieceIn, Variable};
 pub use segment::{Formula, Segment, TAYLOR_TERMS};
 
 use crate::error::EngineError;

@@ -1,5 +1,6 @@
 //! The engine's integration tests, one test binary with a module per area.
 
+mod any_precision;
 mod attractors;
 mod continuation;
 mod curves;

@@ -1,0 +1,201 @@
+//! The impact map at any precision against the f64 map (the same events, to the f64
+//! error), against itself at two precisions (agreeing to the smaller one), and against
+//! the closed form of the (1, 1) solution at 60 digits.
+
+use bouncemap_engine::table::Family;
+use bouncemap_engine::{
+    bits_for_digits, Big, EventKind, ImpactMap, Number, PreciseMap, PreciseState, PreciseSystem,
+    Real, Solver, State, System, Table,
+};
+
+/// F_D at the decimal `d` with α and r, in `R` at precision `ctx`.
+fn fd_in<R: Real>(d: &str, alpha: &str, r: &str, ctx: &R::Context) -> PreciseSystem<R> {
+    let dv = R::from_decimal(d, ctx).unwrap();
+    let pieces = Family::fd().pieces_in(&[dv], ctx).unwrap();
+    PreciseSystem::new(
+        pieces,
+        R::from_decimal(alpha, ctx).unwrap(),
+        R::from_decimal(r, ctx).unwrap(),
+        ctx.clone(),
+    )
+    .unwrap()
+}
+
+/// (kind, absolute time, velocity) of the first `n` events from a launch at `phase`
+/// with relative velocity `w`.
+fn precise_events<R: Real>(
+    sys: PreciseSystem<R>,
+    phase: f64,
+    w: f64,
+    n: usize,
+) -> Vec<(EventKind, f64, f64)> {
+    let ctx = sys.context().clone();
+    let st = PreciseState::launch(&sys, 0, R::from_f64(phase, &ctx), R::from_f64(w, &ctx));
+    let mut map = PreciseMap::new(sys, st);
+    (0..n)
+        .map(|_| {
+            let e = map.step().unwrap();
+            (e.kind, e.period as f64 + e.phase.to_f64(), e.v.to_f64())
+        })
+        .collect()
+}
+
+fn f64_events(d: f64, alpha: f64, phase: f64, w: f64, n: usize) -> Vec<(EventKind, f64, f64)> {
+    let sys = System::new(Table::fd(d).unwrap(), alpha, 0.8).unwrap();
+    let st = State::launch(&sys, 0, phase, sys.df(phase) + w, 0.0).unwrap();
+    let mut map = ImpactMap::new(sys, Solver::Exact, st);
+    (0..n)
+        .map(|_| {
+            let e = map.step().unwrap();
+            (e.kind, e.period as f64 + e.phase, e.v)
+        })
+        .collect()
+}
+
+/// The system in f64 and at 200 bits with the doubles nearest the decimals, as the
+/// f64 map has them.
+fn both(d: &str, alpha: &str) -> (PreciseSystem<f64>, PreciseSystem<Big>) {
+    let (dv, av) = (d.parse::<f64>().unwrap(), alpha.parse::<f64>().unwrap());
+    let bits = 200;
+    let big = PreciseSystem::<Big>::new(
+        Family::fd()
+            .pieces_in(&[Big::from_f64(dv, &bits)], &bits)
+            .unwrap(),
+        Big::from_f64(av, &bits),
+        Big::from_f64(0.8, &bits),
+        bits,
+    )
+    .unwrap();
+    (fd_in::<f64>(d, alpha, "0.8", &()), big)
+}
+
+fn close(a: &(EventKind, f64, f64), b: &(EventKind, f64, f64), tol: f64) -> bool {
+    a.0 == b.0 && (a.1 - b.1).abs() < tol && (a.2 - b.2).abs() < tol
+}
+
+/// Run in f64 through the generic code, and at 200 bits, the map at any precision is
+/// the f64 map: the same kinds of events at the same times and velocities to 1e-9, on
+/// a period-1 orbit and on a chaotic one until it parts at that size.
+#[test]
+fn in_f64_and_at_200_bits_the_precise_map_is_the_f64_map() {
+    for (d, alpha, phase, w, n) in [
+        ("0.1", "0.45", 0.2, 0.5, 60),
+        // Chaotic before it settles: the two maps part at 1e-9 after a dozen impacts.
+        ("1", "0.59", 0.3, 0.4, 12),
+    ] {
+        let want = f64_events(d.parse().unwrap(), alpha.parse().unwrap(), phase, w, n);
+        let (a, b) = both(d, alpha);
+        for (label, got) in [
+            ("f64", precise_events(a, phase, w, n)),
+            ("200 bits", precise_events(b, phase, w, n)),
+        ] {
+            for (i, (x, y)) in want.iter().zip(got.iter()).enumerate() {
+                assert!(
+                    close(x, y, 1e-9),
+                    "{d} {alpha} {label}: event {i}: {x:?} vs {y:?}"
+                );
+            }
+        }
+    }
+}
+
+/// A low hop where the table lifts the ball (fd:0.1 at α = 0.6, t̂ = 0.75, where
+/// 1 + αF'' > 0): impacts shrinking to a stick, the release and the flights after it.
+/// The maps resolve the chattering to their own precision, so they take different
+/// numbers of impacts to the stick; the stick's time, the release and the three
+/// impacts after it agree to 1e-9.
+#[test]
+fn chattering_sticks_and_releases_where_the_f64_map_does() {
+    let after_stick = |events: Vec<(EventKind, f64, f64)>| {
+        let at = events
+            .iter()
+            .position(|e| e.0 == EventKind::Stick)
+            .expect("a stick");
+        events[at..at + 5].to_vec()
+    };
+    let (phase, w, n) = (0.75, 0.01, 2000);
+    let want = after_stick(f64_events(0.1, 0.6, phase, w, n));
+    assert_eq!(want[1].0, EventKind::Release);
+    let (a, b) = both("0.1", "0.6");
+    for (label, got) in [
+        ("f64", after_stick(precise_events(a, phase, w, n))),
+        ("200 bits", after_stick(precise_events(b, phase, w, n))),
+    ] {
+        for (i, (x, y)) in want.iter().zip(got.iter()).enumerate() {
+            assert!(
+                close(x, y, 1e-9),
+                "{label}: event {i} from the stick: {x:?} vs {y:?}"
+            );
+        }
+    }
+}
+
+/// At 200 and 400 bits the same orbit agrees event by event to the smaller precision
+/// (60 digits, less what the period-1 attractor's contraction and the 40 impacts cost).
+#[test]
+fn two_precisions_agree_to_the_smaller_one() {
+    let (lo, hi) = (bits_for_digits(60), bits_for_digits(120));
+    let a = fd_in::<Big>("0.1", "0.45", "0.8", &lo);
+    let b = fd_in::<Big>("0.1", "0.45", "0.8", &hi);
+    let run = |sys: PreciseSystem<Big>| {
+        let ctx = *sys.context();
+        let st = PreciseState::launch(
+            &sys,
+            0,
+            Big::from_decimal("0.2", &ctx).unwrap(),
+            Big::from_decimal("0.5", &ctx).unwrap(),
+        );
+        let mut map = PreciseMap::new(sys, st);
+        (0..40).map(|_| map.step().unwrap()).collect::<Vec<_>>()
+    };
+    let (ea, eb) = (run(a), run(b));
+    for (x, y) in ea.iter().zip(eb.iter()) {
+        assert_eq!((x.kind, x.period), (y.kind, y.period));
+        let dphase = (x.phase.clone() - y.phase.clone()).abs().to_f64();
+        let dv = (x.v.clone() - y.v.clone()).abs().to_f64();
+        assert!(dphase < 1e-55 && dv < 1e-55, "{dphase:e} {dv:e}");
+    }
+}
+
+/// The (1, 1) solution at 60 digits: launched at t* with the launch velocity of the
+/// closed form (αF'(t*) = (1 − r)/(2(1 + r)), w = r/(1 + r), t* from the quadratic
+/// formula on F_D's first piece), the ball lands one period later at t* again with
+/// the same velocity, to 1e-55.
+#[test]
+fn the_one_one_solution_returns_to_sixty_digits() {
+    let bits = bits_for_digits(64);
+    let n = |s: &str| Big::from_decimal(s, &bits).unwrap();
+    let (d, alpha, r) = (n("0.1"), n("0.45"), n("0.8"));
+    let one = n("1");
+    let two = n("2");
+    // F = s(s − ½)(Ds − 1) = D s³ − (D/2 + 1) s² + s/2 on [0, ½):
+    // αF' = c  ⇔  3αD s² − α(D + 2) s + α/2 − c = 0.
+    let c = (one.clone() - r.clone()) / (two.clone() * (one.clone() + r.clone()));
+    let qa = n("3") * alpha.clone() * d.clone();
+    let qb = -(alpha.clone() * (d.clone() + two.clone()));
+    let qc = alpha.clone() / two.clone() - c;
+    let disc = (qb.clone() * qb.clone() - n("4") * qa.clone() * qc.clone()).sqrt();
+    let roots = [
+        (-qb.clone() - disc.clone()) / (two.clone() * qa.clone()),
+        (-qb.clone() + disc) / (two.clone() * qa),
+    ];
+    let sys = fd_in::<Big>("0.1", "0.45", "0.8", &bits);
+    let w = r.clone() / (one.clone() + r.clone());
+    let mut returned = 0;
+    for t in roots {
+        if !(t > n("0") && t < n("0.5")) {
+            continue;
+        }
+        let st = PreciseState::launch(&sys, 0, t.clone(), w.clone());
+        let v0 = st.v.clone();
+        let mut map = PreciseMap::new(sys.clone(), st);
+        let e = map.step().unwrap();
+        assert_eq!((e.kind, e.period), (EventKind::Impact, 1));
+        let dt = (e.phase.clone() - t.clone()).abs().to_f64();
+        let dv = (e.v.clone() - v0).abs().to_f64();
+        assert!(dt < 1e-55 && dv < 1e-55, "t* {t:?}: {dt:e} {dv:e}");
+        returned += 1;
+    }
+    // The other (1, 1) solution lies on the second piece, where F' rises through c.
+    assert_eq!(returned, 1, "one (1, 1) solution on the first piece");
+}
