@@ -12,6 +12,7 @@ pub mod bench;
 pub mod cascade;
 pub mod continuation;
 pub mod curves;
+pub mod digits;
 pub mod drive;
 pub mod figure;
 pub mod fixed;

@@ -16,6 +16,9 @@ use bouncemap_engine::{Event, ImpactMap};
 use std::io::Write;
 
 pub fn run(args: &OrbitArgs) -> anyhow::Result<()> {
+    if let Some(run) = config::run::digits(args)? {
+        return super::digits::run(&run);
+    }
     let sys = config::system(&args.system)?;
     let state = config::start(&sys, &args.initial)?;
     let mut map = ImpactMap::new(sys, args.solver.into(), state);

@@ -226,6 +226,11 @@ pub const CELLS: Rule = rule(
     },
     100.0,
 );
+/// Significant digits asked of a run at any precision (`--digits`; no default: without
+/// it runs are in f64).
+pub const DIGITS: Rule = rule("digits", "digits", limits::DIGITS, 60.0);
+/// The most digits a run at any precision raises its precision to (`--max-digits`).
+pub const MAX_DIGITS: Rule = rule("max-digits", "max digits", limits::DIGITS, 400.0);
 /// Impacts of a cycle `continue` starts on.
 pub const CYCLE_N: Rule = rule("n", "n", limits::CYCLE_N, 1.0);
 /// The longest period `continue` starts doubled branches up to.

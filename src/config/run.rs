@@ -7,7 +7,7 @@
 
 use super::flags::{
     BasinsArgs, BasinsFormat, CascadeArgs, ContinueArgs, CurvesArgs, FromArg, LyapunovArgs,
-    PlaneArgs, SweepArgs, TextSizeArgs,
+    OrbitArgs, PlaneArgs, SweepArgs, TextSizeArgs,
 };
 use super::InputError;
 use crate::output::part_file::Layout;
@@ -333,6 +333,105 @@ pub fn cascade(args: &CascadeArgs) -> Result<CascadeRun, InputError> {
         depth: args.depth,
         format: args.format,
     })
+}
+
+/// `orbit --digits`, settled: the system and the start as decimals (or the doubles,
+/// with `--binary-params`), to be made at any precision.
+#[derive(Clone, Debug)]
+pub struct DigitsRun {
+    /// The table's family and its parameter values, as decimals.
+    pub family: std::sync::Arc<bouncemap_engine::table::Family>,
+    /// The family's parameter values (the shortest decimal of each double).
+    pub params: Vec<f64>,
+    /// The table's name.
+    pub table: String,
+    /// α, r, t̂0 and v0 (None: f'(t̂0) + the default hop) as the flags read them.
+    pub alpha: f64,
+    /// Restitution.
+    pub r: f64,
+    /// Initial phase.
+    pub t0: f64,
+    /// Initial velocity.
+    pub v0: Option<f64>,
+    /// Significant digits asked for.
+    pub digits: u32,
+    /// The most digits the precision is raised to.
+    pub max_digits: u32,
+    /// Each parameter the double it was read to, exactly.
+    pub binary: bool,
+    /// Events to print, and to compute first.
+    pub bounces: u64,
+    /// See `bounces`.
+    pub skip: u64,
+    /// The output format.
+    pub format: Format,
+}
+
+/// `orbit`'s flags with `--digits`, settled (None without it). The system and the start
+/// are checked as the f64 run checks them; what the map at any precision does not take
+/// yet (the sine, pieces of degree above 3, a start above the table, the grid solver) is
+/// refused naming what it takes.
+pub fn digits(args: &OrbitArgs) -> Result<Option<DigitsRun>, InputError> {
+    let p = &args.precision;
+    let Some(digits) = p.digits else {
+        if p.binary_params || p.max_digits != super::rules::MAX_DIGITS.default as u32 {
+            return Err(InputError(
+                "--binary-params and --max-digits go with --digits N: valid with --digits".into(),
+            ));
+        }
+        return Ok(None);
+    };
+    if p.max_digits < digits {
+        return Err(InputError(format!(
+            "--max-digits {} is below --digits {digits}: valid --max-digits M with M ≥ N",
+            p.max_digits
+        )));
+    }
+    if args.solver != super::flags::SolverArg::Exact {
+        return Err(InputError(
+            "--solver grid with --digits: the paper's grid is f64 only: valid --solver exact"
+                .into(),
+        ));
+    }
+    let sys = super::system(&args.system)?;
+    super::start(&sys, &args.initial)?;
+    if args.initial.z0 != 0.0 {
+        return Err(InputError(
+            "--z0 with --digits: at any precision the ball starts on the table: valid --z0 0"
+                .into(),
+        ));
+    }
+    let table = sys.table();
+    let refuse = || {
+        InputError(format!(
+            "--digits: table {} is not yet computed at any precision: valid a piecewise polynomial table of degree ≤ {} (fd:D, quad, cubic, a table file)",
+            table.name(),
+            bouncemap_engine::PRECISE_MAX_DEGREE
+        ))
+    };
+    let (family, params) = table.family().ok_or_else(refuse)?;
+    let ok = family.pieces_in::<f64>(params, &()).is_some_and(|ps| {
+        ps.iter()
+            .all(|p| p.coeffs.len() <= bouncemap_engine::PRECISE_MAX_DEGREE + 1)
+    });
+    if !ok {
+        return Err(refuse());
+    }
+    Ok(Some(DigitsRun {
+        family: family.clone(),
+        params: params.to_vec(),
+        table: table.name().to_string(),
+        alpha: args.system.alpha,
+        r: args.system.r,
+        t0: args.initial.t0,
+        v0: args.initial.v0,
+        digits,
+        max_digits: p.max_digits,
+        binary: p.binary_params,
+        bounces: args.bounces,
+        skip: args.skip,
+        format: args.format,
+    }))
 }
 
 /// A text picture's size: the flags', else the terminal's.

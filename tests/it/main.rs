@@ -9,6 +9,7 @@ mod cli;
 mod cli_orbit;
 mod continuation_cli;
 mod curves_cli;
+mod digits_cli;
 mod docs;
 mod figure_cli;
 mod generated_docs;

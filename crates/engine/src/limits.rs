@@ -195,6 +195,10 @@ pub const CURVE_SEEDS: Limit = whole("seeds", 1.0, 64.0, "a whole number in [1, 
 pub const CYCLE_N: Limit = whole("n", 1.0, 1024.0, "a whole number in [1, 1024]");
 /// Number of D values of a cascade over the F_D family.
 pub const D_COUNT: Limit = whole("d count", 1.0, 1000.0, "a whole number in [1, 1000]");
+/// Significant decimal digits of a computation at any precision (`--digits`,
+/// `--max-digits`): beyond double precision, up to what takes seconds per thousand
+/// events.
+pub const DIGITS: Limit = whole("digits", 10.0, 10000.0, "a whole number in [10, 10000]");
 /// Phase and velocity tolerance of cycle detection.
 pub const TOLERANCE: Limit = open_closed("tolerance", 0.0, 1e-3, "(0, 1e-3]");
 

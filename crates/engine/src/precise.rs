@@ -37,6 +37,8 @@ pub struct PreciseSystem<R: Real> {
     alpha: R,
     r: R,
     ctx: R::Context,
+    /// The error accepted in a chattering sequence's accumulation time.
+    chatter_error: R,
 }
 
 /// Why a [`PreciseSystem`] cannot be made.
@@ -66,12 +68,23 @@ impl<R: Real> PreciseSystem<R> {
         {
             return Err(PreciseRefusal::Degree(p.coeffs.len() - 1));
         }
+        let chatter_error = R::epsilon(&ctx);
         Ok(PreciseSystem {
             pieces,
             alpha,
             r,
             ctx,
+            chatter_error,
         })
+    }
+
+    /// The error accepted in a chattering sequence's accumulation time (by default the
+    /// precision's unit roundoff). Two runs at different precisions that are to be
+    /// compared event by event take the same one, so that they resolve chattering after
+    /// the same impacts.
+    pub fn with_chatter_error(mut self, error: R) -> PreciseSystem<R> {
+        self.chatter_error = error;
+        self
     }
 
     /// The precision.
@@ -272,7 +285,7 @@ impl<R: Real> PreciseMap<R> {
             / d;
         // The terms left out, doubled for the orders beyond, against the precision.
         let left_out = sys.num(2.0) * t0.clone() * c4j * xt.clone() * xt.clone() * xt.clone();
-        if left_out > R::epsilon(&sys.ctx) {
+        if left_out > sys.chatter_error {
             return None;
         }
         let sign = if x < sys.num(0.0) {
@@ -450,6 +463,32 @@ impl<R: Real> PreciseMap<R> {
     }
 }
 
+/// The significant decimal digits to which `a` agrees with `b`: ⌊−log₁₀ |a − b|/|b|⌋
+/// (|a − b| itself where b = 0), from 0 to `cap` (`cap` where they are equal).
+pub fn agreeing_digits<R: Real>(a: &R, b: &R, cap: u32) -> u32 {
+    let ctx = a.context();
+    let zero = R::from_f64(0.0, &ctx);
+    let mut d = (a.clone() - b.clone()).abs();
+    if d == zero {
+        return cap;
+    }
+    if *b != zero {
+        d = d / b.abs();
+    }
+    let mut digits = 0u32;
+    // Scaled up by 10^100 at a time past what a double can hold.
+    while d.to_f64() < 1e-200 && digits < cap {
+        // (The double nearest 10^100: a count of digits needs no more.)
+        d = d * R::from_f64(1e100, &ctx);
+        digits += 100;
+    }
+    let x = d.to_f64();
+    if x >= 1.0 {
+        return digits.min(cap);
+    }
+    (digits + (-x.log10()).floor() as u32).min(cap)
+}
+
 /// (period, phase) of `theta` periods after the start of `period`, phase in [0, 1).
 fn wrap<R: Real>(period: i64, theta: R, one: &R) -> (i64, R) {
     let whole = theta.floor();
@@ -581,5 +620,110 @@ impl<R: Real> MaxOf for R {
         } else {
             self
         }
+    }
+}
+
+/// An orbit computed at two precisions and compared event by event
+/// ([`orbit_to_digits`]).
+#[derive(Clone, Debug)]
+pub struct DigitsOrbit {
+    /// The events after the skipped ones, from the more precise run, each with the
+    /// significant digits on which the two runs agree (at most the digits asked for).
+    pub events: Vec<(PreciseEvent<crate::real::Big>, u32)>,
+    /// The digits the compared runs were made at (the last pair tried).
+    pub precision: (u32, u32),
+    /// Where the less precise run stopped early, if it did.
+    pub halt: Option<PreciseHalt>,
+    /// Digits lost per event, from the last pair (a least-squares slope through the
+    /// events whose agreement is measured), when any were lost.
+    pub loss_per_event: Option<f64>,
+}
+
+impl DigitsOrbit {
+    /// The first printed event that does not hold to `digits`, if any.
+    pub fn first_short(&self, digits: u32) -> Option<usize> {
+        self.events.iter().position(|(_, d)| *d < digits)
+    }
+}
+
+/// An orbit to `digits` significant digits: the map run from the start `make(bits)`
+/// gives, at `digits` + 10 digits and at twice that, `skip` + `count` events, compared
+/// event by event (kind, period, phase, v, vrel); where a printed event agrees to fewer
+/// than `digits`, both precisions are doubled and the orbit run again, while the lower
+/// stays within `max_digits`. Both runs resolve chattering to the lower precision, so
+/// they take the same impacts.
+pub fn orbit_to_digits(
+    make: &dyn Fn(
+        usize,
+    ) -> (
+        PreciseSystem<crate::real::Big>,
+        PreciseState<crate::real::Big>,
+    ),
+    digits: u32,
+    max_digits: u32,
+    skip: u64,
+    count: u64,
+) -> DigitsOrbit {
+    use crate::real::{bits_for_digits, Big, Number};
+    let run = |work: u32, bits: usize| {
+        let (sys, st) = make(bits);
+        let err = Big::from_decimal(&format!("1e-{work}"), &bits).expect("a constant");
+        let mut map = PreciseMap::new(sys.with_chatter_error(err), st);
+        let mut events = Vec::new();
+        let mut halt = None;
+        for _ in 0..skip.saturating_add(count) {
+            match map.step() {
+                Ok(e) => events.push(e),
+                Err(h) => {
+                    halt = Some(h);
+                    break;
+                }
+            }
+        }
+        (events, halt)
+    };
+    let mut work = digits + 10;
+    loop {
+        let (lo, halt) = run(work, bits_for_digits(work));
+        let (hi, _) = run(work, bits_for_digits(2 * work));
+        let cap = 2 * work;
+        let agree = |a: &PreciseEvent<Big>, b: &PreciseEvent<Big>| -> u32 {
+            if (a.kind, a.period) != (b.kind, b.period) {
+                return 0;
+            }
+            let mut d =
+                agreeing_digits(&a.phase, &b.phase, cap).min(agreeing_digits(&a.v, &b.v, cap));
+            if a.kind == EventKind::Impact {
+                d = d.min(agreeing_digits(&a.vrel, &b.vrel, cap));
+            }
+            d
+        };
+        let all: Vec<u32> = lo.iter().zip(hi.iter()).map(|(a, b)| agree(a, b)).collect();
+        // Digits lost by event i of the lower run: work − agreement, where measured.
+        let (mut sxy, mut sxx) = (0.0, 0.0);
+        for (i, &a) in all.iter().enumerate() {
+            if a > 0 && a < work {
+                let (x, y) = ((i + 1) as f64, (work - a) as f64);
+                sxy += x * y;
+                sxx += x * x;
+            }
+        }
+        let loss_per_event = (sxx > 0.0).then(|| sxy / sxx);
+        let events: Vec<(PreciseEvent<Big>, u32)> = hi
+            .into_iter()
+            .zip(all.iter())
+            .skip(skip as usize)
+            .map(|(e, &a)| (e, a.min(digits)))
+            .collect();
+        let done = events.iter().all(|(_, d)| *d >= digits);
+        if done || 2 * work > max_digits {
+            return DigitsOrbit {
+                events,
+                precision: (work, 2 * work),
+                halt,
+                loss_per_event,
+            };
+        }
+        work *= 2;
     }
 }

@@ -176,10 +176,30 @@ pub struct OrbitArgs {
     /// Next-impact solver.
     #[arg(long, value_enum, default_value_t = SolverArg::Exact)]
     pub solver: SolverArg,
+    #[command(flatten)]
+    pub precision: PrecisionArgs,
     /// Output format.
     #[arg(long, value_enum, default_value_t = Format::Text)]
     pub format: Format,
 }
+
+/// `--digits`, `--max-digits`, `--binary-params`: a run at any precision.
+#[derive(Args, Debug, Clone, Default)]
+pub struct PrecisionArgs {
+    #[arg(help = rules::DIGITS.help(DIGITS_HELP), long_help = format!("{}\n\n{DIGITS_MORE}", rules::DIGITS.help(DIGITS_HELP)), long, value_parser = rules::DIGITS.whole::<u32>(), value_name = "N")]
+    pub digits: Option<u32>,
+    #[arg(help = rules::MAX_DIGITS.help("With --digits: the most digits the precision is raised to"), long, default_value_t = rules::MAX_DIGITS.default as u32, value_parser = rules::MAX_DIGITS.whole::<u32>(), value_name = "M")]
+    pub max_digits: u32,
+    /// With --digits: take each parameter (α, r, the table's, t0, v0) as the double the
+    /// flag was read to, exactly, instead of as the decimal written.
+    #[arg(long)]
+    pub binary_params: bool,
+}
+
+/// `--digits`' help: what it does.
+const DIGITS_HELP: &str = "Compute at any precision and print only what holds to N significant digits: the run is repeated at twice the precision and each value printed to the digits on which the two agree (more precision is taken, up to --max-digits, where they do not); polynomial tables of degree ≤ 3";
+/// `--digits`' long help: how parameters are read.
+const DIGITS_MORE: &str = "Parameters are taken as written: --alpha 0.6 is three fifths, rounded once to the working precision, not the double nearest it (each is read as the shortest decimal of its double: what was typed, unless it had more than 17 significant digits). --binary-params compares with the system of the doubles.";
 
 /// `--out`: where a command writes (`sweep`, `plane`, `basins`, `merge`).
 #[derive(Args, Debug, Clone, Default)]
@@ -601,6 +621,7 @@ mod tests {
             rules::D_POINTS,
             rules::FIG_SIDE,
             rules::DPI,
+            rules::DIGITS,
         ]
         .iter()
         .map(|rule| rule.limit.text)

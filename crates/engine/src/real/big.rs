@@ -138,6 +138,15 @@ impl Real for Big {
     fn pi(bits: &usize) -> Big {
         Big(Binary::pi(*bits))
     }
+
+    fn context(&self) -> usize {
+        self.bits()
+    }
+
+    fn to_digits(&self, digits: usize) -> String {
+        let d: Decimal = self.0.clone().with_base::<10>().value();
+        d.with_precision(digits.max(1)).value().to_string()
+    }
 }
 
 #[cfg(test)]

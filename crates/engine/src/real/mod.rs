@@ -54,6 +54,11 @@ pub trait Real: Number + PartialOrd + Debug {
     fn epsilon(ctx: &Self::Context) -> Self;
     /// π at the context's precision.
     fn pi(ctx: &Self::Context) -> Self;
+    /// The context (precision) this value carries.
+    fn context(&self) -> Self::Context;
+    /// The value in decimal with `digits` significant digits (at most what the
+    /// precision holds).
+    fn to_digits(&self, digits: usize) -> String;
 }
 
 impl Number for f64 {
@@ -90,5 +95,9 @@ impl Real for f64 {
     }
     fn pi(_: &()) -> f64 {
         std::f64::consts::PI
+    }
+    fn context(&self) {}
+    fn to_digits(&self, digits: usize) -> String {
+        format!("{:.*e}", digits.clamp(1, 17) - 1, self)
     }
 }

@@ -1,0 +1,218 @@
+//! `orbit --digits`: the settled (1, 1) orbit against its closed form to 60 digits
+//! (computed here at 80 digits by the quadratic formula), the decimal parameters against
+//! the doubles nearest them, the f64 orbit's digits, what is not printed when the
+//! precision runs out, and bad input.
+
+use bouncemap_engine::{bits_for_digits, Big, Number, Real};
+use std::process::{Command, Output};
+
+fn bouncemap(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_bouncemap"))
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+/// The csv rows (index, period, phase, v, vrel, kind, digits).
+fn rows(out: &Output) -> Vec<Vec<String>> {
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout.clone()).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(lines.next(), Some("index,period,phase,v,vrel,kind,digits"));
+    lines
+        .map(|l| l.split(',').map(String::from).collect())
+        .collect()
+}
+
+/// The significant digits on which two decimal texts agree.
+fn same_digits(a: &str, b: &str) -> usize {
+    let digits = |s: &str| -> String {
+        s.trim_start_matches('-')
+            .chars()
+            .filter(char::is_ascii_digit)
+            .skip_while(|&c| c == '0')
+            .collect()
+    };
+    digits(a)
+        .chars()
+        .zip(digits(b).chars())
+        .take_while(|(x, y)| x == y)
+        .count()
+}
+
+/// The stable (1, 1) solution of F_D (D = 0.1, α = 0.45, r = 0.8): on the first piece
+/// αF' = (1 − r)/(2(1 + r)) with F' = 3D t² − (2 + D) t + ½, the smaller root, and the
+/// launch velocity f'(t*) + r/(1 + r) = ½. At 80 digits.
+fn closed_form() -> (Big, Big) {
+    let bits = bits_for_digits(80);
+    let n = |s: &str| Big::from_decimal(s, &bits).unwrap();
+    let (d, alpha, r) = (n("0.1"), n("0.45"), n("0.8"));
+    let c = (n("1") - r.clone()) / (n("2") * (n("1") + r.clone())) / alpha;
+    let (a, b, cc) = (n("3") * d.clone(), -(n("2") + d), n("0.5") - c);
+    let disc = (b.clone() * b.clone() - n("4") * a.clone() * cc).sqrt();
+    let t = (-b - disc) / (n("2") * a);
+    (t, n("0.5"))
+}
+
+/// Started off it, the orbit settles on the (1, 1) solution (contracting by at most
+/// 0.94 per impact): after 3000 impacts its phase and velocity are the closed form's to
+/// the 60 digits asked for, and the output says each holds to 60.
+#[test]
+fn the_settled_one_one_orbit_is_the_closed_form_to_sixty_digits() {
+    let out = rows(&bouncemap(&[
+        "orbit",
+        "--table",
+        "fd:0.1",
+        "--alpha",
+        "0.45",
+        "--r",
+        "0.8",
+        "--digits",
+        "60",
+        "--skip",
+        "3000",
+        "--bounces",
+        "2",
+        "--format",
+        "csv",
+    ]));
+    let (t, v) = closed_form();
+    let bits = bits_for_digits(80);
+    let off = |text: &str, want: &Big| {
+        let x = Big::from_decimal(text, &bits).unwrap();
+        ((x - want.clone()) / want.clone()).abs().to_f64()
+    };
+    for row in &out {
+        assert_eq!(row[6], "60", "{row:?}");
+        assert!(off(&row[2], &t) < 1e-59, "{} vs {t:?}", row[2]);
+        assert!(off(&row[3], &v) < 1e-59, "{} vs {v:?}", row[3]);
+    }
+}
+
+/// The f64 orbit's printed digits are the start of the decimal run's, and the doubles
+/// nearest 0.45 and 0.8 (--binary-params) make a system whose fixed point differs from
+/// the decimals' one after about 16 digits, as a change of 10⁻¹⁷ in α must.
+#[test]
+fn decimals_and_doubles_part_where_double_precision_ends() {
+    let args = |extra: &[&'static str]| {
+        let mut a = vec![
+            "orbit",
+            "--table",
+            "fd:0.1",
+            "--alpha",
+            "0.45",
+            "--r",
+            "0.8",
+            "--skip",
+            "3000",
+            "--bounces",
+            "1",
+            "--format",
+            "csv",
+        ];
+        a.extend_from_slice(extra);
+        a
+    };
+    let f64_row = bouncemap(&args(&[]));
+    let f64_text = String::from_utf8(f64_row.stdout).unwrap();
+    let f64_phase = f64_text
+        .lines()
+        .nth(1)
+        .unwrap()
+        .split(',')
+        .nth(2)
+        .unwrap()
+        .to_string();
+    let decimal = rows(&bouncemap(&args(&["--digits", "40"])));
+    let binary = rows(&bouncemap(&args(&["--digits", "40", "--binary-params"])));
+    assert!(same_digits(&f64_phase, &decimal[0][2]) >= 14);
+    let parted = same_digits(&decimal[0][2], &binary[0][2]);
+    assert!(
+        (14..=19).contains(&parted),
+        "{parted}: {} vs {}",
+        decimal[0][2],
+        binary[0][2]
+    );
+    assert_eq!(
+        (&decimal[0][6], &binary[0][6]),
+        (&"40".to_string(), &"40".to_string())
+    );
+}
+
+/// A sticking orbit loses about half a digit per event: asked for 2000 events to 30
+/// digits within 100 digits of working precision, the output stops where they stop
+/// holding, says so, and says how many digits all would need.
+#[test]
+fn what_does_not_hold_is_not_printed_and_the_need_is_stated() {
+    let out = bouncemap(&[
+        "orbit",
+        "--table",
+        "fd:0.1",
+        "--alpha",
+        "0.6",
+        "--digits",
+        "30",
+        "--max-digits",
+        "100",
+        "--bounces",
+        "2000",
+        "--format",
+        "csv",
+    ]);
+    let printed = rows(&out);
+    assert!(
+        printed.len() > 20 && printed.len() < 2000,
+        "{}",
+        printed.len()
+    );
+    assert!(printed.iter().all(|r| r[6] == "30"));
+    let note = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        note.contains(&format!(
+            "events from index {} on do not hold to 30 digits",
+            printed.len()
+        )) && note.contains("need about"),
+        "{note}"
+    );
+}
+
+#[test]
+fn bad_digits_get_one_line_and_status_two() {
+    for (args, says) in [
+        (
+            &["--digits", "0"][..],
+            "valid a whole number in [10, 10000]",
+        ),
+        (
+            &["--digits", "20000"][..],
+            "valid a whole number in [10, 10000]",
+        ),
+        (&["--digits", "1.5"][..], "whole number"),
+        (
+            &["--digits", "60", "--max-digits", "30"][..],
+            "valid --max-digits M with M ≥ N",
+        ),
+        (&["--binary-params"][..], "go with --digits N"),
+        (
+            &["--digits", "30", "--table", "sine"][..],
+            "not yet computed at any precision",
+        ),
+        (&["--digits", "30", "--z0", "1"][..], "valid --z0 0"),
+        (
+            &["--digits", "30", "--solver", "grid"][..],
+            "valid --solver exact",
+        ),
+    ] {
+        let mut all = vec!["orbit"];
+        all.extend_from_slice(args);
+        let out = bouncemap(&all);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: {err}");
+        assert!(err.contains(says), "{args:?}: {err}");
+    }
+}
