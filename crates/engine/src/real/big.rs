@@ -40,8 +40,7 @@ impl fmt::Debug for Big {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         // The decimal digits the precision holds.
         let digits = (self.bits() as f64 / std::f64::consts::LOG2_10).floor() as usize;
-        let d: Decimal = self.0.clone().with_base::<10>().value();
-        write!(f, "{}", d.with_precision(digits.max(1)).value())
+        write!(f, "{}", self.to_digits(digits))
     }
 }
 
@@ -144,8 +143,14 @@ impl Real for Big {
     }
 
     fn to_digits(&self, digits: usize) -> String {
-        let d: Decimal = self.0.clone().with_base::<10>().value();
-        d.with_precision(digits.max(1)).value().to_string()
+        // Rounded straight to `digits` decimal digits (an exact conversion of the binary
+        // fraction first would carry as many digits as it has bits).
+        let d: Decimal = self
+            .0
+            .clone()
+            .with_base_and_precision::<10>(digits.max(1))
+            .value();
+        d.to_string()
     }
 }
 
