@@ -5,8 +5,8 @@
 
 use bouncemap_engine::table::Family;
 use bouncemap_engine::{
-    bits_for_digits, Big, ImpactMap, Number, PreciseMap, PreciseState, PreciseSystem, Real, Solver,
-    State, System, Table,
+    bits_for_digits, Big, ImpactMap, PreciseMap, PreciseState, PreciseSystem, Real, Solver, State,
+    System, Table,
 };
 use std::hint::black_box;
 use std::time::Instant;
