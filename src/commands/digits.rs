@@ -1,4 +1,4 @@
-//! `orbit --digits N`: the orbit at any precision, printed only as far as it holds. The
+//! `orbit --digits N` and `lyapunov --digits N`: the orbit at any precision, printed only as far as it holds. The
 //! engine runs it at two precisions and compares them event by event
 //! ([`bouncemap_engine::orbit_to_digits`]); each event is printed from the more precise
 //! run to the significant digits on which the two agree (at most N), and the output
@@ -9,50 +9,26 @@
 //! decimal), rounded once to the working precision; with `--binary-params` the doubles
 //! themselves.
 
-use crate::config::run::DigitsRun;
+use crate::config::run::{DigitsRun, LyapunovDigits};
 use crate::output::sink::Sink;
 use crate::output::Format;
 use bouncemap_engine::{
-    orbit_to_digits, Big, DigitsOrbit, Number, PreciseState, PreciseSystem, Real,
+    orbit_to_digits, sticking_cycle_to_digits, Big, CycleVerdict, DigitsOrbit, Real,
 };
 use serde_json::json;
 use std::io::Write;
 
-/// The system and start of `run` at `bits`.
-fn make(run: &DigitsRun, bits: usize) -> (PreciseSystem<Big>, PreciseState<Big>) {
-    let num = |x: f64| {
-        if run.binary {
-            Big::from_f64(x, &bits)
-        } else {
-            // The shortest decimal that reads back as this double: the number written.
-            Big::from_decimal(&format!("{x}"), &bits).expect("a finite decimal")
-        }
-    };
-    let params: Vec<Big> = run.params.iter().map(|&x| num(x)).collect();
-    let pieces = run
-        .family
-        .pieces_in(&params, &bits)
-        .expect("checked piecewise when settled");
-    let sys = PreciseSystem::new(pieces, num(run.alpha), num(run.r), bits)
-        .expect("checked of degree ≤ 3 when settled");
-    let t0 = num(run.t0);
-    let w = match run.v0 {
-        Some(v0) => num(v0) - sys.jet(&t0)[1].clone(),
-        None => num(bouncemap_engine::DEFAULT_HOP),
-    };
-    let st = PreciseState::launch(&sys, 0, t0, w);
-    (sys, st)
-}
-
 pub fn run(run: &DigitsRun) -> anyhow::Result<()> {
     let orbit = orbit_to_digits(
-        &|bits| make(run, bits),
-        run.digits,
-        run.max_digits,
+        &|bits| run.spec.make(bits),
+        run.spec.digits,
+        run.spec.max_digits,
         run.skip,
         run.bounces,
     );
-    let shown = orbit.first_short(run.digits).unwrap_or(orbit.events.len());
+    let shown = orbit
+        .first_short(run.spec.digits)
+        .unwrap_or(orbit.events.len());
     let mut out = Sink::stdout();
     let written = write(&mut out, run, &orbit, shown);
     out.end(written)?;
@@ -71,12 +47,12 @@ fn note(run: &DigitsRun, orbit: &DigitsOrbit, shown: usize) -> Option<String> {
             format!(
                 "; by the measured loss of {rate:.2} digits per event, all {} events need about {} digits",
                 run.skip + run.bounces,
-                (run.digits as f64 + rate * total).ceil()
+                (run.spec.digits as f64 + rate * total).ceil()
             )
         });
         return Some(format!(
             "events from index {index} on do not hold to {} digits at {} digits of working precision (compared with {}), so they are not printed{need}; raise --max-digits (now {}) or ask for fewer events",
-            run.digits, orbit.precision.0, orbit.precision.1, run.max_digits
+            run.spec.digits, orbit.precision.0, orbit.precision.1, run.spec.max_digits
         ));
     }
     orbit
@@ -100,11 +76,11 @@ fn write(out: &mut Sink, run: &DigitsRun, orbit: &DigitsOrbit, shown: usize) -> 
             writeln!(
                 out,
                 "table {}  alpha {}  r {}  parameters {}  digits {} (working precision {} and {} digits)",
-                run.table,
-                run.alpha,
-                run.r,
-                if run.binary { "as doubles" } else { "as written" },
-                run.digits,
+                run.spec.table,
+                run.spec.alpha,
+                run.spec.r,
+                if run.spec.binary { "as doubles" } else { "as written" },
+                run.spec.digits,
                 orbit.precision.0,
                 orbit.precision.1
             )?;
@@ -138,11 +114,11 @@ fn write(out: &mut Sink, run: &DigitsRun, orbit: &DigitsOrbit, shown: usize) -> 
         }
         Format::Json => {
             let doc = json!({
-                "table": run.table,
-                "alpha": run.alpha,
-                "r": run.r,
-                "parameters": if run.binary { "doubles" } else { "decimals" },
-                "digits": run.digits,
+                "table": run.spec.table,
+                "alpha": run.spec.alpha,
+                "r": run.spec.r,
+                "parameters": if run.spec.binary { "doubles" } else { "decimals" },
+                "digits": run.spec.digits,
                 "working_digits": [orbit.precision.0, orbit.precision.1],
                 "events": events.iter().enumerate().map(|(i, (e, d))| json!({
                     "index": run.skip + i as u64,
@@ -161,4 +137,164 @@ fn write(out: &mut Sink, run: &DigitsRun, orbit: &DigitsOrbit, shown: usize) -> 
         }
     }
     Ok(())
+}
+
+/// Events a sticking cycle is looked for within, at each precision.
+const CYCLE_EVENTS: u64 = 1_000_000;
+
+/// `lyapunov --digits N`: the sticking cycle of the orbit decided at any precision
+/// ([`sticking_cycle_to_digits`]): its length in table periods, where it is released
+/// and how long after the release it sticks, to the digits the two precisions agree on;
+/// or what could not be decided, and the digits it would need.
+pub fn lyapunov(run: &LyapunovDigits) -> anyhow::Result<()> {
+    let spec = &run.spec;
+    let verdict = sticking_cycle_to_digits(
+        &|bits| spec.make(bits),
+        spec.digits,
+        spec.max_digits,
+        CYCLE_EVENTS,
+        i64::try_from(run.transient).unwrap_or(i64::MAX),
+    );
+    let params = if spec.binary {
+        "as doubles"
+    } else {
+        "as written"
+    };
+    let mut out = Sink::stdout();
+    let written = (|| -> anyhow::Result<()> {
+        match run.format {
+            Format::Text => {
+                writeln!(
+                    out,
+                    "table {}  alpha {}  r {}  parameters {params}  digits {}",
+                    spec.table, spec.alpha, spec.r, spec.digits
+                )?;
+                writeln!(out, "{}", cycle_text(run, &verdict))?;
+                if matches!(verdict, CycleVerdict::Found(_)) {
+                    writeln!(
+                        out,
+                        "both exponents -inf: the ball sticks to the table, which forgets where it landed (superstable)"
+                    )?;
+                }
+            }
+            Format::Csv => {
+                writeln!(
+                    out,
+                    "table,alpha,r,parameters,digits,verdict,periods,releases,release_phase,stick_after,agreed_digits,need_digits"
+                )?;
+                let row = record(&verdict);
+                writeln!(
+                    out,
+                    "{},{},{},{},{},{},{},{},{},{},{},{}",
+                    spec.table,
+                    spec.alpha,
+                    spec.r,
+                    if spec.binary { "doubles" } else { "decimals" },
+                    spec.digits,
+                    row.0,
+                    row.1,
+                    row.2,
+                    row.3,
+                    row.4,
+                    row.5,
+                    row.6
+                )?;
+            }
+            Format::Json => {
+                let row = record(&verdict);
+                let doc = json!({
+                    "table": spec.table,
+                    "alpha": spec.alpha,
+                    "r": spec.r,
+                    "parameters": if spec.binary { "doubles" } else { "decimals" },
+                    "digits": spec.digits,
+                    "start": run.initial,
+                    "verdict": row.0,
+                    "periods": row.1.parse::<i64>().ok(),
+                    "releases": row.2.parse::<usize>().ok(),
+                    "release_phase": (!row.3.is_empty()).then_some(&row.3),
+                    "stick_after": (!row.4.is_empty()).then_some(&row.4),
+                    "agreed_digits": row.5.parse::<u32>().ok(),
+                    "need_digits": row.6.parse::<u32>().ok(),
+                    "text": cycle_text(run, &verdict),
+                });
+                serde_json::to_writer(&mut out, &doc)?;
+                writeln!(out)?;
+            }
+        }
+        Ok(())
+    })();
+    out.end(written)
+}
+
+/// The verdict in one line.
+fn cycle_text(run: &LyapunovDigits, v: &CycleVerdict) -> String {
+    let spec = &run.spec;
+    match v {
+        CycleVerdict::Found(c) => format!(
+            "cycle: sticking cycle of {} table periods ({} release{} per cycle): released at phase {}, sticks {} periods after the release ({} digits; runs at {} and {} digits agree{})",
+            c.periods,
+            c.releases,
+            if c.releases == 1 { "" } else { "s" },
+            c.release_phase.to_digits(c.digits as usize),
+            c.stick_after.to_digits(c.digits as usize),
+            c.digits,
+            c.precision.0,
+            c.precision.1,
+            c.earlier.map_or(String::new(), |((a, b), d)| if d > 0 {
+                format!(", at {a} and {b} only to {d}")
+            } else {
+                format!(", at {a} and {b} not on the cycle")
+            })
+        ),
+        CycleVerdict::NoRelease => format!(
+            "cycle: no sticking cycle: the ball is not released from the table within {} periods (run without --digits for its exponents)",
+            run.transient
+        ),
+        CycleVerdict::NoReturn => format!(
+            "cycle: released, but not again at the same phase within {} periods: no sticking cycle found",
+            run.transient
+        ),
+        CycleVerdict::Undecided { tried, agreed, need } => format!(
+            "cycle: not decided within --max-digits {}: the runs at {} and {} digits {}{}",
+            spec.max_digits,
+            tried.0,
+            tried.1,
+            if *agreed > 0 {
+                format!("agree on the stick time to {agreed} digits only")
+            } else {
+                "disagree on the cycle".to_string()
+            },
+            need.map_or(String::new(), |n| format!(
+                "; by the digits the path from the release loses, it needs about {n} digits (--max-digits {n})"
+            ))
+        ),
+    }
+}
+
+/// (verdict, periods, releases, release phase, stick time, agreed digits, need) as text.
+fn record(v: &CycleVerdict) -> (&'static str, String, String, String, String, String, String) {
+    let e = String::new;
+    match v {
+        CycleVerdict::Found(c) => (
+            "found",
+            c.periods.to_string(),
+            c.releases.to_string(),
+            c.release_phase.to_digits(c.digits as usize),
+            c.stick_after.to_digits(c.digits as usize),
+            c.digits.to_string(),
+            e(),
+        ),
+        CycleVerdict::NoRelease => ("no_release", e(), e(), e(), e(), e(), e()),
+        CycleVerdict::NoReturn => ("no_return", e(), e(), e(), e(), e(), e()),
+        CycleVerdict::Undecided { agreed, need, .. } => (
+            "undecided",
+            e(),
+            e(),
+            e(),
+            e(),
+            agreed.to_string(),
+            need.map_or(e(), |n| n.to_string()),
+        ),
+    }
 }

@@ -47,7 +47,10 @@ pub fn run(cmd: Command) -> anyhow::Result<()> {
         Command::Cascade(a) => cascade::run(&config::run::cascade(&a)?),
         Command::Curves(a) => curves::run(&config::run::curves(&a)?),
         Command::Sweep(a) => sweep::run(&config::run::sweep(&a)?),
-        Command::Lyapunov(a) => lyapunov::run(&config::run::lyapunov(&a)?),
+        Command::Lyapunov(a) => match config::run::lyapunov_digits(&a)? {
+            Some(run) => digits::lyapunov(&run),
+            None => lyapunov::run(&config::run::lyapunov(&a)?),
+        },
         Command::Basins(a) => basins::run(&config::run::basins(&a)?),
         Command::Plane(a) => plane::run(&config::run::plane(&a)?),
         Command::Merge(a) => merge::run(&a),

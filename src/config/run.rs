@@ -21,7 +21,7 @@ use bouncemap_engine::plane::PlaneSpec;
 use bouncemap_engine::run::detect::Periodicity;
 use bouncemap_engine::run::start::near_fixed_point;
 use bouncemap_engine::sweep::SweepSpec;
-use bouncemap_engine::{State, System, Table};
+use bouncemap_engine::{Big, Number, PreciseState, PreciseSystem, Real, State, System, Table};
 use clap::ValueEnum;
 
 /// How a job-running command runs, settled from its flags.
@@ -335,23 +335,24 @@ pub fn cascade(args: &CascadeArgs) -> Result<CascadeRun, InputError> {
     })
 }
 
-/// `orbit --digits`, settled: the system and the start as decimals (or the doubles,
-/// with `--binary-params`), to be made at any precision.
+/// A system and a start to be made at any precision (`--digits`): the decimals the
+/// flags were read to (or the doubles, with `--binary-params`), the digits asked for and
+/// the most allowed.
 #[derive(Clone, Debug)]
-pub struct DigitsRun {
-    /// The table's family and its parameter values, as decimals.
+pub struct PreciseSpec {
+    /// The table's family and its parameter values.
     pub family: std::sync::Arc<bouncemap_engine::table::Family>,
-    /// The family's parameter values (the shortest decimal of each double).
+    /// The family's parameter values (as the flags read them).
     pub params: Vec<f64>,
     /// The table's name.
     pub table: String,
-    /// α, r, t̂0 and v0 (None: f'(t̂0) + the default hop) as the flags read them.
+    /// α.
     pub alpha: f64,
     /// Restitution.
     pub r: f64,
     /// Initial phase.
     pub t0: f64,
-    /// Initial velocity.
+    /// Initial velocity (None: f'(t̂0) + the default hop).
     pub v0: Option<f64>,
     /// Significant digits asked for.
     pub digits: u32,
@@ -359,6 +360,41 @@ pub struct DigitsRun {
     pub max_digits: u32,
     /// Each parameter the double it was read to, exactly.
     pub binary: bool,
+}
+
+impl PreciseSpec {
+    /// The system and the start at `bits`: each value the shortest decimal of its
+    /// double (the number written), rounded once; or the double itself.
+    pub fn make(&self, bits: usize) -> (PreciseSystem<Big>, PreciseState<Big>) {
+        let num = |x: f64| {
+            if self.binary {
+                Big::from_f64(x, &bits)
+            } else {
+                Big::from_decimal(&format!("{x}"), &bits).expect("a finite decimal")
+            }
+        };
+        let params: Vec<Big> = self.params.iter().map(|&x| num(x)).collect();
+        let pieces = self
+            .family
+            .pieces_in(&params, &bits)
+            .expect("checked piecewise when settled");
+        let sys = PreciseSystem::new(pieces, num(self.alpha), num(self.r), bits)
+            .expect("checked of degree ≤ 3 when settled");
+        let t0 = num(self.t0);
+        let w = match self.v0 {
+            Some(v0) => num(v0) - sys.jet(&t0)[1].clone(),
+            None => num(bouncemap_engine::DEFAULT_HOP),
+        };
+        let st = PreciseState::launch(&sys, 0, t0, w);
+        (sys, st)
+    }
+}
+
+/// `orbit --digits`, settled.
+#[derive(Clone, Debug)]
+pub struct DigitsRun {
+    /// The system, the start and the digits.
+    pub spec: PreciseSpec,
     /// Events to print, and to compute first.
     pub bounces: u64,
     /// See `bounces`.
@@ -367,12 +403,36 @@ pub struct DigitsRun {
     pub format: Format,
 }
 
-/// `orbit`'s flags with `--digits`, settled (None without it). The system and the start
-/// are checked as the f64 run checks them; what the map at any precision does not take
-/// yet (the sine, pieces of degree above 3, a start above the table, the grid solver) is
-/// refused naming what it takes.
+/// `orbit`'s flags with `--digits`, settled (None without it).
 pub fn digits(args: &OrbitArgs) -> Result<Option<DigitsRun>, InputError> {
-    let p = &args.precision;
+    if args.solver != super::flags::SolverArg::Exact && args.precision.digits.is_some() {
+        return Err(InputError(
+            "--solver grid with --digits: the paper's grid is f64 only: valid --solver exact"
+                .into(),
+        ));
+    }
+    let Some(spec) = precise_spec(&args.precision, &args.system, &args.initial, None)? else {
+        return Ok(None);
+    };
+    Ok(Some(DigitsRun {
+        spec,
+        bounces: args.bounces,
+        skip: args.skip,
+        format: args.format,
+    }))
+}
+
+/// The `--digits` flags with the system and the start, settled (None without
+/// `--digits`): checked as the f64 run checks them, and what the map at any precision
+/// does not take yet (the sine, pieces of degree above 3, a start above the table)
+/// refused naming what it takes. `start` replaces `--t0 --v0` (as `--near-fixed-point`
+/// does).
+fn precise_spec(
+    p: &super::flags::PrecisionArgs,
+    system: &super::flags::SystemArgs,
+    initial: &super::flags::InitialArgs,
+    start: Option<(f64, f64)>,
+) -> Result<Option<PreciseSpec>, InputError> {
     let Some(digits) = p.digits else {
         if p.binary_params || p.max_digits != super::rules::MAX_DIGITS.default as u32 {
             return Err(InputError(
@@ -387,15 +447,9 @@ pub fn digits(args: &OrbitArgs) -> Result<Option<DigitsRun>, InputError> {
             p.max_digits
         )));
     }
-    if args.solver != super::flags::SolverArg::Exact {
-        return Err(InputError(
-            "--solver grid with --digits: the paper's grid is f64 only: valid --solver exact"
-                .into(),
-        ));
-    }
-    let sys = super::system(&args.system)?;
-    super::start(&sys, &args.initial)?;
-    if args.initial.z0 != 0.0 {
+    let sys = super::system(system)?;
+    super::start(&sys, initial)?;
+    if initial.z0 != 0.0 {
         return Err(InputError(
             "--z0 with --digits: at any precision the ball starts on the table: valid --z0 0"
                 .into(),
@@ -417,19 +471,57 @@ pub fn digits(args: &OrbitArgs) -> Result<Option<DigitsRun>, InputError> {
     if !ok {
         return Err(refuse());
     }
-    Ok(Some(DigitsRun {
+    let (t0, v0) = match start {
+        Some((t0, v0)) => (t0, Some(v0)),
+        None => (initial.t0, initial.v0),
+    };
+    Ok(Some(PreciseSpec {
         family: family.clone(),
         params: params.to_vec(),
         table: table.name().to_string(),
-        alpha: args.system.alpha,
-        r: args.system.r,
-        t0: args.initial.t0,
-        v0: args.initial.v0,
+        alpha: system.alpha,
+        r: system.r,
+        t0,
+        v0,
         digits,
         max_digits: p.max_digits,
         binary: p.binary_params,
-        bounces: args.bounces,
-        skip: args.skip,
+    }))
+}
+
+/// `lyapunov --digits`, settled: the sticking cycle decided at any precision.
+#[derive(Clone, Debug)]
+pub struct LyapunovDigits {
+    /// The system, the start and the digits.
+    pub spec: PreciseSpec,
+    /// The most table periods the orbit is followed to find its cycle.
+    pub transient: u64,
+    /// How the start was given, as the output names it.
+    pub initial: InitialRecord,
+    /// The output format.
+    pub format: Format,
+}
+
+/// `lyapunov`'s flags with `--digits`, settled (None without it): the start as the f64
+/// run has it (`--near-fixed-point`'s launch read back as decimals).
+pub fn lyapunov_digits(args: &LyapunovArgs) -> Result<Option<LyapunovDigits>, InputError> {
+    let run = lyapunov(args)?;
+    let start = args
+        .near_fixed_point
+        .then(|| (run.start.phase(), run.start.v()));
+    let Some(spec) = precise_spec(&args.precision, &args.system, &args.initial, start)? else {
+        return Ok(None);
+    };
+    if run.check {
+        return Err(InputError(
+            "--check with --digits: a run at any precision has no plan yet: valid without --check"
+                .into(),
+        ));
+    }
+    Ok(Some(LyapunovDigits {
+        spec,
+        transient: args.transient,
+        initial: run.initial,
         format: args.format,
     }))
 }

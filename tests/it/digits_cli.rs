@@ -216,3 +216,98 @@ fn bad_digits_get_one_line_and_status_two() {
         assert!(err.contains(says), "{args:?}: {err}");
     }
 }
+
+fn lyapunov_csv(args: &[&str]) -> Vec<String> {
+    let mut all = vec!["lyapunov", "--r", "0.8", "--format", "csv"];
+    all.extend_from_slice(args);
+    let out = bouncemap(&all);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(
+        lines.next(),
+        Some("table,alpha,r,parameters,digits,verdict,periods,releases,release_phase,stick_after,agreed_digits,need_digits")
+    );
+    lines.next().unwrap().split(',').map(String::from).collect()
+}
+
+/// fd:1 at α = 0.59, where double precision cannot decide the sticking cycle: at 60
+/// digits its length and stick time, the same to 60 digits when 90 are asked for, and a
+/// different cycle for the doubles nearest 0.59 and 0.8, as a change of 10⁻¹⁷ in α must
+/// make where 25 digits are lost from the release to the stick.
+#[test]
+fn lyapunov_decides_the_sticking_cycle_past_double_precision() {
+    let base = ["--table", "fd:1", "--alpha", "0.59"];
+    let at = |extra: &[&str]| {
+        let mut a = base.to_vec();
+        a.extend_from_slice(extra);
+        lyapunov_csv(&a)
+    };
+    let sixty = at(&["--digits", "60"]);
+    let ninety = at(&["--digits", "90", "--max-digits", "1000"]);
+    let binary = at(&["--digits", "60", "--binary-params"]);
+    for row in [&sixty, &ninety, &binary] {
+        assert_eq!(
+            (row[5].as_str(), row[7].as_str()),
+            ("found", "1"),
+            "{row:?}"
+        );
+    }
+    assert_eq!(sixty[10], "60");
+    assert_eq!(ninety[10], "90");
+    assert_eq!(sixty[6], ninety[6]);
+    assert!(
+        same_digits(&sixty[9], &ninety[9]) >= 59,
+        "{} vs {}",
+        sixty[9],
+        ninety[9]
+    );
+    // The stick falls inside the cycle's last period.
+    let stick: f64 = sixty[9].parse().unwrap();
+    let periods: f64 = sixty[6].parse().unwrap();
+    assert!(
+        stick > periods - 1.0 && stick < periods,
+        "{stick} in {periods}"
+    );
+    assert_ne!(sixty[6], binary[6], "the doubles' cycle");
+}
+
+/// Where the path from the release loses more digits than --max-digits allows, the
+/// verdict says so (exit 0) instead of printing a cycle.
+#[test]
+fn an_undecided_cycle_is_said_to_be_undecided() {
+    let row = lyapunov_csv(&[
+        "--table",
+        "fd:0.1",
+        "--alpha",
+        "0.6",
+        "--digits",
+        "30",
+        "--max-digits",
+        "60",
+    ]);
+    assert_eq!(row[5], "undecided", "{row:?}");
+    assert!(row[6].is_empty() && row[9].is_empty(), "{row:?}");
+    let out = bouncemap(&[
+        "lyapunov",
+        "--table",
+        "fd:0.1",
+        "--alpha",
+        "0.6",
+        "--digits",
+        "30",
+        "--max-digits",
+        "60",
+    ]);
+    assert!(out.status.success());
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.contains("not decided within --max-digits 60"),
+        "{text}"
+    );
+    assert!(!text.contains("sticking cycle of"), "{text}");
+}

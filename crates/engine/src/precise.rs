@@ -727,3 +727,161 @@ pub fn orbit_to_digits(
         work *= 2;
     }
 }
+
+/// A sticking cycle found at any precision ([`sticking_cycle_to_digits`]): from a
+/// release to the next release at the same phase. Releases happen where 1 + αF'' turns
+/// negative, a phase fixed by the table, so the orbit from one release repeats from the
+/// next: the cycle is exactly periodic, and all that must be decided is where its stick
+/// falls, which the flights from the release decide with growing sensitivity.
+#[derive(Clone, Debug)]
+pub struct StickingCycle {
+    /// Its length in table periods, as both precisions found it.
+    pub periods: i64,
+    /// The releases (and sticks) in one cycle.
+    pub releases: usize,
+    /// The release's phase.
+    pub release_phase: crate::real::Big,
+    /// The time from the release to the cycle's first stick, in table periods.
+    pub stick_after: crate::real::Big,
+    /// The significant digits on which the two precisions agree about the stick time
+    /// (at most the digits asked for).
+    pub digits: u32,
+    /// The digits of the two runs that agreed.
+    pub precision: (u32, u32),
+    /// The digits on which the runs of the pair before disagreed, if there was one: how
+    /// sensitive the path from the release is.
+    pub earlier: Option<((u32, u32), u32)>,
+}
+
+/// What [`sticking_cycle_to_digits`] decided.
+#[derive(Clone, Debug)]
+pub enum CycleVerdict {
+    /// The cycle, to the digits asked for.
+    Found(StickingCycle),
+    /// No release within the events allowed at the first precision: the orbit does not
+    /// stick and get released (or not soon enough).
+    NoRelease,
+    /// No repeating release within the events allowed.
+    NoReturn,
+    /// The two precisions disagree even at the most precision allowed.
+    Undecided {
+        /// The digits the last pair was run at.
+        tried: (u32, u32),
+        /// The digits the two runs agreed on about the stick time (0 where they
+        /// disagree on the cycle's length).
+        agreed: u32,
+        /// The digits the answer needs by the loss measured, where measured: the digits
+        /// asked for plus what the path from the release loses.
+        need: Option<u32>,
+    },
+}
+
+/// The sticking cycle of the orbit `make(bits)` starts, to `digits` significant digits:
+/// each precision pair (`digits` + 10 and twice that, doubled while the lower stays
+/// within `max_digits`) runs the orbit to its first release and on to the next release
+/// at the same phase (at most `max_events` events each, within `max_periods` table
+/// periods), and the two runs must agree on the cycle's length and on its stick time to
+/// `digits`.
+pub fn sticking_cycle_to_digits(
+    make: &dyn Fn(
+        usize,
+    ) -> (
+        PreciseSystem<crate::real::Big>,
+        PreciseState<crate::real::Big>,
+    ),
+    digits: u32,
+    max_digits: u32,
+    max_events: u64,
+    max_periods: i64,
+) -> CycleVerdict {
+    use crate::real::{bits_for_digits, Big, Number};
+    // (release phase, stick time, periods, releases), or why there is none.
+    // Why a run found no cycle: no release, or none again at the same phase.
+    #[derive(Clone, Copy)]
+    enum NoCycle {
+        Release,
+        Return,
+    }
+    let cycle = |work: u32, bits: usize| -> Result<(Big, Big, i64, usize), NoCycle> {
+        let (sys, st) = make(bits);
+        let err = Big::from_decimal(&format!("1e-{work}"), &bits).expect("a constant");
+        let mut map = PreciseMap::new(sys.with_chatter_error(err), st);
+        let mut first: Option<PreciseEvent<Big>> = None;
+        let mut stick: Option<Big> = None;
+        let mut releases = 0;
+        for _ in 0..max_events {
+            let Ok(e) = map.step() else { break };
+            if e.period > max_periods {
+                break;
+            }
+            match (&first, e.kind) {
+                (None, EventKind::Release) => first = Some(e),
+                (Some(r0), EventKind::Stick) if stick.is_none() => {
+                    let t = Big::from_f64((e.period - r0.period) as f64, &bits) + e.phase.clone()
+                        - r0.phase.clone();
+                    stick = Some(t);
+                }
+                (Some(r0), EventKind::Release) => {
+                    releases += 1;
+                    if agreeing_digits(&e.phase, &r0.phase, work) + 5 >= work {
+                        return Ok((
+                            r0.phase.clone(),
+                            stick.expect("a stick before a release"),
+                            e.period - r0.period,
+                            releases,
+                        ));
+                    }
+                }
+                _ => {}
+            }
+        }
+        Err(if first.is_none() {
+            NoCycle::Release
+        } else {
+            NoCycle::Return
+        })
+    };
+    let mut work = digits + 10;
+    let mut earlier = None;
+    loop {
+        let lo = cycle(work, bits_for_digits(work));
+        let hi = cycle(work, bits_for_digits(2 * work));
+        let (same, agreed, found) = match (lo, hi) {
+            (Ok(a), Ok(b)) => {
+                let same = a.2 == b.2 && a.3 == b.3;
+                let agreed = if same {
+                    agreeing_digits(&a.1, &b.1, 2 * work)
+                } else {
+                    0
+                };
+                (same, agreed, Some(b))
+            }
+            // Neither run finds a cycle: the orbit has none within the events allowed.
+            (Err(NoCycle::Release), Err(_)) => return CycleVerdict::NoRelease,
+            (Err(NoCycle::Return), Err(_)) => return CycleVerdict::NoReturn,
+            // One run finds it and the other not: they disagree.
+            _ => (false, 0, None),
+        };
+        if let Some(hi) = found.filter(|_| same && agreed >= digits) {
+            return CycleVerdict::Found(StickingCycle {
+                periods: hi.2,
+                releases: hi.3,
+                release_phase: hi.0,
+                stick_after: hi.1,
+                digits: agreed.min(digits),
+                precision: (work, 2 * work),
+                earlier,
+            });
+        }
+        earlier = Some(((work, 2 * work), agreed));
+        if 2 * work > max_digits {
+            let need = (same && agreed > 0).then(|| digits + (work - agreed.min(work)) + 10);
+            return CycleVerdict::Undecided {
+                tried: (work, 2 * work),
+                agreed: agreed.min(digits),
+                need,
+            };
+        }
+        work *= 2;
+    }
+}

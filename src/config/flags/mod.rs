@@ -404,6 +404,8 @@ pub struct LyapunovArgs {
     #[arg(long, value_enum, default_value_t = Format::Text)]
     pub format: Format,
     #[command(flatten)]
+    pub precision: PrecisionArgs,
+    #[command(flatten)]
     pub check: CheckArgs,
 }
 
