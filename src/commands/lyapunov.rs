@@ -185,6 +185,21 @@ fn text(
     writeln!(out, "orbit: {kind}{period}")?;
     if let Some(p) = found.precision {
         writeln!(out, "cycle: {}", p.describe())?;
+        // The run at any precision decides it, on the tables it takes.
+        let polynomial = sys.table().family().is_some_and(|(f, v)| {
+            f.pieces_in::<f64>(v, &()).is_some_and(|ps| {
+                ps.iter()
+                    .all(|p| p.coeffs.len() <= bouncemap_engine::PRECISE_MAX_DEGREE + 1)
+            })
+        });
+        if !p.resolved && polynomial {
+            let need = (p.growth_decades.ceil() as u32 + 20).max(60);
+            writeln!(
+                out,
+                "  (--digits 30 --max-digits {} decides it at any precision; with --binary-params for the doubles this run has)",
+                (2 * need).max(400)
+            )?;
+        }
     }
     let two_ln_r = 2.0 * sys.r().ln();
     match found.spectrum {

@@ -274,6 +274,29 @@ fn lyapunov_decides_the_sticking_cycle_past_double_precision() {
         "{stick} in {periods}"
     );
     assert_ne!(sixty[6], binary[6], "the doubles' cycle");
+    // An independent computation (mpmath at 300, 400 and 600 digits, the flights'
+    // cubics solved by a separate root finder, chattering followed to w < 1e-120 and
+    // closed by its leading order): L = 78, T = 77.94380773608558746178295054094203725668
+    // 39440626322389480440 for the decimals; L = 142, T = 141.995697125926639158332668953
+    // 021186801788857516804185921560 for the doubles.
+    assert_eq!(sixty[6], "78");
+    assert!(
+        same_digits(
+            &sixty[9],
+            "77.9438077360855874617829505409420372566839440626322389480440"
+        ) >= 59,
+        "{}",
+        sixty[9]
+    );
+    assert_eq!(binary[6], "142");
+    assert!(
+        same_digits(
+            &binary[9],
+            "141.995697125926639158332668953021186801788857516804185921560"
+        ) >= 59,
+        "{}",
+        binary[9]
+    );
 }
 
 /// Where the path from the release loses more digits than --max-digits allows, the
