@@ -334,3 +334,36 @@ fn an_undecided_cycle_is_said_to_be_undecided() {
     );
     assert!(!text.contains("sticking cycle of"), "{text}");
 }
+
+/// fd:0.1 at α = 0.6, the sticking cycle the f64 run calls beyond double precision by
+/// the widest margin (a bound of 10^672 on the growth): decided at 280 and 560 digits,
+/// and equal to an independent computation (mpmath at 300 and 400 digits: L = 394,
+/// T = 393.746614487506653795854581821650255680023098582443769062757; for the doubles
+/// nearest 0.1, 0.6 and 0.8, L = 112, T = 111.9256491383538609210920010739887099463079
+/// 06701310845880452).
+#[test]
+fn the_widest_margin_cycle_is_decided_and_equals_an_independent_computation() {
+    let base = ["--table", "fd:0.1", "--alpha", "0.6", "--digits", "60"];
+    let decimal = lyapunov_csv(&base);
+    let mut with_binary = base.to_vec();
+    with_binary.push("--binary-params");
+    let binary = lyapunov_csv(&with_binary);
+    assert_eq!((decimal[5].as_str(), decimal[6].as_str()), ("found", "394"));
+    assert!(
+        same_digits(
+            &decimal[9],
+            "393.746614487506653795854581821650255680023098582443769062757"
+        ) >= 59,
+        "{}",
+        decimal[9]
+    );
+    assert_eq!((binary[5].as_str(), binary[6].as_str()), ("found", "112"));
+    assert!(
+        same_digits(
+            &binary[9],
+            "111.925649138353860921092001073988709946307906701310845880452"
+        ) >= 59,
+        "{}",
+        binary[9]
+    );
+}
