@@ -9,23 +9,35 @@
 //! decimal), rounded once to the working precision; with `--binary-params` the doubles
 //! themselves.
 
+use super::progress::Progress;
 use crate::config::run::{DigitsRun, LyapunovDigits};
 use crate::output::sink::Sink;
 use crate::output::Format;
 use bouncemap_engine::{
-    orbit_to_digits, sticking_cycle_to_digits, Big, CycleVerdict, DigitsOrbit, Real,
+    orbit_to_digits, sticking_cycle_to_digits, Big, CycleVerdict, DigitsOrbit, DigitsProgress, Real,
 };
 use serde_json::json;
 use std::io::Write;
 
 pub fn run(run: &DigitsRun) -> anyhow::Result<()> {
+    let total = run.skip.saturating_add(run.bounces);
+    let mut report = Reporter::new(
+        "orbit",
+        total,
+        &format!(
+            "{}  alpha {}  r {}  {} events to {} digits",
+            run.spec.table, run.spec.alpha, run.spec.r, total, run.spec.digits
+        ),
+    );
     let orbit = orbit_to_digits(
         &|bits| run.spec.make(bits),
         run.spec.digits,
         run.spec.max_digits,
         run.skip,
         run.bounces,
+        &mut |p| report.update(p),
     );
+    report.finish();
     let shown = orbit
         .first_short(run.spec.digits)
         .unwrap_or(orbit.events.len());
@@ -139,6 +151,46 @@ fn write(out: &mut Sink, run: &DigitsRun, orbit: &DigitsOrbit, shown: usize) -> 
     Ok(())
 }
 
+/// Progress on stderr as the runs go (the bar on a terminal, lines in a batch log): the
+/// events of the run and the digits it runs at. `total` is what a run computes at most.
+struct Reporter {
+    progress: Progress,
+    start: std::time::Instant,
+    total: u64,
+    last: Option<bouncemap_engine::jobs::Progress>,
+}
+
+impl Reporter {
+    fn new(what: &'static str, total: u64, spec: &str) -> Reporter {
+        Reporter {
+            progress: Progress::start_units(what, "events", total as usize, spec),
+            start: std::time::Instant::now(),
+            total,
+            last: None,
+        }
+    }
+
+    fn update(&mut self, p: DigitsProgress) {
+        let job = bouncemap_engine::jobs::Progress {
+            done: p.done as usize,
+            total: if p.total == 0 { self.total } else { p.total } as usize,
+            events: p.done,
+            elapsed: self.start.elapsed(),
+        };
+        self.progress
+            .update_noting(&job, &format!("  at {} digits", p.digits));
+        self.last = Some(job);
+    }
+
+    fn finish(self) {
+        if let Some(mut last) = self.last {
+            // What was computed is all there was to compute.
+            last.total = last.done;
+            self.progress.finish(&last);
+        }
+    }
+}
+
 /// Events a sticking cycle is looked for within, at each precision.
 const CYCLE_EVENTS: u64 = 1_000_000;
 
@@ -148,13 +200,23 @@ const CYCLE_EVENTS: u64 = 1_000_000;
 /// or what could not be decided, and the digits it would need.
 pub fn lyapunov(run: &LyapunovDigits) -> anyhow::Result<()> {
     let spec = &run.spec;
+    let mut report = Reporter::new(
+        "lyapunov",
+        CYCLE_EVENTS,
+        &format!(
+            "{}  alpha {}  r {}  sticking cycle to {} digits, within {CYCLE_EVENTS} events a run",
+            spec.table, spec.alpha, spec.r, spec.digits
+        ),
+    );
     let verdict = sticking_cycle_to_digits(
         &|bits| spec.make(bits),
         spec.digits,
         spec.max_digits,
         CYCLE_EVENTS,
         i64::try_from(run.transient).unwrap_or(i64::MAX),
+        &mut |p| report.update(p),
     );
+    report.finish();
     let params = if spec.binary {
         "as doubles"
     } else {

@@ -79,8 +79,8 @@ pub use linalg::{eigenvalues_2x2, Complex, Mat2};
 pub use map::{Event, EventKind, Halt, ImpactMap, Mode, State, DEFAULT_HOP, MAX_EVENT_PERIOD};
 pub use precise::{
     agreeing_digits, orbit_to_digits, sticking_cycle_to_digits, CycleVerdict, DigitsOrbit,
-    PreciseEvent, PreciseHalt, PreciseMap, PreciseRefusal, PreciseState, PreciseSystem,
-    StickingCycle, PRECISE_MAX_DEGREE,
+    DigitsProgress, MakeBig, PreciseEvent, PreciseHalt, PreciseMap, PreciseRefusal, PreciseState,
+    PreciseSystem, StickingCycle, PRECISE_MAX_DEGREE,
 };
 pub use real::{bits_for_digits, Big, Number, Real};
 pub use system::{kappa_c, System};

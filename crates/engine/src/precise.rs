@@ -623,6 +623,31 @@ impl<R: Real> MaxOf for R {
     }
 }
 
+/// What makes the system and the start at a number of bits (the caller's parameters,
+/// read at that precision).
+pub type MakeBig<'a> = dyn Fn(
+        usize,
+    ) -> (
+        PreciseSystem<crate::real::Big>,
+        PreciseState<crate::real::Big>,
+    ) + 'a;
+
+/// How far a run at any precision has got, for progress reports: the digits it runs
+/// at, the events done and how many it is to compute (0 where unknown: a cycle looked
+/// for).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct DigitsProgress {
+    /// The working digits of the run.
+    pub digits: u32,
+    /// Events computed.
+    pub done: u64,
+    /// Events to compute (0: not known in advance).
+    pub total: u64,
+}
+
+/// Events between progress reports.
+const PROGRESS_EVENTS: u64 = 256;
+
 /// An orbit computed at two precisions and compared event by event
 /// ([`orbit_to_digits`]).
 #[derive(Clone, Debug)]
@@ -653,25 +678,30 @@ impl DigitsOrbit {
 /// stays within `max_digits`. Both runs resolve chattering to the lower precision, so
 /// they take the same impacts.
 pub fn orbit_to_digits(
-    make: &dyn Fn(
-        usize,
-    ) -> (
-        PreciseSystem<crate::real::Big>,
-        PreciseState<crate::real::Big>,
-    ),
+    make: &MakeBig<'_>,
     digits: u32,
     max_digits: u32,
     skip: u64,
     count: u64,
+    progress: &mut dyn FnMut(DigitsProgress),
 ) -> DigitsOrbit {
     use crate::real::{bits_for_digits, Big, Number};
-    let run = |work: u32, bits: usize| {
+    let mut run = |work: u32, bits: usize| {
         let (sys, st) = make(bits);
         let err = Big::from_decimal(&format!("1e-{work}"), &bits).expect("a constant");
         let mut map = PreciseMap::new(sys.with_chatter_error(err), st);
         let mut events = Vec::new();
         let mut halt = None;
-        for _ in 0..skip.saturating_add(count) {
+        let total = skip.saturating_add(count);
+        let digits = (bits as f64 / std::f64::consts::LOG2_10) as u32;
+        for i in 0..total {
+            if i % PROGRESS_EVENTS == 0 {
+                progress(DigitsProgress {
+                    digits,
+                    done: i,
+                    total,
+                });
+            }
             match map.step() {
                 Ok(e) => events.push(e),
                 Err(h) => {
@@ -680,6 +710,11 @@ pub fn orbit_to_digits(
                 }
             }
         }
+        progress(DigitsProgress {
+            digits,
+            done: events.len() as u64,
+            total,
+        });
         (events, halt)
     };
     let mut work = digits + 10;
@@ -783,16 +818,12 @@ pub enum CycleVerdict {
 /// periods), and the two runs must agree on the cycle's length and on its stick time to
 /// `digits`.
 pub fn sticking_cycle_to_digits(
-    make: &dyn Fn(
-        usize,
-    ) -> (
-        PreciseSystem<crate::real::Big>,
-        PreciseState<crate::real::Big>,
-    ),
+    make: &MakeBig<'_>,
     digits: u32,
     max_digits: u32,
     max_events: u64,
     max_periods: i64,
+    progress: &mut dyn FnMut(DigitsProgress),
 ) -> CycleVerdict {
     use crate::real::{bits_for_digits, Big, Number};
     // (release phase, stick time, periods, releases), or why there is none.
@@ -802,14 +833,22 @@ pub fn sticking_cycle_to_digits(
         Release,
         Return,
     }
-    let cycle = |work: u32, bits: usize| -> Result<(Big, Big, i64, usize), NoCycle> {
+    let mut cycle = |work: u32, bits: usize| -> Result<(Big, Big, i64, usize), NoCycle> {
         let (sys, st) = make(bits);
         let err = Big::from_decimal(&format!("1e-{work}"), &bits).expect("a constant");
         let mut map = PreciseMap::new(sys.with_chatter_error(err), st);
         let mut first: Option<PreciseEvent<Big>> = None;
         let mut stick: Option<Big> = None;
         let mut releases = 0;
-        for _ in 0..max_events {
+        let run_digits = (bits as f64 / std::f64::consts::LOG2_10) as u32;
+        for i in 0..max_events {
+            if i % PROGRESS_EVENTS == 0 {
+                progress(DigitsProgress {
+                    digits: run_digits,
+                    done: i,
+                    total: 0,
+                });
+            }
             let Ok(e) = map.step() else { break };
             if e.period > max_periods {
                 break;
