@@ -21,6 +21,9 @@ use std::io::Write;
 
 pub fn run(run: &DigitsRun) -> anyhow::Result<()> {
     let total = run.skip.saturating_add(run.bounces);
+    // Standard output is the output before the work starts: progress then knows whether
+    // the results stream into another program.
+    let mut out = Sink::stdout();
     let mut report = Reporter::new(
         "orbit",
         total,
@@ -41,7 +44,6 @@ pub fn run(run: &DigitsRun) -> anyhow::Result<()> {
     let shown = orbit
         .first_short(run.spec.digits)
         .unwrap_or(orbit.events.len());
-    let mut out = Sink::stdout();
     let written = write(&mut out, run, &orbit, shown);
     out.end(written)?;
     if let Some(note) = note(run, &orbit, shown) {
@@ -200,6 +202,9 @@ const CYCLE_EVENTS: u64 = 1_000_000;
 /// or what could not be decided, and the digits it would need.
 pub fn lyapunov(run: &LyapunovDigits) -> anyhow::Result<()> {
     let spec = &run.spec;
+    // Standard output is the output before the work starts: progress then knows whether
+    // the results stream into another program.
+    let mut out = Sink::stdout();
     let mut report = Reporter::new(
         "lyapunov",
         CYCLE_EVENTS,
@@ -222,7 +227,6 @@ pub fn lyapunov(run: &LyapunovDigits) -> anyhow::Result<()> {
     } else {
         "as written"
     };
-    let mut out = Sink::stdout();
     let written = (|| -> anyhow::Result<()> {
         match run.format {
             Format::Text => {

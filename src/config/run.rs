@@ -360,6 +360,8 @@ pub struct PreciseSpec {
     pub max_digits: u32,
     /// Each parameter the double it was read to, exactly.
     pub binary: bool,
+    /// The sine table (no pieces).
+    pub sine: bool,
 }
 
 impl PreciseSpec {
@@ -373,13 +375,17 @@ impl PreciseSpec {
                 Big::from_decimal(&format!("{x}"), &bits).expect("a finite decimal")
             }
         };
-        let params: Vec<Big> = self.params.iter().map(|&x| num(x)).collect();
-        let pieces = self
-            .family
-            .pieces_in(&params, &bits)
-            .expect("checked piecewise when settled");
-        let sys = PreciseSystem::new(pieces, num(self.alpha), num(self.r), bits)
-            .expect("checked of degree ≤ 3 when settled");
+        let sys = if self.sine {
+            PreciseSystem::sine(num(self.alpha), num(self.r), bits)
+        } else {
+            let params: Vec<Big> = self.params.iter().map(|&x| num(x)).collect();
+            let pieces = self
+                .family
+                .pieces_in(&params, &bits)
+                .expect("checked piecewise when settled");
+            PreciseSystem::new(pieces, num(self.alpha), num(self.r), bits)
+                .expect("checked of degree ≤ 3 when settled")
+        };
         let t0 = num(self.t0);
         let w = match self.v0 {
             Some(v0) => num(v0) - sys.jet(&t0)[1].clone(),
@@ -458,16 +464,18 @@ fn precise_spec(
     let table = sys.table();
     let refuse = || {
         InputError(format!(
-            "--digits: table {} is not yet computed at any precision: valid a piecewise polynomial table of degree ≤ {} (fd:D, quad, cubic, a table file)",
+            "--digits: table {} is not yet computed at any precision: valid the sine or a piecewise polynomial table of degree ≤ {} (fd:D, quad, cubic, a table file)",
             table.name(),
             bouncemap_engine::PRECISE_MAX_DEGREE
         ))
     };
     let (family, params) = table.family().ok_or_else(refuse)?;
-    let ok = family.pieces_in::<f64>(params, &()).is_some_and(|ps| {
-        ps.iter()
-            .all(|p| p.coeffs.len() <= bouncemap_engine::PRECISE_MAX_DEGREE + 1)
-    });
+    let sine = std::sync::Arc::ptr_eq(family, bouncemap_engine::table::Family::sine());
+    let ok = sine
+        || family.pieces_in::<f64>(params, &()).is_some_and(|ps| {
+            ps.iter()
+                .all(|p| p.coeffs.len() <= bouncemap_engine::PRECISE_MAX_DEGREE + 1)
+        });
     if !ok {
         return Err(refuse());
     }
@@ -486,6 +494,7 @@ fn precise_spec(
         digits,
         max_digits: p.max_digits,
         binary: p.binary_params,
+        sine,
     }))
 }
 

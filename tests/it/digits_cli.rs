@@ -198,7 +198,12 @@ fn bad_digits_get_one_line_and_status_two() {
         ),
         (&["--binary-params"][..], "go with --digits N"),
         (
-            &["--digits", "30", "--table", "sine"][..],
+            &[
+                "--digits",
+                "30",
+                "--table",
+                concat!(env!("CARGO_MANIFEST_DIR"), "/assets/tables/quintic.toml"),
+            ][..],
             "not yet computed at any precision",
         ),
         (&["--digits", "30", "--z0", "1"][..], "valid --z0 0"),
@@ -365,5 +370,33 @@ fn the_widest_margin_cycle_is_decided_and_equals_an_independent_computation() {
         ) >= 59,
         "{}",
         binary[9]
+    );
+}
+
+/// The sine at α = 0.035 (sin and cos at the working precision): the sticking cycle
+/// equals an independent computation (mpmath at 120, 200 and 300 digits, the gap in
+/// closed form around each launch): released at t_r = 0.12878527316493914075764997846
+/// 93460982239, sticking 41.71899945007246170547760624240714476808782440056 periods
+/// later, L = 42.
+#[test]
+fn the_sines_sticking_cycle_equals_an_independent_computation() {
+    let row = lyapunov_csv(&["--table", "sine", "--alpha", "0.035", "--digits", "30"]);
+    assert_eq!(
+        (row[5].as_str(), row[6].as_str()),
+        ("found", "42"),
+        "{row:?}"
+    );
+    assert!(
+        same_digits(&row[8], "0.1287852731649391407576499784693460982239") >= 29,
+        "{}",
+        row[8]
+    );
+    assert!(
+        same_digits(
+            &row[9],
+            "41.71899945007246170547760624240714476808782440056"
+        ) >= 29,
+        "{}",
+        row[9]
     );
 }

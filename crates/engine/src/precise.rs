@@ -1,5 +1,6 @@
 //! The impact map at any precision ([`Real`]), on piecewise polynomial tables of degree
-//! at most 3 (F_D and its relatives, table files of that degree): the same events as
+//! at most 3 (F_D and its relatives, table files of that degree) and on the sine
+//! (sin and cos correctly rounded at the working precision): the same events as
 //! [`crate::ImpactMap`] (impact, stick, release), computed in the number type the
 //! system is made in, so that two precisions can be compared event by event.
 //!
@@ -17,7 +18,12 @@
 //!   f''' remain), taken once the bound of the terms left out is below the precision's
 //!   unit roundoff times the window; until then every impact is computed.
 //! * **Release.** Where 1 + αF'' turns negative: a root of a linear polynomial on a
-//!   piece, or a breakpoint where it jumps.
+//!   piece, or a breakpoint where it jumps; on the sine where sin 2πt rises through
+//!   1/(4π²α) (an arcsine at the working precision).
+//! * **The sine's flights** replace the f64 solver's compile-time polynomial pieces and
+//!   their error bounds: the gap is evaluated at the working precision (by its Taylor
+//!   series near the launch), and the flight advances by safe steps to the first zero of
+//!   its rigorous lower bound g + g'δ − (1 + αω²)δ²/2.
 
 use crate::map::{EventKind, MAX_EVENT_PERIOD};
 use crate::real::Real;
@@ -39,6 +45,8 @@ pub struct PreciseSystem<R: Real> {
     ctx: R::Context,
     /// The error accepted in a chattering sequence's accumulation time.
     chatter_error: R,
+    /// For the sine table F = sin 2πt: 2π at the precision (no pieces then).
+    omega: Option<R>,
 }
 
 /// Why a [`PreciseSystem`] cannot be made.
@@ -75,7 +83,22 @@ impl<R: Real> PreciseSystem<R> {
             r,
             ctx,
             chatter_error,
+            omega: None,
         })
+    }
+
+    /// The sine table F = sin 2πt at α and r, at the precision of `ctx`: sin and cos
+    /// correctly rounded at the working precision.
+    pub fn sine(alpha: R, r: R, ctx: R::Context) -> PreciseSystem<R> {
+        let omega = R::from_f64(2.0, &ctx) * R::pi(&ctx);
+        PreciseSystem {
+            pieces: Vec::new(),
+            alpha,
+            r,
+            chatter_error: R::epsilon(&ctx),
+            ctx,
+            omega: Some(omega),
+        }
     }
 
     /// The error accepted in a chattering sequence's accumulation time (by default the
@@ -121,6 +144,17 @@ impl<R: Real> PreciseSystem<R> {
 
     /// (f, f', f'', f''') of the table αF at `phase` in [0, 1).
     pub fn jet(&self, phase: &R) -> [R; 4] {
+        if let Some(w) = &self.omega {
+            let (s, c) = (w.clone() * phase.clone()).sin_cos();
+            let a = self.alpha.clone();
+            let w2 = w.clone() * w.clone();
+            return [
+                a.clone() * s.clone(),
+                a.clone() * w.clone() * c.clone(),
+                -(a.clone() * w2.clone() * s),
+                -(a * w2 * w.clone() * c),
+            ];
+        }
         let j = self.index(phase);
         let s = phase.clone() - self.pieces[j].start.clone();
         let [t0, t1, t2, t3] = self.taylor(j, &s);
@@ -261,9 +295,23 @@ impl<R: Real> PreciseMap<R> {
         if t0 > sys.num(CHATTER_WINDOW) {
             return None;
         }
-        let x = jet[3].clone() / a;
+        let x = jet[3].clone() / a.clone();
         let xt = (x.clone() * t0.clone()).abs();
-        if xt > sys.num(0.1) {
+        // Bounds of the fourth and fifth derivatives: zero on pieces of degree ≤ 3,
+        // αω⁴ and αω⁵ on the sine.
+        let (k4, k5) = match &sys.omega {
+            Some(w) => {
+                let w4 = w.clone() * w.clone() * w.clone() * w.clone();
+                (
+                    sys.alpha.clone() * w4.clone(),
+                    sys.alpha.clone() * w4 * w.clone(),
+                )
+            }
+            None => (sys.num(0.0), sys.num(0.0)),
+        };
+        let yt = k4 / a.clone() * t0.clone() * t0.clone();
+        let zt = k5 / a * t0.clone() * t0.clone() * t0.clone();
+        if xt > sys.num(0.1) || yt > sys.num(0.1) || zt > sys.num(0.1) {
             return None;
         }
         let r = sys.r.clone();
@@ -276,6 +324,18 @@ impl<R: Real> PreciseMap<R> {
         let d = sys.num(540.0) * (r2.clone() + one.clone()) * q.clone();
         let c3j = (sys.num(2.0) * r2.clone() + sys.num(3.0) * r.clone() + sys.num(2.0))
             / (sys.num(9.0) * q);
+        let c3k = (one.clone() + r.clone()) * (one.clone() + r.clone())
+            / (sys.num(12.0) * (r2.clone() + r.clone() + one.clone()));
+        let c4l = sys.num(9.0)
+            * (r4.clone() + sys.num(4.0) * r3.clone() + sys.num(4.0) * r.clone() + one.clone())
+            / d.clone();
+        let c4jk = sys.num(15.0)
+            * (sys.num(5.0) * r4.clone()
+                + sys.num(16.0) * r3.clone()
+                + sys.num(4.0) * r2.clone()
+                + sys.num(16.0) * r.clone()
+                + sys.num(5.0))
+            / d.clone();
         let c4j = sys.num(20.0)
             * (sys.num(5.0) * r4
                 + sys.num(13.0) * r3
@@ -284,7 +344,12 @@ impl<R: Real> PreciseMap<R> {
                 + sys.num(5.0))
             / d;
         // The terms left out, doubled for the orders beyond, against the precision.
-        let left_out = sys.num(2.0) * t0.clone() * c4j * xt.clone() * xt.clone() * xt.clone();
+        let left_out = sys.num(2.0)
+            * t0.clone()
+            * (c3k * yt.clone()
+                + c4l * zt
+                + c4jk * xt.clone() * yt
+                + c4j * xt.clone() * xt.clone() * xt.clone());
         if left_out > sys.chatter_error {
             return None;
         }
@@ -295,8 +360,7 @@ impl<R: Real> PreciseMap<R> {
         };
         let window = t0 * (one.clone() - sign * xt.clone() / sys.num(3.0) + c3j * xt.clone() * xt);
         let end = st.phase.clone() + window;
-        let j = sys.index(&st.phase);
-        if end >= sys.pieces[j].end {
+        if sys.omega.is_none() && end >= sys.pieces[sys.index(&st.phase)].end {
             return None;
         }
         let (period, phase) = wrap(st.period, end, &one);
@@ -307,6 +371,9 @@ impl<R: Real> PreciseMap<R> {
     }
 
     fn fly(&mut self) -> Result<PreciseEvent<R>, PreciseHalt> {
+        if self.sys.omega.is_some() {
+            return self.fly_sine();
+        }
         let sys = &self.sys;
         let st = self.state.clone();
         let zero = sys.num(0.0);
@@ -405,6 +472,9 @@ impl<R: Real> PreciseMap<R> {
     }
 
     fn release(&mut self) -> Result<PreciseEvent<R>, PreciseHalt> {
+        if self.sys.omega.is_some() {
+            return self.release_sine();
+        }
         let sys = &self.sys;
         let st = self.state.clone();
         let zero = sys.num(0.0);
@@ -460,6 +530,181 @@ impl<R: Real> PreciseMap<R> {
             from = zero.clone();
         }
         Err(PreciseHalt::Resting)
+    }
+}
+
+impl<R: Real> PreciseMap<R> {
+    /// A flight on the sine. The gap g(s) = z(s) − αF(τ₀ + s) has |g''| ≤ M = 1 + αω²,
+    /// so from s with g(s) > 0 it stays positive for δ below the root of
+    /// g + g'δ − Mδ²/2 (a rigorous lower bound): the flight advances by such safe steps,
+    /// which near a landing converge to it quadratically, until a step is below the
+    /// precision. Near the launch the gap is summed from its Taylor series in s (the
+    /// launch root divided out), free of the cancellation of sines.
+    fn fly_sine(&mut self) -> Result<PreciseEvent<R>, PreciseHalt> {
+        let sys = &self.sys;
+        let st = self.state.clone();
+        let w = sys.omega.clone().expect("the sine");
+        let zero = sys.num(0.0);
+        let one = sys.num(1.0);
+        let half = sys.num(0.5);
+        let eps = R::epsilon(&sys.ctx);
+        let tiny = eps.clone() * eps.clone();
+        let alpha = sys.alpha.clone();
+        let (s0, c0) = (w.clone() * st.phase.clone()).sin_cos();
+        let v0 = st.v.clone();
+        let m = one.clone() + alpha.clone() * w.clone() * w.clone();
+        // α F⁽ᵏ⁾(τ₀)/k! for k ≥ 2, until below the precision's square.
+        let mut taylor = Vec::new();
+        let mut c = alpha.clone() * w.clone();
+        for k in 2..20_000u32 {
+            c = c * w.clone() / sys.num(k as f64);
+            if c < tiny {
+                break;
+            }
+            let phase_term = match k % 4 {
+                0 => s0.clone(),
+                1 => c0.clone(),
+                2 => -s0.clone(),
+                _ => -c0.clone(),
+            };
+            taylor.push(c.clone() * phase_term);
+        }
+        let series_reach = half.clone() / w.clone();
+        // (g, g') at s.
+        let gap = |s: &R| -> (R, R) {
+            if *s <= series_reach {
+                // g = s q(s), q = w₀ − s/2 − Σ a_k s^(k−1); g' = q + s q'.
+                let mut q = st.w.clone() - half.clone() * s.clone();
+                let mut dq = -half.clone();
+                let mut pow = s.clone();
+                let mut dpow = one.clone();
+                for (i, a) in taylor.iter().enumerate() {
+                    let k1 = sys.num((i + 1) as f64);
+                    q = q - a.clone() * pow.clone();
+                    dq = dq - a.clone() * k1 * dpow.clone();
+                    dpow = pow.clone();
+                    pow = pow * s.clone();
+                }
+                (s.clone() * q.clone(), q + s.clone() * dq)
+            } else {
+                let (sn, cs) = (w.clone() * (st.phase.clone() + s.clone())).sin_cos();
+                let g = alpha.clone() * s0.clone() + v0.clone() * s.clone()
+                    - half.clone() * s.clone() * s.clone()
+                    - alpha.clone() * sn;
+                let dg = v0.clone() - s.clone() - alpha.clone() * w.clone() * cs;
+                (g, dg)
+            }
+        };
+        let mut s = zero.clone();
+        let (mut g, mut dg) = (zero.clone(), st.w.clone());
+        if st.w <= zero {
+            // Leaving with no relative velocity (after a release): g = c2 s² + c3 s³ + …
+            // with c2 = −(1 + αF'')/2, zero to rounding at a smooth release, and
+            // c3 = −αF⁽³⁾/6; the fourth derivative is at most αω⁴, so the gap stays
+            // positive up to 24 c3/(αω⁴): the first step goes half way. A ball that
+            // cannot leave rides on.
+            let t = sys.jet(&st.phase);
+            let c2 = -(one.clone() + t[2].clone()) * half.clone();
+            let c3 = -t[3].clone() / sys.num(6.0);
+            let slack = eps.clone() * sys.num(8.0) * m.clone();
+            if c2 < -slack.clone() || (c2 <= slack && c3 <= zero) {
+                let (period, phase) = (st.period, st.phase.clone());
+                return Ok(self.stick_at(period, phase, true));
+            }
+            let w4 = w.clone() * w.clone() * w.clone() * w.clone();
+            let first = sys.num(12.0) * c3 / (alpha.clone() * w4);
+            s = if first < series_reach {
+                first
+            } else {
+                half.clone() * series_reach.clone()
+            };
+            (g, dg) = gap(&s);
+        }
+        let mut landed = false;
+        for _ in 0..10 * crate::impact::MAX_SINE_STEPS {
+            // The safe step: the positive root of g + g'δ − Mδ²/2 (g ≥ 0).
+            let gp = if g > zero { g.clone() } else { zero.clone() };
+            let disc = (dg.clone() * dg.clone() + sys.num(2.0) * m.clone() * gp).sqrt();
+            let delta = (dg.clone() + disc) / m.clone();
+            if delta <= eps.clone() * (one.clone() + s.clone()) {
+                landed = s > zero;
+                break;
+            }
+            s = s + delta;
+            (g, dg) = gap(&s);
+            if g <= zero {
+                landed = true;
+                break;
+            }
+            if st.period.saturating_add(s.to_f64() as i64) >= MAX_EVENT_PERIOD {
+                return Err(PreciseHalt::TimeOutOfRange);
+            }
+        }
+        if !landed {
+            return Err(PreciseHalt::NoLanding);
+        }
+        let theta = st.phase.clone() + s.clone();
+        let (period, phase) = wrap(st.period, theta, &one);
+        let df = sys.jet(&phase)[1].clone();
+        let u = v0 - s - df.clone();
+        let wout = -(sys.r.clone() * u.clone());
+        let v = df + wout.clone();
+        self.state = PreciseState {
+            period,
+            phase: phase.clone(),
+            v: v.clone(),
+            w: wout,
+            stuck: false,
+            release_after: false,
+        };
+        Ok(PreciseEvent {
+            kind: EventKind::Impact,
+            period,
+            phase,
+            v,
+            vrel: u,
+        })
+    }
+
+    /// The release on the sine: the first phase after the stick where
+    /// 1 − αω² sin ωt turns negative, sin ωt rising through c = 1/(αω²): ωt = asin c
+    /// (mod 2π). Resting for good if c ≥ 1.
+    fn release_sine(&mut self) -> Result<PreciseEvent<R>, PreciseHalt> {
+        let sys = &self.sys;
+        let st = self.state.clone();
+        let w = sys.omega.clone().expect("the sine");
+        let zero = sys.num(0.0);
+        let one = sys.num(1.0);
+        let c = one.clone() / (sys.alpha.clone() * w.clone() * w.clone());
+        if c >= one {
+            return Err(PreciseHalt::Resting);
+        }
+        let at = c.asin() / w.clone();
+        let h_now = one.clone() + sys.jet(&st.phase)[2].clone();
+        let theta = if h_now < zero && !st.release_after {
+            st.phase.clone()
+        } else if at > st.phase {
+            at
+        } else {
+            at + one.clone()
+        };
+        let (period, phase) = wrap(st.period, theta, &one);
+        let df = sys.jet(&phase)[1].clone();
+        self.state = PreciseState {
+            period,
+            phase: phase.clone(),
+            v: df.clone(),
+            w: zero.clone(),
+            stuck: false,
+            release_after: false,
+        };
+        Ok(PreciseEvent {
+            kind: EventKind::Release,
+            period,
+            phase,
+            v: df,
+            vrel: zero,
+        })
     }
 }
 

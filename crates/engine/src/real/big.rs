@@ -123,6 +123,10 @@ impl Real for Big {
         (Big(s), Big(c))
     }
 
+    fn asin(&self) -> Big {
+        Big(self.0.asin())
+    }
+
     fn floor(&self) -> Big {
         Big::at(self.0.floor(), &self.bits())
     }

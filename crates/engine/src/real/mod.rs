@@ -47,6 +47,8 @@ pub trait Real: Number + PartialOrd + Debug {
     fn sqrt(&self) -> Self;
     /// (sin x, cos x), correctly rounded to the precision.
     fn sin_cos(&self) -> (Self, Self);
+    /// asin x, |x| ≤ 1.
+    fn asin(&self) -> Self;
     /// The largest integer not above x.
     fn floor(&self) -> Self;
     /// The precision's unit roundoff: the relative error of one rounding, 2^−(bits − 1)
@@ -86,6 +88,9 @@ impl Real for f64 {
     }
     fn sin_cos(&self) -> (f64, f64) {
         f64::sin_cos(*self)
+    }
+    fn asin(&self) -> f64 {
+        f64::asin(*self)
     }
     fn floor(&self) -> f64 {
         f64::floor(*self)

@@ -256,3 +256,81 @@ proptest! {
         }
     }
 }
+
+fn sine_events_f64(alpha: f64, phase: f64, w: f64, n: usize) -> Vec<(EventKind, f64, f64)> {
+    let sys = System::new(Table::sine(), alpha, 0.8).unwrap();
+    let st = State::launch(&sys, 0, phase, sys.df(phase) + w, 0.0).unwrap();
+    let mut map = ImpactMap::new(sys, Solver::Exact, st);
+    (0..n)
+        .map(|_| {
+            let e = map.step().unwrap();
+            (e.kind, e.period as f64 + e.phase, e.v)
+        })
+        .collect()
+}
+
+fn sine_in_big(alpha: f64, bits: usize) -> PreciseSystem<Big> {
+    PreciseSystem::sine(Big::from_f64(alpha, &bits), Big::from_f64(0.8, &bits), bits)
+}
+
+/// The sine at any precision (sin and cos at the working precision, flights by safe
+/// steps on a rigorous lower bound of the gap) is the f64 sine solver's map: the same
+/// events to 1e-9 on the period-1 and period-2 orbits, and from a low hop through
+/// chattering to the stick, the release and the flights after it.
+#[test]
+fn the_sine_at_any_precision_is_the_f64_sine() {
+    for (alpha, phase, w, n) in [(0.025, 0.1, 0.5, 40), (0.03, 0.2, 0.4, 40)] {
+        let want = sine_events_f64(alpha, phase, w, n);
+        let got = precise_events(sine_in_big(alpha, 200), phase, w, n);
+        for (i, (x, y)) in want.iter().zip(got.iter()).enumerate() {
+            assert!(
+                close(x, y, 1e-9),
+                "alpha {alpha}: event {i}: {x:?} vs {y:?}"
+            );
+        }
+    }
+    // A low hop where the table lifts the ball (sin 2πt < 0: 1 + αF'' > 0).
+    let after_stick = |events: Vec<(EventKind, f64, f64)>| {
+        let at = events
+            .iter()
+            .position(|e| e.0 == EventKind::Stick)
+            .expect("a stick");
+        events[at..at + 4].to_vec()
+    };
+    let (alpha, phase, w) = (0.035, 0.7, 0.01);
+    let want = after_stick(sine_events_f64(alpha, phase, w, 3000));
+    assert_eq!(want[1].0, EventKind::Release);
+    let got = after_stick(precise_events(sine_in_big(alpha, 200), phase, w, 3000));
+    for (i, (x, y)) in want.iter().zip(got.iter()).enumerate() {
+        assert!(
+            close(x, y, 1e-9),
+            "event {i} from the stick: {x:?} vs {y:?}"
+        );
+    }
+}
+
+/// The sine's (1, 1) solutions at 60 digits: αω cos ωt* = (1 − r)/(2(1 + r)) with
+/// ω = 2π, t* = ±acos(·)/ω; launched there with w = r/(1 + r) the ball lands one period
+/// later at t* with the same velocity, to 1e-55.
+#[test]
+fn the_sines_one_one_solutions_return_to_sixty_digits() {
+    let bits = bits_for_digits(64);
+    let n = |s: &str| Big::from_decimal(s, &bits).unwrap();
+    let (alpha, r, one) = (n("0.025"), n("0.8"), n("1"));
+    let omega = n("2") * Big::pi(&bits);
+    let y = (one.clone() - r.clone())
+        / (n("2") * (one.clone() + r.clone()) * alpha.clone() * omega.clone());
+    let acos = Big::pi(&bits) / n("2") - y.asin();
+    let sys = PreciseSystem::sine(alpha, r.clone(), bits);
+    let w = r.clone() / (one.clone() + r);
+    for t in [acos.clone() / omega.clone(), one.clone() - acos / omega] {
+        let st = PreciseState::launch(&sys, 0, t.clone(), w.clone());
+        let v0 = st.v.clone();
+        let mut map = PreciseMap::new(sys.clone(), st);
+        let e = map.step().unwrap();
+        assert_eq!((e.kind, e.period), (EventKind::Impact, 1));
+        let dt = (e.phase.clone() - t.clone()).abs().to_f64();
+        let dv = (e.v.clone() - v0).abs().to_f64();
+        assert!(dt < 1e-55 && dv < 1e-55, "t* {t:?}: {dt:e} {dv:e}");
+    }
+}
