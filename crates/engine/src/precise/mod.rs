@@ -1,0 +1,556 @@
+//! The impact map at any precision ([`Real`]), on piecewise polynomial tables of degree
+//! at most 3 (F_D and its relatives, table files of that degree) and on the sine
+//! (sin and cos correctly rounded at the working precision): the same events as
+//! [`crate::ImpactMap`] (impact, stick, release), computed in the number type the
+//! system is made in, so that two precisions can be compared event by event.
+//!
+//! What replaces the f64 map's specialised parts at any precision:
+//! * **Landing.** On each piece the gap between ball and table is a polynomial of
+//!   degree ≤ 3 in the piece's variable; its real roots are isolated exactly by the
+//!   roots of its derivative (a quadratic, solved with the square root of the working
+//!   precision), which split the piece into stretches where it is monotone, and the
+//!   first sign change is refined by Newton's method kept inside its bracket. On the
+//!   launch piece the launch root is divided out in closed form (the gap over s is
+//!   w − s/2 − α Σ F⁽ᵏ⁾ sᵏ⁻¹/k!), as the f64 solver does; no double-double is needed,
+//!   the working precision is the precision.
+//! * **Chattering.** The accumulation time of the impacts after a slow impact, from the
+//!   same series as the f64 map (see `map.rs`: on a piece of degree ≤ 3 only the terms in
+//!   f''' remain), taken once the bound of the terms left out is below the precision's
+//!   unit roundoff times the window; until then every impact is computed.
+//! * **Release.** Where 1 + αF'' turns negative: a root of a linear polynomial on a
+//!   piece, or a breakpoint where it jumps; on the sine where sin 2πt rises through
+//!   1/(4π²α) (an arcsine at the working precision).
+//! * **The sine's flights** replace the f64 solver's compile-time polynomial pieces and
+//!   their error bounds: the gap is evaluated at the working precision (by its Taylor
+//!   series near the launch), and the flight advances by safe steps to the first zero of
+//!   its rigorous lower bound g + g'δ − (1 + αω²)δ²/2.
+
+mod digits;
+mod roots;
+mod sine;
+
+pub use digits::{
+    agreeing_digits, orbit_to_digits, sticking_cycle_to_digits, CycleVerdict, DigitsOrbit,
+    DigitsProgress, MakeBig, StickingCycle,
+};
+
+use crate::map::{EventKind, MAX_EVENT_PERIOD};
+use crate::real::Real;
+use crate::table::PieceIn;
+use roots::{eval, first_root, first_sign_change};
+
+/// The largest degree of a table's pieces the map at any precision takes.
+pub const PRECISE_MAX_DEGREE: usize = 3;
+/// Pieces a flight may cross before the map reports that the ball does not land.
+const MAX_PIECES: usize = 1_000_000;
+/// The longest accumulation window the map resolves in one jump (as the f64 map).
+const CHATTER_WINDOW: f64 = 1e-3;
+
+/// A system at any precision: the table's pieces, α and r in `R`.
+#[derive(Clone, Debug)]
+pub struct PreciseSystem<R: Real> {
+    pieces: Vec<PieceIn<R>>,
+    alpha: R,
+    r: R,
+    ctx: R::Context,
+    /// The error accepted in a chattering sequence's accumulation time.
+    chatter_error: R,
+    /// For the sine table F = sin 2πt: 2π at the precision (no pieces then).
+    omega: Option<R>,
+}
+
+/// Why a [`PreciseSystem`] cannot be made.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum PreciseRefusal {
+    /// A piece's degree is above [`PRECISE_MAX_DEGREE`].
+    Degree(usize),
+    /// No pieces.
+    Empty,
+}
+
+impl<R: Real> PreciseSystem<R> {
+    /// The system of `pieces` (as [`crate::table::Family::pieces_in`] gives them) at α
+    /// and r, all at the precision of `ctx`.
+    pub fn new(
+        pieces: Vec<PieceIn<R>>,
+        alpha: R,
+        r: R,
+        ctx: R::Context,
+    ) -> Result<PreciseSystem<R>, PreciseRefusal> {
+        if pieces.is_empty() {
+            return Err(PreciseRefusal::Empty);
+        }
+        if let Some(p) = pieces
+            .iter()
+            .find(|p| p.coeffs.len() > PRECISE_MAX_DEGREE + 1)
+        {
+            return Err(PreciseRefusal::Degree(p.coeffs.len() - 1));
+        }
+        let chatter_error = R::epsilon(&ctx);
+        Ok(PreciseSystem {
+            pieces,
+            alpha,
+            r,
+            ctx,
+            chatter_error,
+            omega: None,
+        })
+    }
+
+    /// The sine table F = sin 2πt at α and r, at the precision of `ctx`: sin and cos
+    /// correctly rounded at the working precision.
+    pub fn sine(alpha: R, r: R, ctx: R::Context) -> PreciseSystem<R> {
+        let omega = R::from_f64(2.0, &ctx) * R::pi(&ctx);
+        PreciseSystem {
+            pieces: Vec::new(),
+            alpha,
+            r,
+            chatter_error: R::epsilon(&ctx),
+            ctx,
+            omega: Some(omega),
+        }
+    }
+
+    /// The error accepted in a chattering sequence's accumulation time (by default the
+    /// precision's unit roundoff). Two runs at different precisions that are to be
+    /// compared event by event take the same one, so that they resolve chattering after
+    /// the same impacts.
+    pub fn with_chatter_error(mut self, error: R) -> PreciseSystem<R> {
+        self.chatter_error = error;
+        self
+    }
+
+    /// The precision.
+    pub fn context(&self) -> &R::Context {
+        &self.ctx
+    }
+
+    fn num(&self, x: f64) -> R {
+        R::from_f64(x, &self.ctx)
+    }
+
+    /// The piece containing `phase` in [0, 1) (closed on the left).
+    fn index(&self, phase: &R) -> usize {
+        let mut i = 0;
+        while i + 1 < self.pieces.len() && self.pieces[i + 1].start <= *phase {
+            i += 1;
+        }
+        i
+    }
+
+    /// α F⁽ᵏ⁾/k! at local `s` of piece `j`, k = 0..=3: the Taylor coefficients of αF.
+    fn taylor(&self, j: usize, s: &R) -> [R; 4] {
+        let c = &self.pieces[j].coeffs;
+        let coef = |k: usize| c.get(k).cloned().unwrap_or_else(|| self.num(0.0));
+        // Shift the cubic c0 + c1 s + c2 s² + c3 s³ to `s`.
+        let (c0, c1, c2, c3) = (coef(0), coef(1), coef(2), coef(3));
+        let t0 = ((c3.clone() * s.clone() + c2.clone()) * s.clone() + c1.clone()) * s.clone() + c0;
+        let t1 =
+            (self.num(3.0) * c3.clone() * s.clone() + self.num(2.0) * c2.clone()) * s.clone() + c1;
+        let t2 = self.num(3.0) * c3.clone() * s.clone() + c2;
+        let a = self.alpha.clone();
+        [a.clone() * t0, a.clone() * t1, a.clone() * t2, a * c3]
+    }
+
+    /// (f, f', f'', f''') of the table αF at `phase` in [0, 1).
+    pub fn jet(&self, phase: &R) -> [R; 4] {
+        if let Some(w) = &self.omega {
+            let (s, c) = (w.clone() * phase.clone()).sin_cos();
+            let a = self.alpha.clone();
+            let w2 = w.clone() * w.clone();
+            return [
+                a.clone() * s.clone(),
+                a.clone() * w.clone() * c.clone(),
+                -(a.clone() * w2.clone() * s),
+                -(a * w2 * w.clone() * c),
+            ];
+        }
+        let j = self.index(phase);
+        let s = phase.clone() - self.pieces[j].start.clone();
+        let [t0, t1, t2, t3] = self.taylor(j, &s);
+        [t0, t1, self.num(2.0) * t2, self.num(6.0) * t3]
+    }
+}
+
+/// The ball right after an event.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PreciseState<R> {
+    /// Whole table periods of the event time.
+    pub period: i64,
+    /// Phase in [0, 1).
+    pub phase: R,
+    /// Ball velocity.
+    pub v: R,
+    /// Velocity relative to the table.
+    pub w: R,
+    /// Riding on the table.
+    pub stuck: bool,
+    /// After a stick of a ball launched with no relative velocity: release strictly
+    /// after this instant.
+    release_after: bool,
+}
+
+impl<R: Real> PreciseState<R> {
+    /// A ball launched from the table at (period, phase) with relative velocity `w` ≥ 0.
+    pub fn launch(sys: &PreciseSystem<R>, period: i64, phase: R, w: R) -> PreciseState<R> {
+        let df = sys.jet(&phase)[1].clone();
+        PreciseState {
+            period,
+            phase,
+            v: df + w.clone(),
+            w,
+            stuck: false,
+            release_after: false,
+        }
+    }
+}
+
+/// One event at any precision.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PreciseEvent<R> {
+    /// Impact, stick or release.
+    pub kind: EventKind,
+    /// Whole table periods of its time.
+    pub period: i64,
+    /// Its phase.
+    pub phase: R,
+    /// The ball's velocity right after it.
+    pub v: R,
+    /// The relative velocity of the landing (0 for a stick or a release).
+    pub vrel: R,
+}
+
+/// Why the map at any precision stopped.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum PreciseHalt {
+    /// The ball did not land within the bound on pieces crossed.
+    NoLanding,
+    /// The ball rests on the table for good (no release exists).
+    Resting,
+    /// The next event would lie beyond [`MAX_EVENT_PERIOD`] periods.
+    TimeOutOfRange,
+}
+
+/// The impact map at any precision.
+#[derive(Clone, Debug)]
+pub struct PreciseMap<R: Real> {
+    sys: PreciseSystem<R>,
+    state: PreciseState<R>,
+}
+
+impl<R: Real> PreciseMap<R> {
+    /// The map of `sys` from `state`.
+    pub fn new(sys: PreciseSystem<R>, state: PreciseState<R>) -> PreciseMap<R> {
+        PreciseMap { sys, state }
+    }
+
+    /// The state after the last event.
+    pub fn state(&self) -> &PreciseState<R> {
+        &self.state
+    }
+
+    /// The system.
+    pub fn system(&self) -> &PreciseSystem<R> {
+        &self.sys
+    }
+
+    /// The next event.
+    pub fn step(&mut self) -> Result<PreciseEvent<R>, PreciseHalt> {
+        if self.state.period.unsigned_abs() >= MAX_EVENT_PERIOD as u64 {
+            return Err(PreciseHalt::TimeOutOfRange);
+        }
+        if self.state.stuck {
+            return self.release();
+        }
+        if self.state.w > self.sys.num(0.0) {
+            if let Some((period, phase)) = self.chatter_limit() {
+                return Ok(self.stick_at(period, phase, false));
+            }
+        }
+        self.fly()
+    }
+
+    fn stick_at(&mut self, period: i64, phase: R, release_after: bool) -> PreciseEvent<R> {
+        let df = self.sys.jet(&phase)[1].clone();
+        let zero = self.sys.num(0.0);
+        self.state = PreciseState {
+            period,
+            phase: phase.clone(),
+            v: df.clone(),
+            w: zero.clone(),
+            stuck: true,
+            release_after,
+        };
+        PreciseEvent {
+            kind: EventKind::Stick,
+            period,
+            phase,
+            v: df,
+            vrel: zero,
+        }
+    }
+
+    /// If the impacts after this (slow) launch accumulate within a resolved window, the
+    /// accumulation time (see the module's header).
+    fn chatter_limit(&self) -> Option<(i64, R)> {
+        let sys = &self.sys;
+        let st = &self.state;
+        let jet = sys.jet(&st.phase);
+        let one = sys.num(1.0);
+        let a = one.clone() + jet[2].clone();
+        if a <= sys.num(0.0) {
+            return None;
+        }
+        let t0 = sys.num(2.0) * st.w.clone() / (a.clone() * (one.clone() - sys.r.clone()));
+        if t0 > sys.num(CHATTER_WINDOW) {
+            return None;
+        }
+        let x = jet[3].clone() / a.clone();
+        let xt = (x.clone() * t0.clone()).abs();
+        // Bounds of the fourth and fifth derivatives: zero on pieces of degree ≤ 3,
+        // αω⁴ and αω⁵ on the sine.
+        let (k4, k5) = match &sys.omega {
+            Some(w) => {
+                let w4 = w.clone() * w.clone() * w.clone() * w.clone();
+                (
+                    sys.alpha.clone() * w4.clone(),
+                    sys.alpha.clone() * w4 * w.clone(),
+                )
+            }
+            None => (sys.num(0.0), sys.num(0.0)),
+        };
+        let yt = k4 / a.clone() * t0.clone() * t0.clone();
+        let zt = k5 / a * t0.clone() * t0.clone() * t0.clone();
+        if xt > sys.num(0.1) || yt > sys.num(0.1) || zt > sys.num(0.1) {
+            return None;
+        }
+        let r = sys.r.clone();
+        let (r2, r3, r4) = (
+            r.clone() * r.clone(),
+            r.clone() * r.clone() * r.clone(),
+            r.clone() * r.clone() * r.clone() * r.clone(),
+        );
+        let q = r2.clone() + r.clone() + one.clone();
+        let d = sys.num(540.0) * (r2.clone() + one.clone()) * q.clone();
+        let c3j = (sys.num(2.0) * r2.clone() + sys.num(3.0) * r.clone() + sys.num(2.0))
+            / (sys.num(9.0) * q);
+        let c3k = (one.clone() + r.clone()) * (one.clone() + r.clone())
+            / (sys.num(12.0) * (r2.clone() + r.clone() + one.clone()));
+        let c4l = sys.num(9.0)
+            * (r4.clone() + sys.num(4.0) * r3.clone() + sys.num(4.0) * r.clone() + one.clone())
+            / d.clone();
+        let c4jk = sys.num(15.0)
+            * (sys.num(5.0) * r4.clone()
+                + sys.num(16.0) * r3.clone()
+                + sys.num(4.0) * r2.clone()
+                + sys.num(16.0) * r.clone()
+                + sys.num(5.0))
+            / d.clone();
+        let c4j = sys.num(20.0)
+            * (sys.num(5.0) * r4
+                + sys.num(13.0) * r3
+                + sys.num(6.0) * r2
+                + sys.num(13.0) * r
+                + sys.num(5.0))
+            / d;
+        // The terms left out, doubled for the orders beyond, against the precision.
+        let left_out = sys.num(2.0)
+            * t0.clone()
+            * (c3k * yt.clone()
+                + c4l * zt
+                + c4jk * xt.clone() * yt
+                + c4j * xt.clone() * xt.clone() * xt.clone());
+        if left_out > sys.chatter_error {
+            return None;
+        }
+        let sign = if x < sys.num(0.0) {
+            -one.clone()
+        } else {
+            one.clone()
+        };
+        let window = t0 * (one.clone() - sign * xt.clone() / sys.num(3.0) + c3j * xt.clone() * xt);
+        let end = st.phase.clone() + window;
+        if sys.omega.is_none() && end >= sys.pieces[sys.index(&st.phase)].end {
+            return None;
+        }
+        let (period, phase) = wrap(st.period, end, &one);
+        if one + sys.jet(&phase)[2].clone() <= sys.num(0.0) {
+            return None;
+        }
+        Some((period, phase))
+    }
+
+    fn fly(&mut self) -> Result<PreciseEvent<R>, PreciseHalt> {
+        if self.sys.omega.is_some() {
+            return self.fly_sine();
+        }
+        let sys = &self.sys;
+        let st = self.state.clone();
+        let zero = sys.num(0.0);
+        let one = sys.num(1.0);
+        let half = sys.num(0.5);
+        let j0 = sys.index(&st.phase);
+        let sig0 = st.phase.clone() - sys.pieces[j0].start.clone();
+        let t = sys.taylor(j0, &sig0);
+        // The launch piece: gap/s = w − (1/2 + a2) s − a3 s², on (0, end − phase].
+        let c1 = -(half.clone() + t[2].clone());
+        let c2 = -t[3].clone();
+        let q = if st.w > zero {
+            vec![st.w.clone(), c1, c2]
+        } else {
+            // Leaving with no relative velocity (after a release): gap/s² =
+            // −(1/2 + a2) − a3 s, whose constant term is 0 to rounding at a smooth
+            // release. A ball that cannot leave rides on.
+            let tiny = R::epsilon(&sys.ctx) * sys.num(8.0) * (one.clone() + t[2].abs());
+            let c1 = if c1.abs() <= tiny { zero.clone() } else { c1 };
+            if c1 > zero {
+                vec![c1, c2]
+            } else if c1 == zero && c2 > zero {
+                vec![c2]
+            } else {
+                let (period, phase) = (st.period, st.phase.clone());
+                return Ok(self.stick_at(period, phase, true));
+            }
+        };
+        let first_len = sys.pieces[j0].end.clone() - st.phase.clone();
+        let found = first_root(&q, &zero, &first_len, &sys.ctx);
+        // (time since launch, phase of the landing from the launch's period)
+        let mut hit: Option<(R, R)> = found.map(|s| (s.clone(), st.phase.clone() + s));
+        let y0 = t[0].clone();
+        let v0 = st.v.clone();
+        let n = sys.pieces.len();
+        let mut crossed = 0;
+        let (mut m, mut j) = (0i64, j0);
+        while hit.is_none() {
+            j += 1;
+            if j == n {
+                j = 0;
+                m += 1;
+            }
+            crossed += 1;
+            if crossed > MAX_PIECES || st.period.saturating_add(m) >= MAX_EVENT_PERIOD {
+                return Err(PreciseHalt::NoLanding);
+            }
+            let p = &sys.pieces[j];
+            // Time from the launch to the piece's start.
+            let delta = sys.num(m as f64) + p.start.clone() - st.phase.clone();
+            let c = |k: usize| {
+                sys.alpha.clone() * p.coeffs.get(k).cloned().unwrap_or_else(|| zero.clone())
+            };
+            let g = vec![
+                y0.clone() + v0.clone() * delta.clone()
+                    - half.clone() * delta.clone() * delta.clone()
+                    - c(0),
+                v0.clone() - delta.clone() - c(1),
+                -half.clone() - c(2),
+                -c(3),
+            ];
+            let len = p.end.clone() - p.start.clone();
+            let at = |sigma: R| {
+                let theta = sys.num(m as f64) + p.start.clone() + sigma.clone();
+                (delta.clone() + sigma, theta)
+            };
+            if eval(&g, &zero) <= zero {
+                hit = Some(at(zero.clone()));
+                break;
+            }
+            hit = first_root(&g, &zero, &len, &sys.ctx).map(at);
+        }
+        let (s, theta) = hit.expect("found above");
+        // The landing: phase, table's and ball's velocities.
+        let (period, phase) = wrap(st.period, theta, &one);
+        let df = sys.jet(&phase)[1].clone();
+        let vball = v0 - s;
+        let u = vball - df.clone();
+        let w = -(sys.r.clone() * u.clone());
+        let v = df + w.clone();
+        self.state = PreciseState {
+            period,
+            phase: phase.clone(),
+            v: v.clone(),
+            w,
+            stuck: false,
+            release_after: false,
+        };
+        Ok(PreciseEvent {
+            kind: EventKind::Impact,
+            period,
+            phase,
+            v,
+            vrel: u,
+        })
+    }
+
+    fn release(&mut self) -> Result<PreciseEvent<R>, PreciseHalt> {
+        if self.sys.omega.is_some() {
+            return self.release_sine();
+        }
+        let sys = &self.sys;
+        let st = self.state.clone();
+        let zero = sys.num(0.0);
+        let one = sys.num(1.0);
+        let n = sys.pieces.len();
+        let j0 = sys.index(&st.phase);
+        // 1 + αF'' on piece j as a polynomial in its variable: 1 + 2a2 + 6a3 s.
+        let h = |j: usize| {
+            let t = sys.taylor(j, &zero);
+            vec![
+                one.clone() + sys.num(2.0) * t[2].clone(),
+                sys.num(6.0) * t[3].clone(),
+            ]
+        };
+        let (mut m, mut j) = (0i64, j0);
+        let mut from = st.phase.clone() - sys.pieces[j0].start.clone();
+        // One period and the rest of the current piece cover every phase.
+        for _ in 0..=n {
+            let p = &sys.pieces[j];
+            let len = p.end.clone() - p.start.clone();
+            let hj = h(j);
+            let at_from = eval(&hj, &from);
+            let released = if at_from < zero && !(st.release_after && m == 0 && j == j0) {
+                Some(from.clone())
+            } else {
+                first_sign_change(&hj, &from, &len, &sys.ctx)
+            };
+            if let Some(sigma) = released {
+                let theta = sys.num(m as f64) + p.start.clone() + sigma;
+                let (period, phase) = wrap(st.period, theta, &one);
+                let df = sys.jet(&phase)[1].clone();
+                self.state = PreciseState {
+                    period,
+                    phase: phase.clone(),
+                    v: df.clone(),
+                    w: zero.clone(),
+                    stuck: false,
+                    release_after: false,
+                };
+                return Ok(PreciseEvent {
+                    kind: EventKind::Release,
+                    period,
+                    phase,
+                    v: df,
+                    vrel: zero,
+                });
+            }
+            j += 1;
+            if j == n {
+                j = 0;
+                m += 1;
+            }
+            from = zero.clone();
+        }
+        Err(PreciseHalt::Resting)
+    }
+}
+
+/// (period, phase) of `theta` periods after the start of `period`, phase in [0, 1).
+pub(super) fn wrap<R: Real>(period: i64, theta: R, one: &R) -> (i64, R) {
+    let whole = theta.floor();
+    let k = whole.to_f64() as i64;
+    let phase = theta - whole;
+    if phase >= *one {
+        (period.saturating_add(k + 1), phase - one.clone())
+    } else {
+        (period.saturating_add(k), phase)
+    }
+}
