@@ -308,7 +308,7 @@ fn lyapunov_decides_the_sticking_cycle_past_double_precision() {
 /// verdict says so (exit 0) instead of printing a cycle.
 #[test]
 fn an_undecided_cycle_is_said_to_be_undecided() {
-    let row = lyapunov_csv(&[
+    let args = [
         "--table",
         "fd:0.1",
         "--alpha",
@@ -317,20 +317,11 @@ fn an_undecided_cycle_is_said_to_be_undecided() {
         "30",
         "--max-digits",
         "60",
-    ]);
+    ];
+    let row = lyapunov_csv(&args);
     assert_eq!(row[5], "undecided", "{row:?}");
     assert!(row[6].is_empty() && row[9].is_empty(), "{row:?}");
-    let out = bouncemap(&[
-        "lyapunov",
-        "--table",
-        "fd:0.1",
-        "--alpha",
-        "0.6",
-        "--digits",
-        "30",
-        "--max-digits",
-        "60",
-    ]);
+    let out = bouncemap(&[&["lyapunov"][..], &args].concat());
     assert!(out.status.success());
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(

@@ -457,10 +457,15 @@ impl<R: Real> PreciseMap<R> {
             hit = first_root(&g, &zero, &len, &sys.ctx).map(at);
         }
         let (s, theta) = hit.expect("found above");
-        // The landing: phase, table's and ball's velocities.
-        let (period, phase) = wrap(st.period, theta, &one);
+        Ok(self.land(theta, v0 - s))
+    }
+
+    /// The landing `theta` periods after the start of the state's period, the ball
+    /// arriving with velocity `vball`: the restitution law, the new state and its event.
+    fn land(&mut self, theta: R, vball: R) -> PreciseEvent<R> {
+        let sys = &self.sys;
+        let (period, phase) = wrap(self.state.period, theta, &sys.num(1.0));
         let df = sys.jet(&phase)[1].clone();
-        let vball = v0 - s;
         let u = vball - df.clone();
         let w = -(sys.r.clone() * u.clone());
         let v = df + w.clone();
@@ -472,13 +477,37 @@ impl<R: Real> PreciseMap<R> {
             stuck: false,
             release_after: false,
         };
-        Ok(PreciseEvent {
+        PreciseEvent {
             kind: EventKind::Impact,
             period,
             phase,
             v,
             vrel: u,
-        })
+        }
+    }
+
+    /// The release `theta` periods after the start of the state's period: the ball
+    /// leaves with the table's velocity.
+    fn release_at(&mut self, theta: R) -> PreciseEvent<R> {
+        let sys = &self.sys;
+        let zero = sys.num(0.0);
+        let (period, phase) = wrap(self.state.period, theta, &sys.num(1.0));
+        let df = sys.jet(&phase)[1].clone();
+        self.state = PreciseState {
+            period,
+            phase: phase.clone(),
+            v: df.clone(),
+            w: zero.clone(),
+            stuck: false,
+            release_after: false,
+        };
+        PreciseEvent {
+            kind: EventKind::Release,
+            period,
+            phase,
+            v: df,
+            vrel: zero,
+        }
     }
 
     fn release(&mut self) -> Result<PreciseEvent<R>, PreciseHalt> {
@@ -514,23 +543,7 @@ impl<R: Real> PreciseMap<R> {
             };
             if let Some(sigma) = released {
                 let theta = sys.num(m as f64) + p.start.clone() + sigma;
-                let (period, phase) = wrap(st.period, theta, &one);
-                let df = sys.jet(&phase)[1].clone();
-                self.state = PreciseState {
-                    period,
-                    phase: phase.clone(),
-                    v: df.clone(),
-                    w: zero.clone(),
-                    stuck: false,
-                    release_after: false,
-                };
-                return Ok(PreciseEvent {
-                    kind: EventKind::Release,
-                    period,
-                    phase,
-                    v: df,
-                    vrel: zero,
-                });
+                return Ok(self.release_at(theta));
             }
             j += 1;
             if j == n {

@@ -2,8 +2,8 @@
 //! on a rigorous lower bound of the gap, the gap by its Taylor series near the launch,
 //! and the release where sin 2πt rises through 1/(4π²α).
 
-use super::{wrap, PreciseEvent, PreciseHalt, PreciseMap, PreciseState};
-use crate::map::{EventKind, MAX_EVENT_PERIOD};
+use super::{PreciseEvent, PreciseHalt, PreciseMap};
+use crate::map::MAX_EVENT_PERIOD;
 use crate::real::Real;
 
 impl<R: Real> PreciseMap<R> {
@@ -117,26 +117,7 @@ impl<R: Real> PreciseMap<R> {
             return Err(PreciseHalt::NoLanding);
         }
         let theta = st.phase.clone() + s.clone();
-        let (period, phase) = wrap(st.period, theta, &one);
-        let df = sys.jet(&phase)[1].clone();
-        let u = v0 - s - df.clone();
-        let wout = -(sys.r.clone() * u.clone());
-        let v = df + wout.clone();
-        self.state = PreciseState {
-            period,
-            phase: phase.clone(),
-            v: v.clone(),
-            w: wout,
-            stuck: false,
-            release_after: false,
-        };
-        Ok(PreciseEvent {
-            kind: EventKind::Impact,
-            period,
-            phase,
-            v,
-            vrel: u,
-        })
+        Ok(self.land(theta, v0 - s))
     }
 
     /// The release on the sine: the first phase after the stick where
@@ -161,22 +142,6 @@ impl<R: Real> PreciseMap<R> {
         } else {
             at + one.clone()
         };
-        let (period, phase) = wrap(st.period, theta, &one);
-        let df = sys.jet(&phase)[1].clone();
-        self.state = PreciseState {
-            period,
-            phase: phase.clone(),
-            v: df.clone(),
-            w: zero.clone(),
-            stuck: false,
-            release_after: false,
-        };
-        Ok(PreciseEvent {
-            kind: EventKind::Release,
-            period,
-            phase,
-            v: df,
-            vrel: zero,
-        })
+        Ok(self.release_at(theta))
     }
 }

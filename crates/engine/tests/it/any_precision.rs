@@ -40,8 +40,16 @@ fn precise_events<R: Real>(
         .collect()
 }
 
-fn f64_events(d: f64, alpha: f64, phase: f64, w: f64, n: usize) -> Vec<(EventKind, f64, f64)> {
-    let sys = System::new(Table::fd(d).unwrap(), alpha, 0.8).unwrap();
+/// (kind, absolute time, velocity) of the first `n` events of the f64 map on `table`
+/// (r = 0.8) from a launch at `phase` with relative velocity `w`.
+fn table_events(
+    table: Table,
+    alpha: f64,
+    phase: f64,
+    w: f64,
+    n: usize,
+) -> Vec<(EventKind, f64, f64)> {
+    let sys = System::new(table, alpha, 0.8).unwrap();
     let st = State::launch(&sys, 0, phase, sys.df(phase) + w, 0.0).unwrap();
     let mut map = ImpactMap::new(sys, Solver::Exact, st);
     (0..n)
@@ -50,6 +58,19 @@ fn f64_events(d: f64, alpha: f64, phase: f64, w: f64, n: usize) -> Vec<(EventKin
             (e.kind, e.period as f64 + e.phase, e.v)
         })
         .collect()
+}
+
+fn f64_events(d: f64, alpha: f64, phase: f64, w: f64, n: usize) -> Vec<(EventKind, f64, f64)> {
+    table_events(Table::fd(d).unwrap(), alpha, phase, w, n)
+}
+
+/// The events from the first stick on: the stick and the `count` - 1 after it.
+fn after_stick(events: Vec<(EventKind, f64, f64)>, count: usize) -> Vec<(EventKind, f64, f64)> {
+    let at = events
+        .iter()
+        .position(|e| e.0 == EventKind::Stick)
+        .expect("a stick");
+    events[at..at + count].to_vec()
 }
 
 /// The system in f64 and at 200 bits with the doubles nearest the decimals, as the
@@ -106,20 +127,13 @@ fn in_f64_and_at_200_bits_the_precise_map_is_the_f64_map() {
 /// impacts after it agree to 1e-9.
 #[test]
 fn chattering_sticks_and_releases_where_the_f64_map_does() {
-    let after_stick = |events: Vec<(EventKind, f64, f64)>| {
-        let at = events
-            .iter()
-            .position(|e| e.0 == EventKind::Stick)
-            .expect("a stick");
-        events[at..at + 5].to_vec()
-    };
     let (phase, w, n) = (0.75, 0.01, 2000);
-    let want = after_stick(f64_events(0.1, 0.6, phase, w, n));
+    let want = after_stick(f64_events(0.1, 0.6, phase, w, n), 5);
     assert_eq!(want[1].0, EventKind::Release);
     let (a, b) = both("0.1", "0.6");
     for (label, got) in [
-        ("f64", after_stick(precise_events(a, phase, w, n))),
-        ("200 bits", after_stick(precise_events(b, phase, w, n))),
+        ("f64", after_stick(precise_events(a, phase, w, n), 5)),
+        ("200 bits", after_stick(precise_events(b, phase, w, n), 5)),
     ] {
         for (i, (x, y)) in want.iter().zip(got.iter()).enumerate() {
             assert!(
@@ -258,15 +272,7 @@ proptest! {
 }
 
 fn sine_events_f64(alpha: f64, phase: f64, w: f64, n: usize) -> Vec<(EventKind, f64, f64)> {
-    let sys = System::new(Table::sine(), alpha, 0.8).unwrap();
-    let st = State::launch(&sys, 0, phase, sys.df(phase) + w, 0.0).unwrap();
-    let mut map = ImpactMap::new(sys, Solver::Exact, st);
-    (0..n)
-        .map(|_| {
-            let e = map.step().unwrap();
-            (e.kind, e.period as f64 + e.phase, e.v)
-        })
-        .collect()
+    table_events(Table::sine(), alpha, phase, w, n)
 }
 
 fn sine_in_big(alpha: f64, bits: usize) -> PreciseSystem<Big> {
@@ -290,17 +296,10 @@ fn the_sine_at_any_precision_is_the_f64_sine() {
         }
     }
     // A low hop where the table lifts the ball (sin 2πt < 0: 1 + αF'' > 0).
-    let after_stick = |events: Vec<(EventKind, f64, f64)>| {
-        let at = events
-            .iter()
-            .position(|e| e.0 == EventKind::Stick)
-            .expect("a stick");
-        events[at..at + 4].to_vec()
-    };
     let (alpha, phase, w) = (0.035, 0.7, 0.01);
-    let want = after_stick(sine_events_f64(alpha, phase, w, 3000));
+    let want = after_stick(sine_events_f64(alpha, phase, w, 3000), 4);
     assert_eq!(want[1].0, EventKind::Release);
-    let got = after_stick(precise_events(sine_in_big(alpha, 200), phase, w, 3000));
+    let got = after_stick(precise_events(sine_in_big(alpha, 200), phase, w, 3000), 4);
     for (i, (x, y)) in want.iter().zip(got.iter()).enumerate() {
         assert!(
             close(x, y, 1e-9),
