@@ -186,13 +186,7 @@ fn text(
     if let Some(p) = found.precision {
         writeln!(out, "cycle: {}", p.describe())?;
         // The run at any precision decides it, on the tables it takes.
-        let polynomial = sys.table().family().is_some_and(|(f, v)| {
-            f.pieces_in::<f64>(v, &()).is_some_and(|ps| {
-                ps.iter()
-                    .all(|p| p.coeffs.len() <= bouncemap_engine::PRECISE_MAX_DEGREE + 1)
-            })
-        });
-        if !p.resolved && polynomial {
+        if !p.resolved && bouncemap_engine::precise_takes(sys.table()) {
             let need = (p.growth_decades.ceil() as u32 + 20).max(60);
             writeln!(
                 out,

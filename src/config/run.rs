@@ -469,16 +469,13 @@ fn precise_spec(
             bouncemap_engine::PRECISE_MAX_DEGREE
         ))
     };
-    let (family, params) = table.family().ok_or_else(refuse)?;
-    let sine = std::sync::Arc::ptr_eq(family, bouncemap_engine::table::Family::sine());
-    let ok = sine
-        || family.pieces_in::<f64>(params, &()).is_some_and(|ps| {
-            ps.iter()
-                .all(|p| p.coeffs.len() <= bouncemap_engine::PRECISE_MAX_DEGREE + 1)
-        });
-    if !ok {
+    if !bouncemap_engine::precise_takes(table) {
         return Err(refuse());
     }
+    let (family, params) = table
+        .family()
+        .expect("a table the map at any precision takes");
+    let sine = std::sync::Arc::ptr_eq(family, bouncemap_engine::table::Family::sine());
     let (t0, v0) = match start {
         Some((t0, v0)) => (t0, Some(v0)),
         None => (initial.t0, initial.v0),

@@ -41,6 +41,18 @@ use roots::{eval, first_root, first_sign_change};
 
 /// The largest degree of a table's pieces the map at any precision takes.
 pub const PRECISE_MAX_DEGREE: usize = 3;
+
+/// Whether the map at any precision takes `table`: the sine, or a member of a family
+/// whose pieces are polynomials of degree at most [`PRECISE_MAX_DEGREE`].
+pub fn precise_takes(table: &crate::table::Table) -> bool {
+    table.family().is_some_and(|(family, values)| {
+        std::sync::Arc::ptr_eq(family, crate::table::Family::sine())
+            || family
+                .pieces_in::<f64>(values, &())
+                .is_some_and(|ps| ps.iter().all(|p| p.coeffs.len() <= PRECISE_MAX_DEGREE + 1))
+    })
+}
+
 /// Pieces a flight may cross before the map reports that the ball does not land.
 const MAX_PIECES: usize = 1_000_000;
 /// The longest accumulation window the map resolves in one jump (as the f64 map).
