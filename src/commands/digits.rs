@@ -11,10 +11,12 @@
 
 use super::progress::Progress;
 use crate::config::run::{DigitsRun, LyapunovDigits};
+use crate::output::records::CycleRecord;
 use crate::output::sink::Sink;
 use crate::output::Format;
 use bouncemap_engine::{
-    orbit_to_digits, sticking_cycle_to_digits, Big, CycleVerdict, DigitsOrbit, DigitsProgress, Real,
+    orbit_to_digits, sticking_cycle_to_digits, Big, CycleVerdict, DigitsOrbit, DigitsProgress,
+    Real, CYCLE_EVENTS,
 };
 use serde_json::json;
 use std::io::Write;
@@ -193,9 +195,6 @@ impl Reporter {
     }
 }
 
-/// Events a sticking cycle is looked for within, at each precision.
-const CYCLE_EVENTS: u64 = 1_000_000;
-
 /// `lyapunov --digits N`: the sticking cycle of the orbit decided at any precision
 /// ([`sticking_cycle_to_digits`]): its length in table periods, where it is released
 /// and how long after the release it sticks, to the digits the two precisions agree on;
@@ -219,9 +218,16 @@ pub fn lyapunov(run: &LyapunovDigits) -> anyhow::Result<()> {
         spec.max_digits,
         CYCLE_EVENTS,
         i64::try_from(run.transient).unwrap_or(i64::MAX),
-        &mut |p| report.update(p),
+        &mut |p| {
+            report.update(p);
+            std::ops::ControlFlow::Continue(())
+        },
     );
     report.finish();
+    // (Only a progress report that asks to stop ends it without a verdict.)
+    let Some(verdict) = verdict else {
+        anyhow::bail!("the run at any precision stopped without a verdict");
+    };
     let params = if spec.binary {
         "as doubles"
     } else {
@@ -248,7 +254,8 @@ pub fn lyapunov(run: &LyapunovDigits) -> anyhow::Result<()> {
                     out,
                     "table,alpha,r,parameters,digits,verdict,periods,releases,release_phase,stick_after,agreed_digits,need_digits"
                 )?;
-                let row = record(&verdict);
+                let row = CycleRecord::of(&verdict);
+                let cell = |x: Option<String>| x.unwrap_or_default();
                 writeln!(
                     out,
                     "{},{},{},{},{},{},{},{},{},{},{},{}",
@@ -257,17 +264,17 @@ pub fn lyapunov(run: &LyapunovDigits) -> anyhow::Result<()> {
                     spec.r,
                     if spec.binary { "doubles" } else { "decimals" },
                     spec.digits,
-                    row.0,
-                    row.1,
-                    row.2,
-                    row.3,
-                    row.4,
-                    row.5,
-                    row.6
+                    row.verdict,
+                    cell(row.periods.map(|x| x.to_string())),
+                    cell(row.releases.map(|x| x.to_string())),
+                    cell(row.release_phase),
+                    cell(row.stick_after),
+                    cell(row.agreed_digits.map(|x| x.to_string())),
+                    cell(row.need_digits.map(|x| x.to_string()))
                 )?;
             }
             Format::Json => {
-                let row = record(&verdict);
+                let row = CycleRecord::of(&verdict);
                 let doc = json!({
                     "table": spec.table,
                     "alpha": spec.alpha,
@@ -275,13 +282,13 @@ pub fn lyapunov(run: &LyapunovDigits) -> anyhow::Result<()> {
                     "parameters": if spec.binary { "doubles" } else { "decimals" },
                     "digits": spec.digits,
                     "start": run.initial,
-                    "verdict": row.0,
-                    "periods": row.1.parse::<i64>().ok(),
-                    "releases": row.2.parse::<usize>().ok(),
-                    "release_phase": (!row.3.is_empty()).then_some(&row.3),
-                    "stick_after": (!row.4.is_empty()).then_some(&row.4),
-                    "agreed_digits": row.5.parse::<u32>().ok(),
-                    "need_digits": row.6.parse::<u32>().ok(),
+                    "verdict": row.verdict,
+                    "periods": row.periods,
+                    "releases": row.releases,
+                    "release_phase": row.release_phase,
+                    "stick_after": row.stick_after,
+                    "agreed_digits": row.agreed_digits,
+                    "need_digits": row.need_digits,
                     "text": cycle_text(run, &verdict),
                 });
                 serde_json::to_writer(&mut out, &doc)?;
@@ -334,33 +341,6 @@ fn cycle_text(run: &LyapunovDigits, v: &CycleVerdict) -> String {
             need.map_or(String::new(), |n| format!(
                 "; by the digits the path from the release loses, it needs about {n} digits (--max-digits {n})"
             ))
-        ),
-    }
-}
-
-/// (verdict, periods, releases, release phase, stick time, agreed digits, need) as text.
-fn record(v: &CycleVerdict) -> (&'static str, String, String, String, String, String, String) {
-    let e = String::new;
-    match v {
-        CycleVerdict::Found(c) => (
-            "found",
-            c.periods.to_string(),
-            c.releases.to_string(),
-            c.release_phase.to_digits(c.digits as usize),
-            c.stick_after.to_digits(c.digits as usize),
-            c.digits.to_string(),
-            e(),
-        ),
-        CycleVerdict::NoRelease => ("no_release", e(), e(), e(), e(), e(), e()),
-        CycleVerdict::NoReturn => ("no_return", e(), e(), e(), e(), e(), e()),
-        CycleVerdict::Undecided { agreed, need, .. } => (
-            "undecided",
-            e(),
-            e(),
-            e(),
-            e(),
-            agreed.to_string(),
-            need.map_or(e(), |n| n.to_string()),
         ),
     }
 }

@@ -14,12 +14,14 @@
 //!   application).
 //! * [`sweep`]: `sweep`'s flags (and its preset) into a [`SweepSpec`](bouncemap_engine::sweep::SweepSpec).
 //! * [`plane`]: `plane`'s flags into a [`PlaneSpec`](bouncemap_engine::plane::PlaneSpec).
+//! * [`digits`]: `--digits` and its companions, for every command at any precision.
 //! * [`display`]: colour modes.
 //! * [`files`]: the only place that reads input files: regular files only, size-capped.
 //!
 //! Every refusal is an [`InputError`]: one line naming the flag, setting or file, the
 //! value and the valid range; the binary reports it with exit status 2.
 
+pub mod digits;
 pub mod display;
 pub mod files;
 pub mod flags;

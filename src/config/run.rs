@@ -21,7 +21,7 @@ use bouncemap_engine::plane::PlaneSpec;
 use bouncemap_engine::run::detect::Periodicity;
 use bouncemap_engine::run::start::near_fixed_point;
 use bouncemap_engine::sweep::SweepSpec;
-use bouncemap_engine::{Big, Number, PreciseState, PreciseSystem, Real, State, System, Table};
+use bouncemap_engine::{Big, PreciseState, PreciseSystem, State, System, Table};
 use clap::ValueEnum;
 
 /// How a job-running command runs, settled from its flags.
@@ -110,11 +110,17 @@ pub fn sweep(args: &SweepArgs) -> Result<SweepRun, InputError> {
     let (w, h) = super::text_size(&args.run.text, || {
         std::env::var("COLUMNS").ok().and_then(|c| c.parse().ok())
     });
+    let layout = part_layout(args.format);
+    if spec.digits.is_some() && layout.is_none() {
+        return Err(InputError(
+            "--digits: the cycles decided at any precision are columns of the csv and fields of the json: valid --format csv or json".into(),
+        ));
+    }
     let job = Job {
         check: args.run.check.check,
         requested_threads: args.run.workers.threads,
         out: args.part.output.out.clone(),
-        layout: part_layout(args.format),
+        layout,
         text: (w.max(20), h.max(6)),
         resume: args.part.resume,
     };
@@ -340,59 +346,26 @@ pub fn cascade(args: &CascadeArgs) -> Result<CascadeRun, InputError> {
 /// the most allowed.
 #[derive(Clone, Debug)]
 pub struct PreciseSpec {
-    /// The table's family and its parameter values.
-    pub family: std::sync::Arc<bouncemap_engine::table::Family>,
-    /// The family's parameter values (as the flags read them).
-    pub params: Vec<f64>,
+    /// The system and the start at any precision.
+    pub setup: bouncemap_engine::PreciseSetup,
     /// The table's name.
     pub table: String,
     /// α.
     pub alpha: f64,
     /// Restitution.
     pub r: f64,
-    /// Initial phase.
-    pub t0: f64,
-    /// Initial velocity (None: f'(t̂0) + the default hop).
-    pub v0: Option<f64>,
     /// Significant digits asked for.
     pub digits: u32,
     /// The most digits the precision is raised to.
     pub max_digits: u32,
     /// Each parameter the double it was read to, exactly.
     pub binary: bool,
-    /// The sine table (no pieces).
-    pub sine: bool,
 }
 
 impl PreciseSpec {
-    /// The system and the start at `bits`: each value the shortest decimal of its
-    /// double (the number written), rounded once; or the double itself.
+    /// The system and the start at `bits` ([`bouncemap_engine::PreciseSetup::make`]).
     pub fn make(&self, bits: usize) -> (PreciseSystem<Big>, PreciseState<Big>) {
-        let num = |x: f64| {
-            if self.binary {
-                Big::from_f64(x, &bits)
-            } else {
-                Big::from_decimal(&format!("{x}"), &bits).expect("a finite decimal")
-            }
-        };
-        let sys = if self.sine {
-            PreciseSystem::sine(num(self.alpha), num(self.r), bits)
-        } else {
-            let params: Vec<Big> = self.params.iter().map(|&x| num(x)).collect();
-            let pieces = self
-                .family
-                .pieces_in(&params, &bits)
-                .expect("checked piecewise when settled");
-            PreciseSystem::new(pieces, num(self.alpha), num(self.r), bits)
-                .expect("checked of degree ≤ 3 when settled")
-        };
-        let t0 = num(self.t0);
-        let w = match self.v0 {
-            Some(v0) => num(v0) - sys.jet(&t0)[1].clone(),
-            None => num(bouncemap_engine::DEFAULT_HOP),
-        };
-        let st = PreciseState::launch(&sys, 0, t0, w);
-        (sys, st)
+        self.setup.make(bits)
     }
 }
 
@@ -439,59 +412,29 @@ fn precise_spec(
     initial: &super::flags::InitialArgs,
     start: Option<(f64, f64)>,
 ) -> Result<Option<PreciseSpec>, InputError> {
-    let Some(digits) = p.digits else {
-        if p.binary_params || p.max_digits != super::rules::MAX_DIGITS.default as u32 {
-            return Err(InputError(
-                "--binary-params and --max-digits go with --digits N: valid with --digits".into(),
-            ));
-        }
+    let Some(ask) = super::digits::digits_ask(p)? else {
         return Ok(None);
     };
-    if p.max_digits < digits {
-        return Err(InputError(format!(
-            "--max-digits {} is below --digits {digits}: valid --max-digits M with M ≥ N",
-            p.max_digits
-        )));
-    }
+    let digits = ask.digits;
     let sys = super::system(system)?;
     super::start(&sys, initial)?;
-    if initial.z0 != 0.0 {
-        return Err(InputError(
-            "--z0 with --digits: at any precision the ball starts on the table: valid --z0 0"
-                .into(),
-        ));
-    }
     let table = sys.table();
-    let refuse = || {
-        InputError(format!(
-            "--digits: table {} is not yet computed at any precision: valid the sine or a piecewise polynomial table of degree ≤ {} (fd:D, quad, cubic, a table file)",
-            table.name(),
-            bouncemap_engine::PRECISE_MAX_DEGREE
-        ))
-    };
-    if !bouncemap_engine::precise_takes(table) {
-        return Err(refuse());
-    }
-    let (family, params) = table
-        .family()
-        .expect("a table the map at any precision takes");
-    let sine = std::sync::Arc::ptr_eq(family, bouncemap_engine::table::Family::sine());
+    super::digits::digits_take(table, initial.z0)?;
     let (t0, v0) = match start {
         Some((t0, v0)) => (t0, Some(v0)),
         None => (initial.t0, initial.v0),
     };
+    let setup =
+        bouncemap_engine::PreciseSetup::new(table, system.alpha, system.r, t0, v0, p.binary_params)
+            .ok_or_else(|| super::digits::digits_refusal(table))?;
     Ok(Some(PreciseSpec {
-        family: family.clone(),
-        params: params.to_vec(),
+        setup,
         table: table.name().to_string(),
         alpha: system.alpha,
         r: system.r,
-        t0,
-        v0,
         digits,
         max_digits: p.max_digits,
         binary: p.binary_params,
-        sine,
     }))
 }
 

@@ -91,10 +91,15 @@ fn parse_param_flag(
 
 /// The sweep `sweep`'s flags (and their preset) describe.
 pub fn sweep_spec(args: &SweepArgs) -> Result<SweepSpec, InputError> {
-    sweep_spec_from(
+    let mut spec = sweep_spec_from(
         &args.spec,
         shard(args.part.shard, |name| std::env::var(name).ok())?,
-    )
+    )?;
+    spec.digits = super::digits::digits_ask(&args.precision)?;
+    if spec.digits.is_some() {
+        super::digits::digits_take(&spec.table, spec.initial.z0)?;
+    }
+    Ok(spec)
 }
 
 /// The sweep the flags shared by `sweep` and `figure diagram` (and their preset)

@@ -183,6 +183,7 @@ mod tests {
             lyapunov: None,
             attractors: Vec::new(),
             precision: None,
+            cycle: None,
         };
         let mut d = BrailleDiagram::new(&spec, 30, 10);
         d.add(&r);

@@ -60,6 +60,7 @@ mod tests {
                 lyapunov: None,
                 attractors: Vec::new(),
                 precision: None,
+                cycle: None,
             })
             .collect();
         let dir = std::env::temp_dir().join(format!("bouncemap-export-{}", std::process::id()));

@@ -22,7 +22,7 @@
 
 pub use super::part_file::Layout;
 use super::part_file::{clip, shard_name, FileKind, PartWriter};
-use super::records::{PointRecord, SweepHeader, SweepRow, SweepValue};
+use super::records::{PointRecord, SweepColumns, SweepHeader, SweepRow, SweepValue};
 use bouncemap_engine::jobs::grid::{grid_value, Shard};
 use bouncemap_engine::sweep::{chain_len, ValueResult, Warm};
 use std::io::{self, Write};
@@ -48,7 +48,7 @@ impl FileKind for SweepFile {
     }
 
     fn field_names(h: &SweepHeader) -> Vec<&'static str> {
-        SweepRow::field_names(h.lyapunov, h.starts > 1)
+        SweepRow::field_names(SweepColumns::of(h))
     }
 
     /// A value's rows are consecutive: a row of the last value's index joins it.
@@ -140,9 +140,8 @@ impl FileKind for SweepFile {
 /// Writes one sweep file, value by value in index order.
 pub struct SweepWriter<W: Write> {
     part: PartWriter<W, SweepFile>,
-    /// The optional columns: `lyapunov`, and `attractor` (several starts).
-    lyapunov: bool,
-    several: bool,
+    /// The optional columns.
+    columns: SweepColumns,
 }
 
 impl<W: Write> SweepWriter<W> {
@@ -156,8 +155,7 @@ impl<W: Write> SweepWriter<W> {
     ) -> io::Result<SweepWriter<W>> {
         Ok(SweepWriter {
             part: PartWriter::begin(out, layout, header, shard, values, &[])?,
-            lyapunov: header.lyapunov,
-            several: header.starts > 1,
+            columns: SweepColumns::of(header),
         })
     }
 
@@ -167,13 +165,11 @@ impl<W: Write> SweepWriter<W> {
         match self.part.layout() {
             Layout::Csv => {
                 let mut first = true;
-                SweepRow::each(r, self.lyapunov, self.several, |row| {
+                SweepRow::each(r, self.columns, |row| {
                     self.part.csv_row(&row, std::mem::take(&mut first))
                 })
             }
-            Layout::Json => self
-                .part
-                .json_value(&SweepValue::new(r, self.lyapunov, self.several)),
+            Layout::Json => self.part.json_value(&SweepValue::new(r, self.columns)),
         }
     }
 
@@ -274,9 +270,12 @@ fn check_value(v: &PartValue, want: f64, keep: usize) -> Result<(), String> {
                     || r.value.to_bits() != r0.value.to_bits()
                     || r.lyapunov.is_some() != r0.lyapunov.is_some()
                     || r.attractor.is_some() != r0.attractor.is_some()
+                    || (&r.digits_verdict, r.digits_periods, &r.stick_after)
+                        != (&a0.digits_verdict, a0.digits_periods, &a0.stick_after)
                 {
                     return Err("its rows disagree on the value's outcome".into());
                 }
+                r.check_cycle()?;
                 match (r.phase, r.v, r.kind) {
                     (Some(p), Some(vel), Some(_)) => check_point(p, vel)?,
                     (None, None, None) if rows.len() == 1 => {}
@@ -289,6 +288,10 @@ fn check_value(v: &PartValue, want: f64, keep: usize) -> Result<(), String> {
         PartValue::Json(s) => {
             for PointRecord { phase, v, .. } in &s.points {
                 check_point(*phase, *v)?;
+            }
+            let cycles = s.attractors.iter().filter_map(|a| a.cycle.as_ref());
+            for c in s.cycle.as_deref().into_iter().chain(cycles) {
+                c.check()?;
             }
             (s.value, s.points.len())
         }

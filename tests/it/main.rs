@@ -10,6 +10,7 @@ mod cli_orbit;
 mod continuation_cli;
 mod curves_cli;
 mod digits_cli;
+mod digits_jobs;
 mod docs;
 mod figure_cli;
 mod generated_docs;

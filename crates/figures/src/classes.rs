@@ -262,6 +262,7 @@ mod tests {
             lyapunov,
             attractors: Vec::new(),
             precision: None,
+            cycle: None,
         }
     }
 

@@ -544,6 +544,7 @@ mod tests {
             lyapunov: None,
             attractors: Vec::new(),
             precision: None,
+            cycle: None,
         }
     }
 

@@ -370,6 +370,8 @@ pub struct SweepArgs {
     #[arg(long, value_enum, default_value_t = SweepFormat::Csv)]
     pub format: SweepFormat,
     #[command(flatten)]
+    pub precision: PrecisionArgs,
+    #[command(flatten)]
     pub part: PartArgs,
     #[command(flatten)]
     pub run: RunArgs,

@@ -216,6 +216,10 @@ pub struct AttractorRecord {
     /// stick.
     #[serde(default)]
     pub growth_decades: Option<f64>,
+    /// With `--digits`, where double precision cannot decide its cycle: the cycle
+    /// decided at any precision.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cycle: Option<super::CycleRecord>,
 }
 
 impl AttractorRecord {
@@ -246,7 +250,14 @@ impl AttractorRecord {
             growth_decades: precision
                 .filter(|p| p.impacts > 0)
                 .map(|p| p.growth_decades),
+            cycle: None,
         }
+    }
+
+    /// This record with its cycle decided at any precision, if there is one.
+    pub fn with_cycle(mut self, cycle: Option<&bouncemap_engine::CycleVerdict>) -> AttractorRecord {
+        self.cycle = cycle.map(super::CycleRecord::of);
+        self
     }
 }
 

@@ -17,8 +17,10 @@ use std::io::Write;
 
 mod attractors;
 mod branches;
+mod cycle;
 pub use attractors::*;
 pub use branches::*;
+pub use cycle::*;
 
 /// A csv writer over `out` that writes its header itself (so an empty table still has
 /// one): `header` then rows serialized in field order.
@@ -170,6 +172,38 @@ pub struct SweepRow {
     /// None: no such column.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub attractor: Option<usize>,
+    /// With `--digits` ([`CYCLE_COLUMNS`]): the sticking cycle decided at any precision
+    /// where double precision cannot decide it (empty elsewhere). None: no such columns.
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "present"
+    )]
+    pub digits_verdict: Option<Option<String>>,
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "present"
+    )]
+    pub digits_periods: Option<Option<i64>>,
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "present"
+    )]
+    pub stick_after: Option<Option<String>>,
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "present"
+    )]
+    pub agreed_digits: Option<Option<u32>>,
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "present"
+    )]
+    pub need_digits: Option<Option<u32>>,
 }
 
 /// A field that is there (even if empty or null) is `Some`.
@@ -182,10 +216,10 @@ where
 }
 
 impl SweepRow {
-    /// The csv header of a sweep of `param`, with the `lyapunov` and `attractor`
-    /// columns when asked.
-    pub fn header(param: SweepParam, lyapunov: bool, attractors: bool) -> Vec<String> {
-        let mut h: Vec<String> = SweepRow::field_names(lyapunov, attractors)
+    /// The csv header of a sweep of `param`, with the `lyapunov`, `attractor` and
+    /// `--digits` columns when asked.
+    pub fn header(param: SweepParam, columns: SweepColumns) -> Vec<String> {
+        let mut h: Vec<String> = SweepRow::field_names(columns)
             .into_iter()
             .map(String::from)
             .collect();
@@ -195,7 +229,7 @@ impl SweepRow {
 
     /// The names a csv row is read with: the header with the swept parameter's column
     /// called `value`.
-    pub fn field_names(lyapunov: bool, attractors: bool) -> Vec<&'static str> {
+    pub fn field_names(columns: SweepColumns) -> Vec<&'static str> {
         let mut h = vec![
             "index",
             "value",
@@ -209,13 +243,50 @@ impl SweepRow {
             "resolved",
             "growth_decades",
         ];
-        if lyapunov {
+        if columns.lyapunov {
             h.push("lyapunov");
         }
-        if attractors {
+        if columns.attractors {
             h.push("attractor");
         }
+        if columns.digits {
+            h.extend(CYCLE_COLUMNS);
+        }
         h
+    }
+
+    /// This row with the `--digits` columns of `cycle` (empty cells where None).
+    fn with_cycle(mut self, cycle: Option<&bouncemap_engine::CycleVerdict>) -> SweepRow {
+        let c = cycle.map(CycleRecord::of);
+        let c = c.as_ref();
+        self.digits_verdict = Some(c.map(|c| c.verdict.clone()));
+        self.digits_periods = Some(c.and_then(|c| c.periods));
+        self.stick_after = Some(c.and_then(|c| c.stick_after.clone()));
+        self.agreed_digits = Some(c.and_then(|c| c.agreed_digits));
+        self.need_digits = Some(c.and_then(|c| c.need_digits));
+        self
+    }
+
+    /// Whether the `--digits` cells are those of a verdict: its name one of
+    /// [`VERDICTS`], the cycle's length and stick time given exactly where found.
+    pub fn check_cycle(&self) -> Result<(), String> {
+        let Some(Some(verdict)) = &self.digits_verdict else {
+            let any = self.digits_periods.flatten().is_some()
+                || self.stick_after.as_ref().is_some_and(|s| s.is_some())
+                || self.agreed_digits.flatten().is_some()
+                || self.need_digits.flatten().is_some();
+            return match any {
+                true => Err("--digits cells without a digits_verdict".into()),
+                false => Ok(()),
+            };
+        };
+        check_verdict(
+            verdict,
+            &[
+                self.digits_periods.flatten().is_some(),
+                self.stick_after.as_ref().is_some_and(|s| s.is_some()),
+            ],
+        )
     }
 
     /// The rows of one value, with a `lyapunov` column and with an `attractor` column
@@ -223,19 +294,20 @@ impl SweepRow {
     /// million of them are never held at once; the first error of `f` ends it.
     pub fn each<E>(
         r: &ValueResult,
-        lyapunov: bool,
-        several: bool,
+        columns: SweepColumns,
         mut f: impl FnMut(SweepRow) -> Result<(), E>,
     ) -> Result<(), E> {
+        let (lyapunov, several) = (columns.lyapunov, columns.attractors);
         let row = |p: Option<&SweepPoint>,
                    o: &Outcome,
                    l: Option<f64>,
                    precision: Option<Precision>,
                    a: Option<usize>,
-                   sticking: bool| {
+                   sticking: bool,
+                   cycle: Option<&bouncemap_engine::CycleVerdict>| {
             let resolved = precision.map(|p| p.resolved);
             let claimed = resolved != Some(false);
-            SweepRow {
+            let row = SweepRow {
                 index: r.index,
                 value: r.value,
                 phase: p.map(|p| p.phase),
@@ -251,6 +323,15 @@ impl SweepRow {
                     .map(|p| p.growth_decades),
                 lyapunov: lyapunov.then_some(Exponent(l)),
                 attractor: a,
+                digits_verdict: None,
+                digits_periods: None,
+                stick_after: None,
+                agreed_digits: None,
+                need_digits: None,
+            };
+            match columns.digits {
+                true => row.with_cycle(cycle),
+                false => row,
             }
         };
         if several && !r.attractors.is_empty() {
@@ -271,6 +352,7 @@ impl SweepRow {
                         a.precision,
                         Some(n + 1),
                         sticking,
+                        a.cycle.as_ref(),
                     )
                 };
                 if pts.is_empty() {
@@ -291,6 +373,7 @@ impl SweepRow {
                 r.precision,
                 attractor,
                 r.sticking,
+                r.cycle.as_ref(),
             )
         };
         if r.points.is_empty() {
@@ -343,6 +426,10 @@ pub struct SweepValue<P = Vec<PointRecord>> {
     /// With several starts: the attractors, largest basin first (numbered from 1).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub attractors: Vec<AttractorRecord>,
+    /// With `--digits`, where double precision cannot decide the cycle: the cycle
+    /// decided at any precision.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cycle: Option<Box<CycleRecord>>,
     pub points: P,
 }
 
@@ -373,8 +460,10 @@ impl Serialize for PointsOf<'_> {
 }
 
 impl<'a> SweepValue<PointsOf<'a>> {
-    /// The json of one value, with its exponent and attractors as asked.
-    pub fn new(r: &'a ValueResult, lyapunov: bool, several: bool) -> SweepValue<PointsOf<'a>> {
+    /// The json of one value, with its exponent, attractors and cycle at any precision
+    /// as asked.
+    pub fn new(r: &'a ValueResult, columns: SweepColumns) -> SweepValue<PointsOf<'a>> {
+        let (lyapunov, several) = (columns.lyapunov, columns.attractors);
         let resolved = r.precision.map(|p| p.resolved);
         let claimed = resolved != Some(false);
         SweepValue {
@@ -409,9 +498,67 @@ impl<'a> SweepValue<PointsOf<'a>> {
                         a.fraction,
                         a.precision,
                     )
+                    .with_cycle(a.cycle.as_ref())
                 })
                 .collect(),
+            cycle: r.cycle.as_ref().map(|c| Box::new(CycleRecord::of(c))),
             points: PointsOf { r, several },
+        }
+    }
+}
+
+/// The optional columns of a sweep file (and fields of its json), as its header
+/// states them.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SweepColumns {
+    /// `lyapunov`.
+    pub lyapunov: bool,
+    /// `attractor` (several starts).
+    pub attractors: bool,
+    /// The `--digits` columns ([`CYCLE_COLUMNS`]).
+    pub digits: bool,
+}
+
+impl SweepColumns {
+    /// The columns of the file `h` heads.
+    pub fn of(h: &SweepHeader) -> SweepColumns {
+        SweepColumns {
+            lyapunov: h.lyapunov,
+            attractors: h.starts > 1,
+            digits: h.digits.is_some(),
+        }
+    }
+}
+
+/// `--digits`, as a sweep's header records it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DigitsRecord {
+    pub digits: u32,
+    pub max_digits: u32,
+    /// `decimals` (as written) or `doubles` (`--binary-params`).
+    pub parameters: Parameters,
+}
+
+/// How the parameters are read at any precision.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Parameters {
+    /// Each the decimal written.
+    Decimals,
+    /// Each the double it was read to.
+    Doubles,
+}
+
+impl From<bouncemap_engine::DigitsAsk> for DigitsRecord {
+    fn from(a: bouncemap_engine::DigitsAsk) -> DigitsRecord {
+        DigitsRecord {
+            digits: a.digits,
+            max_digits: a.max_digits,
+            parameters: match a.binary {
+                true => Parameters::Doubles,
+                false => Parameters::Decimals,
+            },
         }
     }
 }
@@ -464,6 +611,10 @@ pub struct SweepHeader {
     /// W of the extra starts' box (absent: the default of each value's system).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub w_max: Option<f64>,
+    /// `--digits`: sticking cycles beyond double precision decided at any precision
+    /// (absent without).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub digits: Option<DigitsRecord>,
 }
 
 fn is_false(b: &bool) -> bool {
@@ -517,6 +668,7 @@ impl From<&SweepSpec> for SweepHeader {
             lyapunov: spec.lyapunov,
             starts: spec.starts,
             w_max: spec.w_max,
+            digits: spec.digits.map(DigitsRecord::from),
         }
     }
 }
@@ -669,8 +821,13 @@ mod tests {
             kind: Kind::Impact,
         };
         assert_eq!(fields(&e), EventRecord::HEADER.join(","));
-        for (lyapunov, several) in [(false, false), (true, false), (false, true), (true, true)] {
-            let row = SweepRow {
+        for k in 0..8 {
+            let columns = SweepColumns {
+                lyapunov: k & 1 != 0,
+                attractors: k & 2 != 0,
+                digits: k & 4 != 0,
+            };
+            let mut row = SweepRow {
                 index: 0,
                 value: 0.5,
                 phase: None,
@@ -682,12 +839,20 @@ mod tests {
                 sticking: false,
                 resolved: None,
                 growth_decades: None,
-                lyapunov: lyapunov.then_some(Exponent(None)),
-                attractor: several.then_some(1),
+                lyapunov: columns.lyapunov.then_some(Exponent(None)),
+                attractor: columns.attractors.then_some(1),
+                digits_verdict: None,
+                digits_periods: None,
+                stick_after: None,
+                agreed_digits: None,
+                need_digits: None,
             };
+            if columns.digits {
+                row = row.with_cycle(None);
+            }
             assert_eq!(
                 fields(&row),
-                SweepRow::header(SweepParam::Alpha, lyapunov, several)
+                SweepRow::header(SweepParam::Alpha, columns)
                     .join(",")
                     .replace("alpha", "value")
             );

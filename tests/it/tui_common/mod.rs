@@ -90,6 +90,7 @@ pub fn fill(app: &mut App) {
                 lyapunov: None,
                 attractors: Vec::new(),
                 precision: None,
+                cycle: None,
             },
         ));
     }

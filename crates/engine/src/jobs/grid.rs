@@ -61,6 +61,15 @@ pub enum SweepParam {
 }
 
 impl SweepParam {
+    /// Where it sits in a system at any precision.
+    pub fn slot(&self) -> crate::precise::Slot<'_> {
+        match self {
+            SweepParam::Alpha => crate::precise::Slot::Alpha,
+            SweepParam::R => crate::precise::Slot::R,
+            SweepParam::Table(name) => crate::precise::Slot::Table(name.as_str()),
+        }
+    }
+
     /// D of the paper's F_D.
     pub const D: SweepParam = match ParamName::new("D") {
         Some(n) => SweepParam::Table(n),

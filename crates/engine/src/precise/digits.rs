@@ -4,6 +4,7 @@
 use super::{PreciseEvent, PreciseHalt, PreciseMap, PreciseState, PreciseSystem};
 use crate::map::EventKind;
 use crate::real::Real;
+use std::ops::ControlFlow;
 
 /// The significant decimal digits to which `a` agrees with `b`: ⌊−log₁₀ |a − b|/|b|⌋
 /// (|a − b| itself where b = 0), from 0 to `cap` (`cap` where they are equal).
@@ -176,7 +177,7 @@ pub fn orbit_to_digits(
 /// negative, a phase fixed by the table, so the orbit from one release repeats from the
 /// next: the cycle is exactly periodic, and all that must be decided is where its stick
 /// falls, which the flights from the release decide with growing sensitivity.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct StickingCycle {
     /// Its length in table periods, as both precisions found it.
     pub periods: i64,
@@ -197,7 +198,7 @@ pub struct StickingCycle {
 }
 
 /// What [`sticking_cycle_to_digits`] decided.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum CycleVerdict {
     /// The cycle, to the digits asked for.
     Found(StickingCycle),
@@ -224,15 +225,15 @@ pub enum CycleVerdict {
 /// within `max_digits`) runs the orbit to its first release and on to the next release
 /// at the same phase (at most `max_events` events each, within `max_periods` table
 /// periods), and the two runs must agree on the cycle's length and on its stick time to
-/// `digits`.
+/// `digits`. `progress` hears of the events done and may stop the work (then None).
 pub fn sticking_cycle_to_digits(
     make: &MakeBig<'_>,
     digits: u32,
     max_digits: u32,
     max_events: u64,
     max_periods: i64,
-    progress: &mut dyn FnMut(DigitsProgress),
-) -> CycleVerdict {
+    progress: &mut dyn FnMut(DigitsProgress) -> ControlFlow<()>,
+) -> Option<CycleVerdict> {
     use crate::real::{bits_for_digits, Big, Number};
     // (release phase, stick time, periods, releases), or why there is none.
     // Why a run found no cycle: no release, or none again at the same phase.
@@ -240,6 +241,7 @@ pub fn sticking_cycle_to_digits(
     enum NoCycle {
         Release,
         Return,
+        Stopped,
     }
     let mut cycle = |work: u32, bits: usize| -> Result<(Big, Big, i64, usize), NoCycle> {
         let (sys, st) = make(bits);
@@ -250,12 +252,15 @@ pub fn sticking_cycle_to_digits(
         let mut releases = 0;
         let run_digits = (bits as f64 / std::f64::consts::LOG2_10) as u32;
         for i in 0..max_events {
-            if i % PROGRESS_EVENTS == 0 {
-                progress(DigitsProgress {
+            if i % PROGRESS_EVENTS == 0
+                && progress(DigitsProgress {
                     digits: run_digits,
                     done: i,
                     total: 0,
-                });
+                })
+                .is_break()
+            {
+                return Err(NoCycle::Stopped);
             }
             let Ok(e) = map.step() else { break };
             if e.period > max_periods {
@@ -293,6 +298,9 @@ pub fn sticking_cycle_to_digits(
     loop {
         let lo = cycle(work, bits_for_digits(work));
         let hi = cycle(work, bits_for_digits(2 * work));
+        if matches!(lo, Err(NoCycle::Stopped)) || matches!(hi, Err(NoCycle::Stopped)) {
+            return None;
+        }
         let (same, agreed, found) = match (lo, hi) {
             (Ok(a), Ok(b)) => {
                 let same = a.2 == b.2 && a.3 == b.3;
@@ -304,13 +312,13 @@ pub fn sticking_cycle_to_digits(
                 (same, agreed, Some(b))
             }
             // Neither run finds a cycle: the orbit has none within the events allowed.
-            (Err(NoCycle::Release), Err(_)) => return CycleVerdict::NoRelease,
-            (Err(NoCycle::Return), Err(_)) => return CycleVerdict::NoReturn,
+            (Err(NoCycle::Release), Err(_)) => return Some(CycleVerdict::NoRelease),
+            (Err(NoCycle::Return), Err(_)) => return Some(CycleVerdict::NoReturn),
             // One run finds it and the other not: they disagree.
             _ => (false, 0, None),
         };
         if let Some(hi) = found.filter(|_| same && agreed >= digits) {
-            return CycleVerdict::Found(StickingCycle {
+            return Some(CycleVerdict::Found(StickingCycle {
                 periods: hi.2,
                 releases: hi.3,
                 release_phase: hi.0,
@@ -318,16 +326,16 @@ pub fn sticking_cycle_to_digits(
                 digits: agreed.min(digits),
                 precision: (work, 2 * work),
                 earlier,
-            });
+            }));
         }
         earlier = Some(((work, 2 * work), agreed));
         if 2 * work > max_digits {
             let need = (same && agreed > 0).then(|| digits + (work - agreed.min(work)) + 10);
-            return CycleVerdict::Undecided {
+            return Some(CycleVerdict::Undecided {
                 tried: (work, 2 * work),
                 agreed: agreed.min(digits),
                 need,
-            };
+            });
         }
         work *= 2;
     }

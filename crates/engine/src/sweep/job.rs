@@ -11,6 +11,7 @@ use crate::attractors::{self, box_start, default_w_max, Kind, Registry, Settle};
 use crate::error::EngineError;
 use crate::jobs::{Context, Job, Pass};
 use crate::map::{ImpactMap, State};
+use crate::precise::{decide_sticking_cycle, CycleVerdict, PreciseSetup};
 use crate::run::precision::Precision;
 use crate::run::start::launch;
 use crate::run::{has_sticking, Advance, OrbitRun, Outcome, Point};
@@ -48,6 +49,10 @@ pub struct ValueResult {
     /// `points[a.points.clone()]`; `points` is then their concatenation. Empty with one
     /// start.
     pub attractors: Vec<ValueAttractor>,
+    /// With [`SweepSpec::digits`], for a sticking cycle whose length double precision
+    /// cannot decide ([`Precision::resolved`] false): the cycle decided at any precision
+    /// from the value's cold start ([`crate::decide_sticking_cycle`]).
+    pub cycle: Option<CycleVerdict>,
 }
 
 /// One attractor found at a value of a sweep with several starts.
@@ -67,6 +72,9 @@ pub struct ValueAttractor {
     pub outcome: Outcome,
     /// For a cycle: whether double precision decides it.
     pub precision: Option<Precision>,
+    /// With [`SweepSpec::digits`], where double precision cannot decide it: the cycle
+    /// decided at any precision from the first start that found it.
+    pub cycle: Option<CycleVerdict>,
     /// Its recorded points in [`ValueResult::points`].
     pub points: std::ops::Range<usize>,
 }
@@ -177,10 +185,10 @@ impl SweepJob {
     }
 
     /// A value with several starts: run each to its attractor and emit them all.
-    fn several_starts(&self, index: usize, cx: &Context<'_, ValueResult>) {
+    fn several_starts(&self, index: usize, cx: &Context<'_, ValueResult>) -> Option<()> {
         let value = self.spec.value(index);
         let Ok(sys) = self.spec.system_at(value) else {
-            return;
+            return Some(());
         };
         let w_max = self.spec.w_max.unwrap_or_else(|| default_w_max(&sys));
         let sample = if self.spec.lyapunov {
@@ -190,8 +198,9 @@ impl SweepJob {
         };
         let settle = self.settle(sample);
         let mut registry = Registry::new();
-        // Per attractor id: the points and outcome of the first start that found it.
-        let mut first: Vec<(Vec<Point>, Outcome)> = Vec::new();
+        // Per attractor id: the points, outcome and start of the first start that found
+        // it.
+        let mut first: Vec<(Vec<Point>, Outcome, State)> = Vec::new();
         let mut lead: Option<(Outcome, Option<f64>, bool, Option<Precision>)> = None;
         let mut events = 0;
         for s in 0..self.spec.starts {
@@ -202,15 +211,12 @@ impl SweepJob {
                 launch(&sys, t0, w0)
             };
             let Some(start) = start else { continue };
-            let Some((found, outcome, points, n)) =
-                attractors::settle(&sys, start, &settle, self.spec.keep, &mut |n| cx.tick(n))
-            else {
-                return;
-            };
+            let (found, outcome, points, n) =
+                attractors::settle(&sys, start, &settle, self.spec.keep, &mut |n| cx.tick(n))?;
             events += n;
             let id = registry.assign(&found);
             if id == first.len() {
-                first.push((points, outcome));
+                first.push((points, outcome, start));
             }
             let sticks = matches!(found.kind, Kind::Sticking | Kind::Resting);
             lead.get_or_insert((
@@ -221,14 +227,23 @@ impl SweepJob {
             ));
         }
         let Some((outcome, lyapunov, sticking, precision)) = lead else {
-            return;
+            return Some(());
         };
         // Allocated once at its size (grown by doubling, it could take twice that).
-        let mut points = Vec::with_capacity(first.iter().map(|(p, _)| p.len()).sum());
+        let mut points = Vec::with_capacity(first.iter().map(|(p, _, _)| p.len()).sum());
         let mut list = Vec::new();
+        let mut lead_cycle = None;
         for id in registry.ranked() {
             let a = &registry.attractors()[id];
-            let (p, o) = &first[id];
+            let (p, o, start) = &first[id];
+            let cycle = match a.unresolved() {
+                true => Some(self.decide(&sys, start, index, cx)?),
+                false => None,
+            }
+            .flatten();
+            if id == 0 {
+                lead_cycle = cycle.clone();
+            }
             let from = points.len();
             points.extend_from_slice(p);
             list.push(ValueAttractor {
@@ -239,6 +254,7 @@ impl SweepJob {
                 fraction: registry.fraction(id),
                 outcome: *o,
                 precision: a.precision,
+                cycle,
                 points: from..points.len(),
             });
         }
@@ -254,9 +270,45 @@ impl SweepJob {
                 events,
                 lyapunov: lyapunov.filter(|_| self.spec.lyapunov),
                 attractors: list,
+                cycle: lead_cycle,
             },
             true,
         );
+        Some(())
+    }
+
+    /// With [`SweepSpec::digits`], the sticking cycle the ball of `start` reaches in
+    /// `sys` (value `index`), decided at any precision with the swept parameter the
+    /// window's decimal grid point: Some(None) when not asked (or the start is not one
+    /// the map at any precision takes), None when the job was stopped.
+    fn decide(
+        &self,
+        sys: &crate::system::System,
+        start: &State,
+        index: usize,
+        cx: &Context<'_, ValueResult>,
+    ) -> Option<Option<CycleVerdict>> {
+        let Some(ask) = self.spec.digits else {
+            return Some(None);
+        };
+        let Some(setup) = PreciseSetup::of_state(sys, start, ask.binary) else {
+            return Some(None);
+        };
+        let spec = &self.spec;
+        let window = (spec.lo, spec.hi, spec.steps);
+        let setup = setup.on_grid(spec.param.slot(), window, index, spec.value(index));
+        let periods = i64::try_from(spec.transient).unwrap_or(i64::MAX);
+        let verdict = decide_sticking_cycle(&setup, ask, periods, &mut |n| {
+            if cx.tick(n) {
+                std::ops::ControlFlow::Break(())
+            } else {
+                std::ops::ControlFlow::Continue(())
+            }
+        });
+        if verdict.is_none() && cx.stopped() {
+            return None;
+        }
+        Some(verdict)
     }
 
     fn new_run(&self, index: usize, warm_from: Option<&State>) -> Option<(f64, OrbitRun)> {
@@ -322,6 +374,20 @@ impl SweepJob {
             (true, _) => run.precision(&outcome, sticking),
             _ => None,
         };
+        // At any precision from the value's cold start (where the orbit was warm
+        // started too: a start on the table the spec states, not a state rounded on
+        // the way).
+        let cycle = match precision.is_some_and(|p| !p.resolved) {
+            true => {
+                let sys = run.system().clone();
+                let start = self.spec.initial_state(&sys).ok();
+                match start {
+                    Some(start) => self.decide(&sys, &start, index, cx)?,
+                    None => None,
+                }
+            }
+            false => None,
+        };
         cx.emit(
             ValueResult {
                 index,
@@ -334,6 +400,7 @@ impl SweepJob {
                 events: run.events(),
                 lyapunov,
                 attractors: Vec::new(),
+                cycle,
             },
             complete,
         );

@@ -76,6 +76,7 @@ use crate::jobs::grid::{grid_value, Shard, SweepParam};
 use crate::jobs::{Batch, Control, Executor, Handle};
 use crate::limits;
 use crate::map::State;
+use crate::precise::{check_digits, DigitsAsk};
 use crate::run::detect::Periodicity;
 use crate::run::start::near_fixed_point;
 use crate::run::{OrbitRun, Point};
@@ -206,6 +207,9 @@ pub struct SweepSpec {
     pub starts: usize,
     /// W of that box; None: [`crate::attractors::default_w_max`] of each value's system.
     pub w_max: Option<f64>,
+    /// Decide at any precision the sticking cycles whose length double precision cannot
+    /// ([`ValueResult::cycle`]); None: not asked.
+    pub digits: Option<DigitsAsk>,
 }
 
 impl SweepSpec {
@@ -286,6 +290,7 @@ impl SweepSpec {
             lyapunov: false,
             starts: 1,
             w_max: None,
+            digits: None,
         }
     }
 
@@ -350,6 +355,9 @@ impl SweepSpec {
         }
         if let Some(w) = self.w_max {
             limits::W_MAX.check(w)?;
+        }
+        if let Some(ask) = self.digits {
+            check_digits(ask, &self.table, self.initial.z0)?;
         }
         self.shard.validate()?;
         match self.param {

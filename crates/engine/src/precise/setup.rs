@@ -1,0 +1,337 @@
+//! A system and a start at any precision from the doubles a run was given
+//! ([`PreciseSetup`]), what a run at any precision is asked for ([`DigitsAsk`]), and the
+//! sticking cycle of one start decided for a job's value, pixel or attractor
+//! ([`decide_sticking_cycle`]).
+//!
+//! Parameters are taken as written: each double is read back as its shortest decimal
+//! (what was typed, unless it had more than 17 significant digits) and rounded once to
+//! the working precision, so α = 0.6 is three fifths; or, asked for, as the double
+//! itself. A value of a job's grid (a sweep's or a plane's axis) is the decimal grid
+//! point lo + (hi − lo)·i/(N − 1) of the window's decimal ends, not the double the f64
+//! run used (0.5975, not 0.5974999999999999).
+
+use super::digits::{sticking_cycle_to_digits, CycleVerdict, DigitsProgress};
+use super::{precise_takes, PreciseState, PreciseSystem};
+use crate::error::EngineError;
+use crate::limits;
+use crate::map::State;
+use crate::real::{Big, Number, Real};
+use crate::system::System;
+use crate::table::{Family, Table};
+use std::ops::ControlFlow;
+use std::sync::Arc;
+
+/// What a run at any precision is asked for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct DigitsAsk {
+    /// Significant digits the answer must hold to.
+    pub digits: u32,
+    /// The most digits the precision is raised to.
+    pub max_digits: u32,
+    /// Each parameter the double it was read to, exactly (not its shortest decimal).
+    pub binary: bool,
+}
+
+/// One parameter at any precision: a double, or a point of a job's grid.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Value {
+    /// Its shortest decimal, or the double itself.
+    Double(f64),
+    /// lo + (hi − lo)·i/(steps − 1) of the decimals lo and hi; `double` is the grid's
+    /// double (what the f64 run used).
+    Grid {
+        lo: f64,
+        hi: f64,
+        i: usize,
+        steps: usize,
+        double: f64,
+    },
+}
+
+impl Value {
+    /// The value at `bits`: as written, or (`binary`) the double.
+    fn at(self, bits: usize, binary: bool) -> Big {
+        let decimal = |x: f64| Big::from_decimal(&format!("{x}"), &bits).expect("a finite decimal");
+        match (self, binary) {
+            (Value::Double(x) | Value::Grid { double: x, .. }, true) => Big::from_f64(x, &bits),
+            (Value::Double(x), false) => decimal(x),
+            (
+                Value::Grid {
+                    lo, hi, i, steps, ..
+                },
+                false,
+            ) => {
+                if steps <= 1 || i == 0 {
+                    return decimal(lo);
+                }
+                let (lo, hi) = (decimal(lo), decimal(hi));
+                let n = Big::from_f64((steps - 1) as f64, &bits);
+                let i = Big::from_f64(i as f64, &bits);
+                lo.clone() + (hi - lo) * i / n
+            }
+        }
+    }
+}
+
+/// Which parameter of a [`PreciseSetup`] a value sets.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Slot<'a> {
+    /// α.
+    Alpha,
+    /// r.
+    R,
+    /// The table family's parameter of this name.
+    Table(&'a str),
+}
+
+/// A system and a start at any precision, from doubles.
+#[derive(Clone, Debug)]
+pub struct PreciseSetup {
+    family: Arc<Family>,
+    params: Vec<Value>,
+    alpha: Value,
+    r: Value,
+    t0: f64,
+    /// None: launched with [`crate::DEFAULT_HOP`] relative to the table.
+    v0: Option<f64>,
+    binary: bool,
+    sine: bool,
+}
+
+impl PreciseSetup {
+    /// The system of `table`, α and r with a ball launched from the table at phase `t0`
+    /// with velocity `v0` (None: [`crate::DEFAULT_HOP`] relative to the table). None
+    /// where the map at any precision does not take the table ([`precise_takes`]).
+    pub fn new(
+        table: &Table,
+        alpha: f64,
+        r: f64,
+        t0: f64,
+        v0: Option<f64>,
+        binary: bool,
+    ) -> Option<PreciseSetup> {
+        if !precise_takes(table) {
+            return None;
+        }
+        let (family, params) = table.family()?;
+        Some(PreciseSetup {
+            sine: Arc::ptr_eq(family, Family::sine()),
+            family: family.clone(),
+            params: params.iter().map(|&x| Value::Double(x)).collect(),
+            alpha: Value::Double(alpha),
+            r: Value::Double(r),
+            t0,
+            v0,
+            binary,
+        })
+    }
+
+    /// The setup of `sys` with the ball of `start`, which must be on the table (a
+    /// launch); None where it is not, or where the table is not taken.
+    pub fn of_state(sys: &System, start: &State, binary: bool) -> Option<PreciseSetup> {
+        if start.height() != 0.0 {
+            return None;
+        }
+        PreciseSetup::new(
+            sys.table(),
+            sys.alpha(),
+            sys.r(),
+            start.phase(),
+            Some(start.v()),
+            binary,
+        )
+    }
+
+    /// This setup with the parameter `slot` at point `i` of the grid of `steps` values
+    /// from `lo` to `hi` (a job's axis), whose double is `double` (what the f64 run
+    /// used).
+    pub fn on_grid(
+        mut self,
+        slot: Slot<'_>,
+        (lo, hi, steps): (f64, f64, usize),
+        i: usize,
+        double: f64,
+    ) -> PreciseSetup {
+        let v = Value::Grid {
+            lo,
+            hi,
+            i,
+            steps,
+            double,
+        };
+        match slot {
+            Slot::Alpha => self.alpha = v,
+            Slot::R => self.r = v,
+            Slot::Table(name) => {
+                if let Some(k) = self.family.param_index(name) {
+                    self.params[k] = v;
+                }
+            }
+        }
+        self
+    }
+
+    /// The system and the start at `bits`.
+    pub fn make(&self, bits: usize) -> (PreciseSystem<Big>, PreciseState<Big>) {
+        let num = |x: f64| Value::Double(x).at(bits, self.binary);
+        let sys = if self.sine {
+            PreciseSystem::sine(
+                self.alpha.at(bits, self.binary),
+                self.r.at(bits, self.binary),
+                bits,
+            )
+        } else {
+            let params: Vec<Big> = self
+                .params
+                .iter()
+                .map(|v| v.at(bits, self.binary))
+                .collect();
+            let pieces = self
+                .family
+                .pieces_in(&params, &bits)
+                .expect("a member at its doubles is one at its decimals");
+            PreciseSystem::new(
+                pieces,
+                self.alpha.at(bits, self.binary),
+                self.r.at(bits, self.binary),
+                bits,
+            )
+            .expect("checked of degree ≤ 3 when made")
+        };
+        let t0 = num(self.t0);
+        let w = match self.v0 {
+            Some(v0) => num(v0) - sys.jet(&t0)[1].clone(),
+            None => num(crate::map::DEFAULT_HOP),
+        };
+        let st = PreciseState::launch(&sys, 0, t0, w);
+        (sys, st)
+    }
+}
+
+/// Events a sticking cycle is looked for within, at each precision.
+pub const CYCLE_EVENTS: u64 = 1_000_000;
+
+/// The sticking cycle the ball of `setup` reaches, decided at any precision as `ask`
+/// says ([`sticking_cycle_to_digits`], within [`CYCLE_EVENTS`] events and `max_periods`
+/// table periods a run). `tick` is told the events done since it was last called and
+/// may stop the work (then None).
+pub fn decide_sticking_cycle(
+    setup: &PreciseSetup,
+    ask: DigitsAsk,
+    max_periods: i64,
+    tick: &mut dyn FnMut(u64) -> ControlFlow<()>,
+) -> Option<CycleVerdict> {
+    let mut last = 0u64;
+    let mut progress = |p: DigitsProgress| {
+        let new = p.done.saturating_sub(last);
+        last = p.done;
+        tick(new)
+    };
+    sticking_cycle_to_digits(
+        &|bits| setup.make(bits),
+        ask.digits,
+        ask.max_digits,
+        CYCLE_EVENTS,
+        max_periods,
+        &mut progress,
+    )
+}
+
+/// Whether a job can decide its sticking cycles at any precision as `ask` says: digits
+/// within [`crate::limits::DIGITS`], `max_digits` at least `digits`, a table the map at
+/// any precision takes and starts on the table (`z0` = 0).
+pub fn check_digits(ask: DigitsAsk, table: &Table, z0: f64) -> Result<(), EngineError> {
+    limits::DIGITS.check(ask.digits as f64)?;
+    limits::DIGITS.check(ask.max_digits as f64)?;
+    if ask.max_digits < ask.digits {
+        return Err(EngineError::Inconsistent(format!(
+            "max digits {} is below digits {}: valid max digits ≥ digits",
+            ask.max_digits, ask.digits
+        )));
+    }
+    if !precise_takes(table) {
+        return Err(EngineError::Inconsistent(format!(
+            "digits: table {} is not yet computed at any precision: valid the sine or a piecewise polynomial table of degree ≤ {}",
+            table.name(),
+            super::PRECISE_MAX_DEGREE
+        )));
+    }
+    if z0 != 0.0 {
+        return Err(EngineError::Inconsistent(
+            "digits with z0 > 0: at any precision the ball starts on the table: valid z0 = 0"
+                .into(),
+        ));
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::jobs::grid::grid_value;
+    use crate::real::bits_for_digits;
+
+    /// The middle of 0.595..0.6 in three steps is 0.5975 as written, not the double
+    /// 0.5974999999999999 the f64 grid gives, and the doubles themselves where asked.
+    #[test]
+    fn a_grid_point_is_the_decimal_of_the_window_not_its_double() {
+        let bits = bits_for_digits(60);
+        let grid = Value::Grid {
+            lo: 0.595,
+            hi: 0.6,
+            i: 1,
+            steps: 3,
+            double: grid_value(0.595, 0.6, 3, 1),
+        };
+        assert_eq!(
+            format!("{}", grid_value(0.595, 0.6, 3, 1)),
+            "0.5974999999999999"
+        );
+        let exact = Big::from_decimal("0.5975", &bits).unwrap();
+        let d = (grid.at(bits, false) - exact.clone()).abs();
+        assert!(d <= Big::epsilon(&bits) * exact.clone(), "{d:?}");
+        assert_eq!(
+            grid.at(bits, true),
+            Big::from_f64(0.5974999999999999, &bits)
+        );
+        // The ends are the window's decimals.
+        let end = |i| Value::Grid {
+            lo: 0.595,
+            hi: 0.6,
+            i,
+            steps: 3,
+            double: grid_value(0.595, 0.6, 3, i),
+        };
+        assert_eq!(
+            end(0).at(bits, false),
+            Big::from_decimal("0.595", &bits).unwrap()
+        );
+        let six = Big::from_decimal("0.6", &bits).unwrap();
+        assert!((end(2).at(bits, false) - six.clone()).abs() <= Big::epsilon(&bits) * six);
+    }
+
+    /// A setup on a job's grid puts the value where the parameter is: α, r, or the
+    /// family's parameter by name.
+    #[test]
+    fn on_grid_sets_the_swept_parameter() {
+        let bits = bits_for_digits(30);
+        let table = Table::fd(0.1).unwrap();
+        let setup = PreciseSetup::new(&table, 0.45, 0.8, 0.2, None, false).unwrap();
+        let window = (0.0, 1.0, 5);
+        let alpha = setup.clone().on_grid(Slot::Alpha, window, 1, 0.25);
+        assert_eq!(
+            alpha.alpha.at(bits, false),
+            Big::from_decimal("0.25", &bits).unwrap()
+        );
+        let r = setup.clone().on_grid(Slot::R, window, 3, 0.75);
+        assert_eq!(
+            r.r.at(bits, false),
+            Big::from_decimal("0.75", &bits).unwrap()
+        );
+        let d = setup.on_grid(Slot::Table("D"), window, 2, 0.5);
+        assert_eq!(
+            d.params[0].at(bits, false),
+            Big::from_decimal("0.5", &bits).unwrap()
+        );
+    }
+}

@@ -1,0 +1,55 @@
+//! `--digits`, `--max-digits` and `--binary-params` settled once for every command that
+//! computes at any precision (`orbit`, `lyapunov`, `sweep`, `basins`), and what they are
+//! refused with.
+
+use super::InputError;
+
+/// `--digits`, `--max-digits` and `--binary-params`, settled (None without
+/// `--digits`, where the other two are refused).
+pub fn digits_ask(
+    p: &super::flags::PrecisionArgs,
+) -> Result<Option<bouncemap_engine::DigitsAsk>, InputError> {
+    let Some(digits) = p.digits else {
+        if p.binary_params || p.max_digits != super::rules::MAX_DIGITS.default as u32 {
+            return Err(InputError(
+                "--binary-params and --max-digits go with --digits N: valid with --digits".into(),
+            ));
+        }
+        return Ok(None);
+    };
+    if p.max_digits < digits {
+        return Err(InputError(format!(
+            "--max-digits {} is below --digits {digits}: valid --max-digits M with M ≥ N",
+            p.max_digits
+        )));
+    }
+    Ok(Some(bouncemap_engine::DigitsAsk {
+        digits,
+        max_digits: p.max_digits,
+        binary: p.binary_params,
+    }))
+}
+
+/// Whether `--digits` takes `table` and a start at height `z0`: refused naming what
+/// it takes.
+pub fn digits_take(table: &bouncemap_engine::Table, z0: f64) -> Result<(), InputError> {
+    if z0 != 0.0 {
+        return Err(InputError(
+            "--z0 with --digits: at any precision the ball starts on the table: valid --z0 0"
+                .into(),
+        ));
+    }
+    if !bouncemap_engine::precise_takes(table) {
+        return Err(digits_refusal(table));
+    }
+    Ok(())
+}
+
+/// Why `--digits` does not take `table`, naming what it takes.
+pub fn digits_refusal(table: &bouncemap_engine::Table) -> InputError {
+    InputError(format!(
+        "--digits: table {} is not yet computed at any precision: valid the sine or a piecewise polynomial table of degree ≤ {} (fd:D, quad, cubic, a table file)",
+        table.name(),
+        bouncemap_engine::PRECISE_MAX_DEGREE
+    ))
+}

@@ -1,0 +1,192 @@
+//! `--digits` in the jobs: `sweep` (and `basins`) decide at any precision the sticking
+//! cycles whose length double precision cannot, and write the verdict beside the f64
+//! columns. Checked against the independent high-precision computation the
+//! `lyapunov --digits` tests quote, against `lyapunov --digits` at the same value, and
+//! through `merge`.
+
+use crate::scratch::{dir, s};
+use std::process::{Command, Output};
+
+fn bouncemap(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_bouncemap"))
+        .args(args)
+        .env("NO_COLOR", "1")
+        .output()
+        .unwrap()
+}
+
+/// The csv rows of a command that succeeds (comment lines left out), header first.
+fn csv(args: &[&str]) -> Vec<Vec<String>> {
+    let out = bouncemap(args);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout)
+        .unwrap()
+        .lines()
+        .filter(|l| !l.starts_with('#'))
+        .map(|l| l.split(',').map(String::from).collect())
+        .collect()
+}
+
+/// A row's cell by its column's name.
+fn cell<'a>(rows: &'a [Vec<String>], row: usize, name: &str) -> &'a str {
+    let k = rows[0].iter().position(|h| h == name).unwrap_or_else(|| {
+        panic!("no column {name} in {:?}", rows[0]);
+    });
+    &rows[row][k]
+}
+
+const SWEEP: [&str; 12] = [
+    "sweep",
+    "--table",
+    "fd:1",
+    "--alpha",
+    "0.58..0.59",
+    "--steps",
+    "2",
+    "--near-fixed-point",
+    "--keep",
+    "1",
+    "--digits",
+    "20",
+];
+
+/// fd:1 over α 0.58..0.59, where double precision decides neither sticking cycle: at
+/// α = 0.59 the sweep's verdict is the independent computation's (mpmath at 300–600
+/// digits: L = 78, T = 77.94380773608558746178…; for the doubles L = 142,
+/// T = 141.99569712592663915833…), and at α = 0.58 it is what `lyapunov --digits`
+/// finds there; the f64 columns still claim no length.
+#[test]
+fn a_sweep_decides_the_cycles_double_precision_cannot() {
+    let decimals = csv(&SWEEP);
+    let binary = csv(&[&SWEEP[..], &["--binary-params"]].concat());
+    for rows in [&decimals, &binary] {
+        assert_eq!(rows.len(), 3, "{rows:?}");
+        for i in 1..3 {
+            assert_eq!(cell(rows, i, "resolved"), "false");
+            assert_eq!(cell(rows, i, "table_periods"), "");
+            assert_eq!(cell(rows, i, "digits_verdict"), "found");
+            assert_eq!(cell(rows, i, "agreed_digits"), "20");
+            assert_eq!(cell(rows, i, "need_digits"), "");
+        }
+    }
+    assert_eq!(cell(&decimals, 2, "digits_periods"), "78");
+    // (20 digits, the last rounded: …587461|78 is …587462.)
+    let t = cell(&decimals, 2, "stick_after");
+    assert_eq!(t, "77.943807736085587462");
+    assert_eq!(cell(&binary, 2, "digits_periods"), "142");
+    let t = cell(&binary, 2, "stick_after");
+    assert_eq!(t, "141.99569712592663916");
+    // The same answer as `lyapunov --digits` from the same start at the same α.
+    let out = bouncemap(&[
+        "lyapunov",
+        "--table",
+        "fd:1",
+        "--alpha",
+        "0.58",
+        "--near-fixed-point",
+        "--digits",
+        "20",
+        "--format",
+        "csv",
+    ]);
+    let text = String::from_utf8(out.stdout).unwrap();
+    let row: Vec<&str> = text.lines().nth(1).unwrap().split(',').collect();
+    assert_eq!(row[5], "found");
+    assert_eq!(cell(&decimals, 1, "digits_periods"), row[6]);
+    assert_eq!(cell(&decimals, 1, "stick_after"), row[9]);
+}
+
+/// A value that double precision decides gets no verdict: its cells are empty and its
+/// f64 length stands (fd:0.1 at α = 0.595, growth 10^12 from the release).
+#[test]
+fn a_cycle_double_precision_decides_is_not_recomputed() {
+    let rows = csv(&[
+        "sweep",
+        "--table",
+        "fd:0.1",
+        "--alpha",
+        "0.59..0.595",
+        "--steps",
+        "2",
+        "--near-fixed-point",
+        "--keep",
+        "1",
+        "--digits",
+        "15",
+    ]);
+    assert_eq!(cell(&rows, 2, "resolved"), "true");
+    assert_eq!(cell(&rows, 2, "table_periods"), "22");
+    for name in ["digits_verdict", "digits_periods", "stick_after"] {
+        assert_eq!(cell(&rows, 2, name), "", "{name}");
+    }
+    assert_eq!(cell(&rows, 1, "digits_verdict"), "found");
+}
+
+/// Two shards with the `--digits` columns merge into the whole sweep, byte for byte.
+#[test]
+fn digits_columns_survive_shards_and_merge() {
+    let d = dir("digits-jobs", "merge");
+    let whole = d.join("whole.csv");
+    let (a, b) = (d.join("a.csv"), d.join("b.csv"));
+    let run = |extra: &[&str]| {
+        let out = bouncemap(&[&SWEEP[..], extra].concat());
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    };
+    run(&["--out", s(&whole)]);
+    run(&["--shard", "1/2", "--out", s(&a)]);
+    run(&["--shard", "2/2", "--out", s(&b)]);
+    let merged = d.join("merged.csv");
+    let out = bouncemap(&["merge", s(&a), s(&b), "--out", s(&merged)]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let body = |p: &std::path::Path| -> Vec<String> {
+        std::fs::read_to_string(p)
+            .unwrap()
+            .lines()
+            .filter(|l| !l.starts_with('#'))
+            .map(String::from)
+            .collect()
+    };
+    assert_eq!(body(&merged), body(&whole));
+}
+
+/// `--digits` where it cannot go: the braille picture, a start above the table, a
+/// table of degree 4, and `--max-digits` without it, each one line and status 2.
+#[test]
+fn sweep_digits_refusals_are_one_line() {
+    let base = [
+        "sweep",
+        "--table",
+        "fd:0.1",
+        "--alpha",
+        "0.59..0.6",
+        "--steps",
+        "2",
+    ];
+    for (extra, says) in [
+        (
+            &["--digits", "20", "--format", "braille"][..],
+            "valid --format csv or json",
+        ),
+        (&["--digits", "20", "--z0", "0.1"][..], "valid --z0 0"),
+        (&["--max-digits", "100"][..], "go with --digits N"),
+        (&["--digits", "9"][..], "[10, 10000]"),
+    ] {
+        let out = bouncemap(&[&base[..], extra].concat());
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{extra:?}: {err}");
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(err.contains(says), "{extra:?}: {err}");
+    }
+}
