@@ -6,21 +6,23 @@
 //! fractions; braille: the picture with one texture per attractor and a legend.
 //! Attractors are numbered 1, 2, … from the largest basin down.
 
+use super::digits::Reporter;
 use super::drive::fill;
 use super::progress::Progress;
 use crate::config::run::BasinsRun;
 use crate::config::{self, InputError};
 use crate::output::basin_map;
 use crate::output::part_file::Layout;
-use crate::output::records::{csv_writer, AttractorRecord, BasinRow, BasinsDoc};
+use crate::output::records::{csv_writer, cycle_text, AttractorRecord, BasinRow, BasinsDoc};
 use crate::output::sink::Sink;
 use crate::output::text::shortest;
 use bouncemap_engine::attractors::basins::{BasinSpec, Basins, BasinsJob};
 use bouncemap_engine::jobs::{Control, Executor};
+use bouncemap_engine::{CycleVerdict, DigitsAsk, CYCLE_EVENTS};
 use std::io::Write;
 
 pub fn run(run: &BasinsRun) -> anyhow::Result<()> {
-    let BasinsRun { spec, job } = run;
+    let BasinsRun { spec, job, .. } = run;
     if job.check {
         let (workers, threads) = job.threads_plan();
         return super::print_plan(&[
@@ -33,8 +35,45 @@ pub fn run(run: &BasinsRun) -> anyhow::Result<()> {
     let threads = job.threads()?;
     let mut sink = Sink::open(job.out.as_deref()).map_err(InputError)?;
     let basins = compute(spec, &Executor::new(threads)?)?;
-    write(run, &basins, &mut sink).map_err(|e| sink.describe(e))?;
+    let cycles = match run.digits {
+        Some(ask) => decide(spec, &basins, ask)?,
+        None => Vec::new(),
+    };
+    write(run, &basins, &cycles, &mut sink).map_err(|e| sink.describe(e))?;
     sink.finish()
+}
+
+/// The cycles double precision does not resolve, decided at any precision, by
+/// attractor id, with progress on stderr.
+fn decide(
+    spec: &BasinSpec,
+    basins: &Basins,
+    ask: DigitsAsk,
+) -> anyhow::Result<Vec<Option<CycleVerdict>>> {
+    let unresolved = basins
+        .registry()
+        .attractors()
+        .iter()
+        .filter(|a| a.unresolved())
+        .count();
+    if unresolved == 0 {
+        return Ok(Vec::new());
+    }
+    let mut report = Reporter::new(
+        "basins",
+        CYCLE_EVENTS,
+        &format!(
+            "{unresolved} sticking cycle{} beyond double precision to {} digits",
+            if unresolved == 1 { "" } else { "s" },
+            ask.digits
+        ),
+    );
+    let verdicts = basins.decide_cycles(spec, ask, &mut |p| {
+        report.update(p);
+        std::ops::ControlFlow::Continue(())
+    });
+    report.finish();
+    verdicts.ok_or_else(|| anyhow::anyhow!("the runs at any precision stopped without a verdict"))
 }
 
 /// A bound on the run's memory, in bytes: a label per start (or none yet) and the
@@ -86,7 +125,13 @@ fn title(spec: &BasinSpec) -> String {
     )
 }
 
-fn write(run: &BasinsRun, basins: &Basins, out: &mut Sink) -> anyhow::Result<()> {
+fn write(
+    run: &BasinsRun,
+    basins: &Basins,
+    cycles: &[Option<CycleVerdict>],
+    out: &mut Sink,
+) -> anyhow::Result<()> {
+    let cycle = |id: usize| cycles.get(id).and_then(|c| c.as_ref());
     let spec = &run.spec;
     let reg = basins.registry();
     let number = basin_map::numbers(reg);
@@ -126,6 +171,7 @@ fn write(run: &BasinsRun, basins: &Basins, out: &mut Sink) -> anyhow::Result<()>
                             reg.fraction(id),
                             a.precision,
                         )
+                        .with_cycle(cycle(id))
                     })
                     .collect(),
             };
@@ -136,6 +182,13 @@ fn write(run: &BasinsRun, basins: &Basins, out: &mut Sink) -> anyhow::Result<()>
             let (w, h) = run.job.text;
             for line in basin_map::lines(basins, &title(spec), spec.w_max, w as usize, h as usize) {
                 writeln!(out, "{line}")?;
+            }
+            let (ask, periods) = (run.digits, spec.settle.transient);
+            for id in reg.ranked() {
+                if let (Some(c), Some(ask)) = (cycle(id), ask) {
+                    let text = cycle_text(c, ask.max_digits, periods);
+                    writeln!(out, "attractor {} at any precision, {text}", number[id])?;
+                }
             }
         }
     }

@@ -11,7 +11,7 @@
 
 use super::progress::Progress;
 use crate::config::run::{DigitsRun, LyapunovDigits};
-use crate::output::records::CycleRecord;
+use crate::output::records::{cycle_text, CycleRecord};
 use crate::output::sink::Sink;
 use crate::output::Format;
 use bouncemap_engine::{
@@ -157,7 +157,7 @@ fn write(out: &mut Sink, run: &DigitsRun, orbit: &DigitsOrbit, shown: usize) -> 
 
 /// Progress on stderr as the runs go (the bar on a terminal, lines in a batch log): the
 /// events of the run and the digits it runs at. `total` is what a run computes at most.
-struct Reporter {
+pub(super) struct Reporter {
     progress: Progress,
     start: std::time::Instant,
     total: u64,
@@ -165,7 +165,7 @@ struct Reporter {
 }
 
 impl Reporter {
-    fn new(what: &'static str, total: u64, spec: &str) -> Reporter {
+    pub(super) fn new(what: &'static str, total: u64, spec: &str) -> Reporter {
         Reporter {
             progress: Progress::start_units(what, "events", total as usize, spec),
             start: std::time::Instant::now(),
@@ -174,7 +174,7 @@ impl Reporter {
         }
     }
 
-    fn update(&mut self, p: DigitsProgress) {
+    pub(super) fn update(&mut self, p: DigitsProgress) {
         let job = bouncemap_engine::jobs::Progress {
             done: p.done as usize,
             total: if p.total == 0 { self.total } else { p.total } as usize,
@@ -186,7 +186,7 @@ impl Reporter {
         self.last = Some(job);
     }
 
-    fn finish(self) {
+    pub(super) fn finish(self) {
         if let Some(mut last) = self.last {
             // What was computed is all there was to compute.
             last.total = last.done;
@@ -241,7 +241,11 @@ pub fn lyapunov(run: &LyapunovDigits) -> anyhow::Result<()> {
                     "table {}  alpha {}  r {}  parameters {params}  digits {}",
                     spec.table, spec.alpha, spec.r, spec.digits
                 )?;
-                writeln!(out, "{}", cycle_text(run, &verdict))?;
+                writeln!(
+                    out,
+                    "{}",
+                    cycle_text(&verdict, spec.max_digits, run.transient)
+                )?;
                 if matches!(verdict, CycleVerdict::Found(_)) {
                     writeln!(
                         out,
@@ -289,7 +293,7 @@ pub fn lyapunov(run: &LyapunovDigits) -> anyhow::Result<()> {
                     "stick_after": row.stick_after,
                     "agreed_digits": row.agreed_digits,
                     "need_digits": row.need_digits,
-                    "text": cycle_text(run, &verdict),
+                    "text": cycle_text(&verdict, spec.max_digits, run.transient),
                 });
                 serde_json::to_writer(&mut out, &doc)?;
                 writeln!(out)?;
@@ -298,49 +302,4 @@ pub fn lyapunov(run: &LyapunovDigits) -> anyhow::Result<()> {
         Ok(())
     })();
     out.end(written)
-}
-
-/// The verdict in one line.
-fn cycle_text(run: &LyapunovDigits, v: &CycleVerdict) -> String {
-    let spec = &run.spec;
-    match v {
-        CycleVerdict::Found(c) => format!(
-            "cycle: sticking cycle of {} table periods ({} release{} per cycle): released at phase {}, sticks {} periods after the release ({} digits; runs at {} and {} digits agree{})",
-            c.periods,
-            c.releases,
-            if c.releases == 1 { "" } else { "s" },
-            c.release_phase.to_digits(c.digits as usize),
-            c.stick_after.to_digits(c.digits as usize),
-            c.digits,
-            c.precision.0,
-            c.precision.1,
-            c.earlier.map_or(String::new(), |((a, b), d)| if d > 0 {
-                format!(", at {a} and {b} only to {d}")
-            } else {
-                format!(", at {a} and {b} not on the cycle")
-            })
-        ),
-        CycleVerdict::NoRelease => format!(
-            "cycle: no sticking cycle: the ball is not released from the table within {} periods (run without --digits for its exponents)",
-            run.transient
-        ),
-        CycleVerdict::NoReturn => format!(
-            "cycle: released, but not again at the same phase within {} periods: no sticking cycle found",
-            run.transient
-        ),
-        CycleVerdict::Undecided { tried, agreed, need } => format!(
-            "cycle: not decided within --max-digits {}: the runs at {} and {} digits {}{}",
-            spec.max_digits,
-            tried.0,
-            tried.1,
-            if *agreed > 0 {
-                format!("agree on the stick time to {agreed} digits only")
-            } else {
-                "disagree on the cycle".to_string()
-            },
-            need.map_or(String::new(), |n| format!(
-                "; by the digits the path from the release loses, it needs about {n} digits (--max-digits {n})"
-            ))
-        ),
-    }
 }

@@ -91,6 +91,9 @@ pub struct BasinsRun {
     pub spec: BasinSpec,
     /// How it runs.
     pub job: Job,
+    /// `--digits`: the attractors double precision does not resolve decided at any
+    /// precision.
+    pub digits: Option<bouncemap_engine::DigitsAsk>,
 }
 
 /// The layout an output format writes: csv or json (a part file), None for any other
@@ -160,6 +163,15 @@ pub fn basins(args: &BasinsArgs) -> Result<BasinsRun, InputError> {
         BasinsFormat::Json => Some(Layout::Json),
         BasinsFormat::Braille => None,
     };
+    let digits = super::digits::digits_ask(&args.precision)?;
+    if digits.is_some() {
+        if layout == Some(Layout::Csv) {
+            return Err(InputError(
+                "--digits: the cycles decided at any precision are in the json's attractors and under the braille picture: valid --format json or braille".into(),
+            ));
+        }
+        super::digits::digits_take(spec.sys.table(), 0.0)?;
+    }
     let job = Job {
         check: args.run.check.check,
         requested_threads: args.run.workers.threads,
@@ -168,7 +180,7 @@ pub fn basins(args: &BasinsArgs) -> Result<BasinsRun, InputError> {
         text: text(&args.run.text),
         resume: false,
     };
-    Ok(BasinsRun { spec, job })
+    Ok(BasinsRun { spec, job, digits })
 }
 
 /// `lyapunov`, settled.

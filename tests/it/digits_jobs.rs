@@ -190,3 +190,36 @@ fn sweep_digits_refusals_are_one_line() {
         assert!(err.contains(says), "{extra:?}: {err}");
     }
 }
+
+/// `basins --digits`: fd:1 at α = 0.59, where every start sticks on one cycle double
+/// precision does not resolve; its cycle decided at any precision is the independent
+/// computation's (L = 78, T = 77.94380773608558746178…), in the json's attractor and
+/// under the braille picture; the csv, which has no attractor list, is refused.
+#[test]
+fn basins_decide_their_unresolved_cycles() {
+    let base = [
+        "basins", "--table", "fd:1", "--alpha", "0.59", "--grid", "20x10", "--digits", "20",
+    ];
+    let out = bouncemap(&[&base[..], &["--format", "json"]].concat());
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let doc: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let a = &doc["attractors"][0];
+    assert_eq!(a["resolved"], false, "{a}");
+    assert_eq!(a["cycle"]["verdict"], "found", "{a}");
+    assert_eq!(a["cycle"]["periods"], 78, "{a}");
+    assert_eq!(a["cycle"]["stick_after"], "77.943807736085587462", "{a}");
+    let out = bouncemap(&[&base[..], &["--format", "braille", "--width", "60"]].concat());
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.contains("attractor 1 at any precision, cycle: sticking cycle of 78 table periods"),
+        "{text}"
+    );
+    let out = bouncemap(&base);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("valid --format json or braille"), "{err}");
+}

@@ -446,6 +446,8 @@ pub struct BasinsArgs {
     #[arg(long, value_enum, default_value_t = BasinsFormat::Csv)]
     pub format: BasinsFormat,
     #[command(flatten)]
+    pub precision: PrecisionArgs,
+    #[command(flatten)]
     pub output: OutArgs,
     #[command(flatten)]
     pub run: RunArgs,

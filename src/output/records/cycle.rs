@@ -99,6 +99,51 @@ pub const CYCLE_COLUMNS: [&str; 5] = [
     "need_digits",
 ];
 
+/// The verdict in one line (`max_digits` the most digits allowed, `periods` the most
+/// table periods the orbit was followed).
+pub fn cycle_text(v: &CycleVerdict, max_digits: u32, periods: u64) -> String {
+    match v {
+        CycleVerdict::Found(c) => format!(
+            "cycle: sticking cycle of {} table periods ({} release{} per cycle): released at phase {}, sticks {} periods after the release ({} digits; runs at {} and {} digits agree{})",
+            c.periods,
+            c.releases,
+            if c.releases == 1 { "" } else { "s" },
+            c.release_phase.to_digits(c.digits as usize),
+            c.stick_after.to_digits(c.digits as usize),
+            c.digits,
+            c.precision.0,
+            c.precision.1,
+            c.earlier.map_or(String::new(), |((a, b), d)| if d > 0 {
+                format!(", at {a} and {b} only to {d}")
+            } else {
+                format!(", at {a} and {b} not on the cycle")
+            })
+        ),
+        CycleVerdict::NoRelease => format!(
+            "cycle: no sticking cycle: the ball is not released from the table within {} periods (run without --digits for its exponents)",
+            periods
+        ),
+        CycleVerdict::NoReturn => format!(
+            "cycle: released, but not again at the same phase within {} periods: no sticking cycle found",
+            periods
+        ),
+        CycleVerdict::Undecided { tried, agreed, need } => format!(
+            "cycle: not decided within --max-digits {}: the runs at {} and {} digits {}{}",
+            max_digits,
+            tried.0,
+            tried.1,
+            if *agreed > 0 {
+                format!("agree on the stick time to {agreed} digits only")
+            } else {
+                "disagree on the cycle".to_string()
+            },
+            need.map_or(String::new(), |n| format!(
+                "; by the digits the path from the release loses, it needs about {n} digits (--max-digits {n})"
+            ))
+        ),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -15,8 +15,12 @@ use crate::jobs::picture::{
     Cells, Chunk, Filled, Picture, PictureJob, Sequencer, MAX_CELLS, MAX_SIDE,
 };
 use crate::limits;
+use crate::precise::{
+    decide_sticking_cycle, CycleVerdict, DigitsAsk, DigitsProgress, PreciseSetup,
+};
 use crate::run::start::launch;
 use crate::system::System;
+use std::ops::ControlFlow;
 
 /// Points per work item.
 pub const CHUNK: usize = 32;
@@ -209,6 +213,35 @@ impl Basins {
     /// Whether every grid point is done.
     pub fn complete(&self) -> bool {
         self.labels.complete()
+    }
+
+    /// With `ask`, each attractor's cycle decided at any precision where double
+    /// precision does not resolve it (None elsewhere), by attractor id: the orbit of the
+    /// first grid point (in index order) that ended on it, run as
+    /// [`crate::decide_sticking_cycle`] runs it, within the spec's transient.
+    /// `progress` hears how far each run has got and may stop the work (then None).
+    pub fn decide_cycles(
+        &self,
+        spec: &BasinSpec,
+        ask: DigitsAsk,
+        progress: &mut dyn FnMut(DigitsProgress) -> ControlFlow<()>,
+    ) -> Option<Vec<Option<CycleVerdict>>> {
+        let attractors = self.registry.attractors();
+        let mut verdicts = vec![None; attractors.len()];
+        let periods = i64::try_from(spec.settle.transient).unwrap_or(i64::MAX);
+        for (id, a) in attractors.iter().enumerate() {
+            if !a.unresolved() {
+                continue;
+            }
+            let first = self.labels().iter().position(|l| *l == Some(id as u32));
+            let Some(k) = first else { continue };
+            let (t0, w0) = spec.start(k);
+            let setup = launch(&spec.sys, t0, w0)
+                .and_then(|st| PreciseSetup::of_state(&spec.sys, &st, ask.binary));
+            let Some(setup) = setup else { continue };
+            verdicts[id] = Some(decide_sticking_cycle(&setup, ask, periods, progress)?);
+        }
+        Some(verdicts)
     }
 
     /// The label shown for grid point (i, j) while the picture fills in: its own, or

@@ -34,7 +34,9 @@ pub use digits::{
     agreeing_digits, orbit_to_digits, sticking_cycle_to_digits, CycleVerdict, DigitsOrbit,
     DigitsProgress, MakeBig, StickingCycle,
 };
-pub use setup::{check_digits, decide_sticking_cycle, DigitsAsk, PreciseSetup, Slot, CYCLE_EVENTS};
+pub use setup::{
+    check_digits, decide_sticking_cycle, events_since, DigitsAsk, PreciseSetup, Slot, CYCLE_EVENTS,
+};
 
 use crate::map::{EventKind, MAX_EVENT_PERIOD};
 use crate::real::Real;

@@ -213,28 +213,30 @@ pub const CYCLE_EVENTS: u64 = 1_000_000;
 
 /// The sticking cycle the ball of `setup` reaches, decided at any precision as `ask`
 /// says ([`sticking_cycle_to_digits`], within [`CYCLE_EVENTS`] events and `max_periods`
-/// table periods a run). `tick` is told the events done since it was last called and
-/// may stop the work (then None).
+/// table periods a run). `progress` hears how far each run has got and may stop the
+/// work (then None).
 pub fn decide_sticking_cycle(
     setup: &PreciseSetup,
     ask: DigitsAsk,
     max_periods: i64,
-    tick: &mut dyn FnMut(u64) -> ControlFlow<()>,
+    progress: &mut dyn FnMut(DigitsProgress) -> ControlFlow<()>,
 ) -> Option<CycleVerdict> {
-    let mut last = 0u64;
-    let mut progress = |p: DigitsProgress| {
-        let new = p.done.saturating_sub(last);
-        last = p.done;
-        tick(new)
-    };
     sticking_cycle_to_digits(
         &|bits| setup.make(bits),
         ask.digits,
         ask.max_digits,
         CYCLE_EVENTS,
         max_periods,
-        &mut progress,
+        progress,
     )
+}
+
+/// A progress report of [`DigitsProgress`] as the events done since the last report:
+/// what a job's event counter takes (a run's count starts again at each precision).
+pub fn events_since(last: &mut u64, p: DigitsProgress) -> u64 {
+    let new = p.done.saturating_sub(*last);
+    *last = p.done;
+    new
 }
 
 /// Whether a job can decide its sticking cycles at any precision as `ask` says: digits
