@@ -89,11 +89,16 @@ fn plane_table(text: &str, axes: [&str; 2]) -> Result<(TableSpec, Table), InputE
 
 /// The plane `plane`'s flags describe.
 pub fn plane_spec(args: &PlaneArgs) -> Result<PlaneSpec, InputError> {
-    plane_spec_from(
+    let mut spec = plane_spec_from(
         &args.spec,
         args.size,
         shard(args.part.shard, |name| std::env::var(name).ok())?,
-    )
+    )?;
+    spec.digits = super::digits::digits_ask(&args.precision)?;
+    if spec.digits.is_some() {
+        super::digits::digits_take(&spec.table, 0.0)?;
+    }
+    Ok(spec)
 }
 
 /// The plane `plane`'s spec flags describe with `nx × ny` pixels, computing part `part`.

@@ -115,9 +115,7 @@ pub fn sweep(args: &SweepArgs) -> Result<SweepRun, InputError> {
     });
     let layout = part_layout(args.format);
     if spec.digits.is_some() && layout.is_none() {
-        return Err(InputError(
-            "--digits: the cycles decided at any precision are columns of the csv and fields of the json: valid --format csv or json".into(),
-        ));
+        return Err(digits_in_files());
     }
     let job = Job {
         check: args.run.check.check,
@@ -130,11 +128,21 @@ pub fn sweep(args: &SweepArgs) -> Result<SweepRun, InputError> {
     Ok(SweepRun { spec, job })
 }
 
+/// `--digits` with a braille picture, refused: its cycles are columns of the files.
+fn digits_in_files() -> InputError {
+    InputError(
+        "--digits: the cycles decided at any precision are columns of the csv and fields of the json: valid --format csv or json".into(),
+    )
+}
+
 /// `plane`'s flags, settled. `--curves` goes with the text picture only: the csv and
 /// json files are the pixels (their curves' numbers come from `bouncemap curves`).
 pub fn plane(args: &PlaneArgs) -> Result<PlaneRun, InputError> {
     let spec = super::plane::plane_spec(args)?;
     let layout = part_layout(args.format);
+    if spec.digits.is_some() && layout.is_none() {
+        return Err(digits_in_files());
+    }
     let curves = match args.curves {
         Some(_) if layout.is_some() => {
             return Err(InputError(

@@ -22,11 +22,14 @@
 
 use super::classes::{of_pixel, Class, NO_LANDING};
 use super::part_file::{clip, FileKind, Layout, PartWriter};
-use super::records::{solver_name, EarlyStop, Exponent};
+use super::records::{
+    check_verdict, present, solver_name, DigitsRecord, EarlyStop, Exponent, VERDICTS,
+};
 use bouncemap_engine::jobs::grid::grid_value;
 use bouncemap_engine::jobs::grid::Shard;
 use bouncemap_engine::plane::{Curves, Pixel, PlaneSpec};
 use bouncemap_engine::run::Outcome;
+use bouncemap_engine::CycleSummary;
 use serde::{Deserialize, Serialize};
 use std::io::{self, Write};
 
@@ -63,6 +66,10 @@ pub struct PlaneHeader {
     pub solver: String,
     pub early_stop: Option<EarlyStop>,
     pub lyapunov: bool,
+    /// `--digits`: sticking cycles beyond double precision decided at any precision
+    /// (absent without).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub digits: Option<DigitsRecord>,
 }
 
 impl From<&PlaneSpec> for PlaneHeader {
@@ -90,6 +97,7 @@ impl From<&PlaneSpec> for PlaneHeader {
                 tolerance: p.tolerance,
             }),
             lyapunov: s.lyapunov,
+            digits: s.digits.map(DigitsRecord::from),
         }
     }
 }
@@ -113,10 +121,11 @@ impl PlaneHeader {
 
     /// The csv header row.
     pub fn header_row(&self) -> String {
-        format!(
-            "{},{},class,period,table_periods,lyapunov,status,resolved,growth_decades",
-            self.x.param, self.y.param
-        )
+        let mut names = PlaneFile::field_names(self);
+        let (x, y) = (self.x.param.as_str(), self.y.param.as_str());
+        names[0] = x;
+        names[1] = y;
+        names.join(",")
     }
 }
 
@@ -140,16 +149,52 @@ pub struct PixelRow {
     /// For a sticking cycle: log₁₀ of the largest growth of a perturbation from a
     /// release to the next stick.
     pub growth_decades: Option<f64>,
+    /// With `--digits` ([`PLANE_CYCLE_COLUMNS`]): the sticking cycle decided at any
+    /// precision where double precision does not resolve it (empty elsewhere). None: no
+    /// such columns.
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "present"
+    )]
+    pub digits_verdict: Option<Option<String>>,
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "present"
+    )]
+    pub digits_periods: Option<Option<i64>>,
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "present"
+    )]
+    pub agreed_digits: Option<Option<u32>>,
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "present"
+    )]
+    pub need_digits: Option<Option<u32>>,
 }
+
+/// The `--digits` columns of a plane (a sweep's without the stick time: a picture
+/// keeps each pixel's verdict, not its numbers of any precision).
+pub const PLANE_CYCLE_COLUMNS: [&str; 4] = [
+    "digits_verdict",
+    "digits_periods",
+    "agreed_digits",
+    "need_digits",
+];
 
 const STATUSES: [&str; 4] = ["periodic", "unsettled", "resting", "no-landing"];
 
 impl PixelRow {
-    /// The row of a computed pixel at (x, y).
-    pub fn new(x: f64, y: f64, p: &Pixel) -> PixelRow {
+    /// The row of a computed pixel at (x, y), with the `--digits` columns when asked.
+    pub fn new(x: f64, y: f64, p: &Pixel, digits: bool) -> PixelRow {
         let resolved = p.precision.map(|p| p.resolved);
         let claimed = resolved != Some(false);
-        PixelRow {
+        let row = PixelRow {
             x,
             y,
             class: of_pixel(p).map_or(NO_LANDING, Class::name).to_string(),
@@ -162,7 +207,56 @@ impl PixelRow {
                 .precision
                 .filter(|p| p.impacts > 0)
                 .map(|p| p.growth_decades),
+            ..PixelRow::empty(x, y)
+        };
+        match digits {
+            true => row.with_cycle(p.cycle),
+            false => row,
         }
+    }
+
+    /// A row at (x, y) with nothing in it but its place (no `--digits` columns).
+    fn empty(x: f64, y: f64) -> PixelRow {
+        PixelRow {
+            x,
+            y,
+            class: NO_LANDING.into(),
+            period: None,
+            table_periods: None,
+            lyapunov: Exponent(None),
+            status: Outcome::NoLanding {
+                period: 0,
+                phase: 0.0,
+            }
+            .as_str()
+            .into(),
+            resolved: None,
+            growth_decades: None,
+            digits_verdict: None,
+            digits_periods: None,
+            agreed_digits: None,
+            need_digits: None,
+        }
+    }
+
+    /// This row with the `--digits` columns of `cycle` (empty cells where None).
+    fn with_cycle(mut self, cycle: Option<CycleSummary>) -> PixelRow {
+        let (verdict, periods, agreed, need) = match cycle {
+            None => (None, None, None, None),
+            Some(CycleSummary::Found { periods, digits }) => {
+                (Some(VERDICTS[0]), Some(periods), Some(digits), None)
+            }
+            Some(CycleSummary::Undecided { agreed, need }) => {
+                (Some(VERDICTS[1]), None, Some(agreed), need)
+            }
+            Some(CycleSummary::NoRelease) => (Some(VERDICTS[2]), None, None, None),
+            Some(CycleSummary::NoReturn) => (Some(VERDICTS[3]), None, None, None),
+        };
+        self.digits_verdict = Some(verdict.map(String::from));
+        self.digits_periods = Some(periods);
+        self.agreed_digits = Some(agreed);
+        self.need_digits = Some(need);
+        self
     }
 
     fn check(&self) -> Result<(), String> {
@@ -200,7 +294,13 @@ impl PixelRow {
         if self.lyapunov.0.is_some_and(f64::is_nan) {
             return Err("lyapunov is not a number".into());
         }
-        Ok(())
+        match &self.digits_verdict {
+            Some(Some(v)) => check_verdict(v, &[self.digits_periods.flatten().is_some()]),
+            _ if self.digits_periods.flatten().is_some() => {
+                Err("digits_periods without a digits_verdict".into())
+            }
+            _ => Ok(()),
+        }
     }
 }
 
@@ -249,8 +349,8 @@ impl FileKind for PlaneFile {
     }
 
     /// The columns named after the axes' parameters are read as `x` and `y`.
-    fn field_names(_: &PlaneHeader) -> Vec<&'static str> {
-        vec![
+    fn field_names(h: &PlaneHeader) -> Vec<&'static str> {
+        let mut names = vec![
             "x",
             "y",
             "class",
@@ -260,7 +360,11 @@ impl FileKind for PlaneFile {
             "status",
             "resolved",
             "growth_decades",
-        ]
+        ];
+        if h.digits.is_some() {
+            names.extend(PLANE_CYCLE_COLUMNS);
+        }
+        names
     }
 
     fn add_row(rows: &mut Vec<PixelRow>, row: PixelRow) -> Result<(), String> {
@@ -395,26 +499,13 @@ pub fn rows<'a>(
     spec: &'a PlaneSpec,
     pixels: &'a [Option<Pixel>],
 ) -> impl Iterator<Item = PixelRow> + 'a {
+    let digits = spec.digits.is_some();
     (0..spec.len()).filter(|&p| spec.holds(p)).map(move |p| {
         let (x, y) = spec.values(p);
         match &pixels[p] {
-            Some(px) => PixelRow::new(x, y, px),
-            None => PixelRow {
-                x,
-                y,
-                class: NO_LANDING.into(),
-                period: None,
-                table_periods: None,
-                lyapunov: Exponent(None),
-                status: Outcome::NoLanding {
-                    period: 0,
-                    phase: 0.0,
-                }
-                .as_str()
-                .into(),
-                resolved: None,
-                growth_decades: None,
-            },
+            Some(px) => PixelRow::new(x, y, px, digits),
+            None if digits => PixelRow::empty(x, y).with_cycle(None),
+            None => PixelRow::empty(x, y),
         }
     })
 }

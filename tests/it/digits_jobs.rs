@@ -161,10 +161,10 @@ fn digits_columns_survive_shards_and_merge() {
     assert_eq!(body(&merged), body(&whole));
 }
 
-/// `--digits` where it cannot go: the braille picture, a start above the table, a
-/// table of degree 4, and `--max-digits` without it, each one line and status 2.
+/// `--digits` where it cannot go: a braille picture (sweep and plane), a start above
+/// the table, too few digits, and `--max-digits` without it, each one line and status 2.
 #[test]
-fn sweep_digits_refusals_are_one_line() {
+fn digits_refusals_are_one_line() {
     let base = [
         "sweep",
         "--table",
@@ -189,6 +189,24 @@ fn sweep_digits_refusals_are_one_line() {
         assert_eq!(err.lines().count(), 1, "{err}");
         assert!(err.contains(says), "{extra:?}: {err}");
     }
+    let out = bouncemap(&[
+        "plane",
+        "--table",
+        "fd:1",
+        "--x",
+        "alpha:0.58..0.59",
+        "--y",
+        "r:0.79..0.8",
+        "--size",
+        "2x2",
+        "--digits",
+        "15",
+        "--format",
+        "braille",
+    ]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("valid --format csv or json"), "{err}");
 }
 
 /// `basins --digits`: fd:1 at α = 0.59, where every start sticks on one cycle double
@@ -222,4 +240,75 @@ fn basins_decide_their_unresolved_cycles() {
     assert_eq!(out.status.code(), Some(2));
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("valid --format json or braille"), "{err}");
+}
+
+/// `plane --digits`: the pixel at (α, r) = (0.59, 0.8) of fd:1 has the independent
+/// computation's cycle (78 table periods), the pixel at (0.58, 0.8) the sweep's (both
+/// from the start next to the (1, 1) solution), a pixel double precision resolves has
+/// empty cells; two shards merge into the whole, byte for byte.
+#[test]
+fn a_plane_decides_its_unresolved_pixels() {
+    let d = dir("digits-jobs", "plane");
+    let args = [
+        "plane",
+        "--table",
+        "fd:1",
+        "--x",
+        "alpha:0.58..0.59",
+        "--y",
+        "r:0.79..0.8",
+        "--size",
+        "2x2",
+        "--digits",
+        "15",
+    ];
+    let whole = d.join("whole.csv");
+    let (a, b) = (d.join("a.csv"), d.join("b.csv"));
+    for extra in [
+        &["--out", s(&whole)][..],
+        &["--shard", "1/2", "--out", s(&a)],
+        &["--shard", "2/2", "--out", s(&b)],
+    ] {
+        let out = bouncemap(&[&args[..], extra].concat());
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+    let text = std::fs::read_to_string(&whole).unwrap();
+    let rows: Vec<Vec<String>> = text
+        .lines()
+        .filter(|l| !l.starts_with('#'))
+        .map(|l| l.split(',').map(String::from).collect())
+        .collect();
+    // Rows: (0.58, 0.79), (0.59, 0.79), (0.58, 0.8), (0.59, 0.8).
+    assert_eq!(cell(&rows, 4, "digits_verdict"), "found");
+    assert_eq!(cell(&rows, 4, "digits_periods"), "78");
+    assert_eq!(cell(&rows, 3, "digits_periods"), "76");
+    assert_eq!(cell(&rows, 4, "agreed_digits"), "15");
+    for (row, _) in rows.iter().enumerate().skip(1) {
+        let resolved = cell(&rows, row, "resolved") == "true";
+        assert_eq!(
+            resolved,
+            cell(&rows, row, "digits_verdict").is_empty(),
+            "{row}"
+        );
+    }
+    let merged = d.join("merged.csv");
+    let out = bouncemap(&["merge", s(&a), s(&b), "--out", s(&merged)]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let body = |p: &std::path::Path| -> Vec<String> {
+        std::fs::read_to_string(p)
+            .unwrap()
+            .lines()
+            .filter(|l| !l.starts_with('#'))
+            .map(String::from)
+            .collect()
+    };
+    assert_eq!(body(&merged), body(&whole));
 }

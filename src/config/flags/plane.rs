@@ -85,6 +85,8 @@ pub struct PlaneArgs {
     /// Output format.
     #[arg(long, value_enum, default_value_t = PlaneFormat::Csv)]
     pub format: PlaneFormat,
+    #[command(flatten)]
+    pub precision: super::PrecisionArgs,
     #[arg(help = rules::CONTINUE_MAX_PERIOD.help("With --format braille: also mark the two-parameter curves (as `bouncemap curves`) of every branch of the (1, 1) solution up to period P over the picture; the axes must be alpha and r or a table parameter"), long, value_parser = rules::CONTINUE_MAX_PERIOD.whole::<usize>(), value_name = "P")]
     pub curves: Option<usize>,
     #[command(flatten)]

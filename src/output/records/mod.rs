@@ -207,7 +207,7 @@ pub struct SweepRow {
 }
 
 /// A field that is there (even if empty or null) is `Some`.
-fn present<'de, D, T>(d: D) -> Result<Option<T>, D::Error>
+pub fn present<'de, D, T>(d: D) -> Result<Option<T>, D::Error>
 where
     D: serde::Deserializer<'de>,
     T: Deserialize<'de>,

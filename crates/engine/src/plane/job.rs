@@ -8,7 +8,9 @@ use crate::jobs::grid::Shard;
 use crate::jobs::picture::{Cells, Chunk, Filled, Picture, PictureJob};
 use crate::jobs::{Control, Executor};
 use crate::map::ImpactMap;
+use crate::precise::{decide_sticking_cycle, events_since, CycleSummary, PreciseSetup};
 use crate::run::{Advance, OrbitRun};
+use std::ops::ControlFlow;
 
 /// One work item's results: (pixel index, result); a pixel whose system or start is
 /// refused is left out.
@@ -94,12 +96,51 @@ impl Cells for PlaneCells {
             Some(f) if f.precision.is_some() => f.precision,
             _ => run.precision(&outcome, sticking),
         };
+        let cycle = match (spec.digits, precision.is_some_and(|p| !p.resolved)) {
+            (Some(ask), true) => self.decide(index, &sys, &start, ask, tick)?,
+            _ => None,
+        };
         Some(Some(Pixel {
             sticking,
             outcome,
             lyapunov,
             precision,
+            cycle,
         }))
+    }
+}
+
+impl PlaneCells {
+    /// The sticking cycle of pixel `index`'s start, decided at any precision with both
+    /// axes' values the decimal grid points of their windows: Some(None) where the
+    /// start is not one the map at any precision takes, None when the job was stopped.
+    fn decide(
+        &self,
+        index: usize,
+        sys: &crate::system::System,
+        start: &crate::map::State,
+        ask: crate::precise::DigitsAsk,
+        tick: &mut dyn FnMut(u64) -> bool,
+    ) -> Option<Option<CycleSummary>> {
+        let spec = &self.spec;
+        let Some(setup) = PreciseSetup::of_state(sys, start, ask.binary) else {
+            return Some(None);
+        };
+        let (i, j) = (index % spec.x.n.max(1), index / spec.x.n.max(1));
+        let (x, y) = spec.values(index);
+        let setup = setup
+            .on_grid(spec.x.param.slot(), (spec.x.lo, spec.x.hi, spec.x.n), i, x)
+            .on_grid(spec.y.param.slot(), (spec.y.lo, spec.y.hi, spec.y.n), j, y);
+        let periods = i64::try_from(spec.transient).unwrap_or(i64::MAX);
+        let mut last = 0;
+        let verdict =
+            decide_sticking_cycle(&setup, ask, periods, &mut |p| match tick(events_since(
+                &mut last, p,
+            )) {
+                true => ControlFlow::Break(()),
+                false => ControlFlow::Continue(()),
+            })?;
+        Some(Some(verdict.summary()))
     }
 }
 

@@ -37,6 +37,7 @@ use crate::jobs::grid::Axis;
 use crate::jobs::grid::{Shard, SweepParam};
 use crate::limits;
 use crate::map::State;
+use crate::precise::{CycleSummary, DigitsAsk};
 use crate::run::detect::Periodicity;
 use crate::run::precision::Precision;
 use crate::run::start::near_fixed_point;
@@ -112,6 +113,9 @@ pub struct PlaneSpec {
     pub solver: Solver,
     /// The part of the pixels this plane computes.
     pub shard: Shard,
+    /// Decide at any precision the sticking cycles whose length double precision cannot
+    /// ([`Pixel::cycle`]); None: not asked.
+    pub digits: Option<DigitsAsk>,
 }
 
 impl PlaneSpec {
@@ -130,6 +134,7 @@ impl PlaneSpec {
             lyapunov: true,
             solver: Solver::Exact,
             shard: Shard::WHOLE,
+            digits: None,
         }
     }
 
@@ -230,6 +235,9 @@ impl PlaneSpec {
             p.validate()?;
         }
         self.shard.validate()?;
+        if let Some(ask) = self.digits {
+            crate::precise::check_digits(ask, &self.table, 0.0)?;
+        }
         // A file's family may stop being C¹ inside a window: every value along an axis
         // of its parameters is checked, in order (built-in families are C¹ over their
         // whole ranges).
@@ -270,6 +278,10 @@ pub struct Pixel {
     /// For a cycle: whether double precision decides it (a sticking cycle's length may
     /// be decided by rounding).
     pub precision: Option<Precision>,
+    /// With [`PlaneSpec::digits`], where double precision does not resolve the cycle:
+    /// the cycle decided at any precision from the pixel's start, both axes' values the
+    /// decimal grid points of their windows.
+    pub cycle: Option<CycleSummary>,
 }
 
 #[cfg(test)]

@@ -220,6 +220,49 @@ pub enum CycleVerdict {
     },
 }
 
+/// A [`CycleVerdict`] without its numbers of any precision: what a picture of many
+/// pixels keeps of each (a few words, where the verdict holds several numbers of any
+/// precision).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CycleSummary {
+    /// Found.
+    Found {
+        /// Its length in table periods.
+        periods: i64,
+        /// The digits the two precisions agree on about its stick time.
+        digits: u32,
+    },
+    /// Undecided within the most digits allowed.
+    Undecided {
+        /// The digits agreed on about the stick time (0: not on the cycle).
+        agreed: u32,
+        /// The digits needed, where measured.
+        need: Option<u32>,
+    },
+    /// [`CycleVerdict::NoRelease`].
+    NoRelease,
+    /// [`CycleVerdict::NoReturn`].
+    NoReturn,
+}
+
+impl CycleVerdict {
+    /// The verdict without its numbers of any precision.
+    pub fn summary(&self) -> CycleSummary {
+        match self {
+            CycleVerdict::Found(c) => CycleSummary::Found {
+                periods: c.periods,
+                digits: c.digits,
+            },
+            CycleVerdict::Undecided { agreed, need, .. } => CycleSummary::Undecided {
+                agreed: *agreed,
+                need: *need,
+            },
+            CycleVerdict::NoRelease => CycleSummary::NoRelease,
+            CycleVerdict::NoReturn => CycleSummary::NoReturn,
+        }
+    }
+}
+
 /// The sticking cycle of the orbit `make(bits)` starts, to `digits` significant digits:
 /// each precision pair (`digits` + 10 and twice that, doubled while the lower stays
 /// within `max_digits`) runs the orbit to its first release and on to the next release
