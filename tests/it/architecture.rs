@@ -145,7 +145,7 @@ const ENGINE_LAYERS: &[&[&str]] = &[
     ],
     &["table"],
     &["system"],
-    &["impact"],
+    &["impact", "chatter"],
     &["map", "tangent", "precise"],
     &["jobs"],
     &["orbits"],

@@ -59,6 +59,7 @@ pub mod run;
 pub mod sweep;
 pub mod table;
 
+mod chatter;
 mod error;
 mod exact_sum;
 mod impact;

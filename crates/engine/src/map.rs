@@ -6,7 +6,7 @@
 //! * `stick`: complete chattering was detected. After an impact with relative velocity
 //!   w where the table's acceleration f'' > −1, the following impacts shrink
 //!   geometrically and accumulate at t + T, T ≈ T₀ = 2w / ((1 + f'')(1 − r)). The map
-//!   estimates T to third order in T₀ (see `Chatter`) and, once the bound of the terms
+//!   estimates T to third order in T₀ (see [`crate::chatter`]) and, once the bound of the terms
 //!   left out is below [`CHATTER_ERROR`] (10⁻¹⁷, far below the f64 resolution of time),
 //!   jumps to t + T; the ball rides on the table.
 //! * `release`: the ball leaves the table at the first instant after which f'' < −1
@@ -16,6 +16,7 @@
 //! ball rests on the table forever: [`Halt::Resting`]. Chattering detection belongs to
 //! the exact solver; the paper's grid solver runs as the paper describes it.
 
+use crate::chatter::ChatterSeries;
 use crate::error::EngineError;
 use crate::impact::{FlightError, FlightSolver, Launch, Solver};
 use crate::limits;
@@ -428,88 +429,51 @@ impl ImpactMap {
     }
 }
 
-/// The constants of the chattering test for one system.
-///
-/// After an impact at t with relative velocity w, where the table's acceleration is
-/// f'' > −1, the following impacts accumulate at t + T. With a = 1 + f''(t),
-/// x = f'''(t)/a, y = f''''(t)/a, z = f⁽⁵⁾(t)/a and T₀ = 2w/(a(1 − r)), the flight times
-/// (roots of w − aτ/2 − f'''τ²/6 − …) and the restitution law give, order by order in
-/// T₀ (the sum of the series, from its functional equation T(w, t) = τ + T(w', t + τ)):
-///
-/// T = T₀ [1 − (x/3) T₀ + (c₃ⱼ x² − c₃ₖ y) T₀² + (−c₄ₗ z + c₄ⱼₖ x y − c₄ⱼ x³) T₀³ + …]
-///
-/// with c₃ⱼ = (2r² + 3r + 2)/(9(r² + r + 1)), c₃ₖ = (1 + r)²/(12(r² + r + 1)), and with
-/// D = 540(r² + 1)(r² + r + 1): c₄ₗ = 9(r⁴ + 4r³ + 4r + 1)/D,
-/// c₄ⱼₖ = 15(5r⁴ + 16r³ + 4r² + 16r + 5)/D, c₄ⱼ = 20(5r⁴ + 13r³ + 6r² + 13r + 5)/D.
-/// The map uses the terms in x (f''' is evaluated at t) and bounds the others with the
-/// table's bounds of |f''''| and |f⁽⁵⁾|.
+/// The chattering test for one system: the series of [`crate::chatter`] at f64, and
+/// the relative velocity above which no resolvable sequence starts.
 #[derive(Clone, Copy, Debug)]
 struct Chatter {
     /// Above this relative velocity no resolvable sequence starts (the window exceeds
     /// [`CHATTER_WINDOW`] even for the largest 1 + f''): the map dismisses such an impact
     /// with this one comparison.
     w_max: f64,
-    /// Bounds of |f''''| and |f⁽⁵⁾| over the table (α included).
-    k4: f64,
-    k5: f64,
-    c3j: f64,
-    c3k: f64,
-    c4l: f64,
-    c4jk: f64,
-    c4j: f64,
+    series: ChatterSeries<f64>,
 }
 
 impl Chatter {
     fn new(sys: &System) -> Chatter {
         let r = sys.r();
         let a_max = 1.0 + sys.alpha() * sys.table().accel_bound();
-        let (r2, r3, r4) = (r * r, r * r * r, r * r * r * r);
-        let q = r2 + r + 1.0;
-        let d = 540.0 * (r2 + 1.0) * q;
         Chatter {
             w_max: (0.5 * CHATTER_WINDOW * a_max * (1.0 - r)).max(W_FLOOR),
-            k4: sys.alpha() * sys.table().derivative_bound(4),
-            k5: sys.alpha() * sys.table().derivative_bound(5),
-            c3j: (2.0 * r2 + 3.0 * r + 2.0) / (9.0 * q),
-            c3k: (1.0 + r) * (1.0 + r) / (12.0 * q),
-            c4l: 9.0 * (r4 + 4.0 * r3 + 4.0 * r + 1.0) / d,
-            c4jk: 15.0 * (5.0 * r4 + 16.0 * r3 + 4.0 * r2 + 16.0 * r + 5.0) / d,
-            c4j: 20.0 * (5.0 * r4 + 13.0 * r3 + 6.0 * r2 + 13.0 * r + 5.0) / d,
+            series: ChatterSeries::new(
+                &r,
+                sys.alpha() * sys.table().derivative_bound(4),
+                sys.alpha() * sys.table().derivative_bound(5),
+            ),
         }
     }
 }
 
-/// The accumulation window T of the impacts following this post-impact state (see
-/// [`Chatter`]), when it is resolved: within [`CHATTER_WINDOW`], the series in its range
-/// (each order below a tenth of the one before: |x| T₀, |y| T₀², |z| T₀³ ≤ 0.1) and the
-/// bound of the terms left out (the y-term of third order and the fourth order, doubled
-/// for the orders beyond) within [`CHATTER_ERROR`]. Below [`W_FLOOR`] the leading order
-/// is taken whatever its window ("forced").
+/// The accumulation window T of the impacts following this post-impact state
+/// ([`ChatterSeries::window`] within [`CHATTER_WINDOW`] and [`CHATTER_ERROR`]), when it
+/// is resolved. Below [`W_FLOOR`] the leading order is taken whatever its window
+/// ("forced").
 fn chatter_window(sys: &System, c: &Chatter, st: &State) -> Option<(f64, bool)> {
-    // (Above `c.w_max` the window below exceeds CHATTER_WINDOW; the map tests that
-    // before it calls here.)
+    // (Above `c.w_max` the window exceeds CHATTER_WINDOW; the map tests that before it
+    // calls here.)
     let jet = sys.jet(st.phase);
     let a = 1.0 + jet[2];
     if a <= 0.0 {
         return None;
     }
-    let t0 = 2.0 * st.w / (a * (1.0 - sys.r()));
+    let t0 = c.series.leading(&st.w, &a);
     if st.w <= W_FLOOR {
         return Some((t0, true));
     }
-    if t0 > CHATTER_WINDOW {
-        return None;
-    }
-    let (x, y, z) = (jet[3] / a, c.k4 / a, c.k5 / a);
-    let (xt, yt, zt) = (x.abs() * t0, y * t0 * t0, z * t0 * t0 * t0);
-    if xt > 0.1 || yt > 0.1 || zt > 0.1 {
-        return None;
-    }
-    let left_out = t0 * (c.c3k * yt + c.c4l * zt + c.c4jk * xt * yt + c.c4j * xt * xt * xt);
-    if 2.0 * left_out > CHATTER_ERROR {
-        return None;
-    }
-    Some((t0 * (1.0 - xt.copysign(x) / 3.0 + c.c3j * xt * xt), false))
+    c.series
+        .window(&t0, &a, &jet[3], &CHATTER_WINDOW, &CHATTER_ERROR)
+        .map(|t| (t, false))
 }
 
 /// If the impacts following this post-impact state accumulate within a resolved window

@@ -14,9 +14,9 @@
 //!   w − s/2 − α Σ F⁽ᵏ⁾ sᵏ⁻¹/k!), as the f64 solver does; no double-double is needed,
 //!   the working precision is the precision.
 //! * **Chattering.** The accumulation time of the impacts after a slow impact, from the
-//!   same series as the f64 map (see `map.rs`: on a piece of degree ≤ 3 only the terms in
-//!   f''' remain), taken once the bound of the terms left out is below the precision's
-//!   unit roundoff times the window; until then every impact is computed.
+//!   one series the f64 map uses too ([`crate::chatter`]: on a piece of degree ≤ 3 only
+//!   the terms in f''' remain), taken once the bound of the terms left out is below the
+//!   precision's unit roundoff; until then every impact is computed.
 //! * **Release.** Where 1 + αF'' turns negative: a root of a linear polynomial on a
 //!   piece, or a breakpoint where it jumps; on the sine where sin 2πt rises through
 //!   1/(4π²α) (an arcsine at the working precision).
@@ -38,6 +38,7 @@ pub use setup::{
     check_digits, decide_sticking_cycle, events_since, DigitsAsk, PreciseSetup, Slot, CYCLE_EVENTS,
 };
 
+use crate::chatter::ChatterSeries;
 use crate::map::{EventKind, MAX_EVENT_PERIOD};
 use crate::real::Real;
 use crate::table::PieceIn;
@@ -71,6 +72,8 @@ pub struct PreciseSystem<R: Real> {
     ctx: R::Context,
     /// The error accepted in a chattering sequence's accumulation time.
     chatter_error: R,
+    /// The chattering series' constants for this r and table.
+    chatter: ChatterSeries<R>,
     /// For the sine table F = sin 2πt: 2π at the precision (no pieces then).
     omega: Option<R>,
 }
@@ -103,8 +106,11 @@ impl<R: Real> PreciseSystem<R> {
             return Err(PreciseRefusal::Degree(p.coeffs.len() - 1));
         }
         let chatter_error = R::epsilon(&ctx);
+        // Pieces of degree ≤ 3: no fourth or fifth derivative.
+        let zero = R::from_f64(0.0, &ctx);
         Ok(PreciseSystem {
             pieces,
+            chatter: ChatterSeries::new(&r, zero.clone(), zero),
             alpha,
             r,
             ctx,
@@ -117,8 +123,13 @@ impl<R: Real> PreciseSystem<R> {
     /// correctly rounded at the working precision.
     pub fn sine(alpha: R, r: R, ctx: R::Context) -> PreciseSystem<R> {
         let omega = R::from_f64(2.0, &ctx) * R::pi(&ctx);
+        // |f''''| ≤ αω⁴ and |f⁽⁵⁾| ≤ αω⁵.
+        let w4 = omega.clone() * omega.clone() * omega.clone() * omega.clone();
+        let k4 = alpha.clone() * w4.clone();
+        let k5 = k4.clone() * omega.clone();
         PreciseSystem {
             pieces: Vec::new(),
+            chatter: ChatterSeries::new(&r, k4, k5),
             alpha,
             r,
             chatter_error: R::epsilon(&ctx),
@@ -317,74 +328,14 @@ impl<R: Real> PreciseMap<R> {
         if a <= sys.num(0.0) {
             return None;
         }
-        let t0 = sys.num(2.0) * st.w.clone() / (a.clone() * (one.clone() - sys.r.clone()));
-        if t0 > sys.num(CHATTER_WINDOW) {
-            return None;
-        }
-        let x = jet[3].clone() / a.clone();
-        let xt = (x.clone() * t0.clone()).abs();
-        // Bounds of the fourth and fifth derivatives: zero on pieces of degree ≤ 3,
-        // αω⁴ and αω⁵ on the sine.
-        let (k4, k5) = match &sys.omega {
-            Some(w) => {
-                let w4 = w.clone() * w.clone() * w.clone() * w.clone();
-                (
-                    sys.alpha.clone() * w4.clone(),
-                    sys.alpha.clone() * w4 * w.clone(),
-                )
-            }
-            None => (sys.num(0.0), sys.num(0.0)),
-        };
-        let yt = k4 / a.clone() * t0.clone() * t0.clone();
-        let zt = k5 / a * t0.clone() * t0.clone() * t0.clone();
-        if xt > sys.num(0.1) || yt > sys.num(0.1) || zt > sys.num(0.1) {
-            return None;
-        }
-        let r = sys.r.clone();
-        let (r2, r3, r4) = (
-            r.clone() * r.clone(),
-            r.clone() * r.clone() * r.clone(),
-            r.clone() * r.clone() * r.clone() * r.clone(),
-        );
-        let q = r2.clone() + r.clone() + one.clone();
-        let d = sys.num(540.0) * (r2.clone() + one.clone()) * q.clone();
-        let c3j = (sys.num(2.0) * r2.clone() + sys.num(3.0) * r.clone() + sys.num(2.0))
-            / (sys.num(9.0) * q);
-        let c3k = (one.clone() + r.clone()) * (one.clone() + r.clone())
-            / (sys.num(12.0) * (r2.clone() + r.clone() + one.clone()));
-        let c4l = sys.num(9.0)
-            * (r4.clone() + sys.num(4.0) * r3.clone() + sys.num(4.0) * r.clone() + one.clone())
-            / d.clone();
-        let c4jk = sys.num(15.0)
-            * (sys.num(5.0) * r4.clone()
-                + sys.num(16.0) * r3.clone()
-                + sys.num(4.0) * r2.clone()
-                + sys.num(16.0) * r.clone()
-                + sys.num(5.0))
-            / d.clone();
-        let c4j = sys.num(20.0)
-            * (sys.num(5.0) * r4
-                + sys.num(13.0) * r3
-                + sys.num(6.0) * r2
-                + sys.num(13.0) * r
-                + sys.num(5.0))
-            / d;
-        // The terms left out, doubled for the orders beyond, against the precision.
-        let left_out = sys.num(2.0)
-            * t0.clone()
-            * (c3k * yt.clone()
-                + c4l * zt
-                + c4jk * xt.clone() * yt
-                + c4j * xt.clone() * xt.clone() * xt.clone());
-        if left_out > sys.chatter_error {
-            return None;
-        }
-        let sign = if x < sys.num(0.0) {
-            -one.clone()
-        } else {
-            one.clone()
-        };
-        let window = t0 * (one.clone() - sign * xt.clone() / sys.num(3.0) + c3j * xt.clone() * xt);
+        let t0 = sys.chatter.leading(&st.w, &a);
+        let window = sys.chatter.window(
+            &t0,
+            &a,
+            &jet[3],
+            &sys.num(CHATTER_WINDOW),
+            &sys.chatter_error,
+        )?;
         let end = st.phase.clone() + window;
         if sys.omega.is_none() && end >= sys.pieces[sys.index(&st.phase)].end {
             return None;
