@@ -186,7 +186,7 @@ fn write(
             let (ask, periods) = (run.digits, spec.settle.transient);
             for id in reg.ranked() {
                 if let (Some(c), Some(ask)) = (cycle(id), ask) {
-                    let text = cycle_text(c, ask.max_digits, periods);
+                    let text = cycle_text(c, ask.digits, ask.max_digits, periods);
                     writeln!(out, "attractor {} at any precision, {text}", number[id])?;
                 }
             }

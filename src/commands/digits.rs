@@ -244,7 +244,7 @@ pub fn lyapunov(run: &LyapunovDigits) -> anyhow::Result<()> {
                 writeln!(
                     out,
                     "{}",
-                    cycle_text(&verdict, spec.max_digits, run.transient)
+                    cycle_text(&verdict, spec.digits, spec.max_digits, run.transient)
                 )?;
                 if matches!(verdict, CycleVerdict::Found(_)) {
                     writeln!(
@@ -293,7 +293,7 @@ pub fn lyapunov(run: &LyapunovDigits) -> anyhow::Result<()> {
                     "stick_after": row.stick_after,
                     "agreed_digits": row.agreed_digits,
                     "need_digits": row.need_digits,
-                    "text": cycle_text(&verdict, spec.max_digits, run.transient),
+                    "text": cycle_text(&verdict, spec.digits, spec.max_digits, run.transient),
                 });
                 serde_json::to_writer(&mut out, &doc)?;
                 writeln!(out)?;

@@ -391,3 +391,39 @@ fn the_sines_sticking_cycle_equals_an_independent_computation() {
         row[9]
     );
 }
+
+/// Where the two precisions part on the way to the stick, the verdict still states the
+/// digits it needs, from the digits lost per event of the path, and the --max-digits
+/// that reaches them; given that, the cycle is decided and is the independent
+/// computation's (fd:0.1 at α = 0.6: L = 394, T = 393.74661448750665379585…).
+#[test]
+fn the_stated_need_is_measured_and_reaches_the_answer() {
+    let base = ["--table", "fd:0.1", "--alpha", "0.6", "--digits", "20"];
+    let short = lyapunov_csv(&[&base[..], &["--max-digits", "100"]].concat());
+    assert_eq!(
+        (short[5].as_str(), short[10].as_str()),
+        ("undecided", "0"),
+        "{short:?}"
+    );
+    let need: u32 = short[11].parse().unwrap_or_else(|_| panic!("{short:?}"));
+    // More than the runs tried, and not absurdly more (the path loses ~0.2 digit an
+    // event over ~1,000 events).
+    assert!((120..1000).contains(&need), "{need}");
+    let out = bouncemap(&[&["lyapunov"][..], &base, &["--max-digits", "100"]].concat());
+    let text = String::from_utf8_lossy(&out.stdout);
+    let suggested = text
+        .split("(--max-digits ")
+        .nth(1)
+        .and_then(|t| t.split(')').next())
+        .unwrap_or_else(|| panic!("{text}"))
+        .to_string();
+    let m: u32 = suggested.parse().unwrap();
+    assert!(m >= need, "{m} < {need}");
+    let decided = lyapunov_csv(&[&base[..], &["--max-digits", &suggested]].concat());
+    assert_eq!(
+        (decided[5].as_str(), decided[6].as_str()),
+        ("found", "394"),
+        "{decided:?}"
+    );
+    assert_eq!(decided[9], "393.7466144875066538");
+}

@@ -1,7 +1,7 @@
 //! A sticking cycle decided at any precision ([`CycleVerdict`]), as every output writes
 //! it: `lyapunov --digits`, and the `--digits` columns of `sweep` and `basins`.
 
-use bouncemap_engine::{CycleVerdict, Real};
+use bouncemap_engine::{max_digits_for, CycleVerdict, Real};
 use serde::{Deserialize, Serialize};
 
 /// The verdict's fields: its name, and where found the cycle's length in table periods,
@@ -99,9 +99,9 @@ pub const CYCLE_COLUMNS: [&str; 5] = [
     "need_digits",
 ];
 
-/// The verdict in one line (`max_digits` the most digits allowed, `periods` the most
-/// table periods the orbit was followed).
-pub fn cycle_text(v: &CycleVerdict, max_digits: u32, periods: u64) -> String {
+/// The verdict in one line (`digits` asked for, `max_digits` the most allowed,
+/// `periods` the most table periods the orbit was followed).
+pub fn cycle_text(v: &CycleVerdict, digits: u32, max_digits: u32, periods: u64) -> String {
     match v {
         CycleVerdict::Found(c) => format!(
             "cycle: sticking cycle of {} table periods ({} release{} per cycle): released at phase {}, sticks {} periods after the release ({} digits; runs at {} and {} digits agree{})",
@@ -138,7 +138,8 @@ pub fn cycle_text(v: &CycleVerdict, max_digits: u32, periods: u64) -> String {
                 "disagree on the cycle".to_string()
             },
             need.map_or(String::new(), |n| format!(
-                "; by the digits the path from the release loses, it needs about {n} digits (--max-digits {n})"
+                "; by the digits the path from the release loses, it needs at least about {n} digits (--max-digits {})",
+                max_digits_for(digits, n)
             ))
         ),
     }

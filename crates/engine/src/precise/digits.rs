@@ -214,8 +214,10 @@ pub enum CycleVerdict {
         /// The digits the two runs agreed on about the stick time (0 where they
         /// disagree on the cycle's length).
         agreed: u32,
-        /// The digits the answer needs by the loss measured, where measured: the digits
-        /// asked for plus what the path from the release loses.
+        /// The digits the answer needs at least, by the loss measured, where measured:
+        /// the digits asked for plus what the stick time lost, or, where the runs part
+        /// on the way, the digits lost per event times the events of the cycle as the
+        /// more precise run has it (the true path may be longer).
         need: Option<u32>,
     },
 }
@@ -263,6 +265,44 @@ impl CycleVerdict {
     }
 }
 
+/// The `max_digits` with which [`sticking_cycle_to_digits`] asked for `digits` tries
+/// a pair whose lower precision has at least `need` digits: the precisions it tries
+/// are `digits` + 10 doubled, and the lower of a pair must be within `max_digits`.
+pub fn max_digits_for(digits: u32, need: u32) -> u32 {
+    let mut work = digits.saturating_add(10);
+    while work < need {
+        work = work.saturating_mul(2);
+    }
+    work
+}
+
+/// Events of the path from the first release a run keeps for [`loss_per_event`].
+const PATH_EVENTS: usize = 100_000;
+
+/// The digits lost per event along two runs' paths from their first release, made at
+/// `work` digits and more: a least-squares slope through the events at which the runs
+/// agree to some but not all of the `work` digits (0 past the first event where they
+/// differ in kind or period). None where no such event was seen.
+fn loss_per_event(
+    lo: &[(EventKind, i64, crate::real::Big)],
+    hi: &[(EventKind, i64, crate::real::Big)],
+    work: u32,
+) -> Option<f64> {
+    let (mut sxy, mut sxx) = (0.0, 0.0);
+    for (i, (a, b)) in lo.iter().zip(hi).enumerate() {
+        if (a.0, a.1) != (b.0, b.1) {
+            break;
+        }
+        let d = agreeing_digits(&a.2, &b.2, work);
+        if d > 0 && d < work {
+            let (x, y) = ((i + 1) as f64, (work - d) as f64);
+            sxy += x * y;
+            sxx += x * x;
+        }
+    }
+    (sxx > 0.0).then(|| sxy / sxx)
+}
+
 /// The sticking cycle of the orbit `make(bits)` starts, to `digits` significant digits:
 /// each precision pair (`digits` + 10 and twice that, doubled while the lower stays
 /// within `max_digits`) runs the orbit to its first release and on to the next release
@@ -286,64 +326,82 @@ pub fn sticking_cycle_to_digits(
         Return,
         Stopped,
     }
-    let mut cycle = |work: u32, bits: usize| -> Result<(Big, Big, i64, usize), NoCycle> {
-        let (sys, st) = make(bits);
-        let err = Big::from_decimal(&format!("1e-{work}"), &bits).expect("a constant");
-        let mut map = PreciseMap::new(sys.with_chatter_error(err), st);
-        let mut first: Option<PreciseEvent<Big>> = None;
-        let mut stick: Option<Big> = None;
-        let mut releases = 0;
-        let run_digits = (bits as f64 / std::f64::consts::LOG2_10) as u32;
-        for i in 0..max_events {
-            if i % PROGRESS_EVENTS == 0
-                && progress(DigitsProgress {
-                    digits: run_digits,
-                    done: i,
-                    total: 0,
-                })
-                .is_break()
-            {
-                return Err(NoCycle::Stopped);
-            }
-            let Ok(e) = map.step() else { break };
-            if e.period > max_periods {
-                break;
-            }
-            match (&first, e.kind) {
-                (None, EventKind::Release) => first = Some(e),
-                (Some(r0), EventKind::Stick) if stick.is_none() => {
-                    let t = Big::from_f64((e.period - r0.period) as f64, &bits) + e.phase.clone()
-                        - r0.phase.clone();
-                    stick = Some(t);
+    // Each run also keeps its path from the first release (kind, periods since the
+    // release, phase; at most PATH_EVENTS events), so that where two runs part the
+    // digits lost per event can be measured.
+    type Path = Vec<(EventKind, i64, Big)>;
+    let mut cycle =
+        |work: u32, bits: usize, path: &mut Path| -> Result<(Big, Big, i64, usize), NoCycle> {
+            path.clear();
+            let (sys, st) = make(bits);
+            let err = Big::from_decimal(&format!("1e-{work}"), &bits).expect("a constant");
+            let mut map = PreciseMap::new(sys.with_chatter_error(err), st);
+            let mut first: Option<PreciseEvent<Big>> = None;
+            let mut stick: Option<Big> = None;
+            let mut releases = 0;
+            let run_digits = (bits as f64 / std::f64::consts::LOG2_10) as u32;
+            for i in 0..max_events {
+                if i % PROGRESS_EVENTS == 0
+                    && progress(DigitsProgress {
+                        digits: run_digits,
+                        done: i,
+                        total: 0,
+                    })
+                    .is_break()
+                {
+                    return Err(NoCycle::Stopped);
                 }
-                (Some(r0), EventKind::Release) => {
-                    releases += 1;
-                    if agreeing_digits(&e.phase, &r0.phase, work) + 5 >= work {
-                        return Ok((
-                            r0.phase.clone(),
-                            stick.expect("a stick before a release"),
-                            e.period - r0.period,
-                            releases,
-                        ));
+                let Ok(e) = map.step() else { break };
+                if e.period > max_periods {
+                    break;
+                }
+                if let Some(r0) = first.as_ref().filter(|_| path.len() < PATH_EVENTS) {
+                    path.push((e.kind, e.period - r0.period, e.phase.clone()));
+                }
+                match (&first, e.kind) {
+                    (None, EventKind::Release) => first = Some(e),
+                    (Some(r0), EventKind::Stick) if stick.is_none() => {
+                        let t = Big::from_f64((e.period - r0.period) as f64, &bits)
+                            + e.phase.clone()
+                            - r0.phase.clone();
+                        stick = Some(t);
                     }
+                    (Some(r0), EventKind::Release) => {
+                        releases += 1;
+                        if agreeing_digits(&e.phase, &r0.phase, work) + 5 >= work {
+                            return Ok((
+                                r0.phase.clone(),
+                                stick.expect("a stick before a release"),
+                                e.period - r0.period,
+                                releases,
+                            ));
+                        }
+                    }
+                    _ => {}
                 }
-                _ => {}
             }
-        }
-        Err(if first.is_none() {
-            NoCycle::Release
-        } else {
-            NoCycle::Return
-        })
-    };
+            Err(if first.is_none() {
+                NoCycle::Release
+            } else {
+                NoCycle::Return
+            })
+        };
     let mut work = digits + 10;
     let mut earlier = None;
+    let (mut lo_path, mut hi_path) = (Path::new(), Path::new());
     loop {
-        let lo = cycle(work, bits_for_digits(work));
-        let hi = cycle(work, bits_for_digits(2 * work));
+        let lo = cycle(work, bits_for_digits(work), &mut lo_path);
+        let hi = cycle(work, bits_for_digits(2 * work), &mut hi_path);
         if matches!(lo, Err(NoCycle::Stopped)) || matches!(hi, Err(NoCycle::Stopped)) {
             return None;
         }
+        // The cycle's length in events from the release, as the more precise run that
+        // closed it has it.
+        let length = match (&lo, &hi) {
+            (_, Ok(_)) => Some(hi_path.len()),
+            (Ok(_), _) => Some(lo_path.len()),
+            _ => None,
+        };
         let (same, agreed, found) = match (lo, hi) {
             (Ok(a), Ok(b)) => {
                 let same = a.2 == b.2 && a.3 == b.3;
@@ -373,7 +431,16 @@ pub fn sticking_cycle_to_digits(
         }
         earlier = Some(((work, 2 * work), agreed));
         if 2 * work > max_digits {
-            let need = (same && agreed > 0).then(|| digits + (work - agreed.min(work)) + 10);
+            // Where the runs agree on the cycle, the digits its stick time lost; where
+            // they part on the way, the digits lost per event of the path times the
+            // events of the cycle (as the more precise run has it).
+            let need = if same && agreed > 0 {
+                Some(digits + (work - agreed.min(work)) + 10)
+            } else {
+                let rate = loss_per_event(&lo_path, &hi_path, work);
+                rate.zip(length)
+                    .map(|(rate, n)| digits + (rate * n as f64).ceil() as u32 + 10)
+            };
             return Some(CycleVerdict::Undecided {
                 tried: (work, 2 * work),
                 agreed: agreed.min(digits),

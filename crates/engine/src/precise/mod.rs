@@ -31,8 +31,8 @@ mod setup;
 mod sine;
 
 pub use digits::{
-    agreeing_digits, orbit_to_digits, sticking_cycle_to_digits, CycleSummary, CycleVerdict,
-    DigitsOrbit, DigitsProgress, MakeBig, StickingCycle,
+    agreeing_digits, max_digits_for, orbit_to_digits, sticking_cycle_to_digits, CycleSummary,
+    CycleVerdict, DigitsOrbit, DigitsProgress, MakeBig, StickingCycle,
 };
 pub use setup::{
     check_digits, decide_sticking_cycle, events_since, DigitsAsk, PreciseSetup, Slot, CYCLE_EVENTS,
