@@ -158,7 +158,7 @@ fn sticking_cycles_beyond_double_precision_claim_no_length() {
         let text = ok(&["lyapunov", "--table", table, "--alpha", alpha]);
         assert!(text.contains("orbit: sticking\n"), "{text}");
         assert!(
-            text.contains("cycle length beyond double precision (growth 10^"),
+            text.contains("cycle length beyond double precision: along the cycle this run found, which rounding chose, an error at the release grows by 10^"),
             "{text}"
         );
         let v = json(&[
