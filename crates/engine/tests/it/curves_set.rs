@@ -234,6 +234,50 @@ fn the_curves_do_not_depend_on_the_seeds_and_go_on_where_they_go_on() {
             c.k
         );
     }
+    // The codimension-two points are the same too, each once: the organising centre
+    // where the (2, 2) period doubling meets the breakpoint, and the (4, 4) is born
+    // there, is one pd_border (with the (4, 4) border collision through it, ending as a
+    // collapse), not also a double border of the (4, 4) next to it.
+    assert_eq!(
+        a.codim2.len(),
+        b.codim2.len(),
+        "{:?}\n{:?}",
+        a.codim2,
+        b.codim2
+    );
+    for p in &a.codim2 {
+        assert!(
+            b.codim2
+                .iter()
+                .any(|q| q.kind == p.kind && (q.alpha - p.alpha).hypot(q.p - p.p) < 1e-6),
+            "{p:?} not found with 20"
+        );
+    }
+    for set in [&a, &b] {
+        let centre = set
+            .codim2
+            .iter()
+            .find(|p| p.kind == Codim2Kind::PdBorder && set.curves[p.curve].n == 2)
+            .expect("the (2, 2) period doubling on the breakpoint");
+        assert!(
+            !set.codim2.iter().any(|p| p.kind == Codim2Kind::DoubleBorder
+                && (p.alpha - centre.alpha).hypot(p.p - centre.p) < 1e-4),
+            "{:?}",
+            set.codim2
+        );
+        let collapse = set.curves.iter().any(|c| {
+            c.n == 4
+                && c.kind.as_str() == "border_collision"
+                && c.ends.iter().any(|e| e.as_str() == "collapse")
+                && centre
+                    .meets
+                    .contains(&set.curves.iter().position(|d| d == c).unwrap())
+        });
+        assert!(
+            collapse,
+            "the (4, 4) border collision collapses at the centre"
+        );
+    }
     // The (4, 4) border collision at ½ against the one-parameter continuation.
     for d in [0.70, 0.72] {
         let found = branches(

@@ -8,6 +8,7 @@ use super::*;
 /// same point located on two curves, or twice on one) are one, the best located kept
 /// (the smaller condition); each then lists every curve passing through it.
 pub(super) fn codim2_once(out: &mut Curves, tol: f64) {
+    doubled_at_pd_border(out, 10.0 * tol);
     let mut kept: Vec<Codim2> = Vec::new();
     for p in std::mem::take(&mut out.codim2) {
         let twin = kept
@@ -34,6 +35,56 @@ pub(super) fn codim2_once(out: &mut Curves, tol: f64) {
         p.meets = meets;
     }
     out.codim2 = kept;
+}
+
+/// Where a PD curve of an (n, k) cycle reaches a breakpoint, the doubled (2n, 2k)
+/// cycle is born on the breakpoint: its border-collision curve ends there, collapsing
+/// onto the (n, k) cycle, whose impact on the breakpoint is two of the doubled cycle's
+/// (i and i + n). The tracer, closing in from the side of the doubled cycle, may see
+/// that as two impacts on breakpoints before the halves have met to its tolerance. Such
+/// a double border within `tol` of a pd_border of the halved cycle at the same impact
+/// is the pd_border itself: it is dropped (its curve passes through the pd_border and
+/// is listed there), and its curve's end there (within ten times `tol`) is a collapse.
+fn doubled_at_pd_border(out: &mut Curves, tol: f64) {
+    let pd: Vec<Codim2> = out
+        .codim2
+        .iter()
+        .filter(|q| q.kind == Codim2Kind::PdBorder)
+        .cloned()
+        .collect();
+    let curves = &mut out.curves;
+    out.codim2.retain(|p| {
+        if p.kind != Codim2Kind::DoubleBorder {
+            return true;
+        }
+        let (n2, k2) = (curves[p.curve].n, curves[p.curve].k);
+        let Some(centre) = pd.iter().find(|q| {
+            let c = &curves[q.curve];
+            let same_impact = match (p.impact, q.impact) {
+                (Some((i, bp)), Some((j, bq))) => bp == bq && c.n > 0 && i % c.n == j % c.n,
+                _ => false,
+            };
+            2 * c.n == n2
+                && 2 * c.k == k2
+                && same_impact
+                && (q.alpha - p.alpha).hypot(q.p - p.p) <= tol
+        }) else {
+            return true;
+        };
+        // The doubled curve's end nearest the organising centre is a collapse.
+        let c = &mut curves[p.curve];
+        let d = |q: Option<&CurvePoint>| {
+            q.map_or(f64::INFINITY, |q| {
+                (q.alpha - centre.alpha).hypot(q.p - centre.p)
+            })
+        };
+        let end = usize::from(d(c.points.last()) < d(c.points.first()));
+        let near = d([c.points.first(), c.points.last()][end]) <= 10.0 * tol;
+        if c.ends[end] == CurveEnd::Border && near {
+            c.ends[end] = CurveEnd::Collapse;
+        }
+        false
+    });
 }
 
 /// `a` extended by the part of `b` beyond one of its ends, where `b` runs along `a` for
