@@ -48,7 +48,7 @@ pub fn digits_take(table: &bouncemap_engine::Table, z0: f64) -> Result<(), Input
 /// Why `--digits` does not take `table`, naming what it takes.
 pub fn digits_refusal(table: &bouncemap_engine::Table) -> InputError {
     InputError(format!(
-        "--digits: table {} is not yet computed at any precision: valid the sine or a piecewise polynomial table of degree ≤ {} (fd:D, quad, cubic, a table file)",
+        "--digits: table {} is not computed at any precision: valid the sine or a piecewise polynomial table of degree ≤ {} (fd:D, quad, cubic, a table file)",
         table.name(),
         bouncemap_engine::PRECISE_MAX_DEGREE
     ))

@@ -197,7 +197,7 @@ pub struct PrecisionArgs {
 }
 
 /// `--digits`' help: what it does.
-const DIGITS_HELP: &str = "Compute at any precision and print only what holds to N significant digits: the run is repeated at twice the precision and each value printed to the digits on which the two agree (more precision is taken, up to --max-digits, where they do not); the sine and polynomial tables of degree ≤ 3";
+const DIGITS_HELP: &str = "Compute at any precision and print only what holds to N significant digits: the run is repeated at twice the precision and each value printed to the digits on which the two agree (more precision is taken, up to --max-digits, where they do not); the sine and every polynomial table";
 /// `--digits`' long help: how parameters are read.
 const DIGITS_MORE: &str = "Parameters are taken as written: --alpha 0.6 is three fifths, rounded once to the working precision, not the double nearest it (each is read as the shortest decimal of its double: what was typed, unless it had more than 17 significant digits). --binary-params compares with the system of the doubles.";
 

@@ -1,23 +1,24 @@
-//! The impact map at any precision ([`Real`]), on piecewise polynomial tables of degree
-//! at most 3 (F_D and its relatives, table files of that degree) and on the sine
+//! The impact map at any precision ([`Real`]), on piecewise polynomial tables of any
+//! degree a table takes (F_D and its relatives, table files and families) and on the sine
 //! (sin and cos correctly rounded at the working precision): the same events as
 //! [`crate::ImpactMap`] (impact, stick, release), computed in the number type the
 //! system is made in, so that two precisions can be compared event by event.
 //!
 //! What replaces the f64 map's specialised parts at any precision:
-//! * **Landing.** On each piece the gap between ball and table is a polynomial of
-//!   degree ≤ 3 in the piece's variable; its real roots are isolated exactly by the
-//!   roots of its derivative (a quadratic, solved with the square root of the working
-//!   precision), which split the piece into stretches where it is monotone, and the
-//!   first sign change is refined by Newton's method kept inside its bracket. On the
+//! * **Landing.** On each piece the gap between ball and table is a polynomial in the
+//!   piece's variable; its real roots are isolated exactly by the roots of its
+//!   derivative (found the same way, down to a linear one), which split the piece into
+//!   stretches where it is monotone, and the first sign change is refined by Newton's
+//!   method kept inside its bracket. On the
 //!   launch piece the launch root is divided out in closed form (the gap over s is
 //!   w − s/2 − α Σ F⁽ᵏ⁾ sᵏ⁻¹/k!), as the f64 solver does; no double-double is needed,
 //!   the working precision is the precision.
 //! * **Chattering.** The accumulation time of the impacts after a slow impact, from the
-//!   one series the f64 map uses too ([`crate::chatter`]: on a piece of degree ≤ 3 only
-//!   the terms in f''' remain), taken once the bound of the terms left out is below the
-//!   precision's unit roundoff; until then every impact is computed.
-//! * **Release.** Where 1 + αF'' turns negative: a root of a linear polynomial on a
+//!   one series the f64 map uses too ([`crate::chatter`], with the bounds of |F''''| and
+//!   |F⁽⁵⁾| over the pieces: zero on pieces of degree ≤ 3), taken once the bound of the
+//!   terms left out is below the precision's unit roundoff; until then every impact is
+//!   computed.
+//! * **Release.** Where 1 + αF'' turns negative: a sign change of that polynomial on a
 //!   piece, or a breakpoint where it jumps; on the sine where sin 2πt rises through
 //!   1/(4π²α) (an arcsine at the working precision).
 //! * **The sine's flights** replace the f64 solver's compile-time polynomial pieces and
@@ -44,8 +45,9 @@ use crate::real::Real;
 use crate::table::PieceIn;
 use roots::{eval, first_root, first_sign_change};
 
-/// The largest degree of a table's pieces the map at any precision takes.
-pub const PRECISE_MAX_DEGREE: usize = 3;
+/// The largest degree of a table's pieces the map at any precision takes: every table's
+/// ([`crate::table::MAX_TABLE_DEGREE`]).
+pub const PRECISE_MAX_DEGREE: usize = crate::table::MAX_TABLE_DEGREE;
 
 /// Whether the map at any precision takes `table`: the sine, or a member of a family
 /// whose pieces are polynomials of degree at most [`PRECISE_MAX_DEGREE`].
@@ -106,11 +108,12 @@ impl<R: Real> PreciseSystem<R> {
             return Err(PreciseRefusal::Degree(p.coeffs.len() - 1));
         }
         let chatter_error = R::epsilon(&ctx);
-        // Pieces of degree ≤ 3: no fourth or fifth derivative.
-        let zero = R::from_f64(0.0, &ctx);
+        // The fourth and fifth derivatives' bounds (zero on pieces of degree ≤ 3).
+        let k4 = Self::derivative_bound(&pieces, &alpha, 4, &ctx);
+        let k5 = Self::derivative_bound(&pieces, &alpha, 5, &ctx);
         Ok(PreciseSystem {
             pieces,
-            chatter: ChatterSeries::new(&r, zero.clone(), zero),
+            chatter: ChatterSeries::new(&r, k4, k5),
             alpha,
             r,
             ctx,
@@ -165,18 +168,42 @@ impl<R: Real> PreciseSystem<R> {
         i
     }
 
-    /// α F⁽ᵏ⁾/k! at local `s` of piece `j`, k = 0..=3: the Taylor coefficients of αF.
-    fn taylor(&self, j: usize, s: &R) -> [R; 4] {
-        let c = &self.pieces[j].coeffs;
-        let coef = |k: usize| c.get(k).cloned().unwrap_or_else(|| self.num(0.0));
-        // Shift the cubic c0 + c1 s + c2 s² + c3 s³ to `s`.
-        let (c0, c1, c2, c3) = (coef(0), coef(1), coef(2), coef(3));
-        let t0 = ((c3.clone() * s.clone() + c2.clone()) * s.clone() + c1.clone()) * s.clone() + c0;
-        let t1 =
-            (self.num(3.0) * c3.clone() * s.clone() + self.num(2.0) * c2.clone()) * s.clone() + c1;
-        let t2 = self.num(3.0) * c3.clone() * s.clone() + c2;
-        let a = self.alpha.clone();
-        [a.clone() * t0, a.clone() * t1, a.clone() * t2, a * c3]
+    /// α F⁽ᵏ⁾/k! at local `s` of piece `j`, k = 0, 1, …: the Taylor coefficients of αF
+    /// there (at least four, zeros past the piece's degree).
+    fn taylor(&self, j: usize, s: &R) -> Vec<R> {
+        let mut t = self.pieces[j].coeffs.clone();
+        while t.len() < 4 {
+            t.push(self.num(0.0));
+        }
+        // The Taylor shift by Horner's scheme: c(s + x) in powers of x.
+        let n = t.len();
+        for i in 0..n - 1 {
+            for k in (i..n - 1).rev() {
+                t[k] = t[k].clone() + s.clone() * t[k + 1].clone();
+            }
+        }
+        t.into_iter().map(|c| self.alpha.clone() * c).collect()
+    }
+
+    /// Bounds of α|F⁽ᵈ⁾| over every piece (zero for pieces of degree below d): on a
+    /// piece of length L, Σₖ k!/(k − d)! |aₖ| Lᵏ⁻ᵈ, in its own variable s ∈ [0, L].
+    fn derivative_bound(pieces: &[PieceIn<R>], alpha: &R, d: usize, ctx: &R::Context) -> R {
+        let zero = R::from_f64(0.0, ctx);
+        let mut most = zero.clone();
+        for p in pieces {
+            let len = p.end.clone() - p.start.clone();
+            let mut sum = zero.clone();
+            let mut power = R::from_f64(1.0, ctx);
+            for (k, c) in p.coeffs.iter().enumerate().skip(d) {
+                let falling: f64 = (k - d + 1..=k).map(|x| x as f64).product();
+                sum = sum + R::from_f64(falling, ctx) * c.abs() * power.clone();
+                power = power * len.clone();
+            }
+            if sum > most {
+                most = sum;
+            }
+        }
+        alpha.abs() * most
     }
 
     /// (f, f', f'', f''') of the table αF at `phase` in [0, 1).
@@ -194,8 +221,13 @@ impl<R: Real> PreciseSystem<R> {
         }
         let j = self.index(phase);
         let s = phase.clone() - self.pieces[j].start.clone();
-        let [t0, t1, t2, t3] = self.taylor(j, &s);
-        [t0, t1, self.num(2.0) * t2, self.num(6.0) * t3]
+        let t = self.taylor(j, &s);
+        [
+            t[0].clone(),
+            t[1].clone(),
+            self.num(2.0) * t[2].clone(),
+            self.num(6.0) * t[3].clone(),
+        ]
     }
 }
 
@@ -359,24 +391,29 @@ impl<R: Real> PreciseMap<R> {
         let j0 = sys.index(&st.phase);
         let sig0 = st.phase.clone() - sys.pieces[j0].start.clone();
         let t = sys.taylor(j0, &sig0);
-        // The launch piece: gap/s = w − (1/2 + a2) s − a3 s², on (0, end − phase].
-        let c1 = -(half.clone() + t[2].clone());
-        let c2 = -t[3].clone();
+        // The launch piece: gap/s = w − (1/2 + a2) s − a3 s² − a4 s³ − …, on
+        // (0, end − phase].
+        let mut higher: Vec<R> = vec![-(half.clone() + t[2].clone())];
+        higher.extend(t[3..].iter().map(|a| -a.clone()));
         let q = if st.w > zero {
-            vec![st.w.clone(), c1, c2]
+            let mut q = vec![st.w.clone()];
+            q.extend(higher);
+            q
         } else {
             // Leaving with no relative velocity (after a release): gap/s² =
-            // −(1/2 + a2) − a3 s, whose constant term is 0 to rounding at a smooth
-            // release. A ball that cannot leave rides on.
+            // −(1/2 + a2) − a3 s − …, whose constant term is 0 to rounding at a smooth
+            // release. The ball leaves where the first term that is not zero is
+            // positive; a ball that cannot leave rides on.
             let tiny = R::epsilon(&sys.ctx) * sys.num(8.0) * (one.clone() + t[2].abs());
-            let c1 = if c1.abs() <= tiny { zero.clone() } else { c1 };
-            if c1 > zero {
-                vec![c1, c2]
-            } else if c1 == zero && c2 > zero {
-                vec![c2]
-            } else {
-                let (period, phase) = (st.period, st.phase.clone());
-                return Ok(self.stick_at(period, phase, true));
+            if higher[0].abs() <= tiny {
+                higher[0] = zero.clone();
+            }
+            match higher.iter().position(|c| *c != zero) {
+                Some(i) if higher[i] > zero => higher.split_off(i),
+                _ => {
+                    let (period, phase) = (st.period, st.phase.clone());
+                    return Ok(self.stick_at(period, phase, true));
+                }
             }
         };
         let first_len = sys.pieces[j0].end.clone() - st.phase.clone();
@@ -404,14 +441,14 @@ impl<R: Real> PreciseMap<R> {
             let c = |k: usize| {
                 sys.alpha.clone() * p.coeffs.get(k).cloned().unwrap_or_else(|| zero.clone())
             };
-            let g = vec![
+            let mut g = vec![
                 y0.clone() + v0.clone() * delta.clone()
                     - half.clone() * delta.clone() * delta.clone()
                     - c(0),
                 v0.clone() - delta.clone() - c(1),
                 -half.clone() - c(2),
-                -c(3),
             ];
+            g.extend((3..p.coeffs.len().max(4)).map(|k| -c(k)));
             let len = p.end.clone() - p.start.clone();
             let at = |sigma: R| {
                 let theta = sys.num(m as f64) + p.start.clone() + sigma.clone();
@@ -487,13 +524,15 @@ impl<R: Real> PreciseMap<R> {
         let one = sys.num(1.0);
         let n = sys.pieces.len();
         let j0 = sys.index(&st.phase);
-        // 1 + αF'' on piece j as a polynomial in its variable: 1 + 2a2 + 6a3 s.
+        // 1 + αF'' on piece j as a polynomial in its variable: 1 + 2a2 + 6a3 s + 12a4 s²
+        // + ….
         let h = |j: usize| {
             let t = sys.taylor(j, &zero);
-            vec![
-                one.clone() + sys.num(2.0) * t[2].clone(),
-                sys.num(6.0) * t[3].clone(),
-            ]
+            let mut h: Vec<R> = (2..t.len())
+                .map(|k| sys.num((k * (k - 1)) as f64) * t[k].clone())
+                .collect();
+            h[0] = one.clone() + h[0].clone();
+            h
         };
         let (mut m, mut j) = (0i64, j0);
         let mut from = st.phase.clone() - sys.pieces[j0].start.clone();

@@ -22,7 +22,8 @@ fn derivative<R: Real>(p: &[R], ctx: &R::Context) -> Vec<R> {
 
 /// The real roots of `p` in the open interval (a, b), ascending: the roots of its
 /// derivative split the interval into stretches where p is monotone, and each sign
-/// change is refined ([`refine`]). Degree ≤ 3.
+/// change is refined ([`refine`]). Any degree (the derivative's roots by the same
+/// isolation, down to a linear one).
 fn roots_inside<R: Real>(p: &[R], a: &R, b: &R, ctx: &R::Context) -> Vec<R> {
     let zero = R::from_f64(0.0, ctx);
     if p.len() <= 1 {

@@ -196,7 +196,7 @@ impl PreciseSetup {
                 self.r.at(bits, self.binary),
                 bits,
             )
-            .expect("checked of degree ≤ 3 when made")
+            .expect("pieces of a table's degree")
         };
         let t0 = num(self.t0);
         let w = match self.v0 {
@@ -253,7 +253,7 @@ pub fn check_digits(ask: DigitsAsk, table: &Table, z0: f64) -> Result<(), Engine
     }
     if !precise_takes(table) {
         return Err(EngineError::Inconsistent(format!(
-            "digits: table {} is not yet computed at any precision: valid the sine or a piecewise polynomial table of degree ≤ {}",
+            "digits: table {} is not computed at any precision: valid the sine or a piecewise polynomial table (of degree ≤ {})",
             table.name(),
             super::PRECISE_MAX_DEGREE
         )));
