@@ -234,7 +234,7 @@ fn lyapunov_csv(args: &[&str]) -> Vec<String> {
 /// fd:1 at α = 0.59, where double precision cannot decide the sticking cycle: at 60
 /// digits its length and stick time, the same to 60 digits when 90 are asked for, and a
 /// different cycle for the doubles nearest 0.59 and 0.8, as a change of 10⁻¹⁷ in α must
-/// make where 25 digits are lost from the release to the stick.
+/// make where about 45 digits are lost from the release to the stick.
 #[test]
 fn lyapunov_decides_the_sticking_cycle_past_double_precision() {
     let base = ["--table", "fd:1", "--alpha", "0.59"];
