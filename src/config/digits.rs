@@ -30,15 +30,8 @@ pub fn digits_ask(
     }))
 }
 
-/// Whether `--digits` takes `table` and a start at height `z0`: refused naming what
-/// it takes.
-pub fn digits_take(table: &bouncemap_engine::Table, z0: f64) -> Result<(), InputError> {
-    if z0 != 0.0 {
-        return Err(InputError(
-            "--z0 with --digits: at any precision the ball starts on the table: valid --z0 0"
-                .into(),
-        ));
-    }
+/// Whether `--digits` takes `table`: refused naming what it takes.
+pub fn digits_take(table: &bouncemap_engine::Table) -> Result<(), InputError> {
     if !bouncemap_engine::precise_takes(table) {
         return Err(digits_refusal(table));
     }

@@ -96,7 +96,7 @@ pub fn plane_spec(args: &PlaneArgs) -> Result<PlaneSpec, InputError> {
     )?;
     spec.digits = super::digits::digits_ask(&args.precision)?;
     if spec.digits.is_some() {
-        super::digits::digits_take(&spec.table, 0.0)?;
+        super::digits::digits_take(&spec.table)?;
     }
     Ok(spec)
 }

@@ -178,7 +178,7 @@ pub fn basins(args: &BasinsArgs) -> Result<BasinsRun, InputError> {
                 "--digits: the cycles decided at any precision are in the json's attractors and under the braille picture: valid --format json or braille".into(),
             ));
         }
-        super::digits::digits_take(spec.sys.table(), 0.0)?;
+        super::digits::digits_take(spec.sys.table())?;
     }
     let job = Job {
         check: args.run.check.check,
@@ -439,14 +439,16 @@ fn precise_spec(
     let sys = super::system(system)?;
     super::start(&sys, initial)?;
     let table = sys.table();
-    super::digits::digits_take(table, initial.z0)?;
-    let (t0, v0) = match start {
-        Some((t0, v0)) => (t0, Some(v0)),
-        None => (initial.t0, initial.v0),
+    super::digits::digits_take(table)?;
+    // (`--near-fixed-point`'s start is on the table.)
+    let (t0, v0, z0) = match start {
+        Some((t0, v0)) => (t0, Some(v0), 0.0),
+        None => (initial.t0, initial.v0, initial.z0),
     };
     let setup =
         bouncemap_engine::PreciseSetup::new(table, system.alpha, system.r, t0, v0, p.binary_params)
-            .ok_or_else(|| super::digits::digits_refusal(table))?;
+            .ok_or_else(|| super::digits::digits_refusal(table))?
+            .above(z0);
     Ok(Some(PreciseSpec {
         setup,
         table: table.name().to_string(),

@@ -97,7 +97,7 @@ pub fn sweep_spec(args: &SweepArgs) -> Result<SweepSpec, InputError> {
     )?;
     spec.digits = super::digits::digits_ask(&args.precision)?;
     if spec.digits.is_some() {
-        super::digits::digits_take(&spec.table, spec.initial.z0)?;
+        super::digits::digits_take(&spec.table)?;
     }
     Ok(spec)
 }

@@ -197,7 +197,6 @@ fn bad_digits_get_one_line_and_status_two() {
             "valid --max-digits M with M ≥ N",
         ),
         (&["--binary-params"][..], "go with --digits N"),
-        (&["--digits", "30", "--z0", "1"][..], "valid --z0 0"),
         (
             &["--digits", "30", "--solver", "grid"][..],
             "valid --solver exact",
@@ -453,6 +452,51 @@ fn a_quintic_table_file_runs_at_any_precision() {
         for k in [2, 3] {
             let (x, y): (f64, f64) = (a[k].parse().unwrap(), b[k].parse().unwrap());
             assert!((x - y).abs() < 1e-12, "{a:?} vs {b:?}");
+        }
+    }
+}
+
+/// A start above the table (`--z0`) at any precision: the first landings of fd:0.1, the
+/// sine and the quintic table file from 0.4 above the table are the f64 map's to its
+/// error (with the doubles, `--binary-params`), and hold to the 25 digits asked for.
+#[test]
+fn a_start_above_the_table_runs_at_any_precision() {
+    let quintic = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/tables/quintic.toml");
+    for table in ["fd:0.1", "sine", quintic] {
+        let base = [
+            "orbit",
+            "--table",
+            table,
+            "--alpha",
+            "0.3",
+            "--z0",
+            "0.4",
+            "--t0",
+            "0.2",
+            "--bounces",
+            "2",
+            "--format",
+            "csv",
+        ];
+        let out = bouncemap(&base);
+        assert!(out.status.success());
+        let f64_rows: Vec<Vec<String>> = String::from_utf8(out.stdout)
+            .unwrap()
+            .lines()
+            .skip(1)
+            .map(|l| l.split(',').map(String::from).collect())
+            .collect();
+        let big = rows(&bouncemap(
+            &[&base[..], &["--digits", "25", "--binary-params"]].concat(),
+        ));
+        assert_eq!((f64_rows.len(), big.len()), (2, 2), "{table}");
+        for (a, b) in f64_rows.iter().zip(&big) {
+            assert_eq!((&a[1], &a[5]), (&b[1], &b[5]), "{table}: {a:?} vs {b:?}");
+            assert_eq!(b[6], "25", "{table}: {b:?}");
+            for k in [2, 3] {
+                let (x, y): (f64, f64) = (a[k].parse().unwrap(), b[k].parse().unwrap());
+                assert!((x - y).abs() < 1e-12, "{table}: {a:?} vs {b:?}");
+            }
         }
     }
 }

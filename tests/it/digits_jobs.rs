@@ -161,8 +161,8 @@ fn digits_columns_survive_shards_and_merge() {
     assert_eq!(body(&merged), body(&whole));
 }
 
-/// `--digits` where it cannot go: a braille picture (sweep and plane), a start above
-/// the table, too few digits, and `--max-digits` without it, each one line and status 2.
+/// `--digits` where it cannot go: a braille picture (sweep and plane), too few digits,
+/// and `--max-digits` without it, each one line and status 2.
 #[test]
 fn digits_refusals_are_one_line() {
     let base = [
@@ -179,7 +179,6 @@ fn digits_refusals_are_one_line() {
             &["--digits", "20", "--format", "braille"][..],
             "valid --format csv or json",
         ),
-        (&["--digits", "20", "--z0", "0.1"][..], "valid --z0 0"),
         (&["--max-digits", "100"][..], "go with --digits N"),
         (&["--digits", "9"][..], "[10, 10000]"),
     ] {

@@ -236,7 +236,7 @@ impl PlaneSpec {
         }
         self.shard.validate()?;
         if let Some(ask) = self.digits {
-            crate::precise::check_digits(ask, &self.table, 0.0)?;
+            crate::precise::check_digits(ask, &self.table)?;
         }
         // A file's family may stop being C¹ inside a window: every value along an axis
         // of its parameters is checked, in order (built-in families are C¹ over their

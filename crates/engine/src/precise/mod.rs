@@ -247,6 +247,9 @@ pub struct PreciseState<R> {
     /// After a stick of a ball launched with no relative velocity: release strictly
     /// after this instant.
     release_after: bool,
+    /// Height above the table (zero after every event; above zero only at a start
+    /// above the table).
+    height: R,
 }
 
 impl<R: Real> PreciseState<R> {
@@ -260,7 +263,34 @@ impl<R: Real> PreciseState<R> {
             w,
             stuck: false,
             release_after: false,
+            height: sys.num(0.0),
         }
+    }
+
+    /// A ball `height` ≥ 0 above the table at (period, phase) with velocity `v` (as
+    /// [`crate::State::launch`]: on the table, `v` must be at least the table's).
+    pub fn above(
+        sys: &PreciseSystem<R>,
+        period: i64,
+        phase: R,
+        v: R,
+        height: R,
+    ) -> PreciseState<R> {
+        let df = sys.jet(&phase)[1].clone();
+        PreciseState {
+            period,
+            phase,
+            w: v.clone() - df,
+            v,
+            stuck: false,
+            release_after: false,
+            height,
+        }
+    }
+
+    /// The height above the table.
+    pub fn height(&self) -> &R {
+        &self.height
     }
 }
 
@@ -321,7 +351,8 @@ impl<R: Real> PreciseMap<R> {
         if self.state.stuck {
             return self.release();
         }
-        if self.state.w > self.sys.num(0.0) {
+        let zero = self.sys.num(0.0);
+        if self.state.w > zero && self.state.height == zero {
             if let Some((period, phase)) = self.chatter_limit() {
                 return Ok(self.stick_at(period, phase, false));
             }
@@ -339,6 +370,7 @@ impl<R: Real> PreciseMap<R> {
             w: zero.clone(),
             stuck: true,
             release_after,
+            height: zero.clone(),
         };
         PreciseEvent {
             kind: EventKind::Stick,
@@ -395,7 +427,12 @@ impl<R: Real> PreciseMap<R> {
         // (0, end − phase].
         let mut higher: Vec<R> = vec![-(half.clone() + t[2].clone())];
         higher.extend(t[3..].iter().map(|a| -a.clone()));
-        let q = if st.w > zero {
+        let q = if st.height > zero {
+            // Above the table: the gap itself, height + w s − (1/2 + a2) s² − ….
+            let mut q = vec![st.height.clone(), st.w.clone()];
+            q.extend(higher);
+            q
+        } else if st.w > zero {
             let mut q = vec![st.w.clone()];
             q.extend(higher);
             q
@@ -420,7 +457,7 @@ impl<R: Real> PreciseMap<R> {
         let found = first_root(&q, &zero, &first_len, &sys.ctx);
         // (time since launch, phase of the landing from the launch's period)
         let mut hit: Option<(R, R)> = found.map(|s| (s.clone(), st.phase.clone() + s));
-        let y0 = t[0].clone();
+        let y0 = t[0].clone() + st.height.clone();
         let v0 = st.v.clone();
         let n = sys.pieces.len();
         let mut crossed = 0;
@@ -480,6 +517,7 @@ impl<R: Real> PreciseMap<R> {
             w,
             stuck: false,
             release_after: false,
+            height: sys.num(0.0),
         };
         PreciseEvent {
             kind: EventKind::Impact,
@@ -504,6 +542,7 @@ impl<R: Real> PreciseMap<R> {
             w: zero.clone(),
             stuck: false,
             release_after: false,
+            height: zero.clone(),
         };
         PreciseEvent {
             kind: EventKind::Release,

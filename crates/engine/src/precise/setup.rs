@@ -94,6 +94,8 @@ pub struct PreciseSetup {
     t0: f64,
     /// None: launched with [`crate::DEFAULT_HOP`] relative to the table.
     v0: Option<f64>,
+    /// Height above the table at the start.
+    z0: f64,
     binary: bool,
     sine: bool,
 }
@@ -122,16 +124,20 @@ impl PreciseSetup {
             r: Value::Double(r),
             t0,
             v0,
+            z0: 0.0,
             binary,
         })
     }
 
-    /// The setup of `sys` with the ball of `start`, which must be on the table (a
-    /// launch); None where it is not, or where the table is not taken.
+    /// This setup with the ball starting `z0` ≥ 0 above the table.
+    pub fn above(mut self, z0: f64) -> PreciseSetup {
+        self.z0 = z0;
+        self
+    }
+
+    /// The setup of `sys` with the ball of `start` (on the table or above it); None
+    /// where the table is not taken.
     pub fn of_state(sys: &System, start: &State, binary: bool) -> Option<PreciseSetup> {
-        if start.height() != 0.0 {
-            return None;
-        }
         PreciseSetup::new(
             sys.table(),
             sys.alpha(),
@@ -140,6 +146,7 @@ impl PreciseSetup {
             Some(start.v()),
             binary,
         )
+        .map(|s| s.above(start.height()))
     }
 
     /// This setup with the parameter `slot` at point `i` of the grid of `steps` values
@@ -203,7 +210,12 @@ impl PreciseSetup {
             Some(v0) => num(v0) - sys.jet(&t0)[1].clone(),
             None => num(crate::map::DEFAULT_HOP),
         };
-        let st = PreciseState::launch(&sys, 0, t0, w);
+        let st = if self.z0 > 0.0 {
+            let v = sys.jet(&t0)[1].clone() + w;
+            PreciseState::above(&sys, 0, t0, v, num(self.z0))
+        } else {
+            PreciseState::launch(&sys, 0, t0, w)
+        };
         (sys, st)
     }
 }
@@ -241,8 +253,8 @@ pub fn events_since(last: &mut u64, p: DigitsProgress) -> u64 {
 
 /// Whether a job can decide its sticking cycles at any precision as `ask` says: digits
 /// within [`crate::limits::DIGITS`], `max_digits` at least `digits`, a table the map at
-/// any precision takes and starts on the table (`z0` = 0).
-pub fn check_digits(ask: DigitsAsk, table: &Table, z0: f64) -> Result<(), EngineError> {
+/// any precision takes.
+pub fn check_digits(ask: DigitsAsk, table: &Table) -> Result<(), EngineError> {
     limits::DIGITS.check(ask.digits as f64)?;
     limits::DIGITS.check(ask.max_digits as f64)?;
     if ask.max_digits < ask.digits {
@@ -257,12 +269,6 @@ pub fn check_digits(ask: DigitsAsk, table: &Table, z0: f64) -> Result<(), Engine
             table.name(),
             super::PRECISE_MAX_DEGREE
         )));
-    }
-    if z0 != 0.0 {
-        return Err(EngineError::Inconsistent(
-            "digits with z0 > 0: at any precision the ball starts on the table: valid z0 = 0"
-                .into(),
-        ));
     }
     Ok(())
 }

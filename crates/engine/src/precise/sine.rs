@@ -46,7 +46,8 @@ impl<R: Real> PreciseMap<R> {
         // (g, g') at s.
         let gap = |s: &R| -> (R, R) {
             if *s <= series_reach {
-                // g = s q(s), q = w₀ − s/2 − Σ a_k s^(k−1); g' = q + s q'.
+                // g = z₀ + s q(s), q = w₀ − s/2 − Σ a_k s^(k−1); g' = q + s q' (z₀ the
+                // height above the table at the start, zero after every event).
                 let mut q = st.w.clone() - half.clone() * s.clone();
                 let mut dq = -half.clone();
                 let mut pow = s.clone();
@@ -58,10 +59,13 @@ impl<R: Real> PreciseMap<R> {
                     dpow = pow.clone();
                     pow = pow * s.clone();
                 }
-                (s.clone() * q.clone(), q + s.clone() * dq)
+                (
+                    st.height.clone() + s.clone() * q.clone(),
+                    q + s.clone() * dq,
+                )
             } else {
                 let (sn, cs) = (w.clone() * (st.phase.clone() + s.clone())).sin_cos();
-                let g = alpha.clone() * s0.clone() + v0.clone() * s.clone()
+                let g = st.height.clone() + alpha.clone() * s0.clone() + v0.clone() * s.clone()
                     - half.clone() * s.clone() * s.clone()
                     - alpha.clone() * sn;
                 let dg = v0.clone() - s.clone() - alpha.clone() * w.clone() * cs;
@@ -69,8 +73,8 @@ impl<R: Real> PreciseMap<R> {
             }
         };
         let mut s = zero.clone();
-        let (mut g, mut dg) = (zero.clone(), st.w.clone());
-        if st.w <= zero {
+        let (mut g, mut dg) = (st.height.clone(), st.w.clone());
+        if st.w <= zero && st.height == zero {
             // Leaving with no relative velocity (after a release): g = c2 s² + c3 s³ + …
             // with c2 = −(1 + αF'')/2, zero to rounding at a smooth release, and
             // c3 = −αF⁽³⁾/6; the fourth derivative is at most αω⁴, so the gap stays

@@ -357,7 +357,7 @@ impl SweepSpec {
             limits::W_MAX.check(w)?;
         }
         if let Some(ask) = self.digits {
-            check_digits(ask, &self.table, self.initial.z0)?;
+            check_digits(ask, &self.table)?;
         }
         self.shard.validate()?;
         match self.param {
