@@ -94,7 +94,10 @@ fn memory_bound(run: &BasinsRun, threads: usize) -> u64 {
         None => super::picture_bytes(run.job.text.0, run.job.text.1),
         Some(_) => super::WRITER_BYTES,
     };
+    // Cycles at any precision are decided one at a time, after the picture.
+    let digits = run.digits.map_or(0, bouncemap_engine::digits_bytes);
     super::BASE_BYTES
+        + digits
         + threads as u64 * (worker + super::THREAD_BYTES)
         + labels
         + ATTRACTORS_BYTES

@@ -117,7 +117,8 @@ fn check(run: &PlaneRun) -> anyhow::Result<()> {
 /// A bound on the run's memory, in bytes: the picture (a pixel's result, or none, for
 /// every pixel of the plane, whatever the shard), the shard's pixels listed by pass,
 /// every result of the shard in flight to the picture at once, each worker's run and
-/// what measuring its exponent takes, the two-parameter curves, the writer (a row at a
+/// what measuring its exponent (and deciding a cycle at any precision) takes, the
+/// two-parameter curves, the writer (a row at a
 /// time, or the text picture) and the process. Large blocks are returned to the system
 /// as they are freed ([`super::release_large_blocks`]).
 fn memory_bound(run: &PlaneRun, threads: usize) -> u64 {
@@ -136,7 +137,8 @@ fn memory_bound(run: &PlaneRun, threads: usize) -> u64 {
     };
     let worker = OrbitRun::bytes(KEEP, spec.periodicity)
         + KEEP as u64 * size_of::<Point>() as u64
-        + exponent;
+        + exponent
+        + spec.digits.map_or(0, bouncemap_engine::digits_bytes);
     let writer = match run.job.layout {
         Some(_) => WRITER_BYTES,
         None => picture_bytes(run.job.text.0, run.job.text.1),

@@ -36,7 +36,8 @@ pub use digits::{
     CycleVerdict, DigitsOrbit, DigitsProgress, MakeBig, StickingCycle,
 };
 pub use setup::{
-    check_digits, decide_sticking_cycle, events_since, DigitsAsk, PreciseSetup, Slot, CYCLE_EVENTS,
+    check_digits, decide_sticking_cycle, digits_bytes, events_since, DigitsAsk, PreciseSetup, Slot,
+    CYCLE_EVENTS,
 };
 
 use crate::chatter::ChatterSeries;

@@ -243,6 +243,21 @@ pub fn decide_sticking_cycle(
     )
 }
 
+/// The most a [`decide_sticking_cycle`] run holds at once, in bytes: the two runs'
+/// paths from the release (at most 100,000 events each, a number at the
+/// higher precision of the last pair, at most twice `ask.max_digits`) and an allowance
+/// for the map's state and the cycle's numbers (the bound of a memory estimate).
+pub fn digits_bytes(ask: DigitsAsk) -> u64 {
+    let bits = crate::real::bits_for_digits(ask.max_digits.saturating_mul(2)) as u64;
+    let events = super::digits::PATH_EVENTS as u64;
+    // A path's slots (a vector grown by doubling) and each number's limbs (64-bit
+    // words, with the allocator's rounding).
+    let slots = events.next_power_of_two()
+        * std::mem::size_of::<(crate::map::EventKind, i64, Big)>() as u64;
+    let limbs = events * (bits.div_ceil(64) * 8 + 16);
+    2 * (slots + limbs) + (1 << 20)
+}
+
 /// A progress report of [`DigitsProgress`] as the events done since the last report:
 /// what a job's event counter takes (a run's count starts again at each precision).
 pub fn events_since(last: &mut u64, p: DigitsProgress) -> u64 {

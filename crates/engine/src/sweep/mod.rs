@@ -231,10 +231,13 @@ impl SweepSpec {
     /// value's result ([`Self::value_bytes`]): the run of a start ([`OrbitRun::bytes`])
     /// and what identifying its attractor takes ([`attractors::identify_bytes`]); with
     /// several starts also each start's points, the points of every attractor found so
-    /// far (one per start at most) and the registry's cells ([`Registry::bytes`]). The
-    /// bound of a memory estimate.
+    /// far (one per start at most) and the registry's cells ([`Registry::bytes`]); with
+    /// `digits`, what deciding a cycle at any precision holds
+    /// ([`crate::precise::digits_bytes`]). The bound of a memory estimate.
     pub fn worker_bytes(&self) -> u64 {
-        let run = OrbitRun::bytes(self.keep, self.periodicity);
+        // With `digits`, a cycle decided at any precision after the f64 run.
+        let digits = self.digits.map_or(0, crate::precise::digits_bytes);
+        let run = OrbitRun::bytes(self.keep, self.periodicity) + digits;
         if self.starts <= 1 {
             // The run's points are the value's.
             let exponent = match self.lyapunov {
