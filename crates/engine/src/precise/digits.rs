@@ -277,7 +277,7 @@ pub fn max_digits_for(digits: u32, need: u32) -> u32 {
 }
 
 /// Events of the path from the first release a run keeps for [`loss_per_event`].
-pub(super) const PATH_EVENTS: usize = 100_000;
+pub const PATH_EVENTS: usize = 100_000;
 
 /// The digits lost per event along two runs' paths from their first release, made at
 /// `work` digits and more: a least-squares slope through the events at which the runs

@@ -33,7 +33,7 @@ mod sine;
 
 pub use digits::{
     agreeing_digits, max_digits_for, orbit_to_digits, sticking_cycle_to_digits, CycleSummary,
-    CycleVerdict, DigitsOrbit, DigitsProgress, MakeBig, StickingCycle,
+    CycleVerdict, DigitsOrbit, DigitsProgress, MakeBig, StickingCycle, PATH_EVENTS,
 };
 pub use setup::{
     check_digits, decide_sticking_cycle, digits_bytes, events_since, DigitsAsk, PreciseSetup, Slot,

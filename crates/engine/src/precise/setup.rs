@@ -10,7 +10,7 @@
 //! point lo + (hi − lo)·i/(N − 1) of the window's decimal ends, not the double the f64
 //! run used (0.5975, not 0.5974999999999999).
 
-use super::digits::{sticking_cycle_to_digits, CycleVerdict, DigitsProgress};
+use super::digits::{sticking_cycle_to_digits, CycleVerdict, DigitsProgress, PATH_EVENTS};
 use super::{precise_takes, PreciseState, PreciseSystem};
 use crate::error::EngineError;
 use crate::limits;
@@ -244,12 +244,12 @@ pub fn decide_sticking_cycle(
 }
 
 /// The most a [`decide_sticking_cycle`] run holds at once, in bytes: the two runs'
-/// paths from the release (at most 100,000 events each, a number at the
+/// paths from the release ([`PATH_EVENTS`] events at most, each a number at the
 /// higher precision of the last pair, at most twice `ask.max_digits`) and an allowance
 /// for the map's state and the cycle's numbers (the bound of a memory estimate).
 pub fn digits_bytes(ask: DigitsAsk) -> u64 {
     let bits = crate::real::bits_for_digits(ask.max_digits.saturating_mul(2)) as u64;
-    let events = super::digits::PATH_EVENTS as u64;
+    let events = PATH_EVENTS as u64;
     // A path's slots (a vector grown by doubling) and each number's limbs (64-bit
     // words, with the allocator's rounding).
     let slots = events.next_power_of_two()
