@@ -276,7 +276,8 @@ pub fn max_digits_for(digits: u32, need: u32) -> u32 {
     work
 }
 
-/// Events of the path from the first release a run keeps for [`loss_per_event`].
+/// Events of the path from the first release a run of [`sticking_cycle_to_digits`] keeps,
+/// to measure the digits lost per event where two runs part.
 pub const PATH_EVENTS: usize = 100_000;
 
 /// The digits lost per event along two runs' paths from their first release, made at
