@@ -23,7 +23,7 @@ pub mod output;
 pub mod tui;
 
 use clap::error::ErrorKind;
-use clap::Parser;
+use clap::{CommandFactory, FromArgMatches};
 use config::InputError;
 use std::process::ExitCode;
 
@@ -35,7 +35,14 @@ pub fn main() -> ExitCode {
         output::to_stderr(&format!("{msg}\n"));
         return ExitCode::from(2);
     }
-    let cli = match config::flags::Cli::try_parse() {
+    let parsed = config::flags::Cli::command()
+        .try_get_matches()
+        .and_then(|m| {
+            let mut cli = config::flags::Cli::from_arg_matches(&m)?;
+            config::flags::keep_written(&mut cli, &m);
+            Ok(cli)
+        });
+    let cli = match parsed {
         Ok(c) => c,
         Err(e) => match e.kind() {
             ErrorKind::DisplayHelp

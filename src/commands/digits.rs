@@ -5,9 +5,9 @@
 //! stops at the first event that does not hold to N digits at the most precision
 //! allowed, saying what it would need.
 //!
-//! The parameters are the decimals written (each flag's double read back as its shortest
-//! decimal), rounded once to the working precision; with `--binary-params` the doubles
-//! themselves.
+//! The parameters are the decimals written (the texts typed for α, r and the start, the
+//! other flags' doubles read back as their shortest decimals), rounded once to the
+//! working precision; with `--binary-params` the doubles themselves.
 
 use super::progress::Progress;
 use crate::config::run::{DigitsRun, LyapunovDigits};
@@ -31,7 +31,7 @@ pub fn run(run: &DigitsRun) -> anyhow::Result<()> {
         total,
         &format!(
             "{}  alpha {}  r {}  {} events to {} digits",
-            run.spec.table, run.spec.alpha, run.spec.r, total, run.spec.digits
+            run.spec.table, run.spec.written.0, run.spec.written.1, total, run.spec.digits
         ),
     );
     let orbit = orbit_to_digits(
@@ -93,8 +93,8 @@ fn write(out: &mut Sink, run: &DigitsRun, orbit: &DigitsOrbit, shown: usize) -> 
                 out,
                 "table {}  alpha {}  r {}  parameters {}  digits {} (working precision {} and {} digits)",
                 run.spec.table,
-                run.spec.alpha,
-                run.spec.r,
+                run.spec.written.0,
+                run.spec.written.1,
                 if run.spec.binary { "as doubles" } else { "as written" },
                 run.spec.digits,
                 orbit.precision.0,
@@ -133,6 +133,8 @@ fn write(out: &mut Sink, run: &DigitsRun, orbit: &DigitsOrbit, shown: usize) -> 
                 "table": run.spec.table,
                 "alpha": run.spec.alpha,
                 "r": run.spec.r,
+                "alpha_written": run.spec.written.0,
+                "r_written": run.spec.written.1,
                 "parameters": if run.spec.binary { "doubles" } else { "decimals" },
                 "digits": run.spec.digits,
                 "working_digits": [orbit.precision.0, orbit.precision.1],
@@ -209,7 +211,7 @@ pub fn lyapunov(run: &LyapunovDigits) -> anyhow::Result<()> {
         CYCLE_EVENTS,
         &format!(
             "{}  alpha {}  r {}  sticking cycle to {} digits, within {CYCLE_EVENTS} events a run",
-            spec.table, spec.alpha, spec.r, spec.digits
+            spec.table, spec.written.0, spec.written.1, spec.digits
         ),
     );
     let verdict = sticking_cycle_to_digits(
@@ -239,7 +241,7 @@ pub fn lyapunov(run: &LyapunovDigits) -> anyhow::Result<()> {
                 writeln!(
                     out,
                     "table {}  alpha {}  r {}  parameters {params}  digits {}",
-                    spec.table, spec.alpha, spec.r, spec.digits
+                    spec.table, spec.written.0, spec.written.1, spec.digits
                 )?;
                 writeln!(
                     out,
@@ -264,8 +266,8 @@ pub fn lyapunov(run: &LyapunovDigits) -> anyhow::Result<()> {
                     out,
                     "{},{},{},{},{},{},{},{},{},{},{},{}",
                     spec.table,
-                    spec.alpha,
-                    spec.r,
+                    spec.written.0,
+                    spec.written.1,
                     if spec.binary { "doubles" } else { "decimals" },
                     spec.digits,
                     row.verdict,
@@ -283,6 +285,8 @@ pub fn lyapunov(run: &LyapunovDigits) -> anyhow::Result<()> {
                     "table": spec.table,
                     "alpha": spec.alpha,
                     "r": spec.r,
+                    "alpha_written": spec.written.0,
+                    "r_written": spec.written.1,
                     "parameters": if spec.binary { "doubles" } else { "decimals" },
                     "digits": spec.digits,
                     "start": run.initial,

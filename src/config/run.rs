@@ -374,6 +374,10 @@ pub struct PreciseSpec {
     pub alpha: f64,
     /// Restitution.
     pub r: f64,
+    /// α and r as the run at any precision reads them: the text typed, or the double's
+    /// shortest decimal (with `--binary-params`, the double's shortest decimal, which
+    /// names the double read exactly).
+    pub written: (String, String),
     /// Significant digits asked for.
     pub digits: u32,
     /// The most digits the precision is raised to.
@@ -448,12 +452,21 @@ fn precise_spec(
     let setup =
         bouncemap_engine::PreciseSetup::new(table, system.alpha, system.r, t0, v0, p.binary_params)
             .ok_or_else(|| super::digits::digits_refusal(table))?
-            .above(z0);
+            .above(z0)
+            .as_written(&p.written);
+    let shown = |x: f64, text: &Option<String>| match text {
+        Some(t) if !p.binary_params && t.trim().parse::<f64>() == Ok(x) => t.trim().to_string(),
+        _ => format!("{x}"),
+    };
     Ok(Some(PreciseSpec {
         setup,
         table: table.name().to_string(),
         alpha: system.alpha,
         r: system.r,
+        written: (
+            shown(system.alpha, &p.written.alpha),
+            shown(system.r, &p.written.r),
+        ),
         digits,
         max_digits: p.max_digits,
         binary: p.binary_params,

@@ -500,3 +500,33 @@ fn a_start_above_the_table_runs_at_any_precision() {
         }
     }
 }
+
+/// A parameter typed with more digits than a double holds is read as written: α =
+/// 0.59 + 10⁻²⁰ on fd:1 is another system than α = 0.59 (about 45 digits are lost
+/// from the release to the stick, so a change in the 20th digit moves the stick: not
+/// the 78-period cycle), the output names the α it used, and with `--binary-params`
+/// it is the double both texts read to (the 142-period cycle of the doubles).
+#[test]
+fn a_parameter_with_more_digits_than_a_double_is_read_as_written() {
+    let long = "0.59000000000000000001";
+    let at = |alpha: &str, extra: &[&str]| {
+        let mut a = vec!["--table", "fd:1", "--alpha", alpha, "--digits", "20"];
+        a.extend_from_slice(extra);
+        lyapunov_csv(&a)
+    };
+    let (short, typed) = (at("0.59", &[]), at(long, &[]));
+    assert_eq!((short[5].as_str(), short[6].as_str()), ("found", "78"));
+    assert_eq!(typed[1], long, "the α used, as typed");
+    assert_eq!(typed[5], "found", "{typed:?}");
+    assert_ne!(typed[6], "78", "{typed:?}");
+    let (short_b, typed_b) = (
+        at("0.59", &["--binary-params"]),
+        at(long, &["--binary-params"]),
+    );
+    assert_eq!(typed_b[1], "0.59", "the double's shortest decimal");
+    assert_eq!(
+        (typed_b[6].as_str(), typed_b[9].as_str()),
+        (short_b[6].as_str(), short_b[9].as_str())
+    );
+    assert_eq!(typed_b[6], "142");
+}

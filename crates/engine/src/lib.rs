@@ -83,7 +83,7 @@ pub use precise::{
     max_digits_for, orbit_to_digits, precise_takes, sticking_cycle_to_digits, CycleSummary,
     CycleVerdict, DigitsAsk, DigitsOrbit, DigitsProgress, MakeBig, PreciseEvent, PreciseHalt,
     PreciseMap, PreciseRefusal, PreciseSetup, PreciseState, PreciseSystem, Slot, StickingCycle,
-    CYCLE_EVENTS, PATH_EVENTS, PRECISE_MAX_DEGREE,
+    Written, CYCLE_EVENTS, PATH_EVENTS, PRECISE_MAX_DEGREE,
 };
 pub use real::{bits_for_digits, Big, Number, Real};
 pub use system::{kappa_c, System};

@@ -194,12 +194,45 @@ pub struct PrecisionArgs {
     /// flag was read to, exactly, instead of as the decimal written.
     #[arg(long)]
     pub binary_params: bool,
+    /// The texts typed for α, r, t0, v0 and z0 (`orbit`, `lyapunov`), kept from the
+    /// command line after parsing ([`keep_written`]) so that at any precision each is
+    /// read with all its digits.
+    #[arg(skip)]
+    pub written: bouncemap_engine::Written,
+}
+
+/// Keep in `cli` the texts typed for the parameters that a run at any precision reads
+/// as written (`--alpha`, `--r`, `--t0`, `--v0`, `--z0` of `orbit` and `lyapunov`),
+/// from the parsed command line `matches`.
+pub fn keep_written(cli: &mut Cli, matches: &clap::ArgMatches) {
+    let (name, precision) = match &mut cli.command {
+        Some(Command::Orbit(a)) => ("orbit", &mut a.precision),
+        Some(Command::Lyapunov(a)) => ("lyapunov", &mut a.precision),
+        _ => return,
+    };
+    let Some(m) = matches.subcommand_matches(name) else {
+        return;
+    };
+    let typed = |id: &str| -> Option<String> {
+        // Only what the command line gave (not a default), its last occurrence.
+        if m.value_source(id) != Some(clap::parser::ValueSource::CommandLine) {
+            return None;
+        }
+        m.get_raw(id)?.next_back()?.to_str().map(String::from)
+    };
+    precision.written = bouncemap_engine::Written {
+        alpha: typed("alpha"),
+        r: typed("r"),
+        t0: typed("t0"),
+        v0: typed("v0"),
+        z0: typed("z0"),
+    };
 }
 
 /// `--digits`' help: what it does.
 const DIGITS_HELP: &str = "Compute at any precision and print only what holds to N significant digits: the run is repeated at twice the precision and each value printed to the digits on which the two agree (more precision is taken, up to --max-digits, where they do not); the sine and every polynomial table";
 /// `--digits`' long help: how parameters are read.
-const DIGITS_MORE: &str = "Parameters are taken as written: --alpha 0.6 is three fifths, rounded once to the working precision, not the double nearest it (each is read as the shortest decimal of its double: what was typed, unless it had more than 17 significant digits). --binary-params compares with the system of the doubles.";
+const DIGITS_MORE: &str = "Parameters are taken as written: --alpha 0.6 is three fifths, rounded once to the working precision, not the double nearest it (--alpha, --r, --t0, --v0 and --z0 of orbit and lyapunov with every digit typed; the others, D and the windows of sweep and plane, as the shortest decimal of their double: what was typed, unless it had more than 17 significant digits). --binary-params compares with the system of the doubles.";
 
 /// `--out`: where a command writes (`sweep`, `plane`, `basins`, `merge`).
 #[derive(Args, Debug, Clone, Default)]

@@ -37,7 +37,7 @@ pub use digits::{
 };
 pub use setup::{
     check_digits, decide_sticking_cycle, digits_bytes, events_since, DigitsAsk, PreciseSetup, Slot,
-    CYCLE_EVENTS,
+    Written, CYCLE_EVENTS,
 };
 
 use crate::chatter::ChatterSeries;

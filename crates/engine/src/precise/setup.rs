@@ -4,8 +4,9 @@
 //! ([`decide_sticking_cycle`]).
 //!
 //! Parameters are taken as written: each double is read back as its shortest decimal
-//! (what was typed, unless it had more than 17 significant digits) and rounded once to
-//! the working precision, so α = 0.6 is three fifths; or, asked for, as the double
+//! (what was typed, unless it had more than 17 significant digits), or the text typed
+//! where the caller kept it ([`Written`]: every digit of it), and rounded once to the
+//! working precision, so α = 0.6 is three fifths; or, asked for, as the double
 //! itself. A value of a job's grid (a sweep's or a plane's axis) is the decimal grid
 //! point lo + (hi − lo)·i/(N − 1) of the window's decimal ends, not the double the f64
 //! run used (0.5975, not 0.5974999999999999).
@@ -32,11 +33,31 @@ pub struct DigitsAsk {
     pub binary: bool,
 }
 
-/// One parameter at any precision: a double, or a point of a job's grid.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// The decimal texts typed for a run's parameters and start, where they were typed
+/// (None: the double's shortest decimal stands for it): at any precision each is read
+/// as written, all its digits, rather than through its double.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Written {
+    /// α.
+    pub alpha: Option<String>,
+    /// r.
+    pub r: Option<String>,
+    /// The start's phase, velocity and height.
+    pub t0: Option<String>,
+    /// See `t0`.
+    pub v0: Option<String>,
+    /// See `t0`.
+    pub z0: Option<String>,
+}
+
+/// One parameter at any precision: a double, a decimal text, or a point of a job's
+/// grid.
+#[derive(Clone, Debug, PartialEq)]
 enum Value {
     /// Its shortest decimal, or the double itself.
     Double(f64),
+    /// The decimal text typed, or (`binary`) the double it was read to.
+    Text { text: String, double: f64 },
     /// lo + (hi − lo)·i/(steps − 1) of the decimals lo and hi; `double` is the grid's
     /// double (what the f64 run used).
     Grid {
@@ -50,25 +71,49 @@ enum Value {
 
 impl Value {
     /// The value at `bits`: as written, or (`binary`) the double.
-    fn at(self, bits: usize, binary: bool) -> Big {
+    fn at(&self, bits: usize, binary: bool) -> Big {
         let decimal = |x: f64| Big::from_decimal(&format!("{x}"), &bits).expect("a finite decimal");
         match (self, binary) {
-            (Value::Double(x) | Value::Grid { double: x, .. }, true) => Big::from_f64(x, &bits),
-            (Value::Double(x), false) => decimal(x),
+            (
+                Value::Double(x) | Value::Grid { double: x, .. } | Value::Text { double: x, .. },
+                true,
+            ) => Big::from_f64(*x, &bits),
+            (Value::Double(x), false) => decimal(*x),
+            (Value::Text { text, double }, false) => {
+                Big::from_decimal(text, &bits).unwrap_or_else(|| decimal(*double))
+            }
             (
                 Value::Grid {
                     lo, hi, i, steps, ..
                 },
                 false,
             ) => {
-                if steps <= 1 || i == 0 {
-                    return decimal(lo);
+                if *steps <= 1 || *i == 0 {
+                    return decimal(*lo);
                 }
-                let (lo, hi) = (decimal(lo), decimal(hi));
+                let (lo, hi) = (decimal(*lo), decimal(*hi));
                 let n = Big::from_f64((steps - 1) as f64, &bits);
-                let i = Big::from_f64(i as f64, &bits);
+                let i = Big::from_f64(*i as f64, &bits);
                 lo.clone() + (hi - lo) * i / n
             }
+        }
+    }
+
+    /// The double `x` as `text` wrote it, where the text reads back to `x` (it is that
+    /// flag's text); else the double alone.
+    fn written(x: f64, text: Option<&String>) -> Value {
+        match text {
+            Some(t) if t.trim().parse::<f64>() == Ok(x) => Value::Text {
+                text: t.trim().to_string(),
+                double: x,
+            },
+            _ => Value::Double(x),
+        }
+    }
+
+    fn double(&self) -> f64 {
+        match self {
+            Value::Double(x) | Value::Text { double: x, .. } | Value::Grid { double: x, .. } => *x,
         }
     }
 }
@@ -91,11 +136,11 @@ pub struct PreciseSetup {
     params: Vec<Value>,
     alpha: Value,
     r: Value,
-    t0: f64,
+    t0: Value,
     /// None: launched with [`crate::DEFAULT_HOP`] relative to the table.
-    v0: Option<f64>,
+    v0: Option<Value>,
     /// Height above the table at the start.
-    z0: f64,
+    z0: Value,
     binary: bool,
     sine: bool,
 }
@@ -122,16 +167,30 @@ impl PreciseSetup {
             params: params.iter().map(|&x| Value::Double(x)).collect(),
             alpha: Value::Double(alpha),
             r: Value::Double(r),
-            t0,
-            v0,
-            z0: 0.0,
+            t0: Value::Double(t0),
+            v0: v0.map(Value::Double),
+            z0: Value::Double(0.0),
             binary,
         })
     }
 
     /// This setup with the ball starting `z0` ≥ 0 above the table.
     pub fn above(mut self, z0: f64) -> PreciseSetup {
-        self.z0 = z0;
+        self.z0 = Value::Double(z0);
+        self
+    }
+
+    /// This setup with each value that `texts` has as typed (and that reads back to
+    /// the double the setup has) taken as written.
+    pub fn as_written(mut self, texts: &Written) -> PreciseSetup {
+        self.alpha = Value::written(self.alpha.double(), texts.alpha.as_ref());
+        self.r = Value::written(self.r.double(), texts.r.as_ref());
+        self.t0 = Value::written(self.t0.double(), texts.t0.as_ref());
+        self.v0 = self
+            .v0
+            .take()
+            .map(|v| Value::written(v.double(), texts.v0.as_ref()));
+        self.z0 = Value::written(self.z0.double(), texts.z0.as_ref());
         self
     }
 
@@ -205,14 +264,14 @@ impl PreciseSetup {
             )
             .expect("pieces of a table's degree")
         };
-        let t0 = num(self.t0);
-        let w = match self.v0 {
-            Some(v0) => num(v0) - sys.jet(&t0)[1].clone(),
+        let t0 = self.t0.at(bits, self.binary);
+        let w = match &self.v0 {
+            Some(v0) => v0.at(bits, self.binary) - sys.jet(&t0)[1].clone(),
             None => num(crate::map::DEFAULT_HOP),
         };
-        let st = if self.z0 > 0.0 {
+        let st = if self.z0.double() > 0.0 {
             let v = sys.jet(&t0)[1].clone() + w;
-            PreciseState::above(&sys, 0, t0, v, num(self.z0))
+            PreciseState::above(&sys, 0, t0, v, self.z0.at(bits, self.binary))
         } else {
             PreciseState::launch(&sys, 0, t0, w)
         };
