@@ -23,7 +23,7 @@
 use super::classes::{of_pixel, Class, NO_LANDING};
 use super::part_file::{clip, FileKind, Layout, PartWriter};
 use super::records::{
-    check_verdict, present, solver_name, DigitsRecord, EarlyStop, Exponent, VERDICTS,
+    check_verdict, present, solver_name, CycleRecord, DigitsRecord, EarlyStop, Exponent,
 };
 use bouncemap_engine::jobs::grid::grid_value;
 use bouncemap_engine::jobs::grid::Shard;
@@ -241,21 +241,12 @@ impl PixelRow {
 
     /// This row with the `--digits` columns of `cycle` (empty cells where None).
     fn with_cycle(mut self, cycle: Option<CycleSummary>) -> PixelRow {
-        let (verdict, periods, agreed, need) = match cycle {
-            None => (None, None, None, None),
-            Some(CycleSummary::Found { periods, digits }) => {
-                (Some(VERDICTS[0]), Some(periods), Some(digits), None)
-            }
-            Some(CycleSummary::Undecided { agreed, need }) => {
-                (Some(VERDICTS[1]), None, Some(agreed), need)
-            }
-            Some(CycleSummary::NoRelease) => (Some(VERDICTS[2]), None, None, None),
-            Some(CycleSummary::NoReturn) => (Some(VERDICTS[3]), None, None, None),
-        };
-        self.digits_verdict = Some(verdict.map(String::from));
-        self.digits_periods = Some(periods);
-        self.agreed_digits = Some(agreed);
-        self.need_digits = Some(need);
+        let c = cycle.map(CycleRecord::of_summary);
+        let c = c.as_ref();
+        self.digits_verdict = Some(c.map(|c| c.verdict.clone()));
+        self.digits_periods = Some(c.and_then(|c| c.periods));
+        self.agreed_digits = Some(c.and_then(|c| c.agreed_digits));
+        self.need_digits = Some(c.and_then(|c| c.need_digits));
         self
     }
 

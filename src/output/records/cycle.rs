@@ -1,7 +1,7 @@
 //! A sticking cycle decided at any precision ([`CycleVerdict`]), as every output writes
 //! it: `lyapunov --digits`, and the `--digits` columns of `sweep` and `basins`.
 
-use bouncemap_engine::{max_digits_for, CycleVerdict, Real};
+use bouncemap_engine::{max_digits_for, CycleSummary, CycleVerdict, Real};
 use serde::{Deserialize, Serialize};
 
 /// The verdict's fields: its name, and where found the cycle's length in table periods,
@@ -27,31 +27,35 @@ pub const VERDICTS: [&str; 4] = ["found", "undecided", "no_release", "no_return"
 impl CycleRecord {
     /// The record of `v`.
     pub fn of(v: &CycleVerdict) -> CycleRecord {
-        let none = |verdict: &str| CycleRecord {
+        let mut record = CycleRecord::of_summary(v.summary());
+        if let CycleVerdict::Found(c) = v {
+            record.releases = Some(c.releases);
+            record.release_phase = Some(c.release_phase.to_digits(c.digits as usize));
+            record.stick_after = Some(c.stick_after.to_digits(c.digits as usize));
+        }
+        record
+    }
+
+    /// The record of a verdict kept without its numbers of any precision (a plane's
+    /// pixel): its name, length, digits agreed and needed; no releases, release phase
+    /// or stick time.
+    pub fn of_summary(v: CycleSummary) -> CycleRecord {
+        let (verdict, periods, agreed_digits, need_digits) = match v {
+            CycleSummary::Found { periods, digits } => {
+                (VERDICTS[0], Some(periods), Some(digits), None)
+            }
+            CycleSummary::Undecided { agreed, need } => (VERDICTS[1], None, Some(agreed), need),
+            CycleSummary::NoRelease => (VERDICTS[2], None, None, None),
+            CycleSummary::NoReturn => (VERDICTS[3], None, None, None),
+        };
+        CycleRecord {
             verdict: verdict.to_string(),
-            periods: None,
+            periods,
             releases: None,
             release_phase: None,
             stick_after: None,
-            agreed_digits: None,
-            need_digits: None,
-        };
-        match v {
-            CycleVerdict::Found(c) => CycleRecord {
-                periods: Some(c.periods),
-                releases: Some(c.releases),
-                release_phase: Some(c.release_phase.to_digits(c.digits as usize)),
-                stick_after: Some(c.stick_after.to_digits(c.digits as usize)),
-                agreed_digits: Some(c.digits),
-                ..none(VERDICTS[0])
-            },
-            CycleVerdict::Undecided { agreed, need, .. } => CycleRecord {
-                agreed_digits: Some(*agreed),
-                need_digits: *need,
-                ..none(VERDICTS[1])
-            },
-            CycleVerdict::NoRelease => none(VERDICTS[2]),
-            CycleVerdict::NoReturn => none(VERDICTS[3]),
+            agreed_digits,
+            need_digits,
         }
     }
 
