@@ -79,7 +79,7 @@ pub use impact::{next_landing, FlightError, Landing, Launch, Solver};
 pub use linalg::{eigenvalues_2x2, Complex, Mat2};
 pub use map::{Event, EventKind, Halt, ImpactMap, Mode, State, DEFAULT_HOP, MAX_EVENT_PERIOD};
 pub use precise::{
-    agreeing_digits, check_digits, decide_sticking_cycle, digits_bytes, events_since,
+    agreeing_digits, check_digits, decide_in_job, decide_sticking_cycle, digits_bytes,
     max_digits_for, orbit_to_digits, precise_takes, sticking_cycle_to_digits, CycleSummary,
     CycleVerdict, DigitsAsk, DigitsOrbit, DigitsProgress, MakeBig, PreciseEvent, PreciseHalt,
     PreciseMap, PreciseRefusal, PreciseSetup, PreciseState, PreciseSystem, Slot, StickingCycle,

@@ -8,9 +8,8 @@ use crate::jobs::grid::Shard;
 use crate::jobs::picture::{Cells, Chunk, Filled, Picture, PictureJob};
 use crate::jobs::{Control, Executor};
 use crate::map::ImpactMap;
-use crate::precise::{decide_sticking_cycle, events_since, CycleSummary, PreciseSetup};
+use crate::precise::{decide_in_job, CycleSummary, PreciseSetup};
 use crate::run::{Advance, OrbitRun};
-use std::ops::ControlFlow;
 
 /// One work item's results: (pixel index, result); a pixel whose system or start is
 /// refused is left out.
@@ -131,15 +130,7 @@ impl PlaneCells {
         let setup = setup
             .on_grid(spec.x.param.slot(), (spec.x.lo, spec.x.hi, spec.x.n), i, x)
             .on_grid(spec.y.param.slot(), (spec.y.lo, spec.y.hi, spec.y.n), j, y);
-        let periods = i64::try_from(spec.transient).unwrap_or(i64::MAX);
-        let mut last = 0;
-        let verdict =
-            decide_sticking_cycle(&setup, ask, periods, &mut |p| match tick(events_since(
-                &mut last, p,
-            )) {
-                true => ControlFlow::Break(()),
-                false => ControlFlow::Continue(()),
-            })?;
+        let verdict = decide_in_job(&setup, ask, spec.transient, tick)?;
         Some(Some(verdict.summary()))
     }
 }

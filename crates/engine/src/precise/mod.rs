@@ -36,8 +36,8 @@ pub use digits::{
     CycleVerdict, DigitsOrbit, DigitsProgress, MakeBig, StickingCycle, PATH_EVENTS,
 };
 pub use setup::{
-    check_digits, decide_sticking_cycle, digits_bytes, events_since, DigitsAsk, PreciseSetup, Slot,
-    Written, CYCLE_EVENTS,
+    check_digits, decide_in_job, decide_sticking_cycle, digits_bytes, DigitsAsk, PreciseSetup,
+    Slot, Written, CYCLE_EVENTS,
 };
 
 use crate::chatter::ChatterSeries;

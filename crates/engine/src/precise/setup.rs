@@ -317,12 +317,26 @@ pub fn digits_bytes(ask: DigitsAsk) -> u64 {
     2 * (slots + limbs) + (1 << 20)
 }
 
-/// A progress report of [`DigitsProgress`] as the events done since the last report:
-/// what a job's event counter takes (a run's count starts again at each precision).
-pub fn events_since(last: &mut u64, p: DigitsProgress) -> u64 {
-    let new = p.done.saturating_sub(*last);
-    *last = p.done;
-    new
+/// [`decide_sticking_cycle`] for a job's worker, the orbit followed within the job's
+/// `transient` (table periods): `tick` hears the events done since its last call, as a
+/// job counts them (a run's count starts again at each precision), and returns true to
+/// stop the work (then None).
+pub fn decide_in_job(
+    setup: &PreciseSetup,
+    ask: DigitsAsk,
+    transient: u64,
+    tick: &mut dyn FnMut(u64) -> bool,
+) -> Option<CycleVerdict> {
+    let periods = i64::try_from(transient).unwrap_or(i64::MAX);
+    let mut last = 0u64;
+    decide_sticking_cycle(setup, ask, periods, &mut |p| {
+        let new = p.done.saturating_sub(last);
+        last = p.done;
+        match tick(new) {
+            true => ControlFlow::Break(()),
+            false => ControlFlow::Continue(()),
+        }
+    })
 }
 
 /// Whether a job can decide its sticking cycles at any precision as `ask` says: digits

@@ -11,7 +11,7 @@ use crate::attractors::{self, box_start, default_w_max, Kind, Registry, Settle};
 use crate::error::EngineError;
 use crate::jobs::{Context, Job, Pass};
 use crate::map::{ImpactMap, State};
-use crate::precise::{decide_sticking_cycle, events_since, CycleVerdict, PreciseSetup};
+use crate::precise::{decide_in_job, CycleVerdict, PreciseSetup};
 use crate::run::precision::Precision;
 use crate::run::start::launch;
 use crate::run::{has_sticking, Advance, OrbitRun, Outcome, Point};
@@ -297,19 +297,8 @@ impl SweepJob {
         let spec = &self.spec;
         let window = (spec.lo, spec.hi, spec.steps);
         let setup = setup.on_grid(spec.param.slot(), window, index, spec.value(index));
-        let periods = i64::try_from(spec.transient).unwrap_or(i64::MAX);
-        let mut last = 0;
-        let verdict = decide_sticking_cycle(&setup, ask, periods, &mut |p| {
-            if cx.tick(events_since(&mut last, p)) {
-                std::ops::ControlFlow::Break(())
-            } else {
-                std::ops::ControlFlow::Continue(())
-            }
-        });
-        if verdict.is_none() && cx.stopped() {
-            return None;
-        }
-        Some(verdict)
+        // (None only where the job was stopped.)
+        decide_in_job(&setup, ask, spec.transient, &mut |n| cx.tick(n)).map(Some)
     }
 
     fn new_run(&self, index: usize, warm_from: Option<&State>) -> Option<(f64, OrbitRun)> {
