@@ -239,6 +239,7 @@ impl From<&FixedPoint> for FixedRow {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use bouncemap_engine::jobs::grid::SweepParam;
 
     /// The field names a record serializes with, read from an auto-generated header.
     fn fields<T: Serialize>(record: &T) -> String {
