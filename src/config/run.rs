@@ -21,7 +21,7 @@ use bouncemap_engine::plane::PlaneSpec;
 use bouncemap_engine::run::detect::Periodicity;
 use bouncemap_engine::run::start::near_fixed_point;
 use bouncemap_engine::sweep::SweepSpec;
-use bouncemap_engine::{Big, PreciseState, PreciseSystem, State, System, Table};
+use bouncemap_engine::{Big, PreciseState, PreciseSystem, Slot, State, System, Table};
 use clap::ValueEnum;
 
 /// How a job-running command runs, settled from its flags.
@@ -454,19 +454,13 @@ fn precise_spec(
             .ok_or_else(|| super::digits::digits_refusal(table))?
             .above(z0)
             .as_written(&p.written);
-    let shown = |x: f64, text: &Option<String>| match text {
-        Some(t) if !p.binary_params && t.trim().parse::<f64>() == Ok(x) => t.trim().to_string(),
-        _ => format!("{x}"),
-    };
+    let written = (setup.decimal(Slot::Alpha), setup.decimal(Slot::R));
     Ok(Some(PreciseSpec {
         setup,
         table: table.name().to_string(),
         alpha: system.alpha,
         r: system.r,
-        written: (
-            shown(system.alpha, &p.written.alpha),
-            shown(system.r, &p.written.r),
-        ),
+        written,
         digits,
         max_digits: p.max_digits,
         binary: p.binary_params,

@@ -180,6 +180,23 @@ impl PreciseSetup {
         self
     }
 
+    /// α or r (a [`Slot`] of the system's own) as this setup reads it, as a decimal: the
+    /// text typed, else (and with the doubles asked for) the double's shortest decimal.
+    pub fn decimal(&self, slot: Slot<'_>) -> String {
+        let v = match slot {
+            Slot::Alpha => &self.alpha,
+            Slot::R => &self.r,
+            Slot::Table(name) => match self.family.param_index(name) {
+                Some(k) => &self.params[k],
+                None => return String::new(),
+            },
+        };
+        match v {
+            Value::Text { text, .. } if !self.binary => text.clone(),
+            other => format!("{}", other.double()),
+        }
+    }
+
     /// This setup with each value that `texts` has as typed (and that reads back to
     /// the double the setup has) taken as written.
     pub fn as_written(mut self, texts: &Written) -> PreciseSetup {
