@@ -31,6 +31,28 @@ fn csv(args: &[&str]) -> Vec<Vec<String>> {
         .collect()
 }
 
+/// The lines of a part file other than its comments (provenance, end line).
+fn body(p: &std::path::Path) -> Vec<String> {
+    std::fs::read_to_string(p)
+        .unwrap()
+        .lines()
+        .filter(|l| !l.starts_with('#'))
+        .map(String::from)
+        .collect()
+}
+
+/// `merge` of the shards `parts` (in `d`) succeeds and writes the rows of `whole`.
+fn merges_into(d: &std::path::Path, parts: [&std::path::Path; 2], whole: &std::path::Path) {
+    let merged = d.join("merged.csv");
+    let out = bouncemap(&["merge", s(parts[0]), s(parts[1]), "--out", s(&merged)]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(body(&merged), body(whole));
+}
+
 /// A row's cell by its column's name.
 fn cell<'a>(rows: &'a [Vec<String>], row: usize, name: &str) -> &'a str {
     let k = rows[0].iter().position(|h| h == name).unwrap_or_else(|| {
@@ -143,22 +165,7 @@ fn digits_columns_survive_shards_and_merge() {
     run(&["--out", s(&whole)]);
     run(&["--shard", "1/2", "--out", s(&a)]);
     run(&["--shard", "2/2", "--out", s(&b)]);
-    let merged = d.join("merged.csv");
-    let out = bouncemap(&["merge", s(&a), s(&b), "--out", s(&merged)]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let body = |p: &std::path::Path| -> Vec<String> {
-        std::fs::read_to_string(p)
-            .unwrap()
-            .lines()
-            .filter(|l| !l.starts_with('#'))
-            .map(String::from)
-            .collect()
-    };
-    assert_eq!(body(&merged), body(&whole));
+    merges_into(&d, [&a, &b], &whole);
 }
 
 /// `--digits` where it cannot go: a braille picture (sweep and plane), too few digits,
@@ -275,10 +282,8 @@ fn a_plane_decides_its_unresolved_pixels() {
             String::from_utf8_lossy(&out.stderr)
         );
     }
-    let text = std::fs::read_to_string(&whole).unwrap();
-    let rows: Vec<Vec<String>> = text
-        .lines()
-        .filter(|l| !l.starts_with('#'))
+    let rows: Vec<Vec<String>> = body(&whole)
+        .iter()
         .map(|l| l.split(',').map(String::from).collect())
         .collect();
     // Rows: (0.58, 0.79), (0.59, 0.79), (0.58, 0.8), (0.59, 0.8).
@@ -294,20 +299,5 @@ fn a_plane_decides_its_unresolved_pixels() {
             "{row}"
         );
     }
-    let merged = d.join("merged.csv");
-    let out = bouncemap(&["merge", s(&a), s(&b), "--out", s(&merged)]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let body = |p: &std::path::Path| -> Vec<String> {
-        std::fs::read_to_string(p)
-            .unwrap()
-            .lines()
-            .filter(|l| !l.starts_with('#'))
-            .map(String::from)
-            .collect()
-    };
-    assert_eq!(body(&merged), body(&whole));
+    merges_into(&d, [&a, &b], &whole);
 }
