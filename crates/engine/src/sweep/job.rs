@@ -237,10 +237,9 @@ impl SweepJob {
             let a = &registry.attractors()[id];
             let (p, o, start) = &first[id];
             let cycle = match a.unresolved() {
-                true => Some(self.decide(&sys, start, index, cx)?),
+                true => self.decide(&sys, start, index, cx)?,
                 false => None,
-            }
-            .flatten();
+            };
             if id == 0 {
                 lead_cycle = cycle.clone();
             }
@@ -367,16 +366,11 @@ impl SweepJob {
         // At any precision from the value's cold start (where the orbit was warm
         // started too: a start on the table the spec states, not a state rounded on
         // the way).
-        let cycle = match precision.is_some_and(|p| !p.resolved) {
-            true => {
-                let sys = run.system().clone();
-                let start = self.spec.initial_state(&sys).ok();
-                match start {
-                    Some(start) => self.decide(&sys, &start, index, cx)?,
-                    None => None,
-                }
-            }
-            false => None,
+        let unresolved = precision.is_some_and(|p| !p.resolved);
+        let start = unresolved.then(|| self.spec.initial_state(run.system()).ok());
+        let cycle = match start.flatten() {
+            Some(start) => self.decide(run.system(), &start, index, cx)?,
+            None => None,
         };
         cx.emit(
             ValueResult {
