@@ -479,7 +479,7 @@ pub struct EarlyStop {
 }
 
 /// The settings of a sweep: its full specification, as its files state it (the shard
-/// is in the file's provenance, see [`super::sweep_file`]).
+/// is in the file's provenance, see [`crate::output::sweep_file`]).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SweepHeader {
