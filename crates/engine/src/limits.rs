@@ -175,6 +175,8 @@ pub const HEIGHT: Limit = Limit {
 pub const K: Limit = whole("k", 1.0, 100.0, "a whole number in [1, 100]");
 /// Values in one sweep.
 pub const STEPS: Limit = whole("steps", 1.0, 1e7, "a whole number in [1, 10000000]");
+/// α values of a continuation of attractors (each a basin picture).
+pub const ATTRACTOR_STEPS: Limit = whole("steps", 1.0, 1e5, "a whole number in [1, 100000]");
 /// End of a sweep's transient, in table periods.
 pub const TRANSIENT: Limit = whole(
     "transient",

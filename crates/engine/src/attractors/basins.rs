@@ -170,6 +170,15 @@ impl Basins {
         }
     }
 
+    /// An empty picture of `spec` whose attractors start as `registry`'s (found from
+    /// seeds, with no start counted): starts that end on one of them take its id.
+    pub fn seeded(spec: &BasinSpec, registry: Registry) -> Basins {
+        Basins {
+            registry,
+            ..Basins::new(spec)
+        }
+    }
+
     /// Take a chunk; assign it and any waiting chunks whose turn it now is. Returns the
     /// grid indices newly labelled.
     pub fn absorb(&mut self, chunk: BasinChunk) -> Vec<usize> {

@@ -14,7 +14,8 @@
 //!   the recurrence rule of Attractors.jl's `AttractorsViaRecurrences`, in the form: a
 //!   start belongs to a known attractor when at least [`OVERLAP`] of its sampled events
 //!   fall in cells that attractor's orbits visited (the attractor's cells then grow by
-//!   the start's). Resting and escaping starts each form one attractor. An unsettled
+//!   the start's); among unsettled orbits the cells are [`COARSE`] ones, so that two
+//!   samples of one chaotic set spread over many cells are one attractor. Resting and escaping starts each form one attractor. An unsettled
 //!   orbit is chaotic when its largest exponent exceeds three standard errors and
 //!   [`CHAOS_FLOOR`]; otherwise it stays "unsettled" (a cycle longer than the
 //!   detector's limit, one converging too slowly for the transient, or a torus).
@@ -24,7 +25,9 @@
 //! from [`default_w_max`]; [`box_start`] spreads any number of them over it.
 
 pub mod basins;
+pub mod global;
 pub mod lyapunov;
+pub mod statistics;
 
 use crate::impact::Solver;
 use crate::limits;
@@ -45,6 +48,11 @@ pub const OVERLAP: f64 = 0.5;
 pub const CELLS_PER_PERIOD: f64 = 128.0;
 /// Velocity cells per unit of velocity.
 pub const CELLS_PER_VELOCITY: f64 = 64.0;
+/// Cells per side of a coarse cell: unsettled orbits are matched to each other on
+/// coarse cells of 4 × 4 cells (1/32 period by 1/16 velocity). Two samples of one
+/// chaotic set visit different fine cells where the set is spread over many more
+/// cells than a sample has events; on coarse cells they overlap.
+pub const COARSE: u32 = 4;
 /// An unsettled orbit is chaotic only when its largest exponent per impact exceeds this
 /// (and three standard errors).
 pub const CHAOS_FLOOR: f64 = 1e-3;
@@ -185,6 +193,14 @@ pub fn cell(phase: f64, v: f64) -> u64 {
     let q = (v * CELLS_PER_VELOCITY)
         .floor()
         .clamp(i32::MIN as f64, i32::MAX as f64) as i32;
+    (p << 32) | u64::from(q as u32)
+}
+
+/// The coarse cell (see [`COARSE`]) a cell lies in.
+pub fn coarse(c: u64) -> u64 {
+    let shift = COARSE.trailing_zeros();
+    let p = (c >> 32) >> shift;
+    let q = (c as u32 as i32) >> shift;
     (p << 32) | u64::from(q as u32)
 }
 
@@ -473,6 +489,8 @@ pub struct Attractor {
     pub starts: usize,
     cycle: Vec<CycleEvent>,
     cells: HashSet<u64>,
+    /// The coarse cells of `cells`.
+    coarse: HashSet<u64>,
     /// Sum and count of the largest exponents of its unsettled starts.
     exponent_sum: f64,
     exponent_count: usize,
@@ -492,6 +510,33 @@ impl Attractor {
     pub fn unresolved(&self) -> bool {
         self.precision.is_some_and(|p| !p.resolved)
     }
+
+    /// A cycle's events (phase, v), in order along it; empty for any other attractor.
+    pub fn cycle_points(&self) -> Vec<(f64, f64)> {
+        self.cycle.iter().map(|e| (e.phase, e.v)).collect()
+    }
+
+    /// The points (phase, v) that stand for it: a cycle's events; for an orbit
+    /// identified by the cells it visits, the centres of those cells (sorted); for a
+    /// resting ball, where it rests; nothing for an escape.
+    pub fn points(&self) -> Vec<(f64, f64)> {
+        if !self.cycle.is_empty() {
+            return self.cycle.iter().map(|e| (e.phase, e.v)).collect();
+        }
+        if !self.cells.is_empty() {
+            let mut cells: Vec<u64> = self.cells.iter().copied().collect();
+            cells.sort_unstable();
+            return cells.into_iter().map(cell_centre).collect();
+        }
+        self.point.into_iter().collect()
+    }
+}
+
+/// The centre (phase, v) of a [`cell`].
+pub fn cell_centre(c: u64) -> (f64, f64) {
+    let p = (c >> 32) as f64;
+    let q = f64::from(c as u32 as i32);
+    ((p + 0.5) / CELLS_PER_PERIOD, (q + 0.5) / CELLS_PER_VELOCITY)
 }
 
 /// The attractors found so far and how many starts went to each.
@@ -509,9 +554,9 @@ impl Registry {
 
     /// The most a registry of `starts` starts holds, in bytes, each an unsettled orbit
     /// sampled over `sample` events (every start an attractor of its own, with the cells
-    /// of its sample): the bound of a memory estimate.
+    /// of its sample and as many coarse cells at most): the bound of a memory estimate.
     pub fn bytes(starts: usize, sample: u64) -> u64 {
-        let cells = sample.min(MAX_VISITED_CELLS as u64) * CELL_BYTES;
+        let cells = 2 * sample.min(MAX_VISITED_CELLS as u64) * CELL_BYTES;
         starts as u64 * (std::mem::size_of::<Attractor>() as u64 + cells)
     }
 
@@ -533,6 +578,17 @@ impl Registry {
     /// The attractor that `found` belongs to (a new one if none matches): its id.
     pub fn assign(&mut self, found: &Found) -> usize {
         self.starts += 1;
+        self.place(found, 1)
+    }
+
+    /// [`Self::assign`] for an orbit that is not one of the starts counted (a seed: a
+    /// point of an attractor found at a neighbouring parameter): the attractor it
+    /// belongs to is found or added, with no start counted.
+    pub fn seed(&mut self, found: &Found) -> usize {
+        self.place(found, 0)
+    }
+
+    fn place(&mut self, found: &Found, count: usize) -> usize {
         let id = self.find(found).unwrap_or_else(|| {
             self.attractors.push(Attractor {
                 kind: found.kind,
@@ -551,15 +607,20 @@ impl Registry {
                     Signature::Cycle(c) => c.iter().map(|e| cell(e.phase, e.v)).collect(),
                     _ => HashSet::new(),
                 },
+                coarse: match &found.signature {
+                    Signature::Cycle(c) => c.iter().map(|e| coarse(cell(e.phase, e.v))).collect(),
+                    _ => HashSet::new(),
+                },
                 exponent_sum: 0.0,
                 exponent_count: 0,
             });
             self.attractors.len() - 1
         });
         let a = &mut self.attractors[id];
-        a.starts += 1;
+        a.starts += count;
         if let Signature::Visits(v) = &found.signature {
             a.cells.extend(v.iter().map(|(c, _)| *c));
+            a.coarse.extend(v.iter().map(|(c, _)| coarse(*c)));
             if matches!(a.kind, Kind::Chaotic | Kind::Converging | Kind::Unsettled) {
                 if let Some(Spectrum::Finite(e)) = found.spectrum {
                     a.exponent_sum += e.per_impact[0];
@@ -596,14 +657,13 @@ impl Registry {
                 let mut best: Option<(usize, f64)> = None;
                 for (id, a) in self.attractors.iter().enumerate() {
                     // An unsettled or converging orbit may be a slow approach to a known
-                    // cycle; a sticking or chaotic one only joins its own kinds.
+                    // cycle; a sticking orbit whose cycle was not detected (longer than
+                    // the detector's reach, or still converging) may be on a known
+                    // sticking cycle; a chaotic one only joins its own kinds.
                     let eligible = match a.kind {
                         Kind::Resting | Kind::Escaping => false,
                         Kind::Periodic => matches!(found.kind, Kind::Unsettled | Kind::Converging),
-                        Kind::Sticking => {
-                            a.cycle.is_empty()
-                                || matches!(found.kind, Kind::Unsettled | Kind::Converging)
-                        }
+                        Kind::Sticking => found.kind != Kind::Chaotic,
                         Kind::Chaotic | Kind::Converging | Kind::Unsettled => {
                             found.kind != Kind::Sticking
                         }
@@ -611,9 +671,20 @@ impl Registry {
                     if !eligible || total == 0 {
                         continue;
                     }
+                    // Unsettled orbits among themselves on coarse cells; onto a
+                    // cycle on its own cells.
+                    let unsettled =
+                        |k: Kind| matches!(k, Kind::Chaotic | Kind::Converging | Kind::Unsettled);
+                    let on_coarse = unsettled(a.kind) && unsettled(found.kind);
                     let inside: u32 = v
                         .iter()
-                        .filter(|(c, _)| a.cells.contains(c))
+                        .filter(|(c, _)| {
+                            if on_coarse {
+                                a.coarse.contains(&coarse(*c))
+                            } else {
+                                a.cells.contains(c)
+                            }
+                        })
                         .map(|(_, n)| n)
                         .sum();
                     let share = f64::from(inside) / f64::from(total);
