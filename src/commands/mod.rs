@@ -7,6 +7,7 @@
 //! command with `--check` does everything a run does before its first computation,
 //! then prints what it would do.
 
+pub mod attractors;
 pub mod basins;
 pub mod bench;
 pub mod cascade;
@@ -52,6 +53,7 @@ pub fn run(cmd: Command) -> anyhow::Result<()> {
             None => lyapunov::run(&config::run::lyapunov(&a)?),
         },
         Command::Basins(a) => basins::run(&config::run::basins(&a)?),
+        Command::Attractors(a) => attractors::run(&config::run::attractors(&a)?),
         Command::Plane(a) => plane::run(&config::run::plane(&a)?),
         Command::Merge(a) => merge::run(&a),
         Command::Bench(a) => bench::run(&a),

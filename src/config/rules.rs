@@ -133,6 +133,8 @@ pub const PLANE_SIZE: &str = "400x200";
 /// Starts of a basin picture when none are asked for (`basins --grid`, `figure basins
 /// --grid`, the terminal application's exported basins).
 pub const BASINS_GRID: &str = "200x100";
+/// `attractors --grid`'s default.
+pub const ATTRACTORS_GRID: &str = "100x100";
 
 /// Amplitude α.
 pub const ALPHA: Rule = rule("alpha", "α", limits::ALPHA, 0.45);
@@ -151,6 +153,8 @@ pub const V0: Rule = rule("v0", "v0", limits::VELOCITY, 0.5);
 pub const Z0: Rule = rule("z0", "z0", limits::HEIGHT, 0.0);
 /// Values in a sweep (the paper's 1000).
 pub const STEPS: Rule = rule("steps", "values", limits::STEPS, 1000.0);
+/// α values of `attractors`.
+pub const ATTRACTOR_STEPS: Rule = rule("steps", "α values", limits::ATTRACTOR_STEPS, 101.0);
 /// End of a sweep's transient (the paper's T = 5·10⁶).
 pub const TRANSIENT: Rule = rule("transient", "transient", limits::TRANSIENT, 5e6);
 /// Events recorded per value (the paper's 100).
@@ -389,6 +393,7 @@ mod tests {
             LYAPUNOV_TRANSIENT,
             IMPACTS,
             BASIN_TRANSIENT,
+            ATTRACTOR_STEPS,
             W_MAX,
             STARTS,
             FIG_SIDE,

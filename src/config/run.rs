@@ -1,4 +1,5 @@
-//! The commands that run a job over many items (`sweep`, `plane`, `basins`),
+//! The commands that run a job over many items (`sweep`, `plane`, `basins`,
+//! `attractors`),
 //! `lyapunov`, `curves`, `continue` and `cascade`, settled from their flags once: the validated specification and how the
 //! run goes ([`Job`]: check only or compute, worker threads, where it writes and in
 //! which layout, the text picture's size, `--resume`). The commands read these and
@@ -6,8 +7,8 @@
 //! work starts.
 
 use super::flags::{
-    BasinsArgs, BasinsFormat, CascadeArgs, ContinueArgs, CurvesArgs, FromArg, LyapunovArgs,
-    OrbitArgs, PlaneArgs, SweepArgs, TextSizeArgs,
+    AttractorsArgs, AttractorsFormat, BasinsArgs, BasinsFormat, CascadeArgs, ContinueArgs,
+    CurvesArgs, FromArg, LyapunovArgs, OrbitArgs, PlaneArgs, SweepArgs, TextSizeArgs,
 };
 use super::InputError;
 use crate::output::part_file::Layout;
@@ -189,6 +190,52 @@ pub fn basins(args: &BasinsArgs) -> Result<BasinsRun, InputError> {
         resume: false,
     };
     Ok(BasinsRun { spec, job, digits })
+}
+
+/// `attractors`, settled.
+#[derive(Clone, Debug)]
+pub struct AttractorsRun {
+    /// The continuation to compute, validated.
+    pub spec: bouncemap_engine::attractors::global::GlobalSpec,
+    /// How it runs (no layout: the text report).
+    pub job: Job,
+}
+
+/// `attractors`' flags, settled. The box of starts is the same at every α: W is the
+/// default of the window's larger α unless given.
+pub fn attractors(args: &AttractorsArgs) -> Result<AttractorsRun, InputError> {
+    use bouncemap_engine::attractors::{default_w_max, global::GlobalSpec};
+    let table = args.table.load()?;
+    let (lo, hi) = args.alpha;
+    let top = System::new(table, hi, args.r)?;
+    let (nx, ny) = args.grid;
+    let spec = GlobalSpec {
+        w_max: args.w_max.unwrap_or_else(|| default_w_max(&top)),
+        sys: top,
+        lo,
+        hi,
+        steps: args.steps,
+        nx,
+        ny,
+        settle: Settle {
+            transient: args.transient,
+            ..Settle::BASINS
+        },
+    };
+    spec.validate()?;
+    let job = Job {
+        check: args.check.check,
+        requested_threads: args.workers.threads,
+        out: args.output.out.clone(),
+        layout: match args.format {
+            AttractorsFormat::Csv => Some(Layout::Csv),
+            AttractorsFormat::Json => Some(Layout::Json),
+            AttractorsFormat::Text => None,
+        },
+        text: (0, 0),
+        resume: false,
+    };
+    Ok(AttractorsRun { spec, job })
 }
 
 /// `lyapunov`, settled.

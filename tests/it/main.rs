@@ -14,6 +14,7 @@ mod digits_jobs;
 mod docs;
 mod figure_cli;
 mod generated_docs;
+mod global_cli;
 mod hostile;
 mod hostile_three;
 mod merge_property;

@@ -15,9 +15,11 @@ use bouncemap_engine::jobs::grid::Shard;
 use bouncemap_engine::Solver;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
+mod attractors;
 mod figure;
 mod orbits;
 mod plane;
+pub use attractors::*;
 pub use figure::*;
 pub use orbits::*;
 pub use plane::*;
@@ -89,6 +91,10 @@ pub enum Command {
     /// Basins of attraction: which attractor each start (t̂0, w0) ends on.
     #[command(allow_negative_numbers = true)]
     Basins(BasinsArgs),
+    /// Attractors followed along an α window: basin fractions, births, deaths and
+    /// mergers, basin entropy and the uncertainty exponent at every α.
+    #[command(allow_negative_numbers = true)]
+    Attractors(AttractorsArgs),
     /// A two-parameter map: every pixel one (α, r), (α, D) or (α, a table parameter) pair, coloured by its orbit.
     #[command(allow_negative_numbers = true)]
     Plane(PlaneArgs),
@@ -661,6 +667,7 @@ mod tests {
             rules::FIG_SIDE,
             rules::DPI,
             rules::DIGITS,
+            rules::ATTRACTOR_STEPS,
         ]
         .iter()
         .map(|rule| rule.limit.text)

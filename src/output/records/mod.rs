@@ -13,10 +13,12 @@ use std::io::Write;
 mod attractors;
 mod branches;
 mod cycle;
+mod global;
 mod sweep;
 pub use attractors::*;
 pub use branches::*;
 pub use cycle::*;
+pub use global::*;
 pub use sweep::*;
 // (`records::PointRecord` is the sweep's; a continued branch's points have a record of
 // the same name of their own in `branches`.)

@@ -1,0 +1,341 @@
+//! `bouncemap attractors`: the attractors of one table and r followed along an α
+//! window (see [`bouncemap_engine::attractors::global`]): at each α a basin picture
+//! over the same box of starts, seeded with the previous α's attractors, matched to
+//! them; the changes between values; basin fractions, basin entropy and the
+//! uncertainty exponent at every α.
+//!
+//! text: the attractors with their α ranges, the changes, and a line per α; csv: a row
+//! per α and attractor; json: all of it, with the uncertainty fits.
+
+use super::progress::Progress;
+use crate::config::run::AttractorsRun;
+use crate::config::{self, InputError};
+use crate::output::part_file::Layout;
+use crate::output::records::{
+    change_ends, csv_writer, describe_member, AttractorsDoc, AttractorsRow,
+};
+use crate::output::sink::{check_stdout, Sink};
+use crate::output::text::shortest;
+use bouncemap_engine::attractors::basins::BasinsJob;
+use bouncemap_engine::attractors::global::{ChangeKind, Continuation, GlobalSpec, MATCH_DISTANCE};
+use bouncemap_engine::jobs::{Control, Executor, Progress as JobProgress};
+use std::io::Write;
+use std::sync::mpsc::RecvTimeoutError;
+use std::time::{Duration, Instant};
+
+/// How long the loop waits for a batch before it redraws the progress anyway.
+const TICK: Duration = Duration::from_millis(200);
+
+pub fn run(run: &AttractorsRun) -> anyhow::Result<()> {
+    let AttractorsRun { spec, job } = run;
+    if job.check {
+        let (workers, threads) = job.threads_plan();
+        return super::print_plan(&[
+            format!(
+                "attractors at {} α values of {} starts each: {}",
+                spec.steps,
+                spec.starts(),
+                title(spec)
+            ),
+            threads,
+            config::memory_plan(memory_bound(run, workers)),
+            super::output_plan(job.out.as_deref(), job.what("text"))?,
+        ]);
+    }
+    let threads = job.threads()?;
+    let mut sink = Sink::open(job.out.as_deref()).map_err(InputError)?;
+    let cont = compute(spec, &Executor::new(threads)?)?;
+    write(run, &cont, &mut sink).map_err(|e| sink.describe(e))?;
+    sink.finish()
+}
+
+/// A bound on the run's memory, in bytes: one basin picture at a time (its labels,
+/// each worker's run, the attractors' cells), the results of every α (a few attractors
+/// each), the writer and the process.
+fn memory_bound(run: &AttractorsRun, threads: usize) -> u64 {
+    use bouncemap_engine::attractors::identify_bytes;
+    use bouncemap_engine::run::OrbitRun;
+    let spec = &run.spec;
+    let labels = spec.starts() as u64 * 16;
+    let worker = OrbitRun::bytes(1, spec.settle.periodicity) + identify_bytes(spec.settle.sample);
+    // Two registries (this α's and the previous one's) with their cells.
+    let attractors = 2 * ATTRACTORS_BYTES;
+    let per_value = spec.steps as u64 * 4096;
+    super::BASE_BYTES
+        + threads as u64 * (worker + super::THREAD_BYTES)
+        + labels
+        + attractors
+        + per_value
+        + super::WRITER_BYTES
+}
+
+/// The allowance for one picture's attractors' cells and the results waiting their
+/// turn to be numbered, in bytes (as `basins`').
+const ATTRACTORS_BYTES: u64 = 64 << 20;
+
+fn title(spec: &GlobalSpec) -> String {
+    format!(
+        "{}  r = {}  alpha {}..{} ({} values)  grid {}x{}  w0 ∈ [0, {}]  T = {}",
+        spec.sys.table().name(),
+        shortest(spec.sys.r()),
+        shortest(spec.lo),
+        shortest(spec.hi),
+        spec.steps,
+        spec.nx,
+        spec.ny,
+        shortest(spec.w_max),
+        spec.settle.transient
+    )
+}
+
+/// Every α value in turn, its picture on `executor`, with progress on stderr over all
+/// the starts.
+pub fn compute(spec: &GlobalSpec, executor: &Executor) -> anyhow::Result<Continuation> {
+    let mut cont = Continuation::new(spec.clone())?;
+    let total = spec.steps * spec.starts();
+    let mut progress = Progress::start_units("attractors", "starts", total, &title(spec));
+    let started = Instant::now();
+    let (mut done, mut events) = (0usize, 0u64);
+    let at = |done: usize, events: u64| JobProgress {
+        done,
+        total,
+        events,
+        elapsed: started.elapsed(),
+    };
+    let control = Control::new();
+    let mut checked = Instant::now();
+    while !cont.complete() {
+        let next = match cont.prepare(&mut |_| false) {
+            Some(n) => n?,
+            None => break,
+        };
+        let mut basins = next.basins();
+        let handle = executor.start(BasinsJob::new(next.spec.clone())?, &control);
+        loop {
+            match handle.receiver().recv_timeout(TICK) {
+                Ok(b) if handle.is_current(&b) => {
+                    basins.absorb(b.data);
+                }
+                Ok(_) | Err(RecvTimeoutError::Timeout) => {}
+                Err(RecvTimeoutError::Disconnected) => break,
+            }
+            if checked.elapsed() >= TICK {
+                checked = Instant::now();
+                check_stdout()?;
+            }
+            let p = handle.progress();
+            progress.update(&at(done + p.done, events + p.events));
+        }
+        let summary = handle.wait();
+        done += summary.progress.done;
+        events += summary.progress.events;
+        if !basins.complete() {
+            anyhow::bail!(
+                "the attractors stopped at alpha = {} after {} of {} starts",
+                shortest(next.spec.sys.alpha()),
+                basins.covered(),
+                spec.starts()
+            );
+        }
+        cont.absorb(next, &basins);
+    }
+    progress.finish(&at(done, events));
+    Ok(cont)
+}
+
+fn write(run: &AttractorsRun, cont: &Continuation, out: &mut Sink) -> anyhow::Result<()> {
+    match run.job.layout {
+        Some(Layout::Csv) => {
+            let mut w = csv_writer(&mut *out, &AttractorsRow::HEADER)?;
+            for i in 0..cont.steps().len() {
+                for row in AttractorsRow::of_step(cont, i) {
+                    w.serialize(row)?;
+                }
+            }
+            w.flush()?;
+        }
+        Some(Layout::Json) => {
+            serde_json::to_writer(&mut *out, &AttractorsDoc::of(cont))?;
+            writeln!(out)?;
+        }
+        None => {
+            for line in text(cont) {
+                writeln!(out, "{line}")?;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The text report: the attractors, the changes, a line per α.
+fn text(cont: &Continuation) -> Vec<String> {
+    let spec = cont.spec();
+    let steps = cont.steps();
+    // α to one digit past the step's first (the grid's doubles are written exactly in
+    // csv and json).
+    let decimals = if spec.steps > 1 {
+        let step = (spec.hi - spec.lo) / (spec.steps - 1) as f64;
+        ((-step.log10()).ceil().max(0.0) as usize + 1).min(17)
+    } else {
+        6
+    };
+    let shortest = |x: f64| {
+        let s = format!("{x:.decimals$}");
+        let s = s.trim_end_matches('0');
+        s.strip_suffix('.').unwrap_or(s).to_string()
+    };
+    let mut out = vec![format!("attractors along alpha: {}", title(spec))];
+    out.push(String::new());
+    out.push(format!("{} attractor{} followed (matched between neighbouring α within {MATCH_DISTANCE} in phase and velocity):", cont.tracks().len(), if cont.tracks().len() == 1 { "" } else { "s" }));
+    for t in cont.tracks() {
+        let members: Vec<_> = steps[t.first..=t.last]
+            .iter()
+            .flat_map(|s| s.members.iter().filter(|m| m.track == t.id))
+            .collect();
+        let mut kinds: Vec<String> = Vec::new();
+        for m in &members {
+            let d = describe_member(m);
+            if kinds.last() != Some(&d) {
+                kinds.push(d);
+            }
+        }
+        if kinds.len() > 4 {
+            let n = kinds.len();
+            kinds.truncate(3);
+            kinds.push(format!("… ({} more)", n - 3));
+        }
+        let max = members.iter().map(|m| m.fraction).fold(0.0, f64::max);
+        out.push(format!(
+            "  {:>3}  α {} .. {}  basin up to {:5.1}%  {}",
+            t.id + 1,
+            shortest(steps[t.first].alpha),
+            shortest(steps[t.last].alpha),
+            100.0 * max,
+            kinds.join(" → ")
+        ));
+    }
+    out.push(String::new());
+    // A sticking cycle's (n, k) changes with its itinerary from one α to the next:
+    // counted per attractor here, listed one by one in csv and json.
+    let itinerary = |c: &&bouncemap_engine::attractors::global::Change| {
+        matches!(c.what, ChangeKind::Period { .. })
+            && steps[c.step].members.iter().any(|m| {
+                m.track == c.track && m.kind == bouncemap_engine::attractors::Kind::Sticking
+            })
+    };
+    let (sticking, listed): (Vec<_>, Vec<_>) = cont.changes().iter().partition(itinerary);
+    if listed.is_empty() {
+        out.push(
+            "no births, deaths or changes of kind or period between neighbouring α values".into(),
+        );
+    } else {
+        out.push("changes (each between the two α values named):".into());
+    }
+    for c in listed {
+        let (a, b) = (steps[c.step - 1].alpha, steps[c.step].alpha);
+        let n = c.track + 1;
+        let what = match &c.what {
+            ChangeKind::Birth => format!("attractor {n} appears"),
+            ChangeKind::Death { into: Some(t) } => {
+                format!(
+                    "attractor {n} is gone; its points now go to attractor {}",
+                    t + 1
+                )
+            }
+            ChangeKind::Death { into: None } => format!("attractor {n} is gone"),
+            other => {
+                let (from, to) = change_ends(other).unwrap_or_default();
+                format!("attractor {n}: {} {from} → {to}", other.name())
+            }
+        };
+        out.push(format!("  α {} .. {}  {what}", shortest(a), shortest(b)));
+    }
+    for t in cont.tracks() {
+        let n = sticking.iter().filter(|c| c.track == t.id).count();
+        if n > 0 {
+            out.push(format!(
+                "  attractor {}: its sticking cycle's (n, k) changes {n} time{} (the itinerary between sticks; listed in csv and json)",
+                t.id + 1,
+                if n == 1 { "" } else { "s" }
+            ));
+        }
+    }
+    out.push(String::new());
+    out.push(
+        "      alpha  attractors (number: basin %)              not settled   S_b    S_bb   uncertainty exponent"
+            .into(),
+    );
+    for s in steps {
+        let shares = shares(&s.members);
+        let (sb, sbb) = match s.entropy {
+            Some(e) => (
+                format!("{:.3}", e.s_b),
+                format!(
+                    "{:.3}{}",
+                    e.s_bb,
+                    if e.fractal_by_log2() { "*" } else { " " }
+                ),
+            ),
+            None => ("—".into(), "— ".into()),
+        };
+        let u = match &s.uncertainty {
+            Ok(u) => format!("{:.3} ± {:.3}", u.exponent, u.error),
+            Err(e) => format!("— ({})", e.as_str()),
+        };
+        out.push(format!(
+            "  {:>9}  {:<40}  {:>9.1}%  {sb:>6}  {sbb:>6}  {u}",
+            shortest(s.alpha),
+            shares,
+            100.0 * s.not_settled_fraction()
+        ));
+    }
+    out.push(String::new());
+    out.push("S_b, S_bb: basin entropy and boundary basin entropy in boxes of 5x5 starts (* S_bb > ln 2: a fractal boundary).".into());
+    let scales = steps
+        .iter()
+        .find_map(|s| s.uncertainty.as_ref().ok())
+        .map(|u| {
+            let k = |i: usize| u.fractions[i].0;
+            format!(
+                " (measured at ε = {} .. {} grid steps, fitted where at most half the starts are uncertain)",
+                k(0),
+                k(u.fractions.len() - 1)
+            )
+        });
+    out.push(format!(
+        "uncertainty exponent a: the share of starts whose neighbours ε away go elsewhere, ∝ ε^a{}; 1 for a smooth boundary, below 1 for a fractal one.",
+        scales.unwrap_or_default()
+    ));
+    out
+}
+
+/// Most attractors a line per α names; the rest are summed.
+const SHOWN: usize = 6;
+
+/// "number: basin %" of the largest [`SHOWN`] basins (in attractor order), the rest
+/// summed.
+fn shares(members: &[bouncemap_engine::attractors::global::Member]) -> String {
+    let mut order: Vec<usize> = (0..members.len()).collect();
+    order.sort_by(|&a, &b| members[b].starts.cmp(&members[a].starts).then(a.cmp(&b)));
+    let mut shown: Vec<usize> = order.iter().copied().take(SHOWN).collect();
+    shown.sort_unstable();
+    let mut parts: Vec<String> = shown
+        .iter()
+        .map(|&i| {
+            format!(
+                "{}: {:.1}",
+                members[i].track + 1,
+                100.0 * members[i].fraction
+            )
+        })
+        .collect();
+    if members.len() > SHOWN {
+        let rest: f64 = order[SHOWN..].iter().map(|&i| members[i].fraction).sum();
+        parts.push(format!(
+            "+{} more: {:.1}",
+            members.len() - SHOWN,
+            100.0 * rest
+        ));
+    }
+    parts.join("  ")
+}

@@ -1,0 +1,52 @@
+//! `attractors`' command line: the attractors of a system continued along an α window,
+//! each α a basin picture over the same box of starts.
+
+use super::{parse_grid, table_help, CheckArgs, OutArgs, ThreadsArgs};
+use crate::config::rules;
+use crate::config::table_spec::TableSpec;
+use crate::config::windows::parse_alpha_window;
+use clap::{Args, ValueEnum};
+
+/// Output format of `attractors`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, Default)]
+pub enum AttractorsFormat {
+    /// The attractors followed along α, the changes between values, and a line per α
+    /// with its fractions and basin statistics.
+    #[default]
+    Text,
+    /// One row per α and attractor (a dying attractor's row at the α it is gone), with
+    /// the α's basin statistics.
+    Csv,
+    /// The attractors, the changes, and every α with its attractors and statistics.
+    Json,
+}
+
+/// `bouncemap attractors`.
+#[derive(Args, Debug, Clone)]
+#[command(allow_negative_numbers = true)]
+pub struct AttractorsArgs {
+    #[arg(long, help = table_help(""), default_value = rules::DEFAULT_TABLE, value_parser = TableSpec::parse, value_name = "TABLE")]
+    pub table: TableSpec,
+    #[arg(help = rules::R.help("Coefficient of restitution r"), long, default_value_t = rules::R.default, value_parser = rules::R.real(), value_name = "R")]
+    pub r: f64,
+    /// The α window LO..HI the attractors are followed over, each end in α's range.
+    #[arg(long, required = true, value_parser = parse_alpha_window, value_name = "LO..HI")]
+    pub alpha: (f64, f64),
+    #[arg(help = rules::ATTRACTOR_STEPS.help("Number of α values, both ends included (each a basin picture)"), long, default_value_t = rules::ATTRACTOR_STEPS.default as usize, value_parser = rules::ATTRACTOR_STEPS.whole::<usize>(), value_name = "N")]
+    pub steps: usize,
+    #[arg(help = super::grid_help("Starts along t̂0 × along w0 at each α, e.g. 100x100"), long, default_value = rules::ATTRACTORS_GRID, value_parser = parse_grid, value_name = "NXxNY")]
+    pub grid: (usize, usize),
+    #[arg(help = rules::W_MAX.help("Top W of the launch velocities w0 = v0 − f'(t̂0) ∈ [0, W], the same at every α (default: max(1, 2α·max|F'|) at the window's larger α, clamped into the range)"), long, value_parser = rules::W_MAX.real(), value_name = "W")]
+    pub w_max: Option<f64>,
+    #[arg(help = rules::BASIN_TRANSIENT.help("End of each start's transient in table periods (early stop on cycles)"), long, default_value_t = rules::BASIN_TRANSIENT.default as u64, value_parser = rules::BASIN_TRANSIENT.whole::<u64>(), value_name = "PERIODS")]
+    pub transient: u64,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = AttractorsFormat::Text)]
+    pub format: AttractorsFormat,
+    #[command(flatten)]
+    pub output: OutArgs,
+    #[command(flatten)]
+    pub workers: ThreadsArgs,
+    #[command(flatten)]
+    pub check: CheckArgs,
+}

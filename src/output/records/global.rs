@@ -1,0 +1,349 @@
+//! Records of `attractors`: attractors followed along α (csv rows and the json
+//! document), and the words for a member and a change that the text report uses too.
+
+use super::*;
+use bouncemap_engine::attractors::global::{Change, ChangeKind, Continuation, Member, Step};
+
+/// An attractor at one α for people: kind and (n, k), or that double precision leaves
+/// its length open.
+pub fn describe_member(m: &Member) -> String {
+    match m.period() {
+        Some((n, k)) => format!("{} ({n}, {k})", m.kind.as_str()),
+        None if m.unresolved() => format!("{} (length unresolved)", m.kind.as_str()),
+        None => m.kind.as_str().to_string(),
+    }
+}
+
+/// What a change was from and to, for people (None for births and deaths).
+pub fn change_ends(what: &ChangeKind) -> Option<(String, String)> {
+    match what {
+        ChangeKind::Period { from, to } => Some((
+            format!("({}, {})", from.0, from.1),
+            format!("({}, {})", to.0, to.1),
+        )),
+        ChangeKind::Kind { from, to } => Some((from.as_str().into(), to.as_str().into())),
+        ChangeKind::Birth | ChangeKind::Death { .. } => None,
+    }
+}
+
+/// The track a death's points went to (attractor number, 1-based).
+fn into(what: &ChangeKind) -> Option<usize> {
+    match what {
+        ChangeKind::Death { into } => into.map(|t| t + 1),
+        _ => None,
+    }
+}
+
+/// The basin statistics of one α, shared by its csv rows and its json value.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct StepStatistics {
+    /// Share of the starts not run to an attractor.
+    pub not_settled: f64,
+    /// S_b and S_bb (natural logarithm), boxes of 5 × 5 starts.
+    pub basin_entropy: Option<f64>,
+    pub boundary_entropy: Option<f64>,
+    /// S_bb > ln 2: the boundary is fractal (a sufficient condition).
+    pub fractal: Option<bool>,
+    /// The uncertainty exponent of the boundary and its standard error.
+    pub uncertainty_exponent: Option<f64>,
+    pub uncertainty_error: Option<f64>,
+}
+
+impl StepStatistics {
+    pub fn of(step: &Step) -> StepStatistics {
+        let u = step.uncertainty.as_ref().ok();
+        StepStatistics {
+            not_settled: step.not_settled_fraction(),
+            basin_entropy: step.entropy.map(|e| e.s_b),
+            boundary_entropy: step.entropy.map(|e| e.s_bb),
+            fractal: step.entropy.map(|e| e.fractal_by_log2()),
+            uncertainty_exponent: u.map(|u| u.exponent),
+            uncertainty_error: u.map(|u| u.error),
+        }
+    }
+}
+
+/// One csv row of `attractors`: an attractor at one α (or, with `change` death or
+/// merge, the α where it is gone), with that α's statistics.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct AttractorsRow {
+    pub alpha: f64,
+    /// 1, 2, …: in order of appearance along α.
+    pub attractor: usize,
+    /// Empty on a death's row.
+    pub kind: Option<&'static str>,
+    pub events: Option<usize>,
+    pub periods: Option<i64>,
+    pub resolved: Option<bool>,
+    pub phase: Option<f64>,
+    pub v: Option<f64>,
+    pub lyapunov: Exponent,
+    pub starts: usize,
+    pub fraction: f64,
+    /// What changed between the previous α and this one: birth, death, merge, period,
+    /// sticking, kind (several joined by `+`).
+    pub change: Option<String>,
+    /// For a merge: the attractor its points now go to.
+    pub into: Option<usize>,
+    /// The α's statistics ([`StepStatistics`], written out: csv has no nesting).
+    pub not_settled: f64,
+    pub basin_entropy: Option<f64>,
+    pub boundary_entropy: Option<f64>,
+    pub fractal: Option<bool>,
+    pub uncertainty_exponent: Option<f64>,
+    pub uncertainty_error: Option<f64>,
+}
+
+impl AttractorsRow {
+    pub const HEADER: [&'static str; 19] = [
+        "alpha",
+        "attractor",
+        "kind",
+        "events",
+        "periods",
+        "resolved",
+        "phase",
+        "v",
+        "lyapunov",
+        "starts",
+        "fraction",
+        "change",
+        "into",
+        "not_settled",
+        "basin_entropy",
+        "boundary_entropy",
+        "fractal",
+        "uncertainty_exponent",
+        "uncertainty_error",
+    ];
+
+    /// The rows of α value `index`: its attractors, then the attractors gone at it.
+    pub fn of_step(cont: &Continuation, index: usize) -> Vec<AttractorsRow> {
+        let step = &cont.steps()[index];
+        let s = StepStatistics::of(step);
+        // A row of this α with its statistics and nothing else.
+        let blank = AttractorsRow {
+            alpha: step.alpha,
+            attractor: 0,
+            kind: None,
+            events: None,
+            periods: None,
+            resolved: None,
+            phase: None,
+            v: None,
+            lyapunov: Exponent(None),
+            starts: 0,
+            fraction: 0.0,
+            change: None,
+            into: None,
+            not_settled: s.not_settled,
+            basin_entropy: s.basin_entropy,
+            boundary_entropy: s.boundary_entropy,
+            fractal: s.fractal,
+            uncertainty_exponent: s.uncertainty_exponent,
+            uncertainty_error: s.uncertainty_error,
+        };
+        let here: Vec<&Change> = cont.changes().iter().filter(|c| c.step == index).collect();
+        let changes_of = |track: usize| {
+            let names: Vec<&str> = here
+                .iter()
+                .filter(|c| c.track == track)
+                .map(|c| c.what.name())
+                .collect();
+            (!names.is_empty()).then(|| names.join("+"))
+        };
+        let mut rows: Vec<AttractorsRow> = step
+            .members
+            .iter()
+            .map(|m| {
+                let r = AttractorRecord::new(
+                    m.track + 1,
+                    m.kind,
+                    (m.events, m.periods),
+                    m.point,
+                    m.lyapunov,
+                    m.fraction,
+                    m.precision,
+                );
+                AttractorsRow {
+                    alpha: step.alpha,
+                    attractor: m.track + 1,
+                    kind: Some(m.kind.as_str()),
+                    events: r.events,
+                    periods: r.periods,
+                    resolved: r.resolved,
+                    phase: r.phase,
+                    v: r.v,
+                    lyapunov: r.lyapunov,
+                    starts: m.starts,
+                    fraction: m.fraction,
+                    change: changes_of(m.track),
+                    into: None,
+                    ..blank.clone()
+                }
+            })
+            .collect();
+        for c in here
+            .iter()
+            .filter(|c| matches!(c.what, ChangeKind::Death { .. }))
+        {
+            rows.push(AttractorsRow {
+                attractor: c.track + 1,
+                change: Some(c.what.name().into()),
+                into: into(&c.what),
+                ..blank.clone()
+            });
+        }
+        rows
+    }
+}
+
+/// An attractor followed along α (json).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct TrackRecord {
+    pub attractor: usize,
+    /// The first and last α it is seen at.
+    pub first_alpha: f64,
+    pub last_alpha: f64,
+    /// Its largest basin fraction.
+    pub max_fraction: f64,
+}
+
+/// A change between two neighbouring α values (json).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ChangeRecord {
+    /// It happens between these two α values.
+    pub between: [f64; 2],
+    pub attractor: usize,
+    /// birth, death, merge, period, sticking or kind.
+    pub change: &'static str,
+    /// For a merge: the attractor its points now go to.
+    pub into: Option<usize>,
+    /// For a change of period or kind: before and after.
+    pub from: Option<String>,
+    pub to: Option<String>,
+}
+
+/// The uncertainty exponent's fit (json).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct UncertaintyRecord {
+    pub exponent: f64,
+    pub error: f64,
+    /// Starts counted at every scale.
+    pub starts: usize,
+    /// (ε in grid steps, fraction of ε-uncertain starts).
+    pub fractions: Vec<(usize, f64)>,
+}
+
+/// One α value (json).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ValueRecord {
+    pub alpha: f64,
+    /// Points of the previous α's attractors run here.
+    pub seeds: usize,
+    #[serde(flatten)]
+    pub statistics: StepStatistics,
+    pub boundary_boxes: Option<usize>,
+    pub uncertainty: Option<UncertaintyRecord>,
+    /// Why there is no uncertainty exponent, where there is none.
+    pub no_uncertainty: Option<&'static str>,
+    pub attractors: Vec<AttractorRecord>,
+}
+
+/// `attractors`' json.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct AttractorsDoc<'a> {
+    pub table: &'a str,
+    pub r: f64,
+    pub alpha: [f64; 2],
+    pub steps: usize,
+    pub grid: [usize; 2],
+    pub w_max: f64,
+    pub transient: u64,
+    /// The matching threshold between neighbouring α values.
+    pub match_distance: f64,
+    pub tracks: Vec<TrackRecord>,
+    pub changes: Vec<ChangeRecord>,
+    pub values: Vec<ValueRecord>,
+}
+
+impl<'a> AttractorsDoc<'a> {
+    pub fn of(cont: &'a Continuation) -> AttractorsDoc<'a> {
+        use bouncemap_engine::attractors::global::MATCH_DISTANCE;
+        let spec = cont.spec();
+        let steps = cont.steps();
+        let tracks = cont
+            .tracks()
+            .iter()
+            .map(|t| TrackRecord {
+                attractor: t.id + 1,
+                first_alpha: steps[t.first].alpha,
+                last_alpha: steps[t.last].alpha,
+                max_fraction: steps[t.first..=t.last]
+                    .iter()
+                    .flat_map(|s| s.members.iter().filter(|m| m.track == t.id))
+                    .map(|m| m.fraction)
+                    .fold(0.0, f64::max),
+            })
+            .collect();
+        let changes = cont
+            .changes()
+            .iter()
+            .map(|c| {
+                let ends = change_ends(&c.what);
+                ChangeRecord {
+                    between: [steps[c.step - 1].alpha, steps[c.step].alpha],
+                    attractor: c.track + 1,
+                    change: c.what.name(),
+                    into: into(&c.what),
+                    from: ends.as_ref().map(|e| e.0.clone()),
+                    to: ends.map(|e| e.1),
+                }
+            })
+            .collect();
+        let values = steps
+            .iter()
+            .map(|s| ValueRecord {
+                alpha: s.alpha,
+                seeds: s.seeds,
+                statistics: StepStatistics::of(s),
+                boundary_boxes: s.entropy.map(|e| e.boundary_boxes),
+                uncertainty: s.uncertainty.as_ref().ok().map(|u| UncertaintyRecord {
+                    exponent: u.exponent,
+                    error: u.error,
+                    starts: u.starts,
+                    fractions: u.fractions.clone(),
+                }),
+                no_uncertainty: s.uncertainty.as_ref().err().map(|e| e.as_str()),
+                attractors: s
+                    .members
+                    .iter()
+                    .map(|m| {
+                        AttractorRecord::new(
+                            m.track + 1,
+                            m.kind,
+                            (m.events, m.periods),
+                            m.point,
+                            m.lyapunov,
+                            m.fraction,
+                            m.precision,
+                        )
+                    })
+                    .collect(),
+            })
+            .collect();
+        AttractorsDoc {
+            table: spec.sys.table().name(),
+            r: spec.sys.r(),
+            alpha: [spec.lo, spec.hi],
+            steps: spec.steps,
+            grid: [spec.nx, spec.ny],
+            w_max: spec.w_max,
+            transient: spec.settle.transient,
+            match_distance: MATCH_DISTANCE,
+            tracks,
+            changes,
+            values,
+        }
+    }
+}

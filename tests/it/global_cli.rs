@@ -1,0 +1,236 @@
+//! `attractors` (attractors followed along α) as a user runs it: its fractions against
+//! `basins` on the same grid, the sums every α must satisfy, the three formats saying
+//! the same, `--out` and `--check`, and bad input (one line, status 2).
+
+use crate::cli::{json, ok, run};
+use crate::scratch;
+
+/// The cubic table at r = 0.8 over a short window ending at α = 0.47, where the (1, 1)
+/// solution and a sticking cycle coexist.
+const CUBIC: [&str; 9] = [
+    "attractors",
+    "--table",
+    "cubic",
+    "--r",
+    "0.8",
+    "--alpha",
+    "0.465..0.47",
+    "--steps",
+    "2",
+];
+
+fn with<'a>(base: &[&'a str], more: &[&'a str]) -> Vec<&'a str> {
+    base.iter().chain(more).copied().collect()
+}
+
+#[test]
+fn fractions_at_the_last_alpha_are_basins_on_the_same_grid() {
+    let v = json(&with(&CUBIC, &["--grid", "40x40", "--format", "json"]));
+    let b = json(&[
+        "basins", "--table", "cubic", "--r", "0.8", "--alpha", "0.47", "--grid", "40x40",
+        "--format", "json",
+    ]);
+    assert_eq!(v["w_max"], b["w_max"]);
+    let last = &v["values"][1];
+    assert_eq!(last["alpha"], 0.47);
+    let key = |a: &serde_json::Value| {
+        (
+            a["kind"].as_str().unwrap().to_string(),
+            a["events"].as_u64(),
+            a["periods"].as_i64(),
+        )
+    };
+    let mut ours: Vec<_> = last["attractors"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|a| a["fraction"].as_f64().unwrap() > 0.0)
+        .map(|a| (key(a), a["fraction"].as_f64().unwrap()))
+        .collect();
+    let mut theirs: Vec<_> = b["attractors"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|a| (key(a), a["fraction"].as_f64().unwrap()))
+        .collect();
+    ours.sort_by(|x, y| x.partial_cmp(y).unwrap());
+    theirs.sort_by(|x, y| x.partial_cmp(y).unwrap());
+    assert!(ours.len() >= 2, "{ours:?}");
+    assert_eq!(ours.len(), theirs.len(), "{ours:?} {theirs:?}");
+    for (a, b) in ours.iter().zip(&theirs) {
+        assert_eq!(a.0 .0, b.0 .0);
+        assert!((a.1 - b.1).abs() <= 0.01, "{ours:?} {theirs:?}");
+    }
+}
+
+#[test]
+fn every_alpha_sums_to_one_and_the_formats_agree() {
+    let args = with(
+        &[
+            "attractors",
+            "--table",
+            "fd:0.1",
+            "--r",
+            "0.8",
+            "--alpha",
+            "0.46..0.52",
+            "--steps",
+            "4",
+        ],
+        &["--grid", "24x24"],
+    );
+    let csv = ok(&with(&args, &["--format", "csv"]));
+    let doc = json(&with(&args, &["--format", "json"]));
+    let text = ok(&args);
+    let mut rows = csv::Reader::from_reader(csv.as_bytes());
+    let header = rows.headers().unwrap().clone();
+    let col = |name: &str| header.iter().position(|h| h == name).unwrap();
+    let mut sums = std::collections::BTreeMap::<String, (f64, f64)>::new();
+    let mut deaths = 0;
+    for r in rows.records() {
+        let r = r.unwrap();
+        let alpha = r[col("alpha")].to_string();
+        let e = sums
+            .entry(alpha)
+            .or_insert((0.0, r[col("not_settled")].parse().unwrap()));
+        if r[col("kind")].is_empty() {
+            // A death's row: the attractor is gone at this α.
+            assert!(matches!(&r[col("change")], "death" | "merge"), "{r:?}");
+            assert_eq!(r[col("fraction")].parse::<f64>().unwrap(), 0.0);
+            deaths += 1;
+        } else {
+            e.0 += r[col("fraction")].parse::<f64>().unwrap();
+        }
+    }
+    assert_eq!(sums.len(), 4);
+    for (alpha, (attractors, not_settled)) in &sums {
+        assert!(
+            (attractors + not_settled - 1.0).abs() < 1e-12,
+            "{alpha}: {attractors} + {not_settled}"
+        );
+    }
+    // The json says the same: values, the same deaths among its changes, fractions
+    // summing to 1, and the text names each change.
+    let values = doc["values"].as_array().unwrap();
+    assert_eq!(values.len(), 4);
+    for v in values {
+        let s: f64 = v["attractors"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|a| a["fraction"].as_f64().unwrap())
+            .sum::<f64>()
+            + v["not_settled"].as_f64().unwrap();
+        assert!((s - 1.0).abs() < 1e-12);
+    }
+    let changes = doc["changes"].as_array().unwrap();
+    let gone = changes
+        .iter()
+        .filter(|c| matches!(c["change"].as_str(), Some("death" | "merge")))
+        .count();
+    assert_eq!(gone, deaths);
+    assert!(!changes.is_empty());
+    for c in changes {
+        let n = c["attractor"].as_u64().unwrap();
+        assert!(text.contains(&format!("attractor {n}")), "{text}");
+    }
+    // The (1, 1) solution of fd:0.1 loses stability by period doubling at α_PD =
+    // 0.5099652832 (`fixed`), between the last two values: the attractor that is the
+    // (1, 1) cycle at α = 0.5 changes there (into the doubled cycle, or gone).
+    let at_half = &values[2];
+    assert_eq!(at_half["alpha"], 0.5);
+    let p11 = at_half["attractors"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|a| a["kind"] == "periodic" && a["events"] == 1 && a["periods"] == 1)
+        .unwrap_or_else(|| panic!("{at_half}"));
+    let pd = changes
+        .iter()
+        .find(|c| c["attractor"] == p11["id"] && c["between"][0].as_f64().unwrap() >= 0.5)
+        .unwrap_or_else(|| panic!("{changes:?}"));
+    let between: Vec<f64> = pd["between"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+    assert!(
+        between[0] < 0.5099652832 && 0.5099652832 < between[1],
+        "{pd}"
+    );
+}
+
+#[test]
+fn out_is_written_whole_and_check_computes_nothing() {
+    let dir = scratch::dir("global", "out");
+    let file = dir.join("a.json");
+    let args = with(
+        &CUBIC,
+        &[
+            "--grid",
+            "12x12",
+            "--format",
+            "json",
+            "--out",
+            scratch::s(&file),
+        ],
+    );
+    let (code, out, err) = run(&args);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.is_empty());
+    let v: serde_json::Value = serde_json::from_slice(&std::fs::read(&file).unwrap()).unwrap();
+    assert_eq!(v["steps"], 2);
+    let names: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    assert_eq!(names.len(), 1, "{names:?}");
+    // --check: the plan, nothing written, the file left as it was.
+    let before = std::fs::read(&file).unwrap();
+    let plan = ok(&with(&args, &["--check"]));
+    assert!(
+        plan.contains("attractors at 2 α values of 144 starts"),
+        "{plan}"
+    );
+    assert!(plan.contains("nothing computed"), "{plan}");
+    assert_eq!(std::fs::read(&file).unwrap(), before);
+}
+
+#[test]
+fn bad_input_is_one_line_with_the_valid_range_and_status_2() {
+    for (args, want) in [
+        (vec!["attractors", "--alpha", "0.5"], "valid LO..HI"),
+        (vec!["attractors", "--alpha", "0.5..0.4"], "LO < HI"),
+        (
+            vec!["attractors", "--alpha", "0.4..0.5", "--steps", "0"],
+            "[1, 100000]",
+        ),
+        (
+            vec!["attractors", "--alpha", "0.4..0.5", "--grid", "0x5"],
+            "valid NXxNY",
+        ),
+        (
+            vec!["attractors", "--alpha", "0.4..0.5", "--w-max", "0"],
+            "(0, 1000]",
+        ),
+        (
+            vec!["attractors", "--alpha", "0.4..0.5", "--r", "1"],
+            "(0, 1)",
+        ),
+        (
+            vec!["attractors", "--alpha", "0.4..0.5", "--format", "braille"],
+            "text, csv, json",
+        ),
+    ] {
+        let (code, out, err) = run(&args);
+        assert_eq!(code, 2, "{args:?}: {out}{err}");
+        assert!(err.contains(want), "{args:?}: {err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: {err}");
+        assert!(out.is_empty());
+    }
+    // Without a window: clap's usage error, status 2.
+    let (code, _, err) = run(&["attractors"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("--alpha"), "{err}");
+}
