@@ -16,7 +16,6 @@ use crate::output::records::{
 };
 use crate::output::sink::{check_stdout, Sink};
 use crate::output::text::shortest;
-use bouncemap_engine::attractors::basins::BasinsJob;
 use bouncemap_engine::attractors::global::{ChangeKind, Continuation, GlobalSpec, MATCH_DISTANCE};
 use bouncemap_engine::jobs::{Control, Executor, Progress as JobProgress};
 use std::io::Write;
@@ -110,7 +109,7 @@ pub fn compute(spec: &GlobalSpec, executor: &Executor) -> anyhow::Result<Continu
             None => break,
         };
         let mut basins = next.basins();
-        let handle = executor.start(BasinsJob::new(next.spec.clone())?, &control);
+        let handle = executor.start(next.job()?, &control);
         loop {
             match handle.receiver().recv_timeout(TICK) {
                 Ok(b) if handle.is_current(&b) => {

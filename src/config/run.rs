@@ -221,6 +221,7 @@ pub fn attractors(args: &AttractorsArgs) -> Result<AttractorsRun, InputError> {
             transient: args.transient,
             ..Settle::BASINS
         },
+        stop_at_known: !args.full_runs,
     };
     spec.validate()?;
     let job = Job {

@@ -234,3 +234,31 @@ fn bad_input_is_one_line_with_the_valid_range_and_status_2() {
     assert_eq!(code, 2);
     assert!(err.contains("--alpha"), "{err}");
 }
+
+#[test]
+fn stopping_at_the_seeds_cycles_changes_nothing_but_the_time() {
+    // fd:0.5 past α ≈ 0.56: every start ends on one long sticking cycle, which a start
+    // that reaches a release of it stops at; before, the (2, 2) cycle and a sticking
+    // cycle coexist. The csv is the same byte for byte with --full-runs.
+    let args = [
+        "attractors",
+        "--table",
+        "fd:0.5",
+        "--alpha",
+        "0.53..0.58",
+        "--steps",
+        "6",
+        "--grid",
+        "16x16",
+        "--format",
+        "csv",
+    ];
+    let stopped = ok(&args);
+    let full = ok(&with(&args, &["--full-runs"]));
+    assert_eq!(stopped, full);
+    assert!(stopped.lines().count() > 6, "{stopped}");
+    assert!(
+        stopped.contains(",sticking,") && stopped.contains(",periodic,2,2,"),
+        "{stopped}"
+    );
+}

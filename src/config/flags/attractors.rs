@@ -40,6 +40,12 @@ pub struct AttractorsArgs {
     pub w_max: Option<f64>,
     #[arg(help = rules::BASIN_TRANSIENT.help("End of each start's transient in table periods (early stop on cycles)"), long, default_value_t = rules::BASIN_TRANSIENT.default as u64, value_parser = rules::BASIN_TRANSIENT.whole::<u64>(), value_name = "PERIODS")]
     pub transient: u64,
+    /// Run every start until it detects its own cycle (or to the end of the
+    /// transient), instead of stopping where it reaches a cycle that the previous α's
+    /// attractors, run here as seeds, were found on (10⁻⁷ of a cycle of impacts over
+    /// one whole cycle, or a release at a resolved sticking cycle's release phase).
+    #[arg(long)]
+    pub full_runs: bool,
     /// Output format.
     #[arg(long, value_enum, default_value_t = AttractorsFormat::Text)]
     pub format: AttractorsFormat,

@@ -9,6 +9,7 @@
 //! order (not the order chunks happen to finish), so the numbering does not depend on
 //! timing.
 
+use super::known::{settle_known, Known};
 use super::{settle, Found, Registry, Settle};
 use crate::error::EngineError;
 use crate::jobs::picture::{
@@ -106,16 +107,29 @@ pub type BasinChunk = Chunk<Found>;
 /// The basin picture as a job: a [`PictureJob`] over its starts.
 pub type BasinsJob = PictureJob<BasinCells>;
 
-/// What the basin picture computes per grid point: its spec, validated.
+/// What the basin picture computes per grid point: its spec, validated, and the cycles
+/// known before it runs (a start that reaches one stops there).
 pub struct BasinCells {
     spec: BasinSpec,
+    known: Option<std::sync::Arc<Known>>,
 }
 
 impl BasinsJob {
     /// Validate `spec` and lay out its passes.
     pub fn new(spec: BasinSpec) -> Result<BasinsJob, EngineError> {
         spec.validate()?;
-        Ok(PictureJob::over(BasinCells { spec }))
+        Ok(PictureJob::over(BasinCells { spec, known: None }))
+    }
+
+    /// [`Self::new`] with the cycles `known` at this system: a start that reaches one
+    /// stops there ([`settle_known`]).
+    pub fn with_known(
+        spec: BasinSpec,
+        known: std::sync::Arc<Known>,
+    ) -> Result<BasinsJob, EngineError> {
+        spec.validate()?;
+        let known = (!known.is_empty()).then_some(known);
+        Ok(PictureJob::over(BasinCells { spec, known }))
     }
 
     /// The specification.
@@ -145,7 +159,10 @@ impl Cells for BasinCells {
         let Some(start) = launch(&self.spec.sys, t0, w0) else {
             return Some(None);
         };
-        let (found, ..) = settle(&self.spec.sys, start, &self.spec.settle, 1, tick)?;
+        let found = match &self.known {
+            Some(known) => settle_known(&self.spec.sys, start, &self.spec.settle, known, tick)?.0,
+            None => settle(&self.spec.sys, start, &self.spec.settle, 1, tick)?.0,
+        };
         Some(Some(found))
     }
 }

@@ -14,7 +14,9 @@
 //!    where its points now go. Seeds are not counted in the fractions.
 //! 2. **The grid.** The basin picture of [`BasinSpec`] (same box of starts at every α:
 //!    t̂0 ∈ [0, 1), w0 ∈ [0, W]), run as the `basins` job on the executor, its attractors
-//!    numbered after the seeds' ([`Basins::seeded`]).
+//!    numbered after the seeds' ([`Basins::seeded`]). With
+//!    [`GlobalSpec::stop_at_known`], a start that reaches a cycle the seeds found stops
+//!    there ([`known`](super::known)).
 //! 3. **Matching.** Each attractor at this α is matched to one at the previous α by the
 //!    distance between their point sets (the Hausdorff distance in the metric
 //!    max(phase distance around the circle, |Δv|) that [`MATCH`](super::MATCH) uses;
@@ -40,6 +42,7 @@
 //! values; [`collect`] does it all.
 
 use super::basins::{BasinSpec, Basins, BasinsJob};
+use super::known::Known;
 use super::statistics::{
     basin_entropy, uncertainty, BasinEntropy, NoExponent, Uncertainty, ENTROPY_BOX,
 };
@@ -86,6 +89,9 @@ pub struct GlobalSpec {
     pub w_max: f64,
     /// How each start is run to its attractor.
     pub settle: Settle,
+    /// Whether a start of the grid that reaches a cycle the seeds found stops there
+    /// ([`known`](super::known)) instead of detecting it by itself.
+    pub stop_at_known: bool,
 }
 
 impl GlobalSpec {
@@ -295,9 +301,22 @@ pub struct NextAlpha {
     /// (track at the previous α, attractor id here) for every seed that settled.
     landed: Vec<(usize, usize)>,
     seeds: usize,
+    /// The cycles the seeds found, where starts may stop.
+    known: std::sync::Arc<Known>,
+    stop_at_known: bool,
 }
 
 impl NextAlpha {
+    /// The job that fills in its picture (with the early stop on the seeds' cycles
+    /// when the spec asks for it).
+    pub fn job(&self) -> Result<BasinsJob, EngineError> {
+        if self.stop_at_known {
+            BasinsJob::with_known(self.spec.clone(), self.known.clone())
+        } else {
+            BasinsJob::new(self.spec.clone())
+        }
+    }
+
     /// The empty picture to fill in, its attractors numbered after the seeds'.
     pub fn basins(&self) -> Basins {
         Basins::seeded(&self.spec, self.registry.clone())
@@ -369,6 +388,7 @@ impl Continuation {
         let mut registry = Registry::new();
         let mut landed = Vec::new();
         let mut seeds = 0;
+        let mut known = Known::new();
         if let Some(prev) = &self.previous {
             let attractors = prev.registry.attractors();
             for id in seeded(&prev.registry, self.spec.starts()) {
@@ -380,6 +400,7 @@ impl Continuation {
                     seeds += 1;
                     let (found, ..) = settle(&spec.sys, start, &spec.settle, 1, cancelled)?;
                     landed.push((prev.tracks[id], registry.seed(&found)));
+                    known.add(&found);
                 }
             }
         }
@@ -389,6 +410,8 @@ impl Continuation {
             registry,
             landed,
             seeds,
+            known: std::sync::Arc::new(known),
+            stop_at_known: self.spec.stop_at_known,
         }))
     }
 
@@ -520,7 +543,7 @@ pub fn collect(
             None => break,
         };
         let mut basins = next.basins();
-        let summary = executor.run(BasinsJob::new(next.spec.clone())?, control, |b| {
+        let summary = executor.run(next.job()?, control, |b| {
             basins.absorb(b.data);
         });
         if summary.cancelled || !basins.complete() {
@@ -830,6 +853,7 @@ mod runs {
             nx: n,
             ny: n,
             settle: Settle::BASINS,
+            stop_at_known: true,
         }
     }
 

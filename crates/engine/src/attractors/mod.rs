@@ -26,6 +26,7 @@
 
 pub mod basins;
 pub mod global;
+pub mod known;
 pub mod lyapunov;
 pub mod statistics;
 
