@@ -15,6 +15,7 @@ use crate::config::presets::preset;
 use crate::config::{self, InputError};
 use crate::output::sink::AtomicFile;
 use bouncemap_engine::attractors::basins::BasinSpec;
+use bouncemap_engine::attractors::global::GlobalSpec;
 use bouncemap_engine::jobs::grid::Shard;
 use bouncemap_engine::jobs::{Control, Executor, Progress as JobProgress};
 use bouncemap_engine::orbits::curves::curves;
@@ -37,6 +38,8 @@ pub const QUICK_TRANSIENT: u64 = 20_000;
 /// `--quick` for `basins`: the grid at most, and each start's transient.
 pub const QUICK_GRID: (usize, usize) = (80, 40);
 pub const QUICK_BASIN_TRANSIENT: u64 = 1000;
+/// `--quick` for `attractors`: α values, the grid at each, the transient (at most).
+pub const QUICK_ATTRACTORS: (usize, usize, u64) = (40, 30, 1000);
 /// `--quick` for `plane`: the pixels at most (its transient as a diagram's).
 pub const QUICK_PLANE: (usize, usize) = (100, 50);
 /// r and k of the paper's Fig. 4 and 5.
@@ -106,6 +109,20 @@ pub fn run(args: &FigureArgs) -> anyhow::Result<()> {
             "this diagram",
         )?;
     }
+    let attractors_spec = match &args.name {
+        FigureName::Attractors(a) => {
+            let mut spec = config::attractors_spec(a)?;
+            if args.quick {
+                let (steps, side, transient) = QUICK_ATTRACTORS;
+                spec.steps = spec.steps.min(steps);
+                spec.nx = spec.nx.min(side);
+                spec.ny = spec.ny.min(side);
+                spec.settle.transient = spec.settle.transient.min(transient);
+            }
+            Some(spec)
+        }
+        _ => None,
+    };
     // The two-parameter curves: of `figure curves`, or over a plane (`--curves P`).
     let curves_task = match &args.name {
         FigureName::Curves(a) => Some(config::plane::curves_plane(a)?),
@@ -128,7 +145,13 @@ pub fn run(args: &FigureArgs) -> anyhow::Result<()> {
     let executor = Executor::new(threads)?;
     let fig = build(
         &args.name,
-        (diagram_spec, basin_spec, plane_spec, curves_task),
+        Specs {
+            diagram: diagram_spec,
+            basins: basin_spec,
+            plane: plane_spec,
+            curves: curves_task,
+            attractors: attractors_spec,
+        },
         args.quick,
         &executor,
         threads,
@@ -236,27 +259,37 @@ pub fn fig5_d() -> Vec<f64> {
     log_spaced(FIG5_D.0, FIG5_D.1, FIG5_D.2)
 }
 
-/// The figure `name`; `specs` are the checked sweep of `diagram` and `lyapunov`, the
-/// checked grid of `basins` and the checked plane of `plane`.
 /// What `figure curves` and `figure plane --curves` follow: the plane and the seeds.
 type CurvesTask = (
     bouncemap_engine::orbits::curves::Plane,
     bouncemap_engine::orbits::curves::Seeds,
 );
 
+/// What the figure named computes, checked before any file is created: at most one is
+/// set (both the plane and its curves for `plane --curves`).
+struct Specs {
+    diagram: Option<SweepSpec>,
+    basins: Option<BasinSpec>,
+    plane: Option<PlaneSpec>,
+    curves: Option<CurvesTask>,
+    attractors: Option<GlobalSpec>,
+}
+
+/// The figure `name` from its checked `specs`.
 fn build(
     name: &FigureName,
-    specs: (
-        Option<SweepSpec>,
-        Option<BasinSpec>,
-        Option<PlaneSpec>,
-        Option<CurvesTask>,
-    ),
+    specs: Specs,
     q: bool,
     executor: &Executor,
     threads: usize,
 ) -> anyhow::Result<Figure> {
-    let (diagram_spec, basin_spec, plane_spec, curves_task) = specs;
+    let Specs {
+        diagram: diagram_spec,
+        basins: basin_spec,
+        plane: plane_spec,
+        curves: curves_task,
+        attractors: attractors_spec,
+    } = specs;
     let panel_name = |n: &FigureName| n.as_str().to_string();
     match name {
         FigureName::Fig2 => Ok(shapes::fig2()?),
@@ -336,6 +369,11 @@ fn build(
                     max_period: *p,
                 }),
             ))
+        }
+        FigureName::Attractors(_) => {
+            let spec = attractors_spec.expect("the continuation was checked first");
+            let cont = super::attractors::compute(&spec, executor)?;
+            Ok(figure::global::attractors_figure(&cont))
         }
         FigureName::Basins(_) => {
             let spec = basin_spec.expect("the basins' grid was checked first");

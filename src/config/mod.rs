@@ -87,6 +87,35 @@ pub fn basin_spec(
     Ok(spec)
 }
 
+/// The continuation of attractors `attractors`' flags describe, validated. The box of
+/// starts is the same at every α: W is the default of the window's larger α unless
+/// given.
+pub fn attractors_spec(
+    args: &flags::AttractorsSpecArgs,
+) -> Result<bouncemap_engine::attractors::global::GlobalSpec, InputError> {
+    use bouncemap_engine::attractors::{default_w_max, global::GlobalSpec, Settle};
+    let table = args.table.load()?;
+    let (lo, hi) = args.alpha;
+    let top = System::new(table, hi, args.r)?;
+    let (nx, ny) = args.grid;
+    let spec = GlobalSpec {
+        w_max: args.w_max.unwrap_or_else(|| default_w_max(&top)),
+        sys: top,
+        lo,
+        hi,
+        steps: args.steps,
+        nx,
+        ny,
+        settle: Settle {
+            transient: args.transient,
+            ..Settle::BASINS
+        },
+        stop_at_known: !args.full_runs,
+    };
+    spec.validate()?;
+    Ok(spec)
+}
+
 /// Width and height in characters of a text picture (`--width`, `--height`): as given,
 /// else the terminal's (less two lines, for the prompt), else `columns` wide (the
 /// caller's guess: `sweep` reads COLUMNS) or the default width, and 30 lines.

@@ -201,29 +201,9 @@ pub struct AttractorsRun {
     pub job: Job,
 }
 
-/// `attractors`' flags, settled. The box of starts is the same at every α: W is the
-/// default of the window's larger α unless given.
+/// `attractors`' flags, settled.
 pub fn attractors(args: &AttractorsArgs) -> Result<AttractorsRun, InputError> {
-    use bouncemap_engine::attractors::{default_w_max, global::GlobalSpec};
-    let table = args.table.load()?;
-    let (lo, hi) = args.alpha;
-    let top = System::new(table, hi, args.r)?;
-    let (nx, ny) = args.grid;
-    let spec = GlobalSpec {
-        w_max: args.w_max.unwrap_or_else(|| default_w_max(&top)),
-        sys: top,
-        lo,
-        hi,
-        steps: args.steps,
-        nx,
-        ny,
-        settle: Settle {
-            transient: args.transient,
-            ..Settle::BASINS
-        },
-        stop_at_known: !args.full_runs,
-    };
-    spec.validate()?;
+    let spec = super::attractors_spec(&args.spec)?;
     let job = Job {
         check: args.check.check,
         requested_threads: args.workers.threads,

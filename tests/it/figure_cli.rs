@@ -632,3 +632,69 @@ fn the_quick_plane_figure_is_at_most_100_by_50_pixels_and_2e4_periods() {
     );
     std::fs::remove_dir_all(&d).unwrap();
 }
+
+/// `figure attractors` on the cubic table across the (1, 1) solution's period doubling
+/// (α_PD = 0.48383449168, `fixed`): the stacked fractions fill [0, 1] at every α, and
+/// the (1, 1) attractor's points are the closed-form phase below α_PD and two phases
+/// (the (2, 2) cycle) above it.
+#[test]
+fn the_attractors_figure_stacks_fractions_to_one_and_doubles_at_alpha_pd() {
+    let d = dir("attractors");
+    let (out, data) = (d.join("a.png"), d.join("a.json"));
+    ok(&bouncemap(&[
+        "figure",
+        "attractors",
+        "--table",
+        "cubic",
+        "--r",
+        "0.8",
+        "--alpha",
+        "0.475..0.495",
+        "--steps",
+        "5",
+        "--grid",
+        "20x20",
+        "--out",
+        s(&out),
+        "--data",
+        s(&data),
+    ]));
+    let fig = json(&data);
+    let areas: Vec<&serde_json::Value> = fig["panels"][1]["series"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|s| s["kind"] == "area")
+        .collect();
+    assert!(areas.len() >= 2, "{areas:?}");
+    // The top of the last band at each α is 1 (nothing is not settled here).
+    let top = &areas.last().unwrap()["lines"][1];
+    for p in top.as_array().unwrap() {
+        assert!((p[1].as_f64().unwrap() - 1.0).abs() < 1e-12, "{p}");
+    }
+    // The attractor that holds the (1, 1) solution at α = 0.475.
+    let a: f64 = 0.475;
+    let (qa, qb, qc) = (3.0 * a, -3.0 * a, 0.5 * a - 1.0 / 18.0);
+    let star = (-qb - (qb * qb - 4.0 * qa * qc).sqrt()) / (2.0 * qa);
+    let series = fig["panels"][0]["series"].as_array().unwrap();
+    let p11 = series
+        .iter()
+        .find(|s| {
+            s["points"].as_array().unwrap().iter().any(|p| {
+                p[0].as_f64().unwrap() == 0.475 && (p[1].as_f64().unwrap() - star).abs() < 1e-9
+            })
+        })
+        .unwrap_or_else(|| panic!("t̂* = {star} not among {series:?}"));
+    let at = |alpha: f64| -> usize {
+        p11["points"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|p| (p[0].as_f64().unwrap() - alpha).abs() < 1e-12)
+            .count()
+    };
+    assert_eq!((at(0.475), at(0.48)), (1, 1));
+    assert_eq!((at(0.49), at(0.495)), (2, 2));
+    assert!(std::fs::metadata(&out).unwrap().len() > 1000);
+    std::fs::remove_dir_all(&d).unwrap();
+}

@@ -48,6 +48,7 @@ pub mod basins;
 pub mod classes;
 pub mod curves;
 pub mod diagram;
+pub mod global;
 pub mod lyapunov;
 pub mod phase;
 pub mod plane;

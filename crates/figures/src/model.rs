@@ -102,6 +102,14 @@ pub enum Layer {
         size: [f64; 2],
         color: Color,
     },
+    /// The region between two lines over the same x values (`lower` and `upper`, in
+    /// order of x), filled: a band of a stacked plot.
+    Area {
+        name: String,
+        lower: Vec<[f64; 2]>,
+        upper: Vec<[f64; 2]>,
+        color: Color,
+    },
     /// A horizontal line across the panel.
     HLine { y: f64, color: Color, dash: Dash },
     /// A vertical line across the panel.
@@ -507,6 +515,15 @@ impl Figure {
                                         ny: grid.ny,
                                         counts: grid.counts.clone(),
                                     }),
+                                }),
+                                Layer::Area {
+                                    name, lower, upper, ..
+                                } => Some(SeriesData {
+                                    name: name.clone(),
+                                    kind: "area",
+                                    points: Vec::new(),
+                                    lines: vec![lower.clone(), upper.clone()],
+                                    grid: None,
                                 }),
                                 Layer::HLine { .. } | Layer::VLine { .. } => None,
                             }

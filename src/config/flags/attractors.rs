@@ -1,5 +1,6 @@
 //! `attractors`' command line: the attractors of a system continued along an α window,
-//! each α a basin picture over the same box of starts.
+//! each α a basin picture over the same box of starts (the spec shared with `figure
+//! attractors`).
 
 use super::{parse_grid, table_help, CheckArgs, OutArgs, ThreadsArgs};
 use crate::config::rules;
@@ -21,10 +22,10 @@ pub enum AttractorsFormat {
     Json,
 }
 
-/// `bouncemap attractors`.
+/// What a continuation of attractors is of: `attractors`' and `figure attractors`'
+/// shared flags.
 #[derive(Args, Debug, Clone)]
-#[command(allow_negative_numbers = true)]
-pub struct AttractorsArgs {
+pub struct AttractorsSpecArgs {
     #[arg(long, help = table_help(""), default_value = rules::DEFAULT_TABLE, value_parser = TableSpec::parse, value_name = "TABLE")]
     pub table: TableSpec,
     #[arg(help = rules::R.help("Coefficient of restitution r"), long, default_value_t = rules::R.default, value_parser = rules::R.real(), value_name = "R")]
@@ -46,6 +47,14 @@ pub struct AttractorsArgs {
     /// one whole cycle, or a release at a resolved sticking cycle's release phase).
     #[arg(long)]
     pub full_runs: bool,
+}
+
+/// `bouncemap attractors`.
+#[derive(Args, Debug, Clone)]
+#[command(allow_negative_numbers = true)]
+pub struct AttractorsArgs {
+    #[command(flatten)]
+    pub spec: AttractorsSpecArgs,
     /// Output format.
     #[arg(long, value_enum, default_value_t = AttractorsFormat::Text)]
     pub format: AttractorsFormat,

@@ -99,6 +99,10 @@ pub enum FigureName {
     /// The basins of attraction of one system: `basins`' flags (--table, --alpha, --r, --grid, ...).
     #[command(allow_negative_numbers = true)]
     Basins(Box<BasinsSpecArgs>),
+    /// Attractors followed along α, coloured by attractor, over their stacked basin
+    /// fractions: `attractors`' flags (--table, --r, --alpha LO..HI, --steps, --grid, ...).
+    #[command(allow_negative_numbers = true)]
+    Attractors(Box<AttractorsSpecArgs>),
     /// A two-parameter map: `plane`'s flags (--table, --x PARAM:LO..HI, --y PARAM:LO..HI, ...), the pixels as --pixels WxH.
     #[command(allow_negative_numbers = true)]
     Plane(Box<FigurePlaneArgs>),
@@ -124,6 +128,7 @@ impl FigureName {
             FigureName::Diagram(_) => "diagram",
             FigureName::Lyapunov(_) => "lyapunov",
             FigureName::Basins(_) => "basins",
+            FigureName::Attractors(_) => "attractors",
             FigureName::Plane(_) => "plane",
             FigureName::Curves(_) => "curves",
         }

@@ -2,17 +2,9 @@
 //! document), and the words for a member and a change that the text report uses too.
 
 use super::*;
-use bouncemap_engine::attractors::global::{Change, ChangeKind, Continuation, Member, Step};
+use bouncemap_engine::attractors::global::{Change, ChangeKind, Continuation, Step};
 
-/// An attractor at one α for people: kind and (n, k), or that double precision leaves
-/// its length open.
-pub fn describe_member(m: &Member) -> String {
-    match m.period() {
-        Some((n, k)) => format!("{} ({n}, {k})", m.kind.as_str()),
-        None if m.unresolved() => format!("{} (length unresolved)", m.kind.as_str()),
-        None => m.kind.as_str().to_string(),
-    }
-}
+pub use bouncemap_figures::global::describe_member;
 
 /// What a change was from and to, for people (None for births and deaths).
 pub fn change_ends(what: &ChangeKind) -> Option<(String, String)> {

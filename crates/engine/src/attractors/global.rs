@@ -158,7 +158,13 @@ pub struct Member {
     pub starts: usize,
     /// Their share of the grid.
     pub fraction: f64,
+    /// Points (phase, v) of it for a diagram: a cycle's events, or the centres of the
+    /// cells an unsettled orbit visits, at most [`DIAGRAM_POINTS`] spread over them.
+    pub points: Vec<(f64, f64)>,
 }
+
+/// Most points a member keeps for a diagram.
+pub const DIAGRAM_POINTS: usize = 256;
 
 impl Member {
     fn of(a: &Attractor, track: usize, grid: usize) -> Member {
@@ -172,6 +178,7 @@ impl Member {
             precision: a.precision,
             starts: a.starts,
             fraction: a.starts as f64 / grid as f64,
+            points: spread(a.points(), DIAGRAM_POINTS),
         }
     }
 
@@ -709,11 +716,16 @@ fn match_by_seeds(
 
 /// At most [`MAX_SET`] points of `set`, evenly spread over it.
 fn thin(set: Vec<(f64, f64)>) -> Vec<(f64, f64)> {
-    if set.len() <= MAX_SET {
+    spread(set, MAX_SET)
+}
+
+/// At most `most` points of `set`, evenly spread over it.
+fn spread(set: Vec<(f64, f64)>, most: usize) -> Vec<(f64, f64)> {
+    if set.len() <= most {
         return set;
     }
     let n = set.len();
-    (0..MAX_SET).map(|s| set[s * n / MAX_SET]).collect()
+    (0..most).map(|s| set[s * n / most]).collect()
 }
 
 /// The distance of two points: the larger of the phase distance around the circle and

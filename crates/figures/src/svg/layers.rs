@@ -130,6 +130,26 @@ pub(super) fn layer(out: &mut String, f: &Frame, p: &Panel, l: &Layer) {
             color,
             ..
         } => cells(out, f, p, centres, *size, *color),
+        Layer::Area {
+            lower,
+            upper,
+            color,
+            ..
+        } => {
+            let to = |q: &[f64; 2]| (f.px(&p.x, q[0]), f.py(&p.y, q[1]));
+            let mut d = String::new();
+            for (i, (x, y)) in lower
+                .iter()
+                .map(to)
+                .chain(upper.iter().rev().map(to))
+                .enumerate()
+            {
+                let _ = write!(d, "{}{} {}", if i == 0 { "M" } else { "L" }, n(x), n(y));
+            }
+            if !d.is_empty() {
+                let _ = writeln!(out, "<path d=\"{d}Z\" fill=\"{}\"/>", color.hex());
+            }
+        }
         Layer::Density { points, color, .. } => {
             density(out, f, p, points.iter().map(|q| (*q, 1)), *color);
         }

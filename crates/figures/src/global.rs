@@ -1,0 +1,230 @@
+//! `figure attractors`: attractors followed along α. (a) A bifurcation diagram whose
+//! points (each attractor's cycle events, or the cells an unsettled orbit visits) are
+//! coloured by the attractor they belong to, not by period; (b) the basin fractions
+//! stacked in the same colours, the starts not run to an attractor in grey on top, the
+//! basin entropy S_b as a black line, births (filled) and deaths (open circles) on the
+//! upper edge. Attractors are numbered in order of appearance along α, as
+//! `bouncemap attractors` numbers them.
+
+use crate::basins::is_attractor;
+use crate::classes::{attractor_colour, REST};
+use crate::labels::table_title;
+use crate::model::{
+    Axis, Color, Corner, Dash, Figure, Layer, Legend, Marker, Panel, Swatch, COLUMN,
+};
+use bouncemap_engine::attractors::global::{ChangeKind, Continuation, Member};
+use bouncemap_engine::fmt_value as shortest;
+
+/// An attractor at one α for people: kind and (n, k), or that double precision leaves
+/// its length open.
+pub fn describe_member(m: &Member) -> String {
+    match m.period() {
+        Some((n, k)) => format!("{} ({n}, {k})", m.kind.as_str()),
+        None if m.unresolved() => format!("{} (length unresolved)", m.kind.as_str()),
+        None => m.kind.as_str().to_string(),
+    }
+}
+
+/// Attractors the legend names at most (the largest basins); the others are summed in
+/// one line.
+pub const LEGEND_TRACKS: usize = 8;
+
+/// The two panels of a complete continuation.
+pub fn attractors_figure(cont: &Continuation) -> Figure {
+    let spec = cont.spec();
+    let steps = cont.steps();
+    let x = || Axis::new("$\u{3b1}$", spec.lo, spec.hi);
+    let colour = |track: usize, m: &Member| {
+        if is_attractor(m.kind) {
+            attractor_colour(track + 1)
+        } else {
+            REST
+        }
+    };
+    // (a) Every member's points, one layer per attractor.
+    let mut top = Panel::new(x(), Axis::new("$t\u{302}$", -0.06, 1.06));
+    top.letter = Some("(a)".into());
+    top.title = Some(format!(
+        "{}, $r$ = {}",
+        table_title(spec.sys.table()),
+        shortest(spec.sys.r())
+    ));
+    let tracks = cont.tracks();
+    let mut largest = vec![0.0f64; tracks.len()];
+    let mut first_kind: Vec<Option<String>> = vec![None; tracks.len()];
+    // A cycle's few events as discs; the many cells of an unsettled orbit as dots.
+    let mut points: Vec<Vec<[f64; 2]>> = vec![Vec::new(); tracks.len()];
+    let mut cells: Vec<Vec<[f64; 2]>> = vec![Vec::new(); tracks.len()];
+    let mut colours = vec![REST; tracks.len()];
+    for s in steps {
+        for m in &s.members {
+            let cycle = m.events.is_some() || m.precision.is_some();
+            let to = if cycle { &mut points } else { &mut cells };
+            to[m.track].extend(m.points.iter().map(|p| [s.alpha, p.0]));
+            largest[m.track] = largest[m.track].max(m.fraction);
+            first_kind[m.track].get_or_insert_with(|| describe_member(m));
+            colours[m.track] = colour(m.track, m);
+        }
+    }
+    for (t, (pts, dots)) in points.into_iter().zip(cells).enumerate() {
+        if !dots.is_empty() {
+            top.layers.push(Layer::Density {
+                name: format!("attractor {} cells", t + 1),
+                points: dots,
+                color: colours[t],
+            });
+        }
+        if !pts.is_empty() {
+            top.layers.push(Layer::Markers {
+                name: format!("attractor {}", t + 1),
+                points: pts,
+                marker: Marker::Disc,
+                color: colours[t],
+            });
+        }
+    }
+    // (b) Fractions stacked in attractor order, then the not-settled share.
+    let mut bottom = Panel::new(x(), Axis::new("basin fraction, $S_b$", 0.0, 1.12));
+    bottom.letter = Some("(b)".into());
+    let mut below: Vec<f64> = vec![0.0; steps.len()];
+    for (t, &color) in colours.iter().enumerate() {
+        let (mut lower, mut upper) = (Vec::new(), Vec::new());
+        for (i, s) in steps.iter().enumerate() {
+            let f: f64 = s
+                .members
+                .iter()
+                .filter(|m| m.track == t)
+                .map(|m| m.fraction)
+                .sum();
+            lower.push([s.alpha, below[i]]);
+            below[i] += f;
+            upper.push([s.alpha, below[i]]);
+        }
+        bottom.layers.push(Layer::Area {
+            name: format!("attractor {} fraction", t + 1),
+            lower,
+            upper,
+            color,
+        });
+    }
+    let unsettled: Vec<f64> = steps.iter().map(|s| s.not_settled_fraction()).collect();
+    if unsettled.iter().any(|&f| f > 0.0) {
+        bottom.layers.push(Layer::Area {
+            name: "not settled".into(),
+            lower: steps
+                .iter()
+                .zip(&below)
+                .map(|(s, &b)| [s.alpha, b])
+                .collect(),
+            upper: steps
+                .iter()
+                .zip(below.iter().zip(&unsettled))
+                .map(|(s, (&b, &u))| [s.alpha, b + u])
+                .collect(),
+            color: Color::GREY,
+        });
+    }
+    let entropy: Vec<[f64; 2]> = steps
+        .iter()
+        .filter_map(|s| s.entropy.map(|e| [s.alpha, e.s_b]))
+        .collect();
+    bottom.layers.push(Layer::Lines {
+        name: "basin entropy S_b".into(),
+        lines: vec![entropy],
+        color: Color::BLACK,
+        dash: Dash::Solid,
+        width: 0.8,
+    });
+    // Births and deaths on the upper edge, at the middle of the step they fall in.
+    let edge = 1.06;
+    let (mut births, mut deaths) = (Vec::new(), Vec::new());
+    for c in cont.changes() {
+        let at = 0.5 * (steps[c.step - 1].alpha + steps[c.step].alpha);
+        match c.what {
+            ChangeKind::Birth => births.push([at, edge]),
+            ChangeKind::Death { .. } => deaths.push([at, edge]),
+            _ => {}
+        }
+    }
+    let mut entries = vec![(
+        Swatch::line(Color::BLACK, Dash::Solid),
+        "basin entropy $S_b$".to_string(),
+    )];
+    if !births.is_empty() {
+        bottom.layers.push(Layer::Markers {
+            name: "births".into(),
+            points: births,
+            marker: Marker::Disc,
+            color: Color::BLACK,
+        });
+        entries.push((Swatch::marker(Color::BLACK, Marker::Disc), "birth".into()));
+    }
+    if !deaths.is_empty() {
+        bottom.layers.push(Layer::Markers {
+            name: "deaths".into(),
+            points: deaths,
+            marker: Marker::Circle,
+            color: Color::BLACK,
+        });
+        entries.push((
+            Swatch::marker(Color::BLACK, Marker::Circle),
+            "death or merger".into(),
+        ));
+    }
+    // α to one digit past the step's first.
+    let decimals = if spec.steps > 1 {
+        let step = (spec.hi - spec.lo) / (spec.steps - 1) as f64;
+        ((-step.log10()).ceil().max(0.0) as usize + 1).min(17)
+    } else {
+        6
+    };
+    let alpha = |a: f64| format!("{a:.decimals$}");
+    // The attractors beside the diagram: the largest basins first.
+    let mut order: Vec<usize> = (0..tracks.len()).collect();
+    order.sort_by(|&a, &b| largest[b].total_cmp(&largest[a]).then(a.cmp(&b)));
+    let mut named: Vec<(Swatch, String)> = order
+        .iter()
+        .take(LEGEND_TRACKS)
+        .map(|&t| {
+            let tr = &tracks[t];
+            (
+                Swatch::band(colours[t]),
+                format!(
+                    "{}: {}, {}\u{2013}{}, \u{2264}{:.0}%",
+                    t + 1,
+                    first_kind[t].clone().unwrap_or_default(),
+                    alpha(steps[tr.first].alpha),
+                    alpha(steps[tr.last].alpha),
+                    100.0 * largest[t]
+                ),
+            )
+        })
+        .collect();
+    if tracks.len() > LEGEND_TRACKS {
+        named.push((
+            Swatch::band(Color::GREY),
+            format!("{} more attractors", tracks.len() - LEGEND_TRACKS),
+        ));
+    }
+    top.beside.push(Legend {
+        corner: Corner::TopRight,
+        entries: named,
+    });
+    bottom.beside.push(Legend {
+        corner: Corner::TopRight,
+        entries,
+    });
+    Figure {
+        name: "attractors".into(),
+        panels: vec![top, bottom],
+        columns: 1,
+        caption: vec![
+            format!(
+                "(a) The attractors found at {} values of $\u{3b1}$ from {}\u{d7}{} starts each (the same box at every value, transient {} table periods), each in its own colour: a cycle's impact phases, or the cells an unsettled orbit visits. Attractors at neighbouring values are one when their point sets lie within 0.05 of each other, or when the points of one lead to the other and nothing else continues either; numbered in order of appearance.",
+                spec.steps, spec.nx, spec.ny, spec.settle.transient
+            ),
+            "(b) The share of the starts that ends on each, stacked in the same colours (grey: starts not run to an attractor), and the basin entropy $S_b$ (boxes of 5\u{d7}5 starts). Above: births (filled) and deaths or mergers (open), between the two values where they are seen.".into(),
+        ],
+        size: (2.0 * COLUMN, 5.6),
+    }
+}
