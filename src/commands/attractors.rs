@@ -12,7 +12,7 @@ use crate::config::run::AttractorsRun;
 use crate::config::{self, InputError};
 use crate::output::part_file::Layout;
 use crate::output::records::{
-    change_ends, csv_writer, describe_member, AttractorsDoc, AttractorsRow,
+    cause_text, change_ends, csv_writer, describe_member, AttractorsDoc, AttractorsRow,
 };
 use crate::output::sink::{check_stdout, Sink};
 use crate::output::text::shortest;
@@ -233,15 +233,19 @@ fn text(cont: &Continuation) -> Vec<String> {
     for c in listed {
         let (a, b) = (steps[c.step - 1].alpha, steps[c.step].alpha);
         let n = c.track + 1;
+        let why = |at: f64| {
+            c.cause
+                .map(|x| format!(" [at {}: {}]", shortest(at), cause_text(&x)))
+                .unwrap_or_default()
+        };
         let what = match &c.what {
-            ChangeKind::Birth => format!("attractor {n} appears"),
-            ChangeKind::Death { into: Some(t) } => {
-                format!(
-                    "attractor {n} is gone; its points now go to attractor {}",
-                    t + 1
-                )
-            }
-            ChangeKind::Death { into: None } => format!("attractor {n} is gone"),
+            ChangeKind::Birth => format!("attractor {n} appears{}", why(a)),
+            ChangeKind::Death { into: Some(t) } => format!(
+                "attractor {n} is gone{}; its points now go to attractor {}",
+                why(b),
+                t + 1
+            ),
+            ChangeKind::Death { into: None } => format!("attractor {n} is gone{}", why(b)),
             other => {
                 let (from, to) = change_ends(other).unwrap_or_default();
                 format!("attractor {n}: {} {from} → {to}", other.name())

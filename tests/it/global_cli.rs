@@ -159,6 +159,19 @@ fn every_alpha_sums_to_one_and_the_formats_agree() {
         between[0] < 0.5099652832 && 0.5099652832 < between[1],
         "{pd}"
     );
+    // It is gone, and Newton's method on the exact map says why: at 0.52 the (1, 1)
+    // cycle is there with a multiplier below −1.
+    assert!(
+        matches!(pd["change"].as_str(), Some("death" | "merge")),
+        "{pd}"
+    );
+    assert_eq!(pd["cause"], "unstable", "{pd}");
+    assert_eq!(pd["bifurcation"], "period doubling", "{pd}");
+    let m = &pd["multiplier"];
+    assert!(
+        m[0].as_f64().unwrap() < -1.0 && m[1].as_f64().unwrap() == 0.0,
+        "{pd}"
+    );
 }
 
 #[test]

@@ -12,7 +12,7 @@ use crate::labels::table_title;
 use crate::model::{
     Axis, Color, Corner, Dash, Figure, Layer, Legend, Marker, Panel, Swatch, COLUMN,
 };
-use bouncemap_engine::attractors::global::{ChangeKind, Continuation, Member};
+use bouncemap_engine::attractors::global::{Cause, ChangeKind, Continuation, Member};
 use bouncemap_engine::fmt_value as shortest;
 
 /// An attractor at one α for people: kind and (n, k), or that double precision leaves
@@ -22,6 +22,25 @@ pub fn describe_member(m: &Member) -> String {
         Some((n, k)) => format!("{} ({n}, {k})", m.kind.as_str()),
         None if m.unresolved() => format!("{} (length unresolved)", m.kind.as_str()),
         None => m.kind.as_str().to_string(),
+    }
+}
+
+/// What the exact map says of an attractor's cycle at the α value where the
+/// attractor is not seen, for people ("at α: …").
+pub fn cause_text(c: &Cause) -> String {
+    match c {
+        Cause::Unstable { at, multiplier } => {
+            let m = if multiplier.im == 0.0 {
+                format!("{:.4}", multiplier.re)
+            } else {
+                format!("{:.4} \u{b1} {:.4}i", multiplier.re, multiplier.im.abs())
+            };
+            format!("its cycle is unstable ({at}, multiplier {m})")
+        }
+        Cause::Gone => "no such cycle (a fold, border collision or grazing between)".into(),
+        Cause::Missed => "its cycle is stable too (missed by the grid, no bifurcation)".into(),
+        Cause::Crisis => "chaotic with no local bifurcation: a crisis".into(),
+        Cause::Untested => "no local test (not a cycle of impacts)".into(),
     }
 }
 

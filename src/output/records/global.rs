@@ -2,9 +2,9 @@
 //! document), and the words for a member and a change that the text report uses too.
 
 use super::*;
-use bouncemap_engine::attractors::global::{Change, ChangeKind, Continuation, Step};
+use bouncemap_engine::attractors::global::{Cause, Change, ChangeKind, Continuation, Step};
 
-pub use bouncemap_figures::global::describe_member;
+pub use bouncemap_figures::global::{cause_text, describe_member};
 
 /// What a change was from and to, for people (None for births and deaths).
 pub fn change_ends(what: &ChangeKind) -> Option<(String, String)> {
@@ -77,6 +77,9 @@ pub struct AttractorsRow {
     pub change: Option<String>,
     /// For a merge: the attractor its points now go to.
     pub into: Option<usize>,
+    /// For a birth or a death: what became of its cycle at the other α (unstable,
+    /// gone, missed, crisis, untested).
+    pub cause: Option<&'static str>,
     /// The α's statistics ([`StepStatistics`], written out: csv has no nesting).
     pub not_settled: f64,
     pub basin_entropy: Option<f64>,
@@ -87,7 +90,7 @@ pub struct AttractorsRow {
 }
 
 impl AttractorsRow {
-    pub const HEADER: [&'static str; 19] = [
+    pub const HEADER: [&'static str; 20] = [
         "alpha",
         "attractor",
         "kind",
@@ -101,6 +104,7 @@ impl AttractorsRow {
         "fraction",
         "change",
         "into",
+        "cause",
         "not_settled",
         "basin_entropy",
         "boundary_entropy",
@@ -128,6 +132,7 @@ impl AttractorsRow {
             fraction: 0.0,
             change: None,
             into: None,
+            cause: None,
             not_settled: s.not_settled,
             basin_entropy: s.basin_entropy,
             boundary_entropy: s.boundary_entropy,
@@ -170,7 +175,10 @@ impl AttractorsRow {
                     starts: m.starts,
                     fraction: m.fraction,
                     change: changes_of(m.track),
-                    into: None,
+                    cause: here
+                        .iter()
+                        .find(|c| c.track == m.track && c.what == ChangeKind::Birth)
+                        .and_then(|c| c.cause.map(|x| x.name())),
                     ..blank.clone()
                 }
             })
@@ -183,6 +191,7 @@ impl AttractorsRow {
                 attractor: c.track + 1,
                 change: Some(c.what.name().into()),
                 into: into(&c.what),
+                cause: c.cause.map(|x| x.name()),
                 ..blank.clone()
             });
         }
@@ -214,6 +223,12 @@ pub struct ChangeRecord {
     /// For a change of period or kind: before and after.
     pub from: Option<String>,
     pub to: Option<String>,
+    /// For a birth or a death: what became of its cycle at the other α (unstable,
+    /// gone, missed, crisis, untested), and for `unstable` how (`period doubling`,
+    /// `fold`, `torus`) and its largest multiplier there [re, im].
+    pub cause: Option<&'static str>,
+    pub bifurcation: Option<&'static str>,
+    pub multiplier: Option<[f64; 2]>,
 }
 
 /// The uncertainty exponent's fit (json).
@@ -290,6 +305,17 @@ impl<'a> AttractorsDoc<'a> {
                     into: into(&c.what),
                     from: ends.as_ref().map(|e| e.0.clone()),
                     to: ends.map(|e| e.1),
+                    cause: c.cause.map(|x| x.name()),
+                    bifurcation: match c.cause {
+                        Some(Cause::Unstable { at, .. }) => Some(at),
+                        _ => None,
+                    },
+                    multiplier: match c.cause {
+                        Some(Cause::Unstable { multiplier, .. }) => {
+                            Some([multiplier.re, multiplier.im])
+                        }
+                        _ => None,
+                    },
                 }
             })
             .collect();

@@ -275,6 +275,89 @@ pub struct Change {
     pub track: usize,
     /// What happened.
     pub what: ChangeKind,
+    /// For a birth or a death: what the exact map says happened to the attractor's
+    /// cycle between the two values ([`Cause`]).
+    pub cause: Option<Cause>,
+}
+
+/// Why an attractor appears or disappears between two neighbouring α values, from its
+/// cycle continued by Newton's method on the exact map to the value where it is not
+/// seen (from the one where it is).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Cause {
+    /// The cycle is there but unstable: a multiplier crossed the unit circle between
+    /// the two values. `at` names how: `period doubling` (a real multiplier below −1),
+    /// `fold` (above 1), `torus` (a complex pair).
+    Unstable {
+        /// How it lost (or gained) stability.
+        at: &'static str,
+        /// Its multiplier of largest modulus there.
+        multiplier: crate::linalg::Complex,
+    },
+    /// Newton's method finds no such cycle there: it ends (or begins) between the two
+    /// values, at a fold, a border collision or a grazing.
+    Gone,
+    /// The cycle is there and stable as well: neither a start of the grid nor a seed
+    /// landed on it at that value (a basin too small for the grid), not a bifurcation.
+    Missed,
+    /// A chaotic attractor that appears or disappears with no cycle to follow: where no
+    /// local bifurcation explains it, a crisis.
+    Crisis,
+    /// No local test: a sticking cycle or one whose length double precision leaves
+    /// open (the Newton corrector follows cycles of impacts only), or an unsettled
+    /// orbit that is neither a cycle nor chaotic.
+    Untested,
+}
+
+impl Cause {
+    /// Its name in every output: unstable, gone, missed, crisis, untested.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Cause::Unstable { .. } => "unstable",
+            Cause::Gone => "gone",
+            Cause::Missed => "missed",
+            Cause::Crisis => "crisis",
+            Cause::Untested => "untested",
+        }
+    }
+}
+
+/// The cause of the birth or death of attractor `a`, not seen in `other` (the system
+/// at the neighbouring α): its cycle continued by Newton's method from its first event
+/// to `other`, accepted within [`MATCH_DISTANCE`] of it.
+fn cause(a: &Attractor, other: &System) -> Cause {
+    let cycle = a.cycle_points();
+    if a.kind != Kind::Periodic || cycle.is_empty() || a.unresolved() {
+        return if a.kind == Kind::Chaotic {
+            Cause::Crisis
+        } else {
+            Cause::Untested
+        };
+    }
+    let (Some(n), Some(k)) = (a.events, a.periods.and_then(|k| u32::try_from(k).ok())) else {
+        return Cause::Untested;
+    };
+    let (t0, v0) = cycle[0];
+    let Ok(cp) = crate::orbits::periodic::cycle(other, n, k, t0, v0) else {
+        return Cause::Gone;
+    };
+    let near = phase_distance(cp.phases[0], t0).max((cp.velocities[0] - v0).abs());
+    if near > MATCH_DISTANCE {
+        return Cause::Gone;
+    }
+    if cp.stable {
+        return Cause::Missed;
+    }
+    let [m0, m1] = cp.multipliers;
+    let m = if m0.abs() >= m1.abs() { m0 } else { m1 };
+    let at = if m.im != 0.0 {
+        "torus"
+    } else if m.re < 0.0 {
+        "period doubling"
+    } else {
+        "fold"
+    };
+    Cause::Unstable { at, multiplier: m }
 }
 
 /// An attractor followed along α.
@@ -456,10 +539,12 @@ impl Continuation {
                         step: index,
                         track,
                         what,
+                        cause: None,
                     });
                 }
             }
-            for t in tracks.iter_mut() {
+            let before = self.spec.basins(index - 1).map(|b| b.sys);
+            for (c, t) in tracks.iter_mut().enumerate() {
                 if t.is_none() {
                     let id = self.new_track(index);
                     *t = Some(id);
@@ -467,6 +552,7 @@ impl Continuation {
                         step: index,
                         track: id,
                         what: ChangeKind::Birth,
+                        cause: before.as_ref().ok().map(|sys| cause(&current[c], sys)),
                     });
                 }
             }
@@ -485,6 +571,7 @@ impl Continuation {
                     step: index,
                     track,
                     what: ChangeKind::Death { into },
+                    cause: Some(cause(&old[o], &next.spec.sys)),
                 });
             }
         } else {
@@ -814,6 +901,45 @@ mod tests {
             assert_eq!(hausdorff_within(&x, &y, h), Some(h));
             assert_eq!(hausdorff_within(&x, &y, h * 0.999), None);
         }
+    }
+
+    #[test]
+    fn a_cycles_cause_is_read_from_newton_at_the_other_alpha() {
+        // fd:0.1, r = 0.8: the (1, 2) solution is stable on (2/9, 0.5014376751)
+        // (`fixed`'s closed form). Found at α = 0.5 by a run: at 0.51 Newton's method
+        // finds it unstable with a multiplier below −1 (its period doubling between),
+        // at 0.5 itself stable (missed, were it not seen), at 0.2 gone (before its
+        // birth at 2/9).
+        use crate::orbits::fixed::fixed_points;
+        use crate::table::Table;
+        let at = |a: f64| System::new(Table::fd(0.1).unwrap(), a, 0.8).unwrap();
+        let sys = at(0.5);
+        let fp = fixed_points(&sys, 2)
+            .unwrap()
+            .into_iter()
+            .find(|p| p.ddf < 0.0)
+            .unwrap();
+        let start = State::launch(&sys, 0, fp.phase + 1e-3, 1.0, 0.0).unwrap();
+        let (found, ..) = settle(&sys, start, &Settle::BASINS, 1, &mut |_| false).unwrap();
+        assert_eq!(
+            (found.kind, found.events, found.periods),
+            (Kind::Periodic, Some(1), Some(2))
+        );
+        let mut reg = Registry::new();
+        let id = reg.assign(&found);
+        let a = &reg.attractors()[id];
+        match cause(a, &at(0.51)) {
+            Cause::Unstable { at, multiplier } => {
+                assert_eq!(at, "period doubling");
+                assert!(
+                    multiplier.im == 0.0 && multiplier.re < -1.0,
+                    "{multiplier:?}"
+                );
+            }
+            other => panic!("{other:?}"),
+        }
+        assert_eq!(cause(a, &sys), Cause::Missed);
+        assert_eq!(cause(a, &at(0.2)), Cause::Gone);
     }
 
     #[test]
