@@ -32,6 +32,11 @@ pub const MIN_SPAN: f64 = 10.0;
 /// uncertain starts of neighbouring boundaries overlap and f(ε) saturates towards 1
 /// whatever the boundary (bands of a basin thinner than ε).
 pub const MAX_FRACTION: f64 = 0.5;
+/// Largest difference between the slopes of the smaller and of the larger half of the
+/// scales for the fit to be one power law: bands of one basin narrower than the larger
+/// scales make f(ε) bend over (slope near 1 below their width, smaller above), and one
+/// slope through the bend would read as a fractal boundary where there is none.
+pub const MAX_BEND: f64 = 0.2;
 /// Fewest uncertain starts at the smallest scale for a fit: fewer are a basin of a few
 /// isolated starts, below the grid's resolution, not a boundary it resolves.
 pub const MIN_UNCERTAIN: usize = 25;
@@ -144,6 +149,9 @@ pub enum NoExponent {
     /// Fewer than [`MIN_SCALES`] scales over a decade with uncertain starts, at most
     /// [`MAX_FRACTION`] of them.
     TooFewScales,
+    /// f(ε) is no power law over the scales: the slopes of their smaller and larger
+    /// halves differ by more than [`MAX_BEND`].
+    NotPowerLaw,
 }
 
 impl NoExponent {
@@ -155,6 +163,9 @@ impl NoExponent {
             NoExponent::TooFewUncertain => "too few uncertain starts",
             NoExponent::TooFewScales => {
                 "fewer than 4 scales over a decade with at most half the starts uncertain"
+            }
+            NoExponent::NotPowerLaw => {
+                "no power law over the grid's scales (the slope bends by more than 0.2)"
             }
         }
     }
@@ -230,6 +241,12 @@ pub fn uncertainty(
     };
     if used.len() < MIN_SCALES || span < MIN_SPAN.ln() - 1e-12 {
         return Err(NoExponent::TooFewScales);
+    }
+    let half = used.len() / 2;
+    let (small, _) = slope(&used[..=half]);
+    let (large, _) = slope(&used[half..]);
+    if (small - large).abs() > MAX_BEND {
+        return Err(NoExponent::NotPowerLaw);
     }
     let (exponent, error) = slope(&used);
     Ok(Uncertainty {
@@ -330,6 +347,15 @@ mod tests {
             .map(|_| Some((rng.next() * 4.0) as u32))
             .collect();
         assert_eq!(uncertainty(&l, 120, 120), Err(NoExponent::TooFewScales));
+    }
+
+    #[test]
+    fn thin_bands_bend_the_law_and_give_no_exponent() {
+        // One basin in bands 6 rows high every 60 rows: the uncertain rows are a band
+        // and k rows on either side, f(k) = (6 + 2k)/60, which bends from slope ≈ 0.4
+        // over k = 1..4 to ≈ 0.7 over k = 4..11: no one power law.
+        let l = picture(100, 400, |_, j| Some(u32::from(j % 60 < 6)));
+        assert_eq!(uncertainty(&l, 100, 400), Err(NoExponent::NotPowerLaw));
     }
 
     #[test]
