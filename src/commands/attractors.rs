@@ -128,6 +128,7 @@ pub fn compute(spec: &GlobalSpec, executor: &Executor) -> anyhow::Result<Continu
         let summary = handle.wait();
         done += summary.progress.done;
         events += summary.progress.events;
+        let sampled = next.sample(&basins, executor, &control);
         if !basins.complete() {
             anyhow::bail!(
                 "the attractors stopped at alpha = {} after {} of {} starts",
@@ -137,6 +138,9 @@ pub fn compute(spec: &GlobalSpec, executor: &Executor) -> anyhow::Result<Continu
             );
         }
         cont.absorb(next, &basins);
+        if let Some(u) = sampled {
+            cont.set_sampled(u);
+        }
     }
     progress.finish(&at(done, events));
     Ok(cont)
@@ -294,17 +298,23 @@ fn text(cont: &Continuation) -> Vec<String> {
     }
     out.push(String::new());
     out.push("S_b, S_bb: basin entropy and boundary basin entropy in boxes of 5x5 starts (* S_bb > ln 2: a fractal boundary).".into());
-    let scales = steps
+    let first = steps
         .iter()
-        .find_map(|s| s.uncertainty.as_ref().ok())
-        .map(|u| {
-            let k = |i: usize| u.fractions[i].0;
+        .find_map(|s| s.uncertainty.as_ref().ok().map(|u| (u, s.sampled)));
+    let scales = first.map(|(u, sampled)| {
+        let k = |i: usize| bouncemap_engine::fmt_value(u.fractions[i].0);
+        let (lo, hi) = (k(0), k(u.fractions.len() - 1));
+        if sampled {
             format!(
-                " (measured at ε = {} .. {} grid steps, fitted where at most half the starts are uncertain)",
-                k(0),
-                k(u.fractions.len() - 1)
+                " (measured from {} sampled starts, each with copies ε = {lo} .. {hi} periods away along t̂0, fitted where 25 or more and at most half of the starts are uncertain)",
+                u.starts
             )
-        });
+        } else {
+            format!(
+                " (measured at ε = {lo} .. {hi} grid steps, fitted where 25 or more and at most half of the starts are uncertain)"
+            )
+        }
+    });
     out.push(format!(
         "uncertainty exponent a: the share of starts whose neighbours ε away go elsewhere, ∝ ε^a{}; 1 for a smooth boundary, below 1 for a fractal one.",
         scales.unwrap_or_default()

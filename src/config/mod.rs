@@ -111,6 +111,7 @@ pub fn attractors_spec(
             ..Settle::BASINS
         },
         stop_at_known: !args.full_runs,
+        sampled_starts: args.uncertainty_starts,
     };
     spec.validate()?;
     Ok(spec)

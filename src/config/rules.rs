@@ -153,6 +153,13 @@ pub const V0: Rule = rule("v0", "v0", limits::VELOCITY, 0.5);
 pub const Z0: Rule = rule("z0", "z0", limits::HEIGHT, 0.0);
 /// Values in a sweep (the paper's 1000).
 pub const STEPS: Rule = rule("steps", "values", limits::STEPS, 1000.0);
+/// Sampled starts of `attractors`' uncertainty exponent.
+pub const UNCERTAINTY_STARTS: Rule = rule(
+    "uncertainty-starts",
+    "sampled starts",
+    limits::UNCERTAINTY_STARTS,
+    0.0,
+);
 /// α values of `attractors`.
 pub const ATTRACTOR_STEPS: Rule = rule("steps", "α values", limits::ATTRACTOR_STEPS, 101.0);
 /// End of a sweep's transient (the paper's T = 5·10⁶).
@@ -394,6 +401,7 @@ mod tests {
             IMPACTS,
             BASIN_TRANSIENT,
             ATTRACTOR_STEPS,
+            UNCERTAINTY_STARTS,
             W_MAX,
             STARTS,
             FIG_SIDE,

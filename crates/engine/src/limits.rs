@@ -177,6 +177,13 @@ pub const K: Limit = whole("k", 1.0, 100.0, "a whole number in [1, 100]");
 pub const STEPS: Limit = whole("steps", 1.0, 1e7, "a whole number in [1, 10000000]");
 /// α values of a continuation of attractors (each a basin picture).
 pub const ATTRACTOR_STEPS: Limit = whole("steps", 1.0, 1e5, "a whole number in [1, 100000]");
+/// Sampled starts of the uncertainty exponent (0: none, the grid's neighbours).
+pub const UNCERTAINTY_STARTS: Limit = whole(
+    "uncertainty-starts",
+    0.0,
+    1e5,
+    "a whole number in [0, 100000]",
+);
 /// End of a sweep's transient, in table periods.
 pub const TRANSIENT: Limit = whole(
     "transient",

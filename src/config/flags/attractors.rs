@@ -47,6 +47,8 @@ pub struct AttractorsSpecArgs {
     /// one whole cycle, or a release at a resolved sticking cycle's release phase).
     #[arg(long)]
     pub full_runs: bool,
+    #[arg(help = rules::UNCERTAINTY_STARTS.help("Measure the uncertainty exponent at each α from N starts spread over the box, each with copies displaced by ±ε along t̂0 for ε = 10^-1.5 .. 10^-6 (McDonald et al.), instead of from the grid's neighbours (0); for basins mixed at every scale the grid resolves"), long, default_value_t = rules::UNCERTAINTY_STARTS.default as usize, value_parser = rules::UNCERTAINTY_STARTS.whole::<usize>(), value_name = "N")]
+    pub uncertainty_starts: usize,
 }
 
 /// `bouncemap attractors`.

@@ -668,6 +668,7 @@ mod tests {
             rules::DPI,
             rules::DIGITS,
             rules::ATTRACTOR_STEPS,
+            rules::UNCERTAINTY_STARTS,
         ]
         .iter()
         .map(|rule| rule.limit.text)

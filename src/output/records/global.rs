@@ -238,8 +238,12 @@ pub struct UncertaintyRecord {
     pub error: f64,
     /// Starts counted at every scale.
     pub starts: usize,
-    /// (ε in grid steps, fraction of ε-uncertain starts).
-    pub fractions: Vec<(usize, f64)>,
+    /// (ε, fraction of ε-uncertain starts): ε in grid steps (`grid`), or in table
+    /// periods of t̂0 (`sampled`).
+    pub fractions: Vec<(f64, f64)>,
+    /// `grid` (neighbours on the grid) or `sampled` (sampled starts and displaced
+    /// copies).
+    pub method: &'static str,
 }
 
 /// One α value (json).
@@ -331,6 +335,7 @@ impl<'a> AttractorsDoc<'a> {
                     error: u.error,
                     starts: u.starts,
                     fractions: u.fractions.clone(),
+                    method: if s.sampled { "sampled" } else { "grid" },
                 }),
                 no_uncertainty: s.uncertainty.as_ref().err().map(|e| e.as_str()),
                 attractors: s

@@ -33,7 +33,9 @@
 //!    (n, k) changed, both resolved by double precision), a change of kind (e.g.
 //!    periodic to chaotic), and into or out of sticking.
 //! 5. **Statistics** of the picture ([`statistics`](super::statistics)): basin entropy
-//!    S_b and S_bb and the uncertainty exponent.
+//!    S_b and S_bb and the uncertainty exponent, from the grid's neighbours or, with
+//!    [`GlobalSpec::sampled_starts`], from sampled starts and displaced copies down to
+//!    10⁻⁶ ([`sampled`](super::sampled)).
 //!
 //! The α values run one after the other (each seeds the next); the starts of one α run
 //! in parallel. [`Continuation`] holds the results so far and is advanced one α at a
@@ -92,6 +94,9 @@ pub struct GlobalSpec {
     /// Whether a start of the grid that reaches a cycle the seeds found stops there
     /// ([`known`](super::known)) instead of detecting it by itself.
     pub stop_at_known: bool,
+    /// Starts of the sampled measurement of the uncertainty exponent at each α
+    /// ([`sampled`](super::sampled)), in place of the grid's; 0: the grid's.
+    pub sampled_starts: usize,
 }
 
 impl GlobalSpec {
@@ -212,6 +217,9 @@ pub struct Step {
     pub entropy: Option<BasinEntropy>,
     /// The uncertainty exponent, or why there is none.
     pub uncertainty: Result<Uncertainty, NoExponent>,
+    /// Whether it was measured by sampled starts and displaced copies (ε in periods of
+    /// t̂0) rather than from the grid's neighbours (ε in grid steps).
+    pub sampled: bool,
     /// Seeds run (points of the previous α's attractors).
     pub seeds: usize,
 }
@@ -394,9 +402,33 @@ pub struct NextAlpha {
     /// The cycles the seeds found, where starts may stop.
     known: std::sync::Arc<Known>,
     stop_at_known: bool,
+    sampled_starts: usize,
 }
 
 impl NextAlpha {
+    /// The uncertainty exponent by [`sampled`](super::sampled) starts, when the spec
+    /// asks for them (None otherwise, or if cancelled), after `basins` (this α's
+    /// filled picture, whose attractors the samples' are numbered after).
+    pub fn sample(
+        &self,
+        basins: &Basins,
+        executor: &Executor,
+        control: &Control,
+    ) -> Option<Result<Uncertainty, NoExponent>> {
+        if self.sampled_starts == 0 {
+            return None;
+        }
+        let known = self.stop_at_known.then(|| self.known.clone());
+        super::sampled::sampled_uncertainty(
+            &self.spec,
+            self.sampled_starts,
+            known,
+            basins.registry().clone(),
+            executor,
+            control,
+        )
+    }
+
     /// The job that fills in its picture (with the early stop on the seeds' cycles
     /// when the spec asks for it).
     pub fn job(&self) -> Result<BasinsJob, EngineError> {
@@ -502,6 +534,7 @@ impl Continuation {
             seeds,
             known: std::sync::Arc::new(known),
             stop_at_known: self.spec.stop_at_known,
+            sampled_starts: self.spec.sampled_starts,
         }))
     }
 
@@ -602,12 +635,22 @@ impl Continuation {
             not_settled: grid - labelled,
             entropy: basin_entropy(labels, nx, ny, ENTROPY_BOX),
             uncertainty: uncertainty(labels, nx, ny),
+            sampled: false,
             seeds: next.seeds,
         });
         self.previous = Some(Previous {
             registry: reg.clone(),
             tracks,
         });
+    }
+
+    /// Put the sampled measurement `u` of the last α's uncertainty exponent in place of
+    /// the grid's ([`NextAlpha::sample`]).
+    pub fn set_sampled(&mut self, u: Result<Uncertainty, NoExponent>) {
+        if let Some(step) = self.steps.last_mut() {
+            step.uncertainty = u;
+            step.sampled = true;
+        }
     }
 
     fn new_track(&mut self, step: usize) -> usize {
@@ -643,7 +686,11 @@ pub fn collect(
         if summary.cancelled || !basins.complete() {
             break;
         }
+        let sampled = next.sample(&basins, executor, control);
         cont.absorb(next, &basins);
+        if let Some(u) = sampled {
+            cont.set_sampled(u);
+        }
         on_step(&cont);
     }
     Ok(cont)
@@ -992,6 +1039,7 @@ mod runs {
             ny: n,
             settle: Settle::BASINS,
             stop_at_known: true,
+            sampled_starts: 0,
         }
     }
 

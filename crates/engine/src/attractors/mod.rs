@@ -28,6 +28,7 @@ pub mod basins;
 pub mod global;
 pub mod known;
 pub mod lyapunov;
+pub mod sampled;
 pub mod statistics;
 
 use crate::impact::Solver;

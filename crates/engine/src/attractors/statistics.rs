@@ -37,8 +37,8 @@ pub const MAX_FRACTION: f64 = 0.5;
 /// scales make f(ε) bend over (slope near 1 below their width, smaller above), and one
 /// slope through the bend would read as a fractal boundary where there is none.
 pub const MAX_BEND: f64 = 0.2;
-/// Fewest uncertain starts at the smallest scale for a fit: fewer are a basin of a few
-/// isolated starts, below the grid's resolution, not a boundary it resolves.
+/// Fewest uncertain starts at a scale for the fit to take it: fewer are too few to
+/// count (and on a grid, a basin of a few isolated starts is below its resolution).
 pub const MIN_UNCERTAIN: usize = 25;
 
 /// The basin entropy of one picture.
@@ -130,9 +130,10 @@ pub struct Uncertainty {
     pub exponent: f64,
     /// Its standard error from the fit.
     pub error: f64,
-    /// The measurements: (ε in grid steps, fraction of uncertain starts), every scale
-    /// measured (those with no uncertain start too, which the fit leaves out).
-    pub fractions: Vec<(usize, f64)>,
+    /// The measurements: (ε, fraction of uncertain starts), every scale measured
+    /// (those the fit leaves out too); ε in grid steps for the grid's exponent, in
+    /// table periods of t̂0 for a sampled one.
+    pub fractions: Vec<(f64, f64)>,
     /// Starts counted at every scale.
     pub starts: usize,
 }
@@ -144,7 +145,7 @@ pub enum NoExponent {
     GridTooSmall,
     /// No start is uncertain at any scale: a single basin, no boundary to measure.
     NoBoundary,
-    /// Fewer than [`MIN_UNCERTAIN`] uncertain starts at the smallest scale.
+    /// Fewer than [`MIN_UNCERTAIN`] uncertain starts at every scale.
     TooFewUncertain,
     /// Fewer than [`MIN_SCALES`] scales over a decade with uncertain starts, at most
     /// [`MAX_FRACTION`] of them.
@@ -162,7 +163,7 @@ impl NoExponent {
             NoExponent::NoBoundary => "no boundary",
             NoExponent::TooFewUncertain => "too few uncertain starts",
             NoExponent::TooFewScales => {
-                "fewer than 4 scales over a decade with at most half the starts uncertain"
+                "fewer than 4 scales over a decade with 25 or more, and at most half, of the starts uncertain"
             }
             NoExponent::NotPowerLaw => {
                 "no power law over the grid's scales (the slope bends by more than 0.2)"
@@ -224,17 +225,28 @@ pub fn uncertainty(
             (k, uncertain as f64 / starts as f64)
         })
         .collect();
-    let used: Vec<(f64, f64)> = fractions
-        .iter()
-        .filter(|(_, f)| *f > 0.0 && *f <= MAX_FRACTION)
-        .map(|&(k, f)| ((k as f64).ln(), f.ln()))
-        .collect();
+    let fractions: Vec<(f64, f64)> = fractions.into_iter().map(|(k, f)| (k as f64, f)).collect();
+    fit(fractions, starts)
+}
+
+/// The power law f(ε) ∝ ε^a through `fractions` (ε, f), measured over `starts` starts
+/// at every scale, under the rules of the module's header: scales with at least
+/// [`MIN_UNCERTAIN`] uncertain starts and f ≤ [`MAX_FRACTION`], at least [`MIN_SCALES`]
+/// of them over [`MIN_SPAN`], no bend beyond [`MAX_BEND`].
+pub fn fit(mut fractions: Vec<(f64, f64)>, starts: usize) -> Result<Uncertainty, NoExponent> {
+    fractions.sort_by(|a, b| a.0.total_cmp(&b.0));
     if fractions.iter().all(|(_, f)| *f == 0.0) {
         return Err(NoExponent::NoBoundary);
     }
-    if fractions[0].1 * (starts as f64) < MIN_UNCERTAIN as f64 - 0.5 {
+    let enough = |f: f64| f * starts as f64 >= MIN_UNCERTAIN as f64 - 0.5;
+    if !fractions.iter().any(|&(_, f)| enough(f)) {
         return Err(NoExponent::TooFewUncertain);
     }
+    let used: Vec<(f64, f64)> = fractions
+        .iter()
+        .filter(|&&(_, f)| enough(f) && f <= MAX_FRACTION)
+        .map(|&(k, f)| (k.ln(), f.ln()))
+        .collect();
     let span = match (used.first(), used.last()) {
         (Some(a), Some(b)) => b.0 - a.0,
         _ => 0.0,
@@ -334,7 +346,7 @@ mod tests {
         let u = uncertainty(&l, 400, 200).unwrap();
         assert!((u.exponent - 1.0).abs() < 0.02, "{u:?}");
         assert!(u.error < 0.02, "{u:?}");
-        let span = u.fractions.last().unwrap().0 as f64 / u.fractions[0].0 as f64;
+        let span = u.fractions.last().unwrap().0 / u.fractions[0].0;
         assert!(span >= 10.0);
     }
 
@@ -378,7 +390,7 @@ mod tests {
         let l = picture(200, 100, |i, _| Some(u32::from(i < 100)));
         let u = uncertainty(&l, 200, 100).unwrap();
         for &(k, f) in &u.fractions {
-            assert!((f - 4.0 * k as f64 / 200.0).abs() < 1e-12, "{k} {f}");
+            assert!((f - 4.0 * k / 200.0).abs() < 1e-12, "{k} {f}");
         }
         assert!((u.exponent - 1.0).abs() < 1e-12 && u.error < 1e-12);
         let l = picture(20, 20, |i, _| Some(u32::from(i < 10)));
