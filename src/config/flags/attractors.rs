@@ -43,8 +43,9 @@ pub struct AttractorsSpecArgs {
     pub transient: u64,
     /// Run every start until it detects its own cycle (or to the end of the
     /// transient), instead of stopping where it reaches a cycle that the previous α's
-    /// attractors, run here as seeds, were found on (10⁻⁷ of a cycle of impacts over
-    /// one whole cycle, or a release at a resolved sticking cycle's release phase).
+    /// attractors, run here as seeds, were found on (within 10⁻⁷ of a cycle of impacts
+    /// over one whole cycle, or released at a sticking cycle's release phase); the
+    /// output is the same, only slower.
     #[arg(long)]
     pub full_runs: bool,
     #[arg(help = rules::UNCERTAINTY_STARTS.help("Measure the uncertainty exponent at each α from N starts spread over the box, each with copies displaced by ±ε along t̂0 for ε = 10^-1.5 .. 10^-6 (McDonald et al.), instead of from the grid's neighbours (0); for basins mixed at every scale the grid resolves"), long, default_value_t = rules::UNCERTAINTY_STARTS.default as usize, value_parser = rules::UNCERTAINTY_STARTS.whole::<usize>(), value_name = "N")]
