@@ -7,6 +7,7 @@
 //! text: the attractors with their α ranges, the changes, and a line per α; csv: a row
 //! per α and attractor; json: all of it, with the uncertainty fits.
 
+use super::drive::drive_reporting;
 use super::progress::Progress;
 use crate::config::run::AttractorsRun;
 use crate::config::{self, InputError};
@@ -14,16 +15,12 @@ use crate::output::part_file::Layout;
 use crate::output::records::{
     cause_text, change_ends, csv_writer, describe_member, AttractorsDoc, AttractorsRow,
 };
-use crate::output::sink::{check_stdout, Sink};
+use crate::output::sink::Sink;
 use crate::output::text::shortest;
 use bouncemap_engine::attractors::global::{ChangeKind, Continuation, GlobalSpec, MATCH_DISTANCE};
 use bouncemap_engine::jobs::{Control, Executor, Progress as JobProgress};
 use std::io::Write;
-use std::sync::mpsc::RecvTimeoutError;
-use std::time::{Duration, Instant};
-
-/// How long the loop waits for a batch before it redraws the progress anyway.
-const TICK: Duration = Duration::from_millis(200);
+use std::time::Instant;
 
 pub fn run(run: &AttractorsRun) -> anyhow::Result<()> {
     let AttractorsRun { spec, job } = run;
@@ -102,7 +99,6 @@ pub fn compute(spec: &GlobalSpec, executor: &Executor) -> anyhow::Result<Continu
         elapsed: started.elapsed(),
     };
     let control = Control::new();
-    let mut checked = Instant::now();
     while !cont.complete() {
         let next = match cont.prepare(&mut |_| false) {
             Some(n) => n?,
@@ -110,22 +106,11 @@ pub fn compute(spec: &GlobalSpec, executor: &Executor) -> anyhow::Result<Continu
         };
         let mut basins = next.basins();
         let handle = executor.start(next.job()?, &control);
-        loop {
-            match handle.receiver().recv_timeout(TICK) {
-                Ok(b) if handle.is_current(&b) => {
-                    basins.absorb(b.data);
-                }
-                Ok(_) | Err(RecvTimeoutError::Timeout) => {}
-                Err(RecvTimeoutError::Disconnected) => break,
-            }
-            if checked.elapsed() >= TICK {
-                checked = Instant::now();
-                check_stdout()?;
-            }
-            let p = handle.progress();
-            progress.update(&at(done + p.done, events + p.events));
-        }
-        let summary = handle.wait();
+        let report = &mut |p: &JobProgress| progress.update(&at(done + p.done, events + p.events));
+        let summary = drive_reporting(handle, report, |_, b| {
+            basins.absorb(b.data);
+            Ok(())
+        })?;
         done += summary.progress.done;
         events += summary.progress.events;
         let sampled = next.sample(&basins, executor, &control);

@@ -6,7 +6,7 @@
 use super::progress::Progress;
 use crate::output::sink::check_stdout;
 use bouncemap_engine::jobs::picture::{Cells, Chunk, Filled};
-use bouncemap_engine::jobs::{Batch, Handle, Summary};
+use bouncemap_engine::jobs::{Batch, Handle, Progress as JobProgress, Summary};
 use std::sync::mpsc::RecvTimeoutError;
 use std::time::{Duration, Instant};
 
@@ -23,6 +23,18 @@ const TICK: Duration = Duration::from_millis(200);
 pub fn drive_job<T>(
     handle: Handle<T>,
     mut progress: Progress,
+    each: impl FnMut(&Handle<T>, Batch<T>) -> anyhow::Result<()>,
+) -> anyhow::Result<Summary> {
+    let summary = drive_reporting(handle, &mut |p| progress.update(p), each)?;
+    progress.finish(&summary.progress);
+    Ok(summary)
+}
+
+/// [`drive_job`]'s loop with the job's progress handed to `report` between batches,
+/// for a caller whose progress spans several jobs (and who finishes it itself).
+pub fn drive_reporting<T>(
+    handle: Handle<T>,
+    report: &mut dyn FnMut(&JobProgress),
     mut each: impl FnMut(&Handle<T>, Batch<T>) -> anyhow::Result<()>,
 ) -> anyhow::Result<Summary> {
     let mut checked = Instant::now();
@@ -36,11 +48,9 @@ pub fn drive_job<T>(
             checked = Instant::now();
             check_stdout()?;
         }
-        progress.update(&handle.progress());
+        report(&handle.progress());
     }
-    let summary = handle.wait();
-    progress.finish(&summary.progress);
-    Ok(summary)
+    Ok(handle.wait())
 }
 
 /// Drive the job behind `handle` to its end ([`drive_job`]), filling `picture` with its
