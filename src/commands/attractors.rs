@@ -19,6 +19,7 @@ use crate::output::sink::Sink;
 use crate::output::text::shortest;
 use bouncemap_engine::attractors::global::{ChangeKind, Continuation, GlobalSpec, MATCH_DISTANCE};
 use bouncemap_engine::jobs::{Control, Executor, Progress as JobProgress};
+use bouncemap_figures::global::alpha_decimals;
 use std::io::Write;
 use std::time::Instant;
 
@@ -159,14 +160,7 @@ fn write(run: &AttractorsRun, cont: &Continuation, out: &mut Sink) -> anyhow::Re
 fn text(cont: &Continuation) -> Vec<String> {
     let spec = cont.spec();
     let steps = cont.steps();
-    // α to one digit past the step's first (the grid's doubles are written exactly in
-    // csv and json).
-    let decimals = if spec.steps > 1 {
-        let step = (spec.hi - spec.lo) / (spec.steps - 1) as f64;
-        ((-step.log10()).ceil().max(0.0) as usize + 1).min(17)
-    } else {
-        6
-    };
+    let decimals = alpha_decimals(spec);
     let shortest = |x: f64| {
         let s = format!("{x:.decimals$}");
         let s = s.trim_end_matches('0');

@@ -24,10 +24,16 @@ pub fn numbers(reg: &Registry) -> Vec<usize> {
 /// "periodic (1, 1)", "sticking (3, 2)", "chaotic", and "sticking (length
 /// unresolved)" for a cycle whose length double precision cannot decide.
 pub fn describe(a: &Attractor) -> String {
-    match a.period_label() {
-        Some(p) => format!("{} {p}", a.kind.as_str()),
-        None if a.unresolved() => format!("{} (length unresolved)", a.kind.as_str()),
-        None => a.kind.as_str().to_string(),
+    kind_text(a.kind, a.period(), a.unresolved())
+}
+
+/// An attractor's kind for people: with its (n, k) where double precision decides it,
+/// "(length unresolved)" where it does not.
+pub fn kind_text(kind: Kind, period: Option<(usize, i64)>, unresolved: bool) -> String {
+    match period {
+        Some((n, k)) => format!("{} ({n}, {k})", kind.as_str()),
+        None if unresolved => format!("{} (length unresolved)", kind.as_str()),
+        None => kind.as_str().to_string(),
     }
 }
 

@@ -6,22 +6,30 @@
 //! upper edge. Attractors are numbered in order of appearance along α, as
 //! `bouncemap attractors` numbers them.
 
-use crate::basins::is_attractor;
+use crate::basins::{is_attractor, kind_text};
 use crate::classes::{attractor_colour, REST};
 use crate::labels::table_title;
 use crate::model::{
     Axis, Color, Corner, Dash, Figure, Layer, Legend, Marker, Panel, Swatch, COLUMN,
 };
-use bouncemap_engine::attractors::global::{Cause, ChangeKind, Continuation, Member};
+use bouncemap_engine::attractors::global::{Cause, ChangeKind, Continuation, GlobalSpec, Member};
 use bouncemap_engine::fmt_value as shortest;
 
 /// An attractor at one α for people: kind and (n, k), or that double precision leaves
 /// its length open.
 pub fn describe_member(m: &Member) -> String {
-    match m.period() {
-        Some((n, k)) => format!("{} ({n}, {k})", m.kind.as_str()),
-        None if m.unresolved() => format!("{} (length unresolved)", m.kind.as_str()),
-        None => m.kind.as_str().to_string(),
+    kind_text(m.kind, m.period(), m.unresolved())
+}
+
+/// Decimals that show an α of `spec`'s window to one digit past the first its step
+/// changes (6 for a single value): how a continuation's α values are written for
+/// people (csv and json write the grid's doubles exactly).
+pub fn alpha_decimals(spec: &GlobalSpec) -> usize {
+    if spec.steps > 1 {
+        let step = (spec.hi - spec.lo) / (spec.steps - 1) as f64;
+        ((-step.log10()).ceil().max(0.0) as usize + 1).min(17)
+    } else {
+        6
     }
 }
 
@@ -190,13 +198,7 @@ pub fn attractors_figure(cont: &Continuation) -> Figure {
             "death or merger".into(),
         ));
     }
-    // α to one digit past the step's first.
-    let decimals = if spec.steps > 1 {
-        let step = (spec.hi - spec.lo) / (spec.steps - 1) as f64;
-        ((-step.log10()).ceil().max(0.0) as usize + 1).min(17)
-    } else {
-        6
-    };
+    let decimals = alpha_decimals(spec);
     let alpha = |a: f64| format!("{a:.decimals$}");
     // The attractors beside the diagram: the largest basins first.
     let mut order: Vec<usize> = (0..tracks.len()).collect();

@@ -189,10 +189,7 @@ impl Member {
 
     /// (n, k) where double precision decides it.
     pub fn period(&self) -> Option<(usize, i64)> {
-        if self.precision.is_some_and(|p| !p.resolved) {
-            return None;
-        }
-        Some((self.events?, self.periods?))
+        super::resolved_period(self.events, self.periods, self.precision)
     }
 
     /// Whether it is a cycle whose length double precision cannot decide.
@@ -564,9 +561,9 @@ impl Continuation {
                 tracks[c] = Some(track);
                 if let Some(what) = change_of(
                     old[o].kind,
-                    period_of(&old[o]),
+                    old[o].period(),
                     current[c].kind,
-                    period_of(&current[c]),
+                    current[c].period(),
                 ) {
                     self.changes.push(Change {
                         step: index,
@@ -735,13 +732,6 @@ fn seed_points(a: &Attractor) -> Vec<(f64, f64)> {
     (0..take).map(|s| cycle[s * n / take]).collect()
 }
 
-fn period_of(a: &Attractor) -> Option<(usize, i64)> {
-    if a.unresolved() {
-        return None;
-    }
-    Some((a.events?, a.periods?))
-}
-
 /// The change between an attractor before and its match after, if any.
 fn change_of(
     from: Kind,
@@ -771,8 +761,8 @@ fn compatible(a: Kind, b: Kind) -> bool {
 
 /// Pairs (old id, new id), closest first, one to one, within [`MATCH_DISTANCE`].
 fn match_sets(old: &[Attractor], new: &[Attractor]) -> Vec<(usize, usize)> {
-    let old_sets: Vec<Vec<(f64, f64)>> = old.iter().map(|a| thin(a.points())).collect();
-    let new_sets: Vec<Vec<(f64, f64)>> = new.iter().map(|a| thin(a.points())).collect();
+    let old_sets: Vec<Vec<(f64, f64)>> = old.iter().map(|a| spread(a.points(), MAX_SET)).collect();
+    let new_sets: Vec<Vec<(f64, f64)>> = new.iter().map(|a| spread(a.points(), MAX_SET)).collect();
     let mut candidates = Vec::new();
     for (o, a) in old.iter().enumerate() {
         for (c, b) in new.iter().enumerate() {
@@ -846,11 +836,6 @@ fn match_by_seeds(
         }
     }
     out
-}
-
-/// At most [`MAX_SET`] points of `set`, evenly spread over it.
-fn thin(set: Vec<(f64, f64)>) -> Vec<(f64, f64)> {
-    spread(set, MAX_SET)
 }
 
 /// At most `most` points of `set`, evenly spread over it.

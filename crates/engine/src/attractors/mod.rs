@@ -502,10 +502,13 @@ impl Attractor {
     /// Its events per cycle as "(n, k)"; None where there is no cycle or where double
     /// precision cannot decide its length ([`Precision::resolved`]).
     pub fn period_label(&self) -> Option<String> {
-        if self.precision.is_some_and(|p| !p.resolved) {
-            return None;
-        }
-        Some(format!("({}, {})", self.events?, self.periods?))
+        self.period().map(|(n, k)| format!("({n}, {k})"))
+    }
+
+    /// Its (n, k); None where there is no cycle or where double precision cannot
+    /// decide its length.
+    pub fn period(&self) -> Option<(usize, i64)> {
+        resolved_period(self.events, self.periods, self.precision)
     }
 
     /// Whether it is a cycle whose length double precision cannot decide.
@@ -532,6 +535,19 @@ impl Attractor {
         }
         self.point.into_iter().collect()
     }
+}
+
+/// A cycle's (n, k) from its `events` and `periods`, None where there is no cycle or
+/// where double precision cannot decide its length ([`Precision::resolved`]).
+pub fn resolved_period(
+    events: Option<usize>,
+    periods: Option<i64>,
+    precision: Option<Precision>,
+) -> Option<(usize, i64)> {
+    if precision.is_some_and(|p| !p.resolved) {
+        return None;
+    }
+    Some((events?, periods?))
 }
 
 /// The centre (phase, v) of a [`cell`].
