@@ -1,0 +1,203 @@
+//! Continuations on the cubic table at r = 0.8 (small grids: seconds in a debug
+//! build), checked against the (1, k) and (2, 2k) solutions' closed forms and
+//! Newton solutions, and against `basins` on the same grid.
+
+use super::*;
+use crate::attractors::basins;
+use crate::attractors::Kind;
+use crate::orbits::fixed::stability_window;
+use crate::orbits::two_cycle::two_cycle;
+use crate::table::Table;
+
+fn spec(lo: f64, hi: f64, steps: usize, n: usize) -> GlobalSpec {
+    let sys = System::new(Table::fd(1.0).unwrap(), hi, 0.8).unwrap();
+    GlobalSpec {
+        w_max: crate::attractors::default_w_max(&sys),
+        sys,
+        lo,
+        hi,
+        steps,
+        nx: n,
+        ny: n,
+        settle: Settle::BASINS,
+        stop_at_known: true,
+        sampled_starts: 0,
+    }
+}
+
+fn run(spec: GlobalSpec) -> Continuation {
+    collect(
+        spec,
+        &Executor::new(2).unwrap(),
+        &Control::new(),
+        &mut |_| {},
+    )
+    .unwrap()
+}
+
+#[test]
+fn one_stable_cycle_takes_every_start_with_no_basin_entropy() {
+    // Past the (1, 1) solution's period doubling every start of the box lands on
+    // the (2, 2) cycle: the one attractor, fraction 1, S_b = 0 and no boundary. Its
+    // point is an impact of the (2, 2) solution found by Newton's method.
+    let cont = run(spec(0.5, 0.54, 3, 20));
+    assert_eq!(cont.tracks().len(), 1, "{:?}", cont.steps());
+    assert!(cont.changes().is_empty());
+    for s in cont.steps() {
+        let m = &s.members[..];
+        assert_eq!(m.len(), 1);
+        assert_eq!((m[0].kind, m[0].period()), (Kind::Periodic, Some((2, 2))));
+        assert_eq!((m[0].starts, m[0].fraction), (400, 1.0));
+        let e = s.entropy.unwrap();
+        assert_eq!((e.s_b, e.s_bb, e.boundary_boxes), (0.0, 0.0, 0));
+        let sys = System::new(Table::fd(1.0).unwrap(), s.alpha, 0.8).unwrap();
+        let tc = two_cycle(&sys, 1).unwrap();
+        let (t, v) = m[0].point.unwrap();
+        let near =
+            |pt: f64, pv: f64| crate::time::phase_distance(t, pt) < 1e-9 && (v - pv).abs() < 1e-9;
+        assert!(
+            near(tc.phase0, tc.v0) || near(tc.phase1, tc.v1),
+            "{t} {v} {tc:?}"
+        );
+    }
+}
+
+#[test]
+fn the_period_doubling_is_seen_within_one_step_of_its_closed_form() {
+    // The (1, 1) solution's α_PD from its closed-form stability window; the track
+    // that holds (1, 1) holds (2, 2) from the first α past it.
+    let pd = stability_window(&Table::fd(1.0).unwrap(), 0.8, 1)
+        .unwrap()
+        .unwrap()
+        .alpha_pd()
+        .unwrap();
+    let cont = run(spec(0.4805, 0.4875, 8, 12));
+    let steps = cont.steps();
+    let doubling: Vec<&Change> = cont
+        .changes()
+        .iter()
+        .filter(|c| {
+            c.what
+                == ChangeKind::Period {
+                    from: (1, 1),
+                    to: (2, 2),
+                }
+        })
+        .collect();
+    assert_eq!(doubling.len(), 1, "{:?}", cont.changes());
+    let c = doubling[0];
+    assert!(
+        steps[c.step - 1].alpha < pd && pd < steps[c.step].alpha,
+        "{pd} {c:?}"
+    );
+}
+
+#[test]
+fn fractions_at_an_alpha_are_the_basins_pictures() {
+    // Coexistence on the cubic table at α = 0.47: the same grid and box as
+    // `basins` give the same starts per attractor (seeds are not counted).
+    let cont = run(spec(0.465, 0.47, 2, 30));
+    let last = cont.steps().last().unwrap();
+    let b = basins::collect(
+        &basins::BasinSpec {
+            nx: 30,
+            ny: 30,
+            ..basins::BasinSpec::new(System::new(Table::fd(1.0).unwrap(), 0.47, 0.8).unwrap())
+        },
+        &Executor::new(2).unwrap(),
+    )
+    .unwrap();
+    let mut ours: Vec<(Kind, usize)> = last.members.iter().map(|m| (m.kind, m.starts)).collect();
+    let mut theirs: Vec<(Kind, usize)> = b
+        .registry()
+        .attractors()
+        .iter()
+        .map(|a| (a.kind, a.starts))
+        .collect();
+    ours.retain(|m| m.1 > 0);
+    ours.sort();
+    theirs.sort();
+    assert!(ours.len() >= 2, "{ours:?}");
+    assert_eq!(ours.len(), theirs.len(), "{ours:?} {theirs:?}");
+    for (a, b) in ours.iter().zip(&theirs) {
+        assert_eq!(a.0, b.0);
+        assert!(a.1.abs_diff(b.1) <= 9, "{ours:?} {theirs:?}");
+    }
+    let total: usize = last.members.iter().map(|m| m.starts).sum::<usize>() + last.not_settled;
+    assert_eq!(total, 900);
+}
+
+#[test]
+fn halving_the_step_finds_the_same_changes() {
+    // Every change of a run with step h is found with step h / 2 in the same
+    // interval of the coarse grid, and the other way round; attractors are paired
+    // at the shared α values by their kind and starts (the pictures there are the
+    // same grid).
+    let coarse = run(spec(0.478, 0.49, 7, 12));
+    let fine = run(spec(0.478, 0.49, 13, 12));
+    // Tracks paired by the pictures at shared α.
+    let mut pair = std::collections::HashSet::new();
+    for (i, s) in coarse.steps().iter().enumerate() {
+        let f = &fine.steps()[2 * i];
+        assert_eq!(s.alpha, f.alpha);
+        for m in &s.members {
+            let twin = f
+                .members
+                .iter()
+                .find(|x| x.kind == m.kind && x.starts == m.starts && x.period() == m.period());
+            let twin = twin.unwrap_or_else(|| panic!("{m:?} in {:?}", f.members));
+            pair.insert((m.track, twin.track));
+        }
+    }
+    let interval = |fine_step: usize| fine_step.div_ceil(2);
+    // A sticking cycle's itinerary changes from one α to the next, and a length
+    // double precision leaves open hides a change: periods of sticking cycles are
+    // samples, not events to compare.
+    let sampled = |cont: &Continuation, c: &Change| {
+        matches!(c.what, ChangeKind::Period { .. })
+            && cont.steps()[c.step]
+                .members
+                .iter()
+                .any(|m| m.track == c.track && m.kind == Kind::Sticking)
+    };
+    let changes = |cont: &Continuation| -> Vec<Change> {
+        cont.changes()
+            .iter()
+            .filter(|c| !sampled(cont, c))
+            .cloned()
+            .collect()
+    };
+    let (coarse_changes, fine_changes) = (changes(&coarse), changes(&fine));
+    assert!(coarse_changes.len() >= 3, "{coarse_changes:?}");
+    for c in &coarse_changes {
+        let seen = fine_changes.iter().any(|f| {
+            f.what.name() == c.what.name()
+                && pair.contains(&(c.track, f.track))
+                && interval(f.step) == c.step
+        });
+        assert!(seen, "{c:?} not in {fine_changes:?}");
+    }
+    for f in &fine_changes {
+        let seen = coarse_changes.iter().any(|c| {
+            f.what.name() == c.what.name()
+                && pair.contains(&(c.track, f.track))
+                && interval(f.step) == c.step
+        });
+        // A change undone within one coarse interval is not seen from its ends: an
+        // attractor gone and one born (the same, found again) or a change and its
+        // reverse.
+        let found_again = |a: &ChangeKind, b: &ChangeKind| {
+            matches!(
+                (a, b),
+                (ChangeKind::Birth, ChangeKind::Death { .. })
+                    | (ChangeKind::Death { .. }, ChangeKind::Birth)
+            )
+        };
+        let undone = fine_changes.iter().any(|g| {
+            g.step != f.step
+                && interval(g.step) == interval(f.step)
+                && (g.track == f.track || found_again(&f.what, &g.what))
+        });
+        assert!(seen || undone, "{f:?} not in {coarse_changes:?}");
+    }
+}
