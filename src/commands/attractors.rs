@@ -11,29 +11,50 @@ use super::drive::drive_reporting;
 use super::progress::Progress;
 use crate::config::run::AttractorsRun;
 use crate::config::{self, InputError};
+use crate::output::attractors_file::{computed, owned, write_part};
+use crate::output::part_file::shard_name;
 use crate::output::part_file::Layout;
 use crate::output::records::{
     cause_text, change_ends, csv_writer, describe_member, AttractorsDoc, AttractorsRow,
 };
 use crate::output::sink::Sink;
 use crate::output::text::shortest;
-use bouncemap_engine::attractors::global::{ChangeKind, Continuation, GlobalSpec, MATCH_DISTANCE};
+use bouncemap_engine::attractors::global::{
+    ChangeKind, Continuation, GlobalSpec, Join, MATCH_DISTANCE,
+};
 use bouncemap_engine::jobs::{Control, Executor, Progress as JobProgress};
 use bouncemap_figures::global::alpha_decimals;
 use std::io::Write;
 use std::time::Instant;
 
 pub fn run(run: &AttractorsRun) -> anyhow::Result<()> {
-    let AttractorsRun { spec, job } = run;
+    let AttractorsRun { spec, job, part } = run;
+    let values = match part {
+        Some((shard, _)) => computed(spec.steps, *shard),
+        None => 0..spec.steps,
+    };
     if job.check {
         let (workers, threads) = job.threads_plan();
-        return super::print_plan(&[
-            format!(
+        let what = match part {
+            Some((shard, _)) => format!(
+                "part {} of the attractors: α values {}..{} of {} (from value {}, where it joins the part before), {} starts each: {}",
+                shard_name(*shard),
+                owned(spec.steps, *shard).start + 1,
+                values.end,
+                spec.steps,
+                values.start + 1,
+                spec.starts(),
+                title(spec)
+            ),
+            None => format!(
                 "attractors at {} α values of {} starts each: {}",
                 spec.steps,
                 spec.starts(),
                 title(spec)
             ),
+        };
+        return super::print_plan(&[
+            what,
             threads,
             config::memory_plan(memory_bound(run, workers)),
             super::output_plan(job.out.as_deref(), job.what("text"))?,
@@ -41,8 +62,14 @@ pub fn run(run: &AttractorsRun) -> anyhow::Result<()> {
     }
     let threads = job.threads()?;
     let mut sink = Sink::open(job.out.as_deref()).map_err(InputError)?;
-    let cont = compute(spec, &Executor::new(threads)?)?;
-    write(run, &cont, &mut sink).map_err(|e| sink.describe(e))?;
+    let cont = compute(spec, values, &Executor::new(threads)?)?;
+    match part {
+        Some((shard, header)) => {
+            let text = write_part(header, *shard, &cont).map_err(anyhow::Error::msg)?;
+            writeln!(sink, "{text}").map_err(|e| sink.describe(e.into()))?;
+        }
+        None => write(run.job.layout, &cont, &[], &mut sink).map_err(|e| sink.describe(e))?,
+    }
     sink.finish()
 }
 
@@ -85,11 +112,15 @@ fn title(spec: &GlobalSpec) -> String {
     )
 }
 
-/// Every α value in turn, its picture on `executor`, with progress on stderr over all
-/// the starts.
-pub fn compute(spec: &GlobalSpec, executor: &Executor) -> anyhow::Result<Continuation> {
-    let mut cont = Continuation::new(spec.clone())?;
-    let total = spec.steps * spec.starts();
+/// Every α value of `values` (indices into the window) in turn, its picture on
+/// `executor`, with progress on stderr over all the starts.
+pub fn compute(
+    spec: &GlobalSpec,
+    values: std::ops::Range<usize>,
+    executor: &Executor,
+) -> anyhow::Result<Continuation> {
+    let total = values.len() * spec.starts();
+    let mut cont = Continuation::part(spec.clone(), values)?;
     let mut progress = Progress::start_units("attractors", "starts", total, &title(spec));
     let started = Instant::now();
     let (mut done, mut events) = (0usize, 0u64);
@@ -132,8 +163,15 @@ pub fn compute(spec: &GlobalSpec, executor: &Executor) -> anyhow::Result<Continu
     Ok(cont)
 }
 
-fn write(run: &AttractorsRun, cont: &Continuation, out: &mut Sink) -> anyhow::Result<()> {
-    match run.job.layout {
+/// The report of `cont` in `layout` (None: text), with the joins of its parts if it was
+/// merged from parts.
+pub fn write(
+    layout: Option<Layout>,
+    cont: &Continuation,
+    joins: &[Join],
+    out: &mut Sink,
+) -> anyhow::Result<()> {
+    match layout {
         Some(Layout::Csv) => {
             let mut w = csv_writer(&mut *out, &AttractorsRow::HEADER)?;
             for i in 0..cont.steps().len() {
@@ -144,11 +182,11 @@ fn write(run: &AttractorsRun, cont: &Continuation, out: &mut Sink) -> anyhow::Re
             w.flush()?;
         }
         Some(Layout::Json) => {
-            serde_json::to_writer(&mut *out, &AttractorsDoc::of(cont))?;
+            serde_json::to_writer(&mut *out, &AttractorsDoc::of(cont, joins))?;
             writeln!(out)?;
         }
         None => {
-            for line in text(cont) {
+            for line in text(cont, joins) {
                 writeln!(out, "{line}")?;
             }
         }
@@ -157,7 +195,7 @@ fn write(run: &AttractorsRun, cont: &Continuation, out: &mut Sink) -> anyhow::Re
 }
 
 /// The text report: the attractors, the changes, a line per α.
-fn text(cont: &Continuation) -> Vec<String> {
+fn text(cont: &Continuation, joins: &[Join]) -> Vec<String> {
     let spec = cont.spec();
     let steps = cont.steps();
     let decimals = alpha_decimals(spec);
@@ -167,6 +205,15 @@ fn text(cont: &Continuation) -> Vec<String> {
         s.strip_suffix('.').unwrap_or(s).to_string()
     };
     let mut out = vec![format!("attractors along alpha: {}", title(spec))];
+    if !joins.is_empty() {
+        out.push(format!(
+            "merged from {} parts, each after the first computed afresh from the last α value of the one before and joined there:",
+            joins.len() + 1
+        ));
+        for j in joins {
+            out.push(format!("  {}", join_text(j, &shortest)));
+        }
+    }
     out.push(String::new());
     out.push(format!("{} attractor{} followed (matched between neighbouring α within {MATCH_DISTANCE} in phase and velocity):", cont.tracks().len(), if cont.tracks().len() == 1 { "" } else { "s" }));
     for t in cont.tracks() {
@@ -299,6 +346,43 @@ fn text(cont: &Continuation) -> Vec<String> {
         scales.unwrap_or_default()
     ));
     out
+}
+
+/// How a join held, in words.
+fn join_text(j: &Join, alpha: &dyn Fn(f64) -> String) -> String {
+    let agree = if j.fraction_difference == 0.0 {
+        "the two pictures agree on every basin fraction".to_string()
+    } else {
+        format!(
+            "the two pictures' basin fractions differ by up to {:.2}%",
+            100.0 * j.fraction_difference
+        )
+    };
+    let mut extra = Vec::new();
+    if j.only_before > 0 {
+        extra.push(format!(
+            "{} attractor{} only the seeds of the part before found there, not carried on",
+            j.only_before,
+            if j.only_before == 1 { "" } else { "s" }
+        ));
+    }
+    if j.only_after > 0 {
+        extra.push(format!(
+            "{} only in the part after, carried on without a birth",
+            j.only_after
+        ));
+    }
+    let extra = if extra.is_empty() {
+        String::new()
+    } else {
+        format!("; {}", extra.join("; "))
+    };
+    format!(
+        "α {}: {} attractor{} matched, {agree}{extra}",
+        alpha(j.alpha),
+        j.matched,
+        if j.matched == 1 { "" } else { "s" }
+    )
 }
 
 /// Most attractors a line per α names; the rest are summed.

@@ -372,7 +372,7 @@ fn build(
         }
         FigureName::Attractors(_) => {
             let spec = attractors_spec.expect("the continuation was checked first");
-            let cont = super::attractors::compute(&spec, executor)?;
+            let cont = super::attractors::compute(&spec, 0..spec.steps, executor)?;
             Ok(figure::global::attractors_figure(&cont))
         }
         FigureName::Basins(_) => {

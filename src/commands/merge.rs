@@ -1,6 +1,9 @@
 //! `bouncemap merge`: join the part files of `sweep --shard I/N` (or of `plane --shard
 //! I/N`) into the file the unsharded run writes (the same layout and values in index
-//! order; its provenance says `merged N/N` where the unsharded file's says `1/1`).
+//! order; its provenance says `merged N/N` where the unsharded file's says `1/1`). The
+//! parts of `attractors --shard I/N` are read whole, checked
+//! ([`attractors_file`](crate::output::attractors_file)), joined at the α values they
+//! share, and written as `attractors`' report in `--format` (with a line per join).
 //! Whether the parts are of a sweep or a plane is read from the first one; a part of
 //! the other kind is then refused as not a file of that kind.
 //!
@@ -16,15 +19,22 @@
 //! that changed between the two readings is refused then, and `--out` is left as it was
 //! (standard output has had the values before it).
 
-use crate::config::files::{check_input, head, open_input, read_again, LARGE_FILE};
-use crate::config::flags::MergeArgs;
+use crate::config::files::{check_input, head, open_input, read_again, read_text, LARGE_FILE};
+use crate::config::flags::{AttractorsFormat, MergeArgs};
+use crate::config::run::attractors_spec_of;
 use crate::config::InputError;
+use crate::output::attractors_file::{self, is_attractors};
 use crate::output::part_file::{join, read_part, FileKind, JoinError, Joined};
+use crate::output::part_file::{shard_name, Layout};
 use crate::output::plane_file::{is_plane, PlaneFile};
 use crate::output::sink::{note_input, Sink};
 use crate::output::sweep_file::SweepFile;
 use crate::output::text::shown_path;
+use clap::ValueEnum;
 use std::path::Path;
+
+/// The largest part of `attractors` read (whole, in memory).
+const ATTRACTORS_PART: u64 = 1 << 30;
 
 /// How a part is named in refusals of its reading.
 const WHAT: &str = "merge: part";
@@ -58,11 +68,82 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
         .into());
     }
     let first = args.files.first().map(|f| head(Path::new(f), 1600));
+    if first.as_deref().is_some_and(is_attractors) {
+        return merge_attractors(args, sink);
+    }
+    if let Some(f) = args.format {
+        return Err(InputError(format!(
+            "--format {}: parts of `sweep` and `plane` are merged into their own format; valid only for parts of `attractors`",
+            f.to_possible_value().map(|v| v.get_name().to_string()).unwrap_or_default()
+        ))
+        .into());
+    }
     if first.is_some_and(|t| is_plane(&t)) {
         merge::<PlaneFile>(args, sink)
     } else {
         merge::<SweepFile>(args, sink)
     }
+}
+
+/// Read and check every part of an `attractors` run, join them in the order of their
+/// shards at the α values they share, and write the report of the whole window.
+fn merge_attractors(args: &MergeArgs, mut sink: Sink) -> anyhow::Result<()> {
+    let mut parts: Vec<attractors_file::Part> = Vec::new();
+    for f in &args.files {
+        let text = read_text(Path::new(f), WHAT, ATTRACTORS_PART)?;
+        let part = attractors_file::read_part(&text, &attractors_spec_of)
+            .map_err(|e| InputError(format!("merge: {}: {e}", shown_path(Path::new(f)))))?;
+        if let Some(first) = parts.first() {
+            if part.header != first.header || part.shard.count != first.shard.count {
+                return Err(InputError(format!(
+                    "merge: {}: a part of another attractors run than {} (its spec or its number of shards differs)",
+                    shown_path(Path::new(f)),
+                    shown_path(Path::new(&args.files[0]))
+                ))
+                .into());
+            }
+        }
+        parts.push(part);
+    }
+    let count = parts[0].shard.count;
+    parts.sort_by_key(|p| p.shard.index);
+    for (i, p) in parts.iter().enumerate() {
+        if p.shard.index != i {
+            let what = if i > 0 && parts[i - 1].shard.index == p.shard.index {
+                format!("shard {} is given twice", shard_name(p.shard))
+            } else {
+                format!("shard {i_1}/{count} is missing", i_1 = i + 1)
+            };
+            return Err(InputError(format!(
+                "merge: {what}: valid every shard 1/{count} .. {count}/{count} once"
+            ))
+            .into());
+        }
+    }
+    if parts.len() != count {
+        return Err(InputError(format!(
+            "merge: shard {}/{count} is missing: valid every shard 1/{count} .. {count}/{count} once",
+            parts.len() + 1
+        ))
+        .into());
+    }
+    let mut parts = parts.into_iter();
+    let mut whole = parts.next().expect("one part at least").cont;
+    let mut joins = Vec::new();
+    for p in parts {
+        let (joined, join) = whole
+            .join(p.cont)
+            .map_err(|e| InputError(format!("merge: shard {}: {e}", shard_name(p.shard))))?;
+        whole = joined;
+        joins.push(join);
+    }
+    let layout = match args.format {
+        Some(AttractorsFormat::Csv) => Some(Layout::Csv),
+        Some(AttractorsFormat::Json) => Some(Layout::Json),
+        Some(AttractorsFormat::Text) | None => None,
+    };
+    super::attractors::write(layout, &whole, &joins, &mut sink).map_err(|e| sink.describe(e))?;
+    sink.finish()
 }
 
 /// Read and check every part as a file of kind `K`, join them and write the result.

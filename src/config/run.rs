@@ -11,11 +11,13 @@ use super::flags::{
     CurvesArgs, FromArg, LyapunovArgs, OrbitArgs, PlaneArgs, SweepArgs, TextSizeArgs,
 };
 use super::InputError;
+use crate::output::attractors_file::AttractorsHeader;
 use crate::output::part_file::Layout;
 use crate::output::records::InitialRecord;
 use crate::output::Format;
 use bouncemap_engine::attractors::basins::BasinSpec;
 use bouncemap_engine::attractors::Settle;
+use bouncemap_engine::jobs::grid::Shard;
 use bouncemap_engine::orbits::continuation::{Options, Start};
 use bouncemap_engine::orbits::curves::{Plane as CurvesPlane, Seeds};
 use bouncemap_engine::plane::PlaneSpec;
@@ -199,24 +201,86 @@ pub struct AttractorsRun {
     pub spec: bouncemap_engine::attractors::global::GlobalSpec,
     /// How it runs (no layout: the text report).
     pub job: Job,
+    /// With `--shard` (or in a Slurm array task): the part to compute, and the run's
+    /// header its part file states.
+    pub part: Option<(Shard, AttractorsHeader)>,
 }
 
 /// `attractors`' flags, settled.
 pub fn attractors(args: &AttractorsArgs) -> Result<AttractorsRun, InputError> {
     let spec = super::attractors_spec(&args.spec)?;
+    let shard = super::sweep::shard(args.shard, |name| std::env::var(name).ok())?;
+    let sharded = args.shard.is_some() || shard != Shard::WHOLE;
+    if sharded {
+        if let Some(f) = args.format {
+            return Err(InputError(format!(
+                "--format {}: a part of `attractors --shard` is a json file for `merge`; valid without --format (give it to merge)",
+                f.to_possible_value().map(|v| v.get_name().to_string()).unwrap_or_default()
+            )));
+        }
+        if shard.count > spec.steps {
+            return Err(InputError(format!(
+                "--shard {}/{}: {} parts of {} α values; valid at most one part per α value (N ≤ {})",
+                shard.index + 1,
+                shard.count,
+                shard.count,
+                spec.steps,
+                spec.steps
+            )));
+        }
+    }
     let job = Job {
         check: args.check.check,
         requested_threads: args.workers.threads,
         out: args.output.out.clone(),
         layout: match args.format {
-            AttractorsFormat::Csv => Some(Layout::Csv),
-            AttractorsFormat::Json => Some(Layout::Json),
-            AttractorsFormat::Text => None,
+            _ if sharded => Some(Layout::Json),
+            Some(AttractorsFormat::Csv) => Some(Layout::Csv),
+            Some(AttractorsFormat::Json) => Some(Layout::Json),
+            Some(AttractorsFormat::Text) | None => None,
         },
         text: (0, 0),
         resume: false,
     };
-    Ok(AttractorsRun { spec, job })
+    let part = sharded.then(|| (shard, attractors_header(&args.spec, &spec)));
+    Ok(AttractorsRun { spec, job, part })
+}
+
+/// The header of the run `args` defines, whose spec is `spec` (its part files state
+/// it; [`attractors_spec_of`] makes the spec from it again).
+pub fn attractors_header(
+    args: &super::flags::AttractorsSpecArgs,
+    spec: &bouncemap_engine::attractors::global::GlobalSpec,
+) -> AttractorsHeader {
+    AttractorsHeader {
+        table: args.table.to_string(),
+        r: args.r,
+        alpha: [spec.lo, spec.hi],
+        steps: spec.steps,
+        grid: [spec.nx, spec.ny],
+        w_max: spec.w_max,
+        transient: spec.settle.transient,
+        full_runs: !spec.stop_at_known,
+        uncertainty_starts: spec.sampled_starts,
+    }
+}
+
+/// The spec of a part file's header, its table loaded as the run loaded it.
+pub fn attractors_spec_of(
+    h: &AttractorsHeader,
+) -> Result<bouncemap_engine::attractors::global::GlobalSpec, String> {
+    let args = super::flags::AttractorsSpecArgs {
+        table: super::table_spec::TableSpec::parse(&h.table)?,
+        r: h.r,
+        alpha: (h.alpha[0], h.alpha[1]),
+        steps: h.steps,
+        grid: (h.grid[0], h.grid[1]),
+        w_max: Some(h.w_max),
+        transient: h.transient,
+        full_runs: h.full_runs,
+        uncertainty_starts: h.uncertainty_starts,
+    };
+    super::attractors_spec(&args).map_err(|e| e.0)
 }
 
 /// `lyapunov`, settled.

@@ -10,6 +10,8 @@
 //!   whole file), and the join, merging the parts' values
 //!   into index order as they are read again; [`sweep_file`] and [`plane_file`] are its
 //!   two kinds (their rows, and where a row belongs).
+//! * [`attractors_file`]: the part file of `attractors --shard` (a part of a
+//!   continuation of attractors whole, in json) that `merge` reads back and joins.
 //! * [`sink`]: the one output layer: standard output (a closed pipe ends the run
 //!   quietly, any other write error fails it) or a file written atomically (temporary,
 //!   then rename), and the `--out` rule (never an input of the run). Notes and
@@ -29,6 +31,7 @@
 //! * [`figure_file`]: a figure (drawn by the `bouncemap_figures` crate: SVG, and PNG
 //!   rendered with the fonts compiled in) written to a file atomically.
 
+pub mod attractors_file;
 pub mod basin_map;
 pub mod diagram;
 pub mod figure_file;

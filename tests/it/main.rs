@@ -15,6 +15,7 @@ mod docs;
 mod figure_cli;
 mod generated_docs;
 mod global_cli;
+mod global_shards;
 mod hostile;
 mod hostile_three;
 mod merge_property;

@@ -58,11 +58,22 @@ pub struct AttractorsSpecArgs {
 pub struct AttractorsArgs {
     #[command(flatten)]
     pub spec: AttractorsSpecArgs,
-    /// Output format.
-    #[arg(long, value_enum, default_value_t = AttractorsFormat::Text)]
-    pub format: AttractorsFormat,
+    /// Output format [default: text].
+    #[arg(long, value_enum)]
+    pub format: Option<AttractorsFormat>,
     #[command(flatten)]
     pub output: OutArgs,
+    /// Compute only the I-th of N parts of the α window (1 ≤ I ≤ N ≤ the number of α
+    /// values), or `auto`: the part of this Slurm array task (the default in a job
+    /// array); join the parts with `merge`.
+    ///
+    /// The parts are runs of consecutive α values; each part after the first starts
+    /// one value early, at the last value of the part before it, where `merge` matches
+    /// the two parts' attractors and carries the tracks on. A part is a json file for
+    /// `merge` (no --format); `merge --format` chooses the report. `auto` reads the
+    /// array's variables as `sweep --shard auto` does.
+    #[arg(long, value_parser = super::parse_shard_arg, value_name = "I/N|auto")]
+    pub shard: Option<super::ShardArg>,
     #[command(flatten)]
     pub workers: ThreadsArgs,
     #[command(flatten)]

@@ -98,7 +98,7 @@ pub enum Command {
     /// A two-parameter map: every pixel one (α, r), (α, D) or (α, a table parameter) pair, coloured by its orbit.
     #[command(allow_negative_numbers = true)]
     Plane(PlaneArgs),
-    /// Join `sweep --shard I/N` or `plane --shard I/N` output files into one.
+    /// Join `sweep --shard I/N`, `plane --shard I/N` or `attractors --shard I/N` output files into one.
     Merge(MergeArgs),
     /// Measure solver throughput (exact vs grid) and sweep timings on this machine.
     Bench(BenchArgs),
@@ -599,10 +599,15 @@ pub fn parse_shard(s: &str) -> Result<Shard, String> {
 /// `bouncemap merge`.
 #[derive(Args, Debug, Clone)]
 pub struct MergeArgs {
-    /// Part files written by `sweep --shard I/N --out FILE` or `plane --shard I/N --out
-    /// FILE` (all csv or all json, all of one run).
+    /// Part files written by `sweep --shard I/N --out FILE`, `plane --shard I/N --out
+    /// FILE` (all csv or all json, all of one run) or `attractors --shard I/N --out
+    /// FILE`.
     #[arg(required = true, value_name = "FILE")]
     pub files: Vec<String>,
+    /// For parts of `attractors`: the report's format [default: text] (parts of
+    /// `sweep` and `plane` are merged into their own format).
+    #[arg(long, value_enum)]
+    pub format: Option<AttractorsFormat>,
     #[command(flatten)]
     pub output: OutArgs,
 }

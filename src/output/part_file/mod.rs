@@ -201,7 +201,7 @@ pub fn shard_name(s: Shard) -> String {
 }
 
 /// The shard a provenance names (None for a merged file).
-fn parse_shard(s: &str) -> Result<Option<Shard>, String> {
+pub fn parse_shard(s: &str) -> Result<Option<Shard>, String> {
     if s.starts_with("merged ") {
         return Ok(None);
     }

@@ -2,7 +2,7 @@
 //! document), and the words for a member and a change that the text report uses too.
 
 use super::*;
-use bouncemap_engine::attractors::global::{Cause, Change, ChangeKind, Continuation, Step};
+use bouncemap_engine::attractors::global::{Cause, Change, ChangeKind, Continuation, Join, Step};
 
 pub use bouncemap_figures::global::{cause_text, describe_member};
 
@@ -276,10 +276,28 @@ pub struct AttractorsDoc<'a> {
     pub tracks: Vec<TrackRecord>,
     pub changes: Vec<ChangeRecord>,
     pub values: Vec<ValueRecord>,
+    /// Where the parts of a merged run were joined (absent for a run in one part).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub joins: Vec<JoinRecord>,
+}
+
+/// Where two parts of a merged run were joined (json).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct JoinRecord {
+    /// The α value both parts computed.
+    pub alpha: f64,
+    /// Attractors of the two pictures there matched to each other.
+    pub matched: usize,
+    /// Attractors only the earlier part's picture holds there (found by its seeds).
+    pub only_before: usize,
+    /// Attractors only the later part's picture holds there.
+    pub only_after: usize,
+    /// The largest difference of basin fraction between the two pictures.
+    pub fraction_difference: f64,
 }
 
 impl<'a> AttractorsDoc<'a> {
-    pub fn of(cont: &'a Continuation) -> AttractorsDoc<'a> {
+    pub fn of(cont: &'a Continuation, joins: &[Join]) -> AttractorsDoc<'a> {
         use bouncemap_engine::attractors::global::MATCH_DISTANCE;
         let spec = cont.spec();
         let steps = cont.steps();
@@ -367,6 +385,16 @@ impl<'a> AttractorsDoc<'a> {
             tracks,
             changes,
             values,
+            joins: joins
+                .iter()
+                .map(|j| JoinRecord {
+                    alpha: j.alpha,
+                    matched: j.matched,
+                    only_before: j.only_before,
+                    only_after: j.only_after,
+                    fraction_difference: j.fraction_difference,
+                })
+                .collect(),
         }
     }
 }

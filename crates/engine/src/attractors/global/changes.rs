@@ -53,7 +53,7 @@ impl ChangeKind {
 /// A change of the picture between α value `step − 1` and `step`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Change {
-    /// The first α value (index) where it is seen.
+    /// The first α value where it is seen: its place in [`Continuation::steps`](super::Continuation::steps).
     pub step: usize,
     /// The track it happens to.
     pub track: usize,

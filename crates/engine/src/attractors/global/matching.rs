@@ -19,18 +19,32 @@ fn compatible(a: Kind, b: Kind) -> bool {
 
 /// Pairs (old id, new id), closest first, one to one, within [`MATCH_DISTANCE`].
 pub(super) fn match_sets(old: &[Attractor], new: &[Attractor]) -> Vec<(usize, usize)> {
-    let old_sets: Vec<Vec<(f64, f64)>> = old.iter().map(|a| spread(a.points(), MAX_SET)).collect();
-    let new_sets: Vec<Vec<(f64, f64)>> = new.iter().map(|a| spread(a.points(), MAX_SET)).collect();
+    let sets = |all: &[Attractor]| -> Vec<(Kind, Vec<(f64, f64)>)> {
+        all.iter()
+            .map(|a| (a.kind, spread(a.points(), MAX_SET)))
+            .collect()
+    };
+    match_point_sets(&sets(old), &sets(new))
+}
+
+/// Pairs (old, new) of point sets of attractors of the given kinds, closest first, one
+/// to one, within [`MATCH_DISTANCE`]. A picture has one class of resting balls and
+/// one of escapes (wherever each ball came to rest or left): each is at distance 0 of
+/// its like.
+pub(super) fn match_point_sets(
+    old: &[(Kind, Vec<(f64, f64)>)],
+    new: &[(Kind, Vec<(f64, f64)>)],
+) -> Vec<(usize, usize)> {
     let mut candidates = Vec::new();
-    for (o, a) in old.iter().enumerate() {
-        for (c, b) in new.iter().enumerate() {
-            if !compatible(a.kind, b.kind) {
+    for (o, (ka, a)) in old.iter().enumerate() {
+        for (c, (kb, b)) in new.iter().enumerate() {
+            if !compatible(*ka, *kb) {
                 continue;
             }
-            let d = if a.kind == Kind::Escaping {
+            let d = if matches!(ka, Kind::Escaping | Kind::Resting) {
                 Some(0.0)
             } else {
-                hausdorff_within(&old_sets[o], &new_sets[c], MATCH_DISTANCE)
+                hausdorff_within(a, b, MATCH_DISTANCE)
             };
             if let Some(d) = d {
                 candidates.push((d, o, c));

@@ -22,7 +22,8 @@
 //!    max(phase distance around the circle, |Δv|) that [`MATCH`](super::MATCH) uses;
 //!    for an orbit identified by its cells, the cells' centres, at most [`MAX_SET`]
 //!    of them): pairs are taken closest first, one to one, up to [`MATCH_DISTANCE`],
-//!    a resting ball only with a resting ball and an escape only with an escape. An
+//!    the resting balls only with the resting balls and the escapes only with the
+//!    escapes (one class each in a picture, wherever the balls rest: always a pair). An
 //!    old attractor left unmatched is then matched to the new attractor most of its
 //!    seeds went to, if that one is unmatched too (its points lie in that basin and
 //!    nothing else continues either: a sticking cycle whose itinerary changed). A
@@ -43,15 +44,22 @@
 //! a caller can run the grid on its own executor, show progress and stop between
 //! values; [`collect`] does it all.
 //!
+//! A window may be computed in parts ([`Continuation::part`]), each starting one α
+//! value before its own, and the parts joined at those values
+//! ([`Continuation::join`]).
+//!
 //! Here the specification, the pictures per α and the advance from one α to the next
 //! (seeds, the early stop's known cycles, the statistics); `matching.rs` which
 //! attractor is which from one α to the next; `changes.rs` what changed and why;
+//! `join.rs` parts joined into the whole;
 //! `runs.rs` the continuation's tests against closed forms and `basins`.
 
 mod changes;
+mod join;
 mod matching;
 
 pub use changes::{Cause, Change, ChangeKind};
+pub use join::Join;
 pub use matching::{hausdorff, hausdorff_within};
 
 use super::basins::{BasinSpec, Basins, BasinsJob};
@@ -245,9 +253,9 @@ impl Step {
 pub struct Track {
     /// Its number (0-based, in order of appearance).
     pub id: usize,
-    /// The first α value (index) it is seen at.
+    /// The first α value it is seen at (its place in [`Continuation::steps`]).
     pub first: usize,
-    /// The last α value (index) it is seen at.
+    /// The last α value it is seen at (its place in [`Continuation::steps`]).
     pub last: usize,
 }
 
@@ -321,6 +329,10 @@ impl NextAlpha {
 #[derive(Clone, Debug)]
 pub struct Continuation {
     spec: GlobalSpec,
+    /// The α values (indices) it computes: `from..to` (the whole window, or a part of
+    /// it: [`Continuation::part`]).
+    from: usize,
+    to: usize,
     steps: Vec<Step>,
     changes: Vec<Change>,
     tracks: Vec<Track>,
@@ -330,9 +342,29 @@ pub struct Continuation {
 impl Continuation {
     /// Validate `spec`; nothing computed yet.
     pub fn new(spec: GlobalSpec) -> Result<Continuation, EngineError> {
+        let steps = spec.steps;
+        Continuation::part(spec, 0..steps)
+    }
+
+    /// Validate `spec`; the continuation of the α values `values` only (indices into
+    /// the window), started afresh at the first of them: a part of a run, to be joined
+    /// to the others by [`Continuation::join`].
+    pub fn part(
+        spec: GlobalSpec,
+        values: std::ops::Range<usize>,
+    ) -> Result<Continuation, EngineError> {
         spec.validate()?;
+        if values.is_empty() || values.end > spec.steps {
+            return Err(EngineError::InvalidParameter {
+                name: "α values".into(),
+                value: format!("{}..{}", values.start, values.end),
+                range: format!("a non-empty range within 0..{}", spec.steps).into(),
+            });
+        }
         Ok(Continuation {
             spec,
+            from: values.start,
+            to: values.end,
             steps: Vec::new(),
             changes: Vec::new(),
             tracks: Vec::new(),
@@ -343,6 +375,12 @@ impl Continuation {
     /// The specification.
     pub fn spec(&self) -> &GlobalSpec {
         &self.spec
+    }
+
+    /// The α values it computes (indices into the window; `steps()[i]` is value
+    /// `values().start + i`).
+    pub fn values(&self) -> std::ops::Range<usize> {
+        self.from..self.to
     }
 
     /// The α values done, in order.
@@ -362,7 +400,7 @@ impl Continuation {
 
     /// Whether every α value is done.
     pub fn complete(&self) -> bool {
-        self.steps.len() == self.spec.steps
+        self.from + self.steps.len() == self.to
     }
 
     /// The next α value: its picture, with the previous attractors' seeds run to their
@@ -371,8 +409,8 @@ impl Continuation {
         &self,
         cancelled: &mut dyn FnMut(u64) -> bool,
     ) -> Option<Result<NextAlpha, EngineError>> {
-        let index = self.steps.len();
-        if index >= self.spec.steps {
+        let index = self.from + self.steps.len();
+        if index >= self.to {
             return None;
         }
         let spec = match self.spec.basins(index) {
@@ -413,8 +451,13 @@ impl Continuation {
     /// Take the filled picture of `next` (from [`Self::prepare`]): match its
     /// attractors, record the changes and the statistics.
     pub fn absorb(&mut self, next: NextAlpha, basins: &Basins) {
-        assert_eq!(next.index, self.steps.len(), "α values in order");
-        let index = next.index;
+        assert_eq!(
+            next.index,
+            self.from + self.steps.len(),
+            "α values in order"
+        );
+        // Changes and tracks count α values from the first computed here.
+        let index = next.index - self.from;
         let reg = basins.registry();
         let current = reg.attractors();
         let grid = self.spec.starts();
@@ -448,7 +491,7 @@ impl Continuation {
                     });
                 }
             }
-            let before = self.spec.basins(index - 1).map(|b| b.sys);
+            let before = self.spec.basins(next.index - 1).map(|b| b.sys);
             for (c, t) in tracks.iter_mut().enumerate() {
                 if t.is_none() {
                     let id = self.new_track(index);
@@ -501,7 +544,7 @@ impl Continuation {
         let (nx, ny) = basins.grid();
         let labels = basins.labels();
         self.steps.push(Step {
-            alpha: self.spec.alpha(index),
+            alpha: self.spec.alpha(next.index),
             members,
             starts: grid,
             not_settled: grid - labelled,

@@ -201,3 +201,83 @@ fn halving_the_step_finds_the_same_changes() {
         assert!(seen || undone, "{f:?} not in {coarse_changes:?}");
     }
 }
+
+/// The parts of `spec`'s window that shard `i` of `n` computes (from the value before
+/// its own, after the first), each run by itself.
+fn part(spec: &GlobalSpec, i: usize, n: usize) -> Continuation {
+    let (a, b) = (i * spec.steps / n, (i + 1) * spec.steps / n);
+    let mut cont = Continuation::part(spec.clone(), a.saturating_sub(1)..b).unwrap();
+    let executor = Executor::new(2).unwrap();
+    while let Some(next) = cont.prepare(&mut |_| false) {
+        let next = next.unwrap();
+        let mut basins = next.basins();
+        executor.run(next.job().unwrap(), &Control::new(), |b| {
+            basins.absorb(b.data);
+        });
+        cont.absorb(next, &basins);
+    }
+    cont
+}
+
+#[test]
+fn parts_joined_are_the_whole_window() {
+    // Across the coexistence of the (1, 1) cycle and the (2, 2) cycle born at its
+    // period doubling, and the (1, 1) cycle's death: the window in three parts, each
+    // started afresh one value early, joined, is the run over the whole window (a
+    // second computation of every picture, matched at the joining values).
+    let spec = spec(0.44, 0.5, 13, 16);
+    let whole = run(spec.clone());
+    assert!(!whole.changes().is_empty(), "{:?}", whole.steps());
+    let (mut joined, mut joins) = (part(&spec, 0, 3), Vec::new());
+    for i in 1..3 {
+        let (j, how) = joined.join(part(&spec, i, 3)).unwrap();
+        joined = j;
+        joins.push(how);
+    }
+    assert_eq!(joined.steps(), whole.steps());
+    assert_eq!(joined.changes(), whole.changes());
+    assert_eq!(joined.tracks(), whole.tracks());
+    for j in &joins {
+        assert_eq!((j.only_before, j.only_after), (0, 0), "{j:?}");
+        assert_eq!(j.fraction_difference, 0.0, "{j:?}");
+        assert_eq!(j.alpha, whole.steps()[j.step].alpha);
+    }
+    // Parts that do not meet at one value, or of another window, are refused.
+    assert!(part(&spec, 0, 3).join(part(&spec, 2, 3)).is_err());
+    let other = GlobalSpec {
+        hi: 0.51,
+        ..spec.clone()
+    };
+    assert!(part(&spec, 0, 3).join(part(&other, 1, 3)).is_err());
+}
+
+#[test]
+fn a_part_is_rebuilt_from_what_it_keeps_and_checked() {
+    let spec = spec(0.47, 0.49, 4, 10);
+    let p = part(&spec, 1, 2);
+    let rebuilt = |steps: Vec<Step>| {
+        Continuation::from_parts(
+            spec.clone(),
+            p.values(),
+            steps,
+            p.changes().to_vec(),
+            p.tracks().to_vec(),
+        )
+    };
+    let again = rebuilt(p.steps().to_vec()).unwrap();
+    assert_eq!(
+        (again.steps(), again.changes(), again.tracks()),
+        (p.steps(), p.changes(), p.tracks())
+    );
+    // An α value moved, a start lost, a fraction changed: each refused.
+    let mut moved = p.steps().to_vec();
+    moved[1].alpha += 1e-12;
+    assert!(rebuilt(moved).unwrap_err().contains("not value"));
+    let mut lost = p.steps().to_vec();
+    lost[0].members[0].starts -= 1;
+    assert!(rebuilt(lost).unwrap_err().contains("starts"));
+    let mut share = p.steps().to_vec();
+    share[0].members[0].fraction *= 0.5;
+    assert!(rebuilt(share).is_err());
+    assert!(rebuilt(p.steps()[1..].to_vec()).is_err());
+}
