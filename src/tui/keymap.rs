@@ -37,6 +37,7 @@ pub enum Action {
     TableView,
     TogglePlane,
     PlaneCurves,
+    ToggleGlobal,
     CyclePanels,
     Messages,
     Legend,
@@ -48,7 +49,7 @@ pub enum Action {
 
 impl Action {
     /// Every action, in help order.
-    pub const ALL: [Action; 35] = [
+    pub const ALL: [Action; 36] = [
         Action::Up,
         Action::Down,
         Action::Left,
@@ -74,6 +75,7 @@ impl Action {
         Action::TableView,
         Action::TogglePlane,
         Action::PlaneCurves,
+        Action::ToggleGlobal,
         Action::CyclePanels,
         Action::Presets,
         Action::Export,
@@ -117,6 +119,7 @@ impl Action {
             Action::TableView => "table_view",
             Action::TogglePlane => "plane",
             Action::PlaneCurves => "plane_curves",
+            Action::ToggleGlobal => "attractors_along",
             Action::CyclePanels => "cycle_panels",
             Action::Messages => "messages",
             Action::Legend => "legend",
@@ -162,6 +165,7 @@ impl Action {
             Action::TableView => "the table: F, F′, F″ with breakpoints, t̂* and release phases",
             Action::TogglePlane => "the α × D plane (t: another axis) in place of the diagram",
             Action::PlaneCurves => "plane: two-parameter curves (PD, fold, BC, G) on/off",
+            Action::ToggleGlobal => "attractors along α and their basins, in place of the diagram",
             Action::CyclePanels => "narrow screen: show the bottom panel left out",
             Action::Messages => "the messages so far, each in full (the status line cuts them)",
             Action::Legend => "what every mark, line and colour on the screen means",
@@ -414,6 +418,7 @@ impl Default for Keymap {
             (Key::ch('T'), Action::TableView),
             (Key::ch('M'), Action::TogglePlane),
             (Key::ch('C'), Action::PlaneCurves),
+            (Key::ch('A'), Action::ToggleGlobal),
             (Key::ch('p'), Action::Presets),
             (Key::ch('e'), Action::Export),
             (Key::ch('E'), Action::ExportView),

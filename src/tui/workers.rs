@@ -9,10 +9,13 @@
 //! and the constructor that turns its results (of a type fixed per target) into an `M`.
 //! Nothing here knows the panels.
 //!
-//! Two kinds of work:
+//! Three kinds of work:
 //! * jobs over many items (the diagram's sweep, the basin picture, the plane) run on the
 //!   engine's [`Executor`], which owns its pool; their batches are forwarded as
 //!   [`JobMsg::Batch`], then [`JobMsg::Done`];
+//! * work made of jobs in turn (the attractors along α: a basin picture per α, each
+//!   seeded by the one before) runs on a thread of its own that starts each job on the
+//!   executor under its [`Ticket::control`] ([`Workers::spawn_jobs`]);
 //! * interactive work (the phase plot, the orbit analysis) runs on a thread of its own,
 //!   so it never waits behind a job, paused or not.
 //!
@@ -76,6 +79,12 @@ impl<M: Mail, B> Ticket<M, B> {
     pub fn wait_if_paused(&self) -> bool {
         self.control.gate().wait(|| self.stale());
         !self.stale()
+    }
+
+    /// The control of this work's target: jobs started under it stop when the work
+    /// goes stale, and park while paused.
+    pub fn control(&self) -> &Control {
+        &self.control
     }
 
     /// Send a result to the panel; false if stale or nobody listens any more.
@@ -152,6 +161,18 @@ impl<M: Mail> Workers<M> {
             .name(name.into())
             .spawn(move || work(ticket));
         gen
+    }
+
+    /// Run `work` on a thread of its own, as [`Self::spawn`], handing it the executor
+    /// for the jobs it runs in turn (each under the ticket's [`Ticket::control`]).
+    pub fn spawn_jobs<B: 'static>(
+        &self,
+        at: Address<M, B>,
+        name: &str,
+        work: impl FnOnce(Ticket<M, B>, Executor) + Send + 'static,
+    ) -> u64 {
+        let executor = self.executor.clone();
+        self.spawn(at, name, move |ticket| work(ticket, executor))
     }
 
     /// Start `job` on the executor under a new generation of `at.to` (cancelling the

@@ -32,6 +32,7 @@ mod tui_attractors;
 mod tui_branches;
 mod tui_common;
 mod tui_e2e;
+mod tui_global;
 mod tui_keys;
 mod tui_latency;
 mod tui_panels;

@@ -299,9 +299,9 @@ fn basins_restart_when_alpha_or_r_change_and_not_otherwise() {
 
 #[test]
 fn the_new_keys_are_configurable_and_listed_in_the_help() {
-    let km = Keymap::with(&[(Action::AllAttractors, vec![Key::ch('A')])]).unwrap();
+    let km = Keymap::with(&[(Action::AllAttractors, vec![Key::ch('Y')])]).unwrap();
     let ev = |c| KeyEvent::new(KeyCode::Char(c), KeyModifiers::NONE);
-    assert_eq!(km.action(&ev('A')), Some(Action::AllAttractors));
+    assert_eq!(km.action(&ev('Y')), Some(Action::AllAttractors));
     assert_eq!(km.action(&ev('a')), None);
     assert_eq!(
         Keymap::default().action(&ev('B')),
@@ -309,14 +309,19 @@ fn the_new_keys_are_configurable_and_listed_in_the_help() {
     );
     assert_eq!(Keymap::default().action(&ev('c')), Some(Action::Colouring));
     let help = Keymap::default().help();
+    assert_eq!(
+        Keymap::default().action(&ev('A')),
+        Some(Action::ToggleGlobal)
+    );
     for a in [
         Action::Colouring,
         Action::AllAttractors,
         Action::ToggleBasins,
+        Action::ToggleGlobal,
     ] {
         assert!(help.iter().any(|(_, d)| *d == a.describe()), "{a}");
     }
-    for name in ["color_by", "all_attractors", "basins"] {
+    for name in ["color_by", "all_attractors", "basins", "attractors_along"] {
         assert!(Action::from_name(name).is_some(), "{name}");
     }
 }

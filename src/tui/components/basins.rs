@@ -103,6 +103,13 @@ impl Component for BasinsPanel {
     }
 
     fn handle(&mut self, action: Action, shared: &mut Shared) -> bool {
+        if action == Action::ToggleGlobal {
+            // The attractors along α were just shown: their cursor's α picture here.
+            if !self.view.shown {
+                self.view.toggle(Self::TARGET, shared);
+            }
+            return true;
+        }
         if action != Action::ToggleBasins {
             return false;
         }

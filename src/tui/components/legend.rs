@@ -127,6 +127,23 @@ pub const SECTIONS: &[(&str, &[(&str, &str)])] = &[
             ),
         ],
     ),
+    (
+        "Attractors along α (A)",
+        &[
+            (
+                "∙ dots",
+                "each attractor's points (t̂ up) at every α, coloured by its number",
+            ),
+            (
+                "█ strip",
+                "basin fractions stacked from the bottom, in the same colours",
+            ),
+            ("░", "starts not run to an attractor"),
+            ("◦  grey", "resting balls and escapes"),
+            ("▲", "the cursor's α (the basins panel shows its picture)"),
+            ("no colour", "each attractor in its number's texture"),
+        ],
+    ),
 ];
 
 /// The legend's lines.

@@ -31,6 +31,7 @@ pub mod basins;
 pub mod bounce;
 pub mod branches;
 pub mod diagram;
+pub mod global;
 pub mod grid_picture;
 pub mod help;
 pub mod legend;
@@ -57,6 +58,7 @@ use bouncemap_engine::attractors::basins::Basins;
 use bouncemap_engine::plane::Plane;
 use branches::Branches;
 use diagram::Diagram;
+use global::GlobalView;
 use parameters::Parameters;
 use phase_plot::PhasePlot;
 use plane::PlanePanel;
@@ -75,6 +77,9 @@ pub use workers::JobMsg;
 registry! {
     // Target   => field:      type,         slot it takes,           made from `Shared`
     Parameters  => parameters: Parameters,   slot Some(Slot::Params),    new |_| Parameters::new();
+    /// The attractors along α, in the diagram's place while shown (it takes the
+    /// diagram's keys, and passes its own key on so that the basins show with it).
+    Global      => global:     GlobalView,   slot Some(Slot::Diagram),   new |_| GlobalView::default();
     /// The plane view, in the diagram's place while shown (it takes the diagram's keys).
     Plane       => plane:      PlanePanel,   slot Some(Slot::Diagram),   new |_| PlanePanel::default();
     Diagram     => diagram:    Diagram,      slot Some(Slot::Diagram),   new Diagram::new;
