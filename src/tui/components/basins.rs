@@ -17,7 +17,8 @@ use crate::tui::layout::plot_area_within;
 use crate::tui::params::{ParamId, Touch};
 use crate::tui::plot::{draw_axes, Axes};
 use bouncemap_engine::attractors::basins::{BasinChunk, BasinSpec, Basins};
-use bouncemap_engine::attractors::Kind;
+use bouncemap_engine::attractors::global::tracks_of;
+use bouncemap_engine::attractors::{Kind, Registry};
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::style::{Color, Style};
@@ -76,6 +77,33 @@ impl BasinsPanel {
                 .theme
                 .attractor_color(number.get(id as usize)?.saturating_sub(1)),
         }
+    }
+
+    /// The number of each attractor (1 = the largest basin), or, at the α the
+    /// attractors-along-α view's cursor is at, that view's number for the same
+    /// attractor (the others after its numbers, largest basin first).
+    fn numbers(&self, shared: &Shared, reg: &Registry) -> Vec<usize> {
+        let mut number = numbers(reg);
+        let here = self.view.spec.as_ref().map(|s| s.sys.alpha());
+        let Some((_, members)) = shared
+            .along_alpha
+            .as_ref()
+            .filter(|(alpha, _)| Some(*alpha) == here)
+        else {
+            return number;
+        };
+        let tracks = tracks_of(reg.attractors(), members);
+        let mut next = members.iter().map(|m| m.track + 1).max().unwrap_or(0);
+        for id in reg.ranked() {
+            number[id] = match tracks[id] {
+                Some(t) => t + 1,
+                None => {
+                    next += 1;
+                    next
+                }
+            };
+        }
+        number
     }
 
     fn title(&self, shared: &Shared) -> String {
@@ -169,7 +197,7 @@ impl Component for BasinsPanel {
         };
         let plot = draw_axes(picture, buf, axes, LABEL_W, &app.theme);
         let reg = b.registry();
-        let number = numbers(reg);
+        let number = self.numbers(app, reg);
         let colour = app.theme.attractor_color(0).is_some();
         let halves = colour
             && draw_halves(plot, b.grid(), buf, |i, j| {

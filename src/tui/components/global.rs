@@ -12,7 +12,9 @@
 //! the same colours, the starts not run to an attractor in grey on top. The cursor is
 //! an α value: moving it moves the application's α, so the basins panel (shown with
 //! this view) draws that α's picture, and the bottom border names that α's attractors,
-//! their shares, S_b and what changed there. Enter brings the diagram back.
+//! their shares, S_b and what changed there; the basins panel numbers and colours that
+//! picture's attractors as this view does ([`Shared::along_alpha`]). Enter brings the
+//! diagram back.
 
 use super::{is_focused, panel, Component, Effect, Registered, Shared, Workers};
 use crate::output::basin_map::texture_in;
@@ -120,12 +122,22 @@ impl GlobalView {
         }
         let last = self.steps.len() as i64 - 1;
         self.cursor = (self.cursor as i64 + by).clamp(0, last) as usize;
+        self.publish(shared);
         let alpha = self.steps[self.cursor].alpha;
         let before = shared.params.clone();
         let r = shared
             .params
             .set_text(ParamId::Alpha, &bouncemap_engine::fmt_value(alpha));
         shared.after_change(ParamId::Alpha, r, &before);
+    }
+
+    /// Tell the other panels the cursor's α and its attractors (none while hidden).
+    fn publish(&self, shared: &mut Shared) {
+        shared.along_alpha = self
+            .steps
+            .get(self.cursor)
+            .filter(|_| self.shown)
+            .map(|s| (s.alpha, s.members.clone()));
     }
 
     fn title(&self, shared: &Shared) -> String {
@@ -240,6 +252,7 @@ impl Component for GlobalView {
         if action == Action::ToggleGlobal {
             self.shown = !self.shown;
             shared.effect(Effect::Start(Self::TARGET));
+            self.publish(shared);
             if self.shown {
                 shared.focus = Slot::Diagram;
                 shared.say(
@@ -253,6 +266,7 @@ impl Component for GlobalView {
         if action == Action::TogglePlane && self.shown {
             // The plane takes the diagram's place instead: this view steps aside.
             self.shown = false;
+            self.publish(shared);
             shared.effect(Effect::Start(Self::TARGET));
             return false;
         }
@@ -266,6 +280,7 @@ impl Component for GlobalView {
             Action::FineRight => self.move_cursor(1, shared),
             Action::Enter => {
                 self.shown = false;
+                self.publish(shared);
                 shared.effect(Effect::Start(Self::TARGET));
                 shared.say("the diagram again, at the α chosen", false);
             }
@@ -320,6 +335,7 @@ impl Component for GlobalView {
         self.error = None;
         self.started = Some(Instant::now());
         self.place_cursor(shared);
+        self.publish(shared);
         self.gen = workers.spawn_jobs(
             Self::ADDRESS,
             "attractors-along-alpha",
@@ -369,6 +385,9 @@ impl Component for GlobalView {
                 self.steps.push(*step);
                 self.changes.extend(changes);
                 self.tracks = tracks;
+                if self.steps.len() == self.cursor + 1 {
+                    self.publish(shared);
+                }
             }
             GlobalMsg::Failed(e) => {
                 self.error = Some(e);

@@ -88,6 +88,9 @@ pub struct Shared {
     /// What the diagram's value at the cursor settled on, with its precision verdict
     /// (while the diagram has the focus).
     pub at_cursor: Option<String>,
+    /// The attractors-along-α view's cursor (while shown): its α and that α's
+    /// attractors, by which the basins panel numbers and colours its own.
+    pub along_alpha: Option<(f64, Vec<bouncemap_engine::attractors::global::Member>)>,
     /// Show how long work took ("done 1.2s", the time left). Off for the README's
     /// screenshot, which must come out the same on every run.
     pub show_times: bool,
@@ -120,6 +123,7 @@ impl Shared {
             plane_y: None,
             under_cursor: None,
             at_cursor: None,
+            along_alpha: None,
             show_times: true,
             effects: Vec::new(),
             changed: Vec::new(),

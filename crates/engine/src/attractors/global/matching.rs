@@ -110,6 +110,25 @@ pub(super) fn match_by_seeds(
     out
 }
 
+/// Which member of a continuation's step at this α each attractor of another picture
+/// of the same system is (its track), by the distance of their point sets as
+/// neighbouring α values are matched: `tracks[id]` for each attractor of `picture`,
+/// None where none is within [`MATCH_DISTANCE`]. A picture of another grid at the same
+/// α holds the same cycles (at distance ≈ 0) and chaotic sets close to the member's.
+pub fn tracks_of(picture: &[Attractor], members: &[super::Member]) -> Vec<Option<usize>> {
+    let sets: Vec<(Kind, Vec<(f64, f64)>)> = picture
+        .iter()
+        .map(|a| (a.kind, spread(a.points(), MAX_SET)))
+        .collect();
+    let theirs: Vec<(Kind, Vec<(f64, f64)>)> =
+        members.iter().map(|m| (m.kind, m.points.clone())).collect();
+    let mut tracks = vec![None; picture.len()];
+    for (a, m) in match_point_sets(&sets, &theirs) {
+        tracks[a] = Some(members[m].track);
+    }
+    tracks
+}
+
 /// At most `most` points of `set`, evenly spread over it.
 pub(super) fn spread(set: Vec<(f64, f64)>, most: usize) -> Vec<(f64, f64)> {
     if set.len() <= most {

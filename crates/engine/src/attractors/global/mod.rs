@@ -60,7 +60,7 @@ mod matching;
 
 pub use changes::{Cause, Change, ChangeKind};
 pub use join::Join;
-pub use matching::{hausdorff, hausdorff_within};
+pub use matching::{hausdorff, hausdorff_within, tracks_of};
 
 use super::basins::{BasinSpec, Basins, BasinsJob};
 use super::known::Known;

@@ -281,3 +281,32 @@ fn a_part_is_rebuilt_from_what_it_keeps_and_checked() {
     assert!(rebuilt(share).is_err());
     assert!(rebuilt(p.steps()[1..].to_vec()).is_err());
 }
+
+#[test]
+fn another_picture_at_a_value_finds_its_attractors_tracks() {
+    // A finer picture at an α of the continuation (another grid of starts): each of
+    // its cycles is the member of the same kind and (n, k), and every member is found.
+    let spec = spec(0.46, 0.48, 3, 16);
+    let cont = run(spec.clone());
+    let step = &cont.steps()[1];
+    let picture = basins::collect(
+        &BasinSpec {
+            nx: 27,
+            ny: 23,
+            ..spec.basins(1).unwrap()
+        },
+        &Executor::new(2).unwrap(),
+    )
+    .unwrap();
+    let attractors = picture.registry().attractors();
+    let tracks = tracks_of(attractors, &step.members);
+    assert!(step.members.len() >= 2, "{:?}", step.members);
+    for m in &step.members {
+        let found: Vec<usize> = (0..attractors.len())
+            .filter(|&i| tracks[i] == Some(m.track))
+            .collect();
+        assert_eq!(found.len(), 1, "{m:?} {tracks:?}");
+        let a = &attractors[found[0]];
+        assert_eq!((a.kind, a.period()), (m.kind, m.period()), "{m:?}");
+    }
+}
