@@ -6,14 +6,17 @@
 #
 #   PARTS=4 assets/slurm/submit.sh ~/runs/fig3b --time=00:30:00 -- sweep --preset fig3b
 #
-# COMMAND is a sharded bouncemap command (sweep or plane) and ARGUMENTs are its
-# arguments, passed to it exactly as given (stored at submission, never word-split).
+# COMMAND is a sharded bouncemap command (sweep, plane or attractors) and ARGUMENTs are
+# its arguments, passed to it exactly as given (stored at submission, never word-split).
 # The script adds --shard auto --resume --format csv --out OUT_DIR/part-I-of-N.csv
-# itself, so ARGUMENTs must not contain --shard, --resume, --format or --out.
+# itself (for attractors --shard auto --resume --out OUT_DIR/part-I-of-N.json, its
+# parts being json), so ARGUMENTs must not contain --shard, --resume, --format or --out.
 #
-# Shard I (array task I of 1-N) writes OUT_DIR/part-I-of-N.csv; the merge job writes
-# OUT_DIR/COMMAND.csv (sweep.csv, plane.csv), identical to the unsharded run but for its provenance's shard
-# line (merged N/N). A failed shard makes the merge job fail with a message naming the
+# Shard I (array task I of 1-N) writes OUT_DIR/part-I-of-N.csv (.json); the merge job
+# writes OUT_DIR/COMMAND.csv (sweep.csv, plane.csv), identical to the unsharded run but
+# for its provenance's shard line (merged N/N); for attractors the report of the whole
+# window, OUT_DIR/attractors.txt and OUT_DIR/attractors.csv, with a line per join in the
+# text. A failed shard makes the merge job fail with a message naming the
 # missing shard; submitting the same command again recomputes only the shards that are
 # missing (--resume leaves complete, verified parts alone).
 #
@@ -134,14 +137,17 @@ while ((i < ${#sbatch_opts[@]})); do
     esac
     i=$((i + 1))
 done
+# What a shard adds to the arguments besides --shard auto --resume --out, and its
+# part's extension (stored for shard.sh and merge.sh).
 case ${args[0]} in
-sweep | plane) ;;
-*) die "'${args[0]}' is not a sharded bouncemap command: valid sweep or plane" ;;
+sweep | plane) part_flags=(--format csv) part_ext=csv ;;
+attractors) part_flags=() part_ext=json ;;
+*) die "'${args[0]}' is not a sharded bouncemap command: valid sweep, plane or attractors" ;;
 esac
 for a in "${args[@]:1}"; do
     case $a in
     --shard | --shard=* | --resume | --resume=* | --format | --format=* | --out | --out=*)
-        die "bouncemap argument '$a': this script sets --shard auto --resume --format csv --out OUT_DIR/part-I-of-N.csv itself" ;;
+        die "bouncemap argument '$a': this script sets --shard auto --resume ${part_flags[*]:+${part_flags[*]} }--out OUT_DIR/part-I-of-N.$part_ext itself" ;;
     esac
 done
 
@@ -170,7 +176,7 @@ out_dir=$(realpath -- "$out_dir")
 # The bouncemap arguments checked before anything is queued: the same command the first
 # shard runs, as a dry run (--check: every flag, file and the part's path checked, the
 # plan printed, nothing computed). A typo is refused here, not on the nodes.
-check=("$bin" "${args[@]}" --shard "1/$parts" --resume --format csv --out "$out_dir/part-1-of-$parts.csv" --check)
+check=("$bin" "${args[@]}" --shard "1/$parts" --resume "${part_flags[@]}" --out "$out_dir/part-1-of-$parts.$part_ext" --check)
 plan=$("${check[@]}" 2>&1) || die "bouncemap refused the arguments, nothing was submitted: $(tail -n 1 <<<"$plan")"
 sed "s/^/$me: /" <<<"$plan"
 stamp=$(date +%Y%m%d-%H%M%S)-$$
@@ -179,6 +185,9 @@ mkdir -p -- "$run"
 printf '%s\0' "${args[@]}" >"$run/args"
 printf '%s\n' "$bin" >"$run/bouncemap"
 printf '%s\n' "$out_dir" >"$run/out_dir"
+# (printf with no arguments would still write one empty one)
+if ((${#part_flags[@]})); then printf '%s\0' "${part_flags[@]}"; fi >"$run/part_flags"
+printf '%s\n' "$part_ext" >"$run/part_ext"
 
 # sbatch expands %-patterns in log paths: a literal % is %%.
 logs=${run//%/%%}
@@ -216,4 +225,8 @@ ln -sfn "$stamp" "$out_dir/logs/latest"
 } >"$run/submitted"
 
 echo "$me: shards 1-$parts as job array $array_job, merge as job $merge_job (once every shard has ended)"
-echo "$me: logs in $run; the merged file will be $out_dir/${args[0]}.csv"
+if [[ ${args[0]} == attractors ]]; then
+    echo "$me: logs in $run; the merged report will be $out_dir/attractors.txt and $out_dir/attractors.csv"
+else
+    echo "$me: logs in $run; the merged file will be $out_dir/${args[0]}.csv"
+fi

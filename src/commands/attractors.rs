@@ -9,7 +9,7 @@
 
 use super::drive::drive_reporting;
 use super::progress::Progress;
-use crate::config::run::AttractorsRun;
+use crate::config::run::{attractors_spec_of, AttractorsRun};
 use crate::config::{self, InputError};
 use crate::output::attractors_file::{computed, owned, write_part};
 use crate::output::part_file::shard_name;
@@ -37,12 +37,19 @@ pub fn run(run: &AttractorsRun) -> anyhow::Result<()> {
         let (workers, threads) = job.threads_plan();
         let what = match part {
             Some((shard, _)) => format!(
-                "part {} of the attractors: α values {}..{} of {} (from value {}, where it joins the part before), {} starts each: {}",
+                "part {} of the attractors: α values {}..{} of {}{}, {} starts each: {}",
                 shard_name(*shard),
                 owned(spec.steps, *shard).start + 1,
                 values.end,
                 spec.steps,
-                values.start + 1,
+                if shard.index > 0 {
+                    format!(
+                        " (from value {}, where it joins the part before)",
+                        values.start + 1
+                    )
+                } else {
+                    String::new()
+                },
                 spec.starts(),
                 title(spec)
             ),
@@ -59,6 +66,11 @@ pub fn run(run: &AttractorsRun) -> anyhow::Result<()> {
             config::memory_plan(memory_bound(run, workers)),
             super::output_plan(job.out.as_deref(), job.what("text"))?,
         ]);
+    }
+    if let Some((shard, header)) = part {
+        if super::resume::attractors_written(job, header, *shard, &attractors_spec_of)? {
+            return Ok(());
+        }
     }
     let threads = job.threads()?;
     let mut sink = Sink::open(job.out.as_deref()).map_err(InputError)?;

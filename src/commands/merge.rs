@@ -23,7 +23,7 @@ use crate::config::files::{check_input, head, open_input, read_again, read_text,
 use crate::config::flags::{AttractorsFormat, MergeArgs};
 use crate::config::run::attractors_spec_of;
 use crate::config::InputError;
-use crate::output::attractors_file::{self, is_attractors};
+use crate::output::attractors_file::{self, is_attractors, ATTRACTORS_PART};
 use crate::output::part_file::{join, read_part, FileKind, JoinError, Joined};
 use crate::output::part_file::{shard_name, Layout};
 use crate::output::plane_file::{is_plane, PlaneFile};
@@ -32,9 +32,6 @@ use crate::output::sweep_file::SweepFile;
 use crate::output::text::shown_path;
 use clap::ValueEnum;
 use std::path::Path;
-
-/// The largest part of `attractors` read (whole, in memory).
-const ATTRACTORS_PART: u64 = 1 << 30;
 
 /// How a part is named in refusals of its reading.
 const WHAT: &str = "merge: part";

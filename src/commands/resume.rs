@@ -1,4 +1,4 @@
-//! `--resume` for the commands that write part files (`sweep`, `plane`): a part that is
+//! `--resume` for the commands that write part files (`sweep`, `plane`, `attractors`): a part that is
 //! already there, complete and verified (checked as `merge` checks a part), of this run's
 //! layout, tool, specification and shard, is left as it is and nothing is computed. A
 //! missing file, or one that carries this run's provenance but was cut off or damaged,
@@ -10,10 +10,14 @@
 use crate::config::files::{open_existing_output, read_again, LARGE_FILE};
 use crate::config::run::Job;
 use crate::config::InputError;
+use crate::output::attractors_file::{
+    opening, read_part as read_attractors_part, AttractorsHeader, ATTRACTORS_PART,
+};
 use crate::output::part_file::{
     differing_setting, opens_as, read_part, shard_name, spec_text, FileKind, Layout, TOOL,
 };
 use crate::output::to_stderr;
+use bouncemap_engine::attractors::global::GlobalSpec;
 use bouncemap_engine::jobs::grid::Shard;
 use std::path::Path;
 
@@ -133,4 +137,67 @@ pub fn check<K: FileKind>(
         part.count,
         K::UNIT
     ))
+}
+
+/// [`already_written`] for a part of `attractors` (one json document, read whole): the
+/// run `header`, shard `shard`, its header made a spec by `spec_of`.
+pub fn attractors_written(
+    job: &Job,
+    header: &AttractorsHeader,
+    shard: Shard,
+    spec_of: &dyn Fn(&AttractorsHeader) -> Result<GlobalSpec, String>,
+) -> Result<bool, InputError> {
+    if !job.resume {
+        return Ok(false);
+    }
+    let Some(out) = job.out.as_deref() else {
+        return Ok(false);
+    };
+    let path = Path::new(out);
+    let shown = path.display().to_string();
+    if std::fs::symlink_metadata(path).is_err_and(|e| e.kind() == std::io::ErrorKind::NotFound) {
+        to_stderr(&format!(
+            "bouncemap: --resume: no {shown} yet; computing it\n"
+        ));
+        return Ok(false);
+    }
+    if !regular(path) {
+        return Ok(false);
+    }
+    // Read as the sweep's parts are, not noted as an input (it is this run's output).
+    let mut input = open_existing_output(path, "--resume: the existing file", ATTRACTORS_PART)?;
+    let mut bytes = Vec::new();
+    let read = std::io::Read::read_to_end(&mut input, &mut bytes);
+    input.finish()?;
+    read.map_err(|e| InputError(format!("--resume: {shown}: cannot read: {e}")))?;
+    let text = String::from_utf8_lossy(&bytes);
+    let ours = text.starts_with(&opening(header, shard));
+    let why = match read_attractors_part(&text, spec_of) {
+        Ok(p) if p.header == *header && p.shard == shard => {
+            to_stderr(&format!(
+                "bouncemap: --resume: {shown} already holds shard {} of this attractors run, complete and verified ({} α values): nothing to compute\n",
+                shard_name(shard),
+                p.cont.steps().len()
+            ));
+            return Ok(true);
+        }
+        Ok(p) if p.header == *header => format!(
+            "{shown} holds shard {} of this attractors run, not shard {}",
+            shard_name(p.shard),
+            shard_name(shard)
+        ),
+        Ok(p) => format!(
+            "{shown} holds shard {} of another attractors run",
+            shard_name(p.shard)
+        ),
+        Err(e) => format!("{shown}: {e}"),
+    };
+    if ours {
+        to_stderr(&format!("bouncemap: --resume: {why}; computing it\n"));
+        Ok(false)
+    } else {
+        Err(InputError(format!(
+            "--resume: {why}, and it is not this run's output, so it is left as it is: valid an --out FILE that is missing or holds this part of this run"
+        )))
+    }
 }

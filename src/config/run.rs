@@ -229,6 +229,17 @@ pub fn attractors(args: &AttractorsArgs) -> Result<AttractorsRun, InputError> {
             )));
         }
     }
+    if args.resume && !sharded {
+        return Err(InputError(
+            "--resume without --shard: valid with --shard I/N (a part file, which can be verified)"
+                .into(),
+        ));
+    }
+    if args.resume && args.output.out.is_none() {
+        return Err(InputError(
+            "--resume without --out: valid with --out FILE, the file to check and write".into(),
+        ));
+    }
     let job = Job {
         check: args.check.check,
         requested_threads: args.workers.threads,
@@ -240,7 +251,7 @@ pub fn attractors(args: &AttractorsArgs) -> Result<AttractorsRun, InputError> {
             Some(AttractorsFormat::Text) | None => None,
         },
         text: (0, 0),
-        resume: false,
+        resume: args.resume,
     };
     let part = sharded.then(|| (shard, attractors_header(&args.spec, &spec)));
     Ok(AttractorsRun { spec, job, part })

@@ -31,6 +31,9 @@ use bouncemap_engine::run::precision::Precision;
 use bouncemap_engine::Complex;
 use serde::{Deserialize, Serialize};
 
+/// The largest part read (whole, in memory), in bytes.
+pub const ATTRACTORS_PART: u64 = 1 << 30;
+
 /// The word a part's provenance names its kind by.
 pub const FILE: &str = "attractors";
 
@@ -209,6 +212,7 @@ pub fn write_part(
         body,
     };
     let text = serde_json::to_string(&doc).map_err(|e| e.to_string())?;
+    debug_assert!(text.starts_with(&opening(header, shard)));
     // Every number must read back as it was (a non-finite one would not).
     let again = read_part(&text, &|_| Ok(spec.clone()))
         .map_err(|e| format!("the part does not read back: {e}"))?;
@@ -219,6 +223,16 @@ pub fn write_part(
         return Err("the part does not read back to what was computed".into());
     }
     Ok(text)
+}
+
+/// How the part of the run `header`, shard `shard`, begins: its provenance up to its
+/// shard (a file that begins so is this run's part, whole or not).
+pub fn opening(header: &AttractorsHeader, shard: Shard) -> String {
+    format!(
+        r#"{{"provenance":{{"file":"{FILE}","tool":"{TOOL}","spec_hash":"{}","shard":"{}","#,
+        header.hash(),
+        shard_name(shard)
+    )
 }
 
 fn checksum(body: &Body) -> String {

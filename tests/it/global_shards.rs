@@ -232,3 +232,46 @@ fn the_check_states_the_part() {
         "{plan}"
     );
 }
+
+#[test]
+fn resume_leaves_a_verified_part_and_recomputes_a_damaged_one() {
+    let d = dir("resume");
+    let p = d.join("part2.json");
+    let args = with(&RUN, &["--shard", "2/3", "--resume", "--out", s(&p)]);
+    let (code, _, err) = run(&args);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("no "), "{err}");
+    let written = std::fs::read(&p).unwrap();
+    let modified = std::fs::metadata(&p).unwrap().modified().unwrap();
+    // Complete and verified: nothing computed, the file untouched.
+    let (code, _, err) = run(&args);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("nothing to compute"), "{err}");
+    assert!(!err.contains("starts/s"), "{err}");
+    assert_eq!(std::fs::metadata(&p).unwrap().modified().unwrap(), modified);
+    // This run's part cut short: computed again, the same.
+    std::fs::write(&p, &written[..written.len() / 3]).unwrap();
+    let (code, _, err) = run(&args);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("computing it"), "{err}");
+    assert_eq!(std::fs::read(&p).unwrap(), written);
+    // Another shard's part, or a file of someone else's: refused and left as it is.
+    let (code, _, err) = run(&with(&RUN, &["--shard", "1/3", "--resume", "--out", s(&p)]));
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("not shard 1/3"), "{err}");
+    assert_eq!(std::fs::read(&p).unwrap(), written);
+    let notes = d.join("notes.json");
+    std::fs::write(&notes, "{\"mine\": 1}").unwrap();
+    refused(
+        run(&with(
+            &RUN,
+            &["--shard", "1/3", "--resume", "--out", s(&notes)],
+        )),
+        "it is not this run's output",
+    );
+    assert_eq!(std::fs::read_to_string(&notes).unwrap(), "{\"mine\": 1}");
+    refused(
+        run(&with(&RUN, &["--resume", "--out", s(&notes)])),
+        "--resume without --shard",
+    );
+}

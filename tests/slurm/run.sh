@@ -24,7 +24,11 @@
 #   4. the workstation commands of docs/commands.md (GNU parallel, and the xargs alternative);
 #   5. a small (α, D) plane in 3 shards (800 pixels, so parts of unequal size) through
 #      submit.sh: the merged plane.csv must equal the unsharded plane but for the
-#      shard line (merged 3/3 for 1/1); submitted again, every shard resumes.
+#      shard line (merged 3/3 for 1/1); submitted again, every shard resumes;
+#   6. attractors followed along α in 3 shards through submit.sh (runs of consecutive α
+#      values, each after the first from the last value of the one before): the merged
+#      attractors.csv must equal the unsharded run's csv, and attractors.txt must say
+#      how the parts were joined; submitted again, every shard resumes.
 #
 # It stops exactly the daemons it started (a zombie counts as stopped) and removes its
 # scratch directory. Every wait is bounded; on failure it prints the daemons' and the
@@ -538,5 +542,43 @@ done
 [[ $(job_states "$(record "$run" merge_job)") == "COMPLETED 0:0" ]] || fail "the plane's second merge job did not complete"
 [[ $(cat "$planes/plane.csv") == "$merged" ]] || fail "the plane's second merge differs from the first"
 say "5. passed in $((SECONDS - t0)) s: 3 plane shards merged into the unsharded plane, and resumed"
+
+# ------------------------------------------------------------------ 6. attractors
+say "6. attractors along α through submit.sh"
+t0=$SECONDS
+att_args=(attractors --table cubic --alpha 0.46..0.5 --steps 12 --grid 30x30)
+att_whole=$work/attractors-whole.csv
+"$bin" "${att_args[@]}" --format csv --out "$att_whole" 2>/dev/null
+atts=$work/runs/attractors
+PARTS=3 assets/slurm/submit.sh "$atts" -- "${att_args[@]}" >"$work/log/attractors-submit.out"
+wait_for_jobs 300
+run=$(realpath "$atts/logs/latest")
+[[ $(job_states "$(record "$run" array_job)" | sort | uniq -c | sed 's/^ *//') == "3 COMPLETED 0:0" ]] ||
+    fail "the 3 attractors shards did not all complete: $(job_states "$(record "$run" array_job)" | tr '\n' ' ')"
+[[ $(job_states "$(record "$run" merge_job)") == "COMPLETED 0:0" ]] ||
+    fail "the attractors' merge job: $(job_states "$(record "$run" merge_job)")"
+# 12 values in 3 parts: 4, then 4 + the value before each (5 pictures of 900 starts).
+for i in 1 2 3; do
+    starts=$((i == 1 ? 3600 : 4500))
+    grep -q "attractors of $starts starts started" "$run/shard-$i.log" ||
+        fail "shard $i did not compute its $starts starts: $run/shard-$i.log"
+done
+cmp -s "$atts/attractors.csv" "$att_whole" ||
+    fail "the merged attractors.csv differs from the unsharded run's csv"
+grep -q '^merged from 3 parts' "$atts/attractors.txt" || fail "attractors.txt does not say it was merged from 3 parts"
+[[ $(grep -c 'the two pictures agree on every basin fraction' "$atts/attractors.txt") -eq 2 ]] ||
+    fail "attractors.txt does not show both joins agreeing: $atts/attractors.txt"
+before=$(inode_and_mtime "$atts"/part-*-of-3.json)
+PARTS=3 assets/slurm/submit.sh "$atts" -- "${att_args[@]}" >"$work/log/attractors-again.out"
+wait_for_jobs 300
+run=$(realpath "$atts/logs/latest")
+[[ $(inode_and_mtime "$atts"/part-*-of-3.json) == "$before" ]] || fail "an attractors part was rewritten"
+for i in 1 2 3; do
+    grep -q "already holds shard $i/3 of this attractors run" "$run/shard-$i.log" ||
+        fail "attractors shard $i did not resume: $run/shard-$i.log"
+done
+[[ $(job_states "$(record "$run" merge_job)") == "COMPLETED 0:0" ]] || fail "the attractors' second merge job did not complete"
+cmp -s "$atts/attractors.csv" "$att_whole" || fail "the second merge differs from the unsharded run's csv"
+say "6. passed in $((SECONDS - t0)) s: 3 attractors shards joined into the unsharded run, and resumed"
 
 say "PASSED"

@@ -74,6 +74,15 @@ pub struct AttractorsArgs {
     /// array's variables as `sweep --shard auto` does.
     #[arg(long, value_parser = super::parse_shard_arg, value_name = "I/N|auto")]
     pub shard: Option<super::ShardArg>,
+    /// Do nothing if --out FILE already holds this part of this run, complete and
+    /// verified (with --shard).
+    ///
+    /// FILE is checked as `merge` checks a part and must be this run's, this shard's
+    /// and this version's: then the run exits 0 at once and leaves it untouched. A
+    /// missing FILE, or this run's part cut off or damaged, is computed (stderr says
+    /// why); any other file is refused with status 2 and left as it is.
+    #[arg(long)]
+    pub resume: bool,
     #[command(flatten)]
     pub workers: ThreadsArgs,
     #[command(flatten)]
