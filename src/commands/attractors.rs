@@ -131,7 +131,8 @@ pub fn compute(
     values: std::ops::Range<usize>,
     executor: &Executor,
 ) -> anyhow::Result<Continuation> {
-    let total = values.len() * spec.starts();
+    // Each α's grid, then its sampled starts (each with its displaced copies).
+    let total = values.len() * (spec.starts() + spec.sampled_starts);
     let mut cont = Continuation::part(spec.clone(), values)?;
     let mut progress = Progress::start_units("attractors", "starts", total, &title(spec));
     let started = Instant::now();
@@ -157,7 +158,10 @@ pub fn compute(
         })?;
         done += summary.progress.done;
         events += summary.progress.events;
-        let sampled = next.sample(&basins, executor, &control);
+        let sampled = next.sample(&basins, executor, &control, &mut |k| {
+            progress.update(&at(done + k, events))
+        });
+        done += spec.sampled_starts;
         if !basins.complete() {
             anyhow::bail!(
                 "the attractors stopped at alpha = {} after {} of {} starts",

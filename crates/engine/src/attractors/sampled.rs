@@ -110,10 +110,14 @@ pub fn sampled_uncertainty(
     seeded: Registry,
     executor: &Executor,
     control: &Control,
+    on_sample: &mut dyn FnMut(usize),
 ) -> Option<Result<Uncertainty, NoExponent>> {
     let job = SampledJob::new(spec.clone(), starts, known);
     let mut samples: Vec<Sample> = Vec::with_capacity(starts);
-    let summary = executor.run(job, control, |b| samples.push(b.data));
+    let summary = executor.run(job, control, |b| {
+        samples.push(b.data);
+        on_sample(samples.len());
+    });
     if summary.cancelled || samples.len() != starts {
         return None;
     }
@@ -165,6 +169,7 @@ mod tests {
             Registry::new(),
             &Executor::new(2).unwrap(),
             &Control::new(),
+            &mut |_| {},
         );
         assert_eq!(got, Some(Err(NoExponent::NoBoundary)));
     }
@@ -183,6 +188,7 @@ mod tests {
             Registry::new(),
             &Executor::new(2).unwrap(),
             &Control::new(),
+            &mut |_| {},
         )
         .unwrap()
         .unwrap();

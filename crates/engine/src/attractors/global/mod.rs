@@ -288,12 +288,14 @@ pub struct NextAlpha {
 impl NextAlpha {
     /// The uncertainty exponent by [`sampled`](super::sampled) starts, when the spec
     /// asks for them (None otherwise, or if cancelled), after `basins` (this α's
-    /// filled picture, whose attractors the samples' are numbered after).
+    /// filled picture, whose attractors the samples' are numbered after);
+    /// `on_sample` hears how many samples are done as they come in.
     pub fn sample(
         &self,
         basins: &Basins,
         executor: &Executor,
         control: &Control,
+        on_sample: &mut dyn FnMut(usize),
     ) -> Option<Result<Uncertainty, NoExponent>> {
         if self.sampled_starts == 0 {
             return None;
@@ -306,6 +308,7 @@ impl NextAlpha {
             basins.registry().clone(),
             executor,
             control,
+            on_sample,
         )
     }
 
@@ -601,7 +604,7 @@ pub fn collect(
         if summary.cancelled || !basins.complete() {
             break;
         }
-        let sampled = next.sample(&basins, executor, control);
+        let sampled = next.sample(&basins, executor, control, &mut |_| {});
         cont.absorb(next, &basins);
         if let Some(u) = sampled {
             cont.set_sampled(u);
