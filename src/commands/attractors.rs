@@ -340,6 +340,9 @@ fn text(cont: &Continuation, joins: &[Join]) -> Vec<String> {
     }
     out.push(String::new());
     out.push("S_b, S_bb: basin entropy and boundary basin entropy in boxes of 5x5 starts (* S_bb > ln 2: a fractal boundary).".into());
+    if let Some(line) = transients(cont) {
+        out.push(line);
+    }
     let first = steps
         .iter()
         .find_map(|s| s.uncertainty.as_ref().ok().map(|u| (u, s.sampled)));
@@ -363,6 +366,42 @@ fn text(cont: &Continuation, joins: &[Join]) -> Vec<String> {
     ));
     out
 }
+
+/// Attractors without a cycle that hold one start each, at least
+/// [`MANY_SINGLES`] of them at one α: orbits still wandering at the end of the
+/// transient are told apart by the cells they visit, so long transients show as many
+/// one-start "attractors". Said, with where, rather than left to be read as many
+/// attractors.
+fn transients(cont: &Continuation) -> Option<String> {
+    let singles = |s: &bouncemap_engine::attractors::global::Step| {
+        s.members
+            .iter()
+            .filter(|m| m.starts == 1 && m.events.is_none())
+            .count()
+    };
+    let (worst, at) = cont
+        .steps()
+        .iter()
+        .map(|s| (singles(s), s.alpha))
+        .max_by(|a, b| a.0.cmp(&b.0))?;
+    if worst < MANY_SINGLES {
+        return None;
+    }
+    let values = cont
+        .steps()
+        .iter()
+        .filter(|s| singles(s) >= MANY_SINGLES)
+        .count();
+    Some(format!(
+        "note: at {values} α value{} up to {worst} attractors without a cycle hold one start each (α = {}): likely transients longer than T = {}, each told apart by the cells it visits; a longer --transient settles more of them.",
+        if values == 1 { "" } else { "s" },
+        shortest(at),
+        cont.spec().settle.transient
+    ))
+}
+
+/// One-start attractors without a cycle at one α from which [`transients`] speaks.
+const MANY_SINGLES: usize = 10;
 
 /// How a join held, in words.
 fn join_text(j: &Join, alpha: &dyn Fn(f64) -> String) -> String {

@@ -275,3 +275,38 @@ fn stopping_at_the_seeds_cycles_changes_nothing_but_the_time() {
         "{stopped}"
     );
 }
+
+#[test]
+fn many_one_start_attractors_are_called_likely_transients() {
+    // The sine table at α = 0.45: hundreds of starts still wander at T = 5000, each a
+    // one-start "attractor" by the cells it visits; the report says what they likely
+    // are. The cubic table's two attractors get no such note.
+    let text = ok(&[
+        "attractors",
+        "--table",
+        "sine",
+        "--alpha",
+        "0.44..0.45",
+        "--steps",
+        "2",
+        "--grid",
+        "20x20",
+    ]);
+    let note = text
+        .lines()
+        .find(|l| l.starts_with("note: at 2 α values up to "))
+        .unwrap_or_else(|| panic!("{text}"));
+    let many: usize = note["note: at 2 α values up to ".len()..]
+        .split(' ')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!(many >= 10, "{note}");
+    assert!(
+        note.contains("likely transients longer than T = 5000"),
+        "{note}"
+    );
+    let cubic = ok(&with(&CUBIC, &["--grid", "20x20"]));
+    assert!(!cubic.contains("likely transients"), "{cubic}");
+}
