@@ -50,23 +50,9 @@ pub fn main() -> ExitCode {
             | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
                 return print_help(&e);
             }
-            kind => {
-                let mut msg = value_error(&e).unwrap_or_else(|| {
-                    one_line_clap_error(&e.render().to_string()).replace(
-                        "requires a subcommand but one was not provided",
-                        "needs a NAME",
-                    )
-                });
-                if matches!(
-                    kind,
-                    ErrorKind::InvalidSubcommand | ErrorKind::MissingSubcommand
-                ) {
-                    let names = subcommand_names(std::env::args().skip(1));
-                    if !names.is_empty() {
-                        msg.push_str(": valid ");
-                        msg.push_str(&names.join(", "));
-                    }
-                }
+            _ => {
+                let args: Vec<String> = std::env::args().skip(1).collect();
+                let msg = refusal(&e, &args);
                 output::to_stderr(&format!("{msg}\n"));
                 return ExitCode::from(2);
             }
@@ -151,11 +137,48 @@ fn print_help(e: &clap::Error) -> ExitCode {
     }
 }
 
+/// The command that `args` (the arguments after the program's name) ask for, parsed
+/// and checked as the binary parses its own, or the one line the binary would print
+/// refusing them (without its `error: `): the command line for another front end (the
+/// Python module builds its calls' arguments and runs them through this).
+pub fn parse_command(args: &[String]) -> Result<config::flags::Command, String> {
+    let strip = |m: String| m.strip_prefix("error: ").map(String::from).unwrap_or(m);
+    let all = std::iter::once("bouncemap").chain(args.iter().map(String::as_str));
+    let m = config::flags::Cli::command()
+        .try_get_matches_from(all)
+        .map_err(|e| strip(refusal(&e, args)))?;
+    let mut cli = config::flags::Cli::from_arg_matches(&m).map_err(|e| strip(refusal(&e, args)))?;
+    config::flags::keep_written(&mut cli, &m);
+    cli.command
+        .ok_or_else(|| "no command: valid a subcommand (sweep, orbit, basins, ...)".into())
+}
+
+/// The one line refusing a command line `args` that clap refused with `e`.
+fn refusal(e: &clap::Error, args: &[String]) -> String {
+    let mut msg = value_error(e, args).unwrap_or_else(|| {
+        one_line_clap_error(&e.render().to_string()).replace(
+            "requires a subcommand but one was not provided",
+            "needs a NAME",
+        )
+    });
+    if matches!(
+        e.kind(),
+        ErrorKind::InvalidSubcommand | ErrorKind::MissingSubcommand
+    ) {
+        let names = subcommand_names(args.iter().cloned());
+        if !names.is_empty() {
+            msg.push_str(": valid ");
+            msg.push_str(&names.join(", "));
+        }
+    }
+    msg
+}
+
 /// A refused value as one line naming the flag, the value and the valid form (for
 /// values our parsers refuse, their own message; for a value missing or not among the
 /// possible ones, those or the flag's help), rebuilt from clap's context so no parser
 /// internals and no raw typed text reach the user.
-fn value_error(e: &clap::Error) -> Option<String> {
+fn value_error(e: &clap::Error, args: &[String]) -> Option<String> {
     use clap::error::{ContextKind, ContextValue};
     let ContextValue::String(arg) = e.get(ContextKind::InvalidArg)? else {
         return None;
@@ -180,7 +203,7 @@ fn value_error(e: &clap::Error) -> Option<String> {
                 Some(ContextValue::Strings(v)) if !v.is_empty() => {
                     format!("valid {}", v.join(", "))
                 }
-                _ => flag_help(flag)?,
+                _ => flag_help(flag, args)?,
             };
             Some(if value.is_empty() {
                 format!("error: {flag} needs a value: {valid}")
@@ -197,12 +220,12 @@ fn value_error(e: &clap::Error) -> Option<String> {
 
 /// What the help of `flag` (`--alpha`), in the subcommand the command line reached, says
 /// its values are: "valid …" where it states them, else its first line.
-fn flag_help(flag: &str) -> Option<String> {
+fn flag_help(flag: &str, args: &[String]) -> Option<String> {
     use clap::CommandFactory;
     let long = flag.strip_prefix("--")?;
     let mut cmd = config::flags::Cli::command();
-    for a in std::env::args().skip(1) {
-        if let Some(sub) = cmd.find_subcommand(&a).cloned() {
+    for a in args {
+        if let Some(sub) = cmd.find_subcommand(a).cloned() {
             cmd = sub;
         }
     }

@@ -13,7 +13,7 @@ use crate::config::run::BasinsRun;
 use crate::config::{self, InputError};
 use crate::output::basin_map;
 use crate::output::part_file::Layout;
-use crate::output::records::{csv_writer, cycle_text, AttractorRecord, BasinRow, BasinsDoc};
+use crate::output::records::{csv_writer, cycle_text, BasinRow, BasinsDoc};
 use crate::output::sink::Sink;
 use crate::output::text::shortest;
 use bouncemap_engine::attractors::basins::{BasinSpec, Basins, BasinsJob};
@@ -152,32 +152,7 @@ fn write(
             w.flush()?;
         }
         Some(Layout::Json) => {
-            let doc = BasinsDoc {
-                table: spec.sys.table().name(),
-                alpha: spec.sys.alpha(),
-                r: spec.sys.r(),
-                grid: [spec.nx, spec.ny],
-                w_max: spec.w_max,
-                transient: spec.settle.transient,
-                starts: reg.starts(),
-                attractors: reg
-                    .ranked()
-                    .into_iter()
-                    .map(|id| {
-                        let a = &reg.attractors()[id];
-                        AttractorRecord::new(
-                            number[id],
-                            a.kind,
-                            (a.events, a.periods),
-                            a.point,
-                            a.lyapunov,
-                            reg.fraction(id),
-                            a.precision,
-                        )
-                        .with_cycle(cycle(id))
-                    })
-                    .collect(),
-            };
+            let doc = BasinsDoc::of(spec, basins, &cycle);
             serde_json::to_writer(&mut *out, &doc)?;
             writeln!(out)?;
         }

@@ -3,7 +3,7 @@
 
 use crate::config;
 use crate::config::flags::FixedArgs;
-use crate::output::records::{csv_writer, FixedDoc, FixedRow, FixedSolution, WindowRecord};
+use crate::output::records::{csv_writer, FixedDoc, FixedRow};
 use crate::output::sink::Sink;
 use crate::output::text::complex;
 use crate::output::Format;
@@ -18,18 +18,7 @@ pub fn run(args: &FixedArgs) -> anyhow::Result<()> {
     let written = (|| -> anyhow::Result<()> {
         match args.format {
             Format::Json => {
-                let first = windows.first();
-                let doc = FixedDoc {
-                    table: sys.table().name(),
-                    alpha: sys.alpha(),
-                    r: sys.r(),
-                    k: args.k,
-                    kappa_c: sys.kappa_c(),
-                    solutions: points.iter().map(FixedSolution::from).collect(),
-                    alpha_birth: first.map(|w| w.alpha_birth),
-                    alpha_pd: first.and_then(|w| w.alpha_pd()),
-                    windows: windows.iter().map(WindowRecord::from).collect(),
-                };
+                let doc = FixedDoc::of(&sys, args.k, &points, &windows);
                 serde_json::to_writer(&mut out, &doc)?;
                 writeln!(out)?;
             }

@@ -286,3 +286,42 @@ pub struct BasinsDoc<'a> {
     pub starts: usize,
     pub attractors: Vec<AttractorRecord>,
 }
+
+impl<'a> BasinsDoc<'a> {
+    /// The json of the picture `basins` of `spec`, with the cycle each attractor (by
+    /// id) was decided to at any precision, where `cycle` has one.
+    pub fn of(
+        spec: &'a bouncemap_engine::attractors::basins::BasinSpec,
+        basins: &bouncemap_engine::attractors::basins::Basins,
+        cycle: &dyn Fn(usize) -> Option<&'a bouncemap_engine::CycleVerdict>,
+    ) -> BasinsDoc<'a> {
+        let reg = basins.registry();
+        let number = crate::output::basin_map::numbers(reg);
+        BasinsDoc {
+            table: spec.sys.table().name(),
+            alpha: spec.sys.alpha(),
+            r: spec.sys.r(),
+            grid: [spec.nx, spec.ny],
+            w_max: spec.w_max,
+            transient: spec.settle.transient,
+            starts: reg.starts(),
+            attractors: reg
+                .ranked()
+                .into_iter()
+                .map(|id| {
+                    let a = &reg.attractors()[id];
+                    AttractorRecord::new(
+                        number[id],
+                        a.kind,
+                        (a.events, a.periods),
+                        a.point,
+                        a.lyapunov,
+                        reg.fraction(id),
+                        a.precision,
+                    )
+                    .with_cycle(cycle(id))
+                })
+                .collect(),
+        }
+    }
+}

@@ -185,6 +185,29 @@ pub struct FixedDoc<'a> {
     pub windows: Vec<WindowRecord>,
 }
 
+impl<'a> FixedDoc<'a> {
+    /// The json of the (1, k) solutions `points` of `sys` and the stability `windows`.
+    pub fn of(
+        sys: &'a bouncemap_engine::System,
+        k: u32,
+        points: &[FixedPoint],
+        windows: &[StabilityWindow],
+    ) -> FixedDoc<'a> {
+        let first = windows.first();
+        FixedDoc {
+            table: sys.table().name(),
+            alpha: sys.alpha(),
+            r: sys.r(),
+            k,
+            kappa_c: sys.kappa_c(),
+            solutions: points.iter().map(FixedSolution::from).collect(),
+            alpha_birth: first.map(|w| w.alpha_birth),
+            alpha_pd: first.and_then(|w| w.alpha_pd()),
+            windows: windows.iter().map(WindowRecord::from).collect(),
+        }
+    }
+}
+
 /// One csv row of `fixed`: a (1, k) solution.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct FixedRow {

@@ -1,0 +1,56 @@
+from typing import Any, Dict, Optional, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+Window = Tuple[float, float]
+Value = Union[str, int, float, bool, Window, None]
+
+__version__: str
+KINDS: Tuple[str, str, str]
+
+def fixed(
+    *,
+    table: str = ...,
+    alpha: float = ...,
+    r: float = ...,
+    k: int = ...,
+    **flags: Value,
+) -> Dict[str, Any]: ...
+def orbit(
+    *,
+    table: str = ...,
+    alpha: float = ...,
+    r: float = ...,
+    t0: float = ...,
+    v0: float = ...,
+    bounces: int = ...,
+    skip: int = ...,
+    solver: str = ...,
+    **flags: Value,
+) -> Dict[str, Any]: ...
+def sweep(
+    *,
+    table: str = ...,
+    alpha: Union[float, Window] = ...,
+    r: Union[float, Window] = ...,
+    steps: int = ...,
+    transient: int = ...,
+    keep: int = ...,
+    preset: str = ...,
+    starts: int = ...,
+    lyapunov: bool = ...,
+    threads: int = ...,
+    **flags: Value,
+) -> Dict[str, npt.NDArray[Any]]: ...
+def basins(
+    *,
+    table: str = ...,
+    alpha: float = ...,
+    r: float = ...,
+    grid: str = ...,
+    w_max: float = ...,
+    transient: int = ...,
+    threads: int = ...,
+    **flags: Value,
+) -> Dict[str, Any]: ...
