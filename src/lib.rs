@@ -153,6 +153,35 @@ pub fn parse_command(args: &[String]) -> Result<config::flags::Command, String> 
         .ok_or_else(|| "no command: valid a subcommand (sweep, orbit, basins, ...)".into())
 }
 
+/// Why a command run for another front end ([`run_captured`]) gave no output.
+#[derive(Debug)]
+pub enum Refused {
+    /// Bad input: the one line the binary prints (status 2), without its `error: `.
+    Input(String),
+    /// Anything else: the binary's message (status 1).
+    Failed(String),
+}
+
+/// Run the command `args` (the arguments after the program's name) as the binary
+/// runs it, keeping what it writes to standard output: for another front end (the
+/// Python module reads the json of `--format json`). Progress and notes still go to
+/// standard error.
+pub fn run_captured(args: &[String]) -> Result<Vec<u8>, Refused> {
+    let cmd = parse_command(args).map_err(Refused::Input)?;
+    let (result, bytes) = output::sink::capture(|| commands::run(cmd));
+    match result {
+        Ok(()) => Ok(bytes),
+        Err(e) => {
+            let msg = e.to_string().replace('\n', " ");
+            Err(if e.downcast_ref::<InputError>().is_some() {
+                Refused::Input(msg)
+            } else {
+                Refused::Failed(msg)
+            })
+        }
+    }
+}
+
 /// The one line refusing a command line `args` that clap refused with `e`.
 fn refusal(e: &clap::Error, args: &[String]) -> String {
     let mut msg = value_error(e, args).unwrap_or_else(|| {

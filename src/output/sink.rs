@@ -347,10 +347,30 @@ impl Drop for Claim {
     }
 }
 
-/// Standard output or an atomically written file: where every command writes.
+/// Standard output or an atomically written file: where every command writes; or,
+/// inside [`capture`], a buffer in place of standard output.
 pub enum Sink {
     Stdout(BufWriter<io::StdoutLock<'static>>),
     File(AtomicFile),
+    Captured(std::sync::Arc<std::sync::Mutex<Vec<u8>>>),
+}
+
+thread_local! {
+    /// What [`Sink::stdout`] writes into on this thread instead of standard output,
+    /// inside [`capture`].
+    static CAPTURE: std::cell::RefCell<Option<std::sync::Arc<std::sync::Mutex<Vec<u8>>>>> =
+        const { std::cell::RefCell::new(None) };
+}
+
+/// Run `f` with what it writes to standard output (through [`Sink`]) kept instead:
+/// its result and those bytes (a command run for another front end, the Python module).
+pub fn capture<T>(f: impl FnOnce() -> T) -> (T, Vec<u8>) {
+    let buffer = std::sync::Arc::new(std::sync::Mutex::new(Vec::new()));
+    let before = CAPTURE.with(|c| c.replace(Some(buffer.clone())));
+    let result = f();
+    CAPTURE.with(|c| c.replace(before));
+    let bytes = std::mem::take(&mut *buffer.lock().unwrap_or_else(|e| e.into_inner()));
+    (result, bytes)
 }
 
 impl Sink {
@@ -367,6 +387,9 @@ impl Sink {
 
     /// Standard output, for a command that writes there.
     pub fn stdout() -> Sink {
+        if let Some(b) = CAPTURE.with(|c| c.borrow().clone()) {
+            return Sink::Captured(b);
+        }
         STDOUT_IS_OUTPUT.store(true, Ordering::Relaxed);
         Sink::Stdout(BufWriter::with_capacity(1 << 16, io::stdout().lock()))
     }
@@ -377,6 +400,7 @@ impl Sink {
         match self {
             Sink::Stdout(mut o) => o.flush().map_err(|e| describe_stdout(e.into())),
             Sink::File(f) => f.commit(),
+            Sink::Captured(_) => Ok(()),
         }
     }
 
@@ -399,6 +423,7 @@ impl Sink {
         match self {
             Sink::Stdout(_) => describe_stdout(e),
             Sink::File(f) => anyhow::anyhow!("cannot write {}: {e}", shown_path(f.path())),
+            Sink::Captured(_) => e,
         }
     }
 }
@@ -489,6 +514,12 @@ impl Write for Sink {
         match self {
             Sink::Stdout(o) => o.write(buf),
             Sink::File(f) => f.write(buf),
+            Sink::Captured(b) => {
+                b.lock()
+                    .unwrap_or_else(|e| e.into_inner())
+                    .extend_from_slice(buf);
+                Ok(buf.len())
+            }
         }
     }
 
@@ -496,6 +527,7 @@ impl Write for Sink {
         match self {
             Sink::Stdout(o) => o.flush(),
             Sink::File(f) => f.flush(),
+            Sink::Captured(_) => Ok(()),
         }
     }
 }

@@ -4,7 +4,9 @@
 //! parsed, checked and turned into the engine's specification by the one configuration
 //! stage the binary uses, and refused with the binary's one-line message
 //! (`ValueError`). The results come back as numpy arrays (orbits, sweeps, basin
-//! labels) and as the commands' json (the package reads it into dicts).
+//! labels) and as the commands' json (the package reads it into dicts; the commands
+//! without arrays of their own are run whole by `run_command`, their standard
+//! output captured).
 //!
 //! Long computations run with the GIL released, on the engine's executor where they are
 //! jobs (sweep, basins: on all cores); every 50 ms the calling thread takes the GIL back
@@ -389,6 +391,18 @@ fn basins<'py>(
     Ok((grid.into_pyarray(py), doc))
 }
 
+/// Any command whose output is text (json with `--format json`), run as the binary
+/// runs it, its standard output returned: `two-cycle`, `lyapunov`, `continue`,
+/// `cascade`, `curves`, ... The GIL is released while it runs; it runs to its end.
+#[pyfunction]
+fn run_command(py: Python<'_>, argv: Vec<String>) -> PyResult<String> {
+    match py.detach(|| bouncemap::run_captured(&argv)) {
+        Ok(bytes) => String::from_utf8(bytes).map_err(|e| PyRuntimeError::new_err(e.to_string())),
+        Err(bouncemap::Refused::Input(m)) => Err(PyValueError::new_err(m)),
+        Err(bouncemap::Refused::Failed(m)) => Err(PyRuntimeError::new_err(m)),
+    }
+}
+
 /// The extension module.
 #[pymodule]
 fn _bouncemap(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -396,6 +410,7 @@ fn _bouncemap(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(orbit, m)?)?;
     m.add_function(wrap_pyfunction!(sweep, m)?)?;
     m.add_function(wrap_pyfunction!(basins, m)?)?;
+    m.add_function(wrap_pyfunction!(run_command, m)?)?;
     m.add("VERSION", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

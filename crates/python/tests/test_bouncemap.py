@@ -175,3 +175,49 @@ def test_the_readme_example_runs(tmp_path, monkeypatch, capsys):
     first = capsys.readouterr().out.splitlines()[0].split()
     phase, v, closed = (float(x) for x in first)
     assert abs(phase - closed) < 1e-9 and abs(v - 0.5) < 1e-9
+
+
+@pytest.mark.parametrize(
+    "call, args",
+    [
+        (lambda: bouncemap.two_cycle(table="fd:0.1", alpha=0.52, r=0.8),
+         ["two-cycle", "--table", "fd:0.1", "--alpha", "0.52", "--r", "0.8"]),
+        (lambda: bouncemap.lyapunov(table="cubic", alpha=0.47, near_fixed_point=True),
+         ["lyapunov", "--table", "cubic", "--alpha", "0.47", "--near-fixed-point"]),
+        (lambda: bouncemap.continue_branches(table="fd:0.1", alpha=(0.45, 0.55), from_="fixed"),
+         ["continue", "--table", "fd:0.1", "--alpha", "0.45..0.55", "--from", "fixed"]),
+    ],
+)
+def test_the_json_commands_give_the_commands_json(call, args):
+    status, out, err = command(*args, "--format", "json")
+    assert status == 0, err
+    assert call() == json.loads(out)
+
+
+def test_plane_arrays_equal_the_commands_csv():
+    p = bouncemap.plane(table="fd", x="alpha:0.45..0.6", y="d:0..1", size="12x5",
+                        transient=2000)
+    status, out, err = command("plane", "--table", "fd", "--x", "alpha:0.45..0.6", "--y",
+                               "d:0..1", "--size", "12x5", "--transient", "2000",
+                               "--format", "csv")
+    assert status == 0, err
+    text = "\n".join(line for line in out.splitlines() if not line.startswith("#"))
+    rows = list(csv.DictReader(io.StringIO(text)))
+    assert p["class"].shape == (5, 12) and len(rows) == 60
+    for k, row in enumerate(rows):
+        j, i = divmod(k, 12)
+        assert float(row["alpha"]) == p["x_values"][i]
+        assert float(row["D"]) == p["y_values"][j]
+        assert row["class"] == p["class"][j, i]
+        assert int(row["period"] or 0) == p["period"][j, i]
+        lyap = {"": math.nan, "-inf": -math.inf}.get(row["lyapunov"])
+        got = p["lyapunov"][j, i]
+        if lyap is None:
+            assert float(row["lyapunov"]) == got
+        else:
+            assert (math.isnan(lyap) and math.isnan(got)) or lyap == got
+
+
+def test_format_and_out_are_the_commands_own():
+    with pytest.raises(ValueError, match="format: the function returns"):
+        bouncemap.two_cycle(format="csv")

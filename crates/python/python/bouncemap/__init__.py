@@ -18,7 +18,20 @@ import numpy as np
 
 from . import _bouncemap
 
-__all__ = ["fixed", "orbit", "sweep", "basins", "KINDS", "__version__"]
+__all__ = [
+    "fixed",
+    "two_cycle",
+    "orbit",
+    "lyapunov",
+    "continue_branches",
+    "cascade",
+    "sweep",
+    "plane",
+    "basins",
+    "curves",
+    "KINDS",
+    "__version__",
+]
 
 __version__ = _bouncemap.VERSION
 
@@ -42,7 +55,8 @@ def _argv(command, flags):
     for key, v in flags.items():
         if v is None or v is False:
             continue
-        flag = "--" + key.replace("_", "-")
+        # A trailing underscore frees a Python keyword: from_= is --from.
+        flag = "--" + key.rstrip("_").replace("_", "-")
         if v is True:
             argv.append(flag)
         else:
@@ -116,3 +130,100 @@ def basins(**flags):
     out = json.loads(doc)
     out["labels"] = labels
     return out
+
+
+def _json(command, flags):
+    """The json ``bouncemap COMMAND --format json`` writes for ``flags``, read."""
+    for own in ("format", "out"):
+        if own in flags:
+            raise ValueError(
+                f"{own}: the function returns the json's values; valid without {own}"
+            )
+    return json.loads(_bouncemap.run_command(_argv(command, flags) + ["--format", "json"]))
+
+
+def two_cycle(**flags):
+    """The (2, 2k) solution born at the (1, k) solution's period doubling, as
+    ``bouncemap two-cycle --format json``: ``found``, ``two_cycle`` (its two impacts,
+    multipliers, stability, and the map's confirming run), ``border_collision``.
+
+    Flags: ``table``, ``alpha``, ``r``, ``k``.
+    """
+    return _json("two-cycle", flags)
+
+
+def lyapunov(**flags):
+    """The Lyapunov exponents of one orbit, as ``bouncemap lyapunov --format json``.
+
+    Flags: ``table``, ``alpha``, ``r``, ``t0``, ``v0``, ``near_fixed_point``,
+    ``transient``, ``impacts``, ... Returns the json's dict (``result`` with the
+    exponents per impact and per period, their errors, the attractor found).
+    """
+    return _json("lyapunov", flags)
+
+
+def continue_branches(**flags):
+    """Periodic branches followed in α by pseudo-arclength continuation, as
+    ``bouncemap continue --format json``: ``branches``, each with its points (α,
+    phases, velocities, multipliers, stability) and special points (folds, period
+    doublings, border collisions, grazings).
+
+    Flags as ``bouncemap continue`` (``table``, ``r``, ``alpha`` window, ``from_``
+    (``--from``: a Python keyword), ``k``, ``n``, ``t0``, ``v0``, ``max_period``).
+    """
+    return _json("continue", flags)
+
+
+def cascade(**flags):
+    """The period-doubling cascade and Feigenbaum's δ, as ``bouncemap cascade
+    --format json``. Flags as ``bouncemap cascade``."""
+    return _json("cascade", flags)
+
+
+def curves(**flags):
+    """Two-parameter curves of special points (period doubling, fold, border
+    collision, grazing) and their codimension-two points, as ``bouncemap curves
+    --format json``. Flags as ``bouncemap curves`` (``table``, ``x``, ``y``,
+    ``max_period``, ``seeds``, ...)."""
+    return _json("curves", flags)
+
+
+def plane(**flags):
+    """A two-parameter map, as ``bouncemap plane --format json``, with its pixels as
+    (ny, nx) arrays.
+
+    Flags as ``bouncemap plane`` (``table``, ``x="alpha:LO..HI"``,
+    ``y="d:LO..HI"`` or ``"r:LO..HI"``, ``size="NXxNY"``, ``transient``, ...).
+    Returns the json's dict (``x``, ``y``, ``curves``, ...) with ``pixels`` replaced by
+    arrays indexed [j, i] (row j up the y axis, column i along x): ``x_values``,
+    ``y_values`` (the axes' values), ``class`` and ``status`` (str), ``period`` and
+    ``table_periods`` (0 where empty), ``lyapunov`` (NaN where empty), ``resolved``
+    (1, 0, -1 where empty) and ``growth_decades`` (NaN where empty).
+    """
+    doc = _json("plane", flags)
+    nx, ny = doc["x"]["n"], doc["y"]["n"]
+    pixels = doc.pop("pixels")
+
+    def column(key, empty, dtype):
+        def value(p):
+            v = p[key]
+            if v is None:
+                return empty
+            if v == "-inf":
+                return -np.inf
+            return v
+
+        return np.array([value(p) for p in pixels], dtype=dtype).reshape(ny, nx)
+
+    doc["x_values"] = column("x", np.nan, float)[0]
+    doc["y_values"] = column("y", np.nan, float)[:, 0]
+    doc["class"] = column("class", "", str)
+    doc["status"] = column("status", "", str)
+    doc["period"] = column("period", 0, np.int64)
+    doc["table_periods"] = column("table_periods", 0, np.int64)
+    doc["lyapunov"] = column("lyapunov", np.nan, float)
+    doc["resolved"] = np.array(
+        [{True: 1, False: 0, None: -1}[p["resolved"]] for p in pixels], dtype=np.int8
+    ).reshape(ny, nx)
+    doc["growth_decades"] = column("growth_decades", np.nan, float)
+    return doc

@@ -54,3 +54,42 @@ def basins(
     threads: int = ...,
     **flags: Value,
 ) -> Dict[str, Any]: ...
+def two_cycle(
+    *, table: str = ..., alpha: float = ..., r: float = ..., k: int = ..., **flags: Value
+) -> Dict[str, Any]: ...
+def lyapunov(
+    *,
+    table: str = ...,
+    alpha: float = ...,
+    r: float = ...,
+    t0: float = ...,
+    v0: float = ...,
+    near_fixed_point: bool = ...,
+    transient: int = ...,
+    **flags: Value,
+) -> Dict[str, Any]: ...
+def continue_branches(
+    *,
+    table: str = ...,
+    r: float = ...,
+    alpha: Window = ...,
+    from_: str = ...,
+    n: int = ...,
+    k: int = ...,
+    t0: float = ...,
+    v0: float = ...,
+    **flags: Value,
+) -> Dict[str, Any]: ...
+def cascade(*, table: str = ..., r: float = ..., **flags: Value) -> Dict[str, Any]: ...
+def curves(
+    *, table: str = ..., x: str = ..., y: str = ..., max_period: int = ..., **flags: Value
+) -> Dict[str, Any]: ...
+def plane(
+    *,
+    table: str = ...,
+    x: str = ...,
+    y: str = ...,
+    size: str = ...,
+    transient: int = ...,
+    **flags: Value,
+) -> Dict[str, Any]: ...
