@@ -221,3 +221,18 @@ def test_plane_arrays_equal_the_commands_csv():
 def test_format_and_out_are_the_commands_own():
     with pytest.raises(ValueError, match="format: the function returns"):
         bouncemap.two_cycle(format="csv")
+
+
+def test_a_system_is_checked_once_and_its_methods_are_the_functions():
+    s = bouncemap.System("fd:0.1", alpha=0.45, r=0.8)
+    assert (s.table_name, s.alpha, s.r) == ("fd:0.1", 0.45, 0.8)
+    assert s.kappa_c == bouncemap.fixed(table="fd:0.1", alpha=0.45, r=0.8)["kappa_c"]
+    a = s.orbit(t0=0.19, v0=0.51, bounces=500)
+    b = bouncemap.orbit(table="fd:0.1", alpha=0.45, r=0.8, t0=0.19, v0=0.51, bounces=500)
+    assert np.array_equal(a["phase"], b["phase"]) and np.array_equal(a["v"], b["v"])
+    status, _, err = command("fixed", "--r", "1.5")
+    with pytest.raises(ValueError) as e:
+        bouncemap.System(r=1.5)
+    assert str(e.value) == err.strip()[len("error: "):]
+    with pytest.raises(ValueError, match="alpha: the system's own"):
+        s.orbit(alpha=0.5)

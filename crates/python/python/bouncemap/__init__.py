@@ -19,6 +19,7 @@ import numpy as np
 from . import _bouncemap
 
 __all__ = [
+    "System",
     "fixed",
     "two_cycle",
     "orbit",
@@ -227,3 +228,55 @@ def plane(**flags):
     ).reshape(ny, nx)
     doc["growth_decades"] = column("growth_decades", np.nan, float)
     return doc
+
+
+class System:
+    """One system: a table, alpha and r, checked as the command line checks them.
+
+    ``table`` is a built-in name (``sine``, ``quad``, ``cubic``, ``fd:D``) or a table
+    file (``PATH.toml``, its parameters as ``PATH.toml:w=0.3``); ``alpha`` and ``r``
+    left as None take the commands' defaults. A bad value raises ``ValueError`` with
+    the command's message. The methods are the module's functions for this system::
+
+        >>> s = bouncemap.System("fd:0.1", alpha=0.45, r=0.8)
+        >>> s.kappa_c, s.fixed()["alpha_pd"]
+        >>> o = s.orbit(t0=0.19, v0=0.51, bounces=1000)
+    """
+
+    def __init__(self, table="fd:0.1", alpha=None, r=None):
+        self.table, self.alpha, self.r = table, alpha, r
+        doc = fixed(**self._flags({}))
+        #: The table as the outputs name it, alpha and r as read, and kappa_c.
+        self.table_name = doc["table"]
+        self.alpha, self.r = doc["alpha"], doc["r"]
+        self.kappa_c = doc["kappa_c"]
+
+    def _flags(self, flags):
+        own = {"table": self.table, "alpha": self.alpha, "r": self.r}
+        clash = sorted(set(own) & set(flags))
+        if clash:
+            raise ValueError(f"{clash[0]}: the system's own; valid without {clash[0]}")
+        return {**own, **flags}
+
+    def __repr__(self):
+        return f"System({self.table!r}, alpha={self.alpha!r}, r={self.r!r})"
+
+    def fixed(self, **flags):
+        """``fixed`` of this system."""
+        return fixed(**self._flags(flags))
+
+    def two_cycle(self, **flags):
+        """``two_cycle`` of this system."""
+        return two_cycle(**self._flags(flags))
+
+    def orbit(self, **flags):
+        """``orbit`` of this system."""
+        return orbit(**self._flags(flags))
+
+    def lyapunov(self, **flags):
+        """``lyapunov`` of this system."""
+        return lyapunov(**self._flags(flags))
+
+    def basins(self, **flags):
+        """``basins`` of this system."""
+        return basins(**self._flags(flags))
