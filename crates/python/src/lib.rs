@@ -391,6 +391,77 @@ fn basins<'py>(
     Ok((grid.into_pyarray(py), doc))
 }
 
+/// `plane`: the pixels of `plane --format csv` as flat arrays in its row order
+/// (index j·nx + i), with the header's json (the plane's settings, as the file states
+/// them) and the analytic curves' json (`null` where there are none).
+#[pyfunction]
+fn plane<'py>(py: Python<'py>, argv: Vec<String>) -> PyResult<Bound<'py, PyDict>> {
+    use bouncemap::output::plane_file::{self, CurvesRecord, PlaneHeader};
+    use bouncemap_engine::plane::{curves, Plane, PlaneJob};
+    let Command::Plane(args) = command(&argv)? else {
+        return Err(wrong("plane"));
+    };
+    let run = config::run::plane(&args).map_err(input)?;
+    let spec = run.spec.clone();
+    if spec.digits.is_some() {
+        return Err(PyValueError::new_err(
+            "--digits: the pixels at any precision are the command's (bouncemap plane --digits N --format csv); valid here without --digits",
+        ));
+    }
+    if spec.shard != bouncemap_engine::jobs::grid::Shard::WHOLE {
+        return Err(PyValueError::new_err(
+            "--shard: a part of a plane is the command's (bouncemap plane --shard I/N --out FILE); valid here without --shard",
+        ));
+    }
+    let threads = run.job.threads().map_err(input)?;
+    let executor = Executor::new(threads).map_err(bad)?;
+    let job = PlaneJob::new(spec.clone()).map_err(bad)?;
+    let mut picture = Plane::new(&spec);
+    let complete = run_job(py, &executor, job, &mut |b| {
+        bouncemap_engine::jobs::picture::Filled::absorb(&mut picture, b.data)
+    })?;
+    if !complete || !bouncemap_engine::jobs::picture::Filled::complete(&picture) {
+        return Err(PyRuntimeError::new_err(
+            "the plane stopped before its last pixel",
+        ));
+    }
+    let nan = f64::NAN;
+    let (mut x, mut y, mut class, mut status) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    let (mut period, mut table_periods) = (Vec::new(), Vec::new());
+    let (mut lyapunov, mut resolved, mut growth) = (Vec::new(), Vec::new(), Vec::new());
+    for row in plane_file::rows(&spec, picture.pixels()) {
+        x.push(row.x);
+        y.push(row.y);
+        class.push(row.class);
+        status.push(row.status);
+        period.push(row.period.map_or(0, |p| p as i64));
+        table_periods.push(row.table_periods.unwrap_or(0));
+        lyapunov.push(row.lyapunov.0.unwrap_or(nan));
+        resolved.push(row.resolved.map_or(-1i8, i8::from));
+        growth.push(row.growth_decades.unwrap_or(nan));
+    }
+    let json =
+        |e: serde_json::Result<String>| e.map_err(|e| PyRuntimeError::new_err(e.to_string()));
+    let header = json(serde_json::to_string(&PlaneHeader::from(&spec)))?;
+    let analytic = match curves(&spec) {
+        Some(c) => json(serde_json::to_string(&CurvesRecord::from(&c)))?,
+        None => "null".into(),
+    };
+    let d = PyDict::new(py);
+    d.set_item("header", header)?;
+    d.set_item("curves", analytic)?;
+    d.set_item("x", x.into_pyarray(py))?;
+    d.set_item("y", y.into_pyarray(py))?;
+    d.set_item("class", class)?;
+    d.set_item("status", status)?;
+    d.set_item("period", period.into_pyarray(py))?;
+    d.set_item("table_periods", table_periods.into_pyarray(py))?;
+    d.set_item("lyapunov", lyapunov.into_pyarray(py))?;
+    d.set_item("resolved", resolved.into_pyarray(py))?;
+    d.set_item("growth_decades", growth.into_pyarray(py))?;
+    Ok(d)
+}
+
 /// Any command whose output is text (json with `--format json`), run as the binary
 /// runs it, its standard output returned: `two-cycle`, `lyapunov`, `continue`,
 /// `cascade`, `curves`, ... The GIL is released while it runs; it runs to its end.
@@ -410,6 +481,7 @@ fn _bouncemap(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(orbit, m)?)?;
     m.add_function(wrap_pyfunction!(sweep, m)?)?;
     m.add_function(wrap_pyfunction!(basins, m)?)?;
+    m.add_function(wrap_pyfunction!(plane, m)?)?;
     m.add_function(wrap_pyfunction!(run_command, m)?)?;
     m.add("VERSION", env!("CARGO_PKG_VERSION"))?;
     Ok(())

@@ -150,7 +150,16 @@ def test_a_bad_argument_raises_value_error_with_the_commands_message(call, args)
     assert str(e.value) == message[len("error: "):]
 
 
-def test_a_long_sweep_stops_at_ctrl_c_within_a_second():
+@pytest.mark.parametrize(
+    "long_job",
+    [
+        lambda: bouncemap.sweep(table="sine", alpha=(0.3, 0.6), steps=200000,
+                                transient=1000000),
+        lambda: bouncemap.plane(table="fd", x="alpha:0.45..0.6", y="d:0..1",
+                                size="400x400", transient=1000000),
+    ],
+)
+def test_a_long_job_stops_at_ctrl_c_within_a_second(long_job):
     fired = []
 
     def interrupt():
@@ -160,7 +169,7 @@ def test_a_long_sweep_stops_at_ctrl_c_within_a_second():
     timer = threading.Timer(0.5, interrupt)
     timer.start()
     with pytest.raises(KeyboardInterrupt):
-        bouncemap.sweep(table="sine", alpha=(0.3, 0.6), steps=200000, transient=1000000)
+        long_job()
     stopped = time.monotonic()
     timer.join()
     assert fired and stopped - fired[0] < 1.0

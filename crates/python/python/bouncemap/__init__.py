@@ -190,43 +190,32 @@ def curves(**flags):
 
 
 def plane(**flags):
-    """A two-parameter map, as ``bouncemap plane --format json``, with its pixels as
-    (ny, nx) arrays.
+    """A two-parameter map: ``bouncemap plane``'s pixels as (ny, nx) arrays.
 
     Flags as ``bouncemap plane`` (``table``, ``x="alpha:LO..HI"``,
     ``y="d:LO..HI"`` or ``"r:LO..HI"``, ``size="NXxNY"``, ``transient``, ...).
-    Returns the json's dict (``x``, ``y``, ``curves``, ...) with ``pixels`` replaced by
-    arrays indexed [j, i] (row j up the y axis, column i along x): ``x_values``,
-    ``y_values`` (the axes' values), ``class`` and ``status`` (str), ``period`` and
-    ``table_periods`` (0 where empty), ``lyapunov`` (NaN where empty), ``resolved``
-    (1, 0, -1 where empty) and ``growth_decades`` (NaN where empty).
+    Returns the settings of ``bouncemap plane --format json`` (``table``, ``x``,
+    ``y``, ``r``, ``transient``, ...), its analytic ``curves``, and arrays indexed
+    [j, i] (row j up the y axis, column i along x): ``x_values``, ``y_values`` (the
+    axes' values), ``class`` and ``status`` (str), ``period`` and ``table_periods``
+    (0 where empty), ``lyapunov`` (NaN where empty, -inf for a cycle that sticks),
+    ``resolved`` (1, 0, -1 where empty) and ``growth_decades`` (NaN where empty).
+    Runs on every core; Ctrl-C cancels it.
     """
-    doc = _json("plane", flags)
+    d = _bouncemap.plane(_argv("plane", flags))
+    doc = json.loads(d["header"])
+    doc["curves"] = json.loads(d["curves"])
     nx, ny = doc["x"]["n"], doc["y"]["n"]
-    pixels = doc.pop("pixels")
 
-    def column(key, empty, dtype):
-        def value(p):
-            v = p[key]
-            if v is None:
-                return empty
-            if v == "-inf":
-                return -np.inf
-            return v
+    def grid(a, dtype=None):
+        return np.asarray(a, dtype=dtype).reshape(ny, nx)
 
-        return np.array([value(p) for p in pixels], dtype=dtype).reshape(ny, nx)
-
-    doc["x_values"] = column("x", np.nan, float)[0]
-    doc["y_values"] = column("y", np.nan, float)[:, 0]
-    doc["class"] = column("class", "", str)
-    doc["status"] = column("status", "", str)
-    doc["period"] = column("period", 0, np.int64)
-    doc["table_periods"] = column("table_periods", 0, np.int64)
-    doc["lyapunov"] = column("lyapunov", np.nan, float)
-    doc["resolved"] = np.array(
-        [{True: 1, False: 0, None: -1}[p["resolved"]] for p in pixels], dtype=np.int8
-    ).reshape(ny, nx)
-    doc["growth_decades"] = column("growth_decades", np.nan, float)
+    doc["x_values"] = grid(d["x"])[0]
+    doc["y_values"] = grid(d["y"])[:, 0]
+    doc["class"] = grid(d["class"], str)
+    doc["status"] = grid(d["status"], str)
+    for key in ("period", "table_periods", "lyapunov", "resolved", "growth_decades"):
+        doc[key] = grid(d[key])
     return doc
 
 
