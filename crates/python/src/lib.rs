@@ -484,5 +484,6 @@ fn _bouncemap(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(plane, m)?)?;
     m.add_function(wrap_pyfunction!(run_command, m)?)?;
     m.add("VERSION", env!("CARGO_PKG_VERSION"))?;
+    m.add("TABLES", bouncemap_engine::table::builtin::NAMES)?;
     Ok(())
 }

@@ -245,3 +245,13 @@ def test_a_system_is_checked_once_and_its_methods_are_the_functions():
     assert str(e.value) == err.strip()[len("error: "):]
     with pytest.raises(ValueError, match="alpha: the system's own"):
         s.orbit(alpha=0.5)
+
+
+def test_the_tables_named_are_the_ones_the_functions_take():
+    # The piecewise quadratic and cubic tables are F_D's ends, named so in outputs.
+    names = bouncemap.tables()
+    for name, shown in (("sine", "sine"), ("quad", "fd:0"), ("cubic", "fd:1")):
+        assert name in names
+        assert bouncemap.System(name, alpha=0.3).table_name == shown
+    assert "fd:D" in names
+    assert bouncemap.System("fd:0.25", alpha=0.3).table_name == "fd:0.25"

@@ -19,6 +19,7 @@ import numpy as np
 from . import _bouncemap
 
 __all__ = [
+    "tables",
     "System",
     "fixed",
     "two_cycle",
@@ -38,6 +39,14 @@ __version__ = _bouncemap.VERSION
 
 #: The event kinds of an orbit, by their code in ``orbit(...)["kind_code"]``.
 KINDS = ("impact", "stick", "release")
+
+
+def tables():
+    """The built-in tables, as ``table=`` names them: ``sine``, ``quad``, ``cubic``,
+    and ``fd:D`` (the paper's F_D, D in [0, 1]). A table file is given by its path
+    (``table="my.toml"``, its parameters as ``"my.toml:w=0.3"``; the file's format is
+    in docs/commands.md)."""
+    return _bouncemap.TABLES
 
 
 def _value(v):

@@ -9,6 +9,8 @@ Value = Union[str, int, float, bool, Window, None]
 __version__: str
 KINDS: Tuple[str, str, str]
 
+def tables() -> str: ...
+
 def fixed(
     *,
     table: str = ...,
