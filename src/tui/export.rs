@@ -8,7 +8,9 @@
 //! `E` writes the same two files and the current view as figures beside them (default
 //! name `bouncemap-view-N`): `NAME-diagram.svg/.png` (the diagram over its zoom window,
 //! coloured as the screen colours it, the parameters and the starts in the caption)
-//! and `NAME-phase.svg/.png` (the phase plot); with the plane view or the basins shown,
+//! and `NAME-phase.svg/.png` (the phase plot); with the attractors along α shown,
+//! `NAME-attractors.svg/.png` (`figure attractors` of the values done so far, written
+//! at once with the others); with the plane view or the basins shown,
 //! `NAME-plane.svg/.png` or `NAME-basins.svg/.png` at the export's own resolution
 //! (computed in the background by [`super::components::view_export`], with the
 //! two-parameter curves `C` shows). The files written at once are written together
@@ -55,6 +57,7 @@ const VIEW: [&str; 4] = ["-diagram.svg", "-diagram.png", "-phase.svg", "-phase.p
 /// The ends of the figures of the views that may be shown.
 const PLANE: [&str; 2] = ["-plane.svg", "-plane.png"];
 const BASINS: [&str; 2] = ["-basins.svg", "-basins.png"];
+const ATTRACTORS: [&str; 2] = ["-attractors.svg", "-attractors.png"];
 
 /// The default name of an export in `dir`: the first `bouncemap-diagram-N` (`e`) or,
 /// with `view`, `bouncemap-view-N` (`E`) with none of its files taken.
@@ -65,6 +68,7 @@ pub fn free_name(dir: &Path, view: bool) -> String {
             .chain(&VIEW)
             .chain(&PLANE)
             .chain(&BASINS)
+            .chain(&ATTRACTORS)
             .copied()
             .collect();
         free_stem(dir, "bouncemap-view", &ends)
@@ -79,6 +83,9 @@ pub fn prompt_note(view: bool, panels: &Panels) -> String {
         return ".csv and .txt are added".into();
     }
     let mut ends = vec![".csv", ".txt", "-diagram.svg/.png", "-phase.svg/.png"];
+    if along_alpha(panels) {
+        ends.push("-attractors.svg/.png");
+    }
     if panels.plane.view.shown {
         ends.push("-plane.svg/.png");
     }
@@ -86,6 +93,31 @@ pub fn prompt_note(view: bool, panels: &Panels) -> String {
         ends.push("-basins.svg/.png");
     }
     format!("{} are added", ends.join(", "))
+}
+
+/// Whether the attractors along α are shown with at least one value done (`E` then
+/// draws them).
+fn along_alpha(panels: &Panels) -> bool {
+    panels.global.shown && !panels.global.steps.is_empty()
+}
+
+/// `figure attractors` of the values the attractors-along-α view has done so far.
+fn attractors_figure(panels: &Panels) -> Result<bouncemap_figures::Figure, String> {
+    use bouncemap_engine::attractors::global::Continuation;
+    let g = &panels.global;
+    let spec = g
+        .spec
+        .clone()
+        .ok_or("export: no attractors along α to draw")?;
+    let cont = Continuation::from_parts(
+        spec,
+        0..g.steps.len(),
+        g.steps.clone(),
+        g.changes.clone(),
+        g.tracks.clone(),
+    )
+    .map_err(|e| format!("export: the attractors along α: {e}"))?;
+    Ok(bouncemap_figures::global::attractors_figure(&cont))
 }
 
 /// `stem` with `ext` appended (the stem may hold dots).
@@ -119,6 +151,10 @@ pub fn export_view(
     let plane = panels.plane.view.shown;
     let basins = panels.basins.view.shown;
     let views: Vec<PathBuf> = VIEW.iter().map(|e| with(stem, e)).collect();
+    let attractors: Vec<PathBuf> = match along_alpha(panels) {
+        true => ATTRACTORS.iter().map(|e| with(stem, e)).collect(),
+        false => Vec::new(),
+    };
     let mut later: Vec<PathBuf> = Vec::new();
     if plane {
         later.extend(PLANE.iter().map(|e| with(stem, e)));
@@ -127,6 +163,7 @@ pub fn export_view(
         later.extend(BASINS.iter().map(|e| with(stem, e)));
     }
     none_taken(&views)?;
+    none_taken(&attractors)?;
     none_taken(&later)?;
     let mut files = diagram_files(shared, panels, stem)?;
     let d = &panels.diagram;
@@ -161,7 +198,15 @@ pub fn export_view(
             panels.phase.points.len()
         ),
     );
-    for (fig, paths) in [(&diagram, &views[0..2]), (&phase, &views[2..4])] {
+    let along = match attractors.is_empty() {
+        true => None,
+        false => Some(attractors_figure(panels)?),
+    };
+    let mut figures = vec![(&diagram, &views[0..2]), (&phase, &views[2..4])];
+    if let Some(f) = &along {
+        figures.push((f, &attractors[..]));
+    }
+    for (fig, paths) in figures {
         for (path, format) in paths.iter().zip([ImageFormat::Svg, ImageFormat::Png]) {
             let bytes = figure::render(fig, format, None, DEFAULT_DPI)
                 .map_err(|e| format!("export: {e}"))?;

@@ -145,3 +145,41 @@ fn the_view_draws_its_points_fractions_and_cursor_at_both_sizes() {
     }
     workers.cancel_all();
 }
+
+#[test]
+fn export_view_draws_the_attractors_along_alpha() {
+    // `E` with the view shown writes `figure attractors` of the values done, with the
+    // diagram and the phase plot, all at once.
+    let workers = Workers::new(Executor::new(2).unwrap());
+    let mut a = cubic_app();
+    size(&mut a, 100, 30);
+    crate::tui_common::fill(&mut a);
+    a.handle(Action::ToggleGlobal);
+    run_until(&mut a, &workers, &|a| a.panels.global.done);
+    workers.cancel_all();
+    a.handle(Action::ToggleBasins); // the basins' own figure is another test's
+    let d = crate::scratch::dir("global", "export");
+    let stem = d.join("view");
+    assert!(bouncemap::tui::export::prompt_note(true, &a.panels).contains("-attractors.svg/.png"));
+    let said = crate::tui_common::export_view_to_end(&mut a, Default::default(), &stem).unwrap();
+    assert!(said[0].contains("view-attractors.svg"), "{said:?}");
+    let svg = std::fs::read_to_string(d.join("view-attractors.svg")).unwrap();
+    // The legend names the view's attractors by their numbers, kinds and α ranges.
+    let g = &a.panels.global;
+    assert!(g.tracks.len() >= 2);
+    for t in &g.tracks[..2] {
+        let first = g.steps[t.first]
+            .members
+            .iter()
+            .find(|m| m.track == t.id)
+            .unwrap();
+        let label = format!(
+            "{}: {}",
+            t.id + 1,
+            bouncemap_figures::global::describe_member(first)
+        );
+        assert!(svg.contains(&label), "{label}");
+    }
+    let png = std::fs::read(d.join("view-attractors.png")).unwrap();
+    assert_eq!(&png[1..4], b"PNG");
+}
