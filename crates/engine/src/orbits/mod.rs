@@ -31,6 +31,7 @@ pub mod continuation;
 pub mod curves;
 pub mod events;
 pub mod fixed;
+pub mod manifold;
 pub mod periodic;
 pub(crate) mod roots;
 pub mod scaling;
