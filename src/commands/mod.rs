@@ -18,6 +18,7 @@ pub mod drive;
 pub mod figure;
 pub mod fixed;
 pub mod lyapunov;
+pub mod manifolds;
 pub mod merge;
 pub mod orbit;
 pub mod plane;
@@ -46,6 +47,7 @@ pub fn run(cmd: Command) -> anyhow::Result<()> {
         Command::Scaling(a) => scaling::run(&a),
         Command::Continue(a) => continuation::run(&config::run::continuation(&a)?),
         Command::Cascade(a) => cascade::run(&config::run::cascade(&a)?),
+        Command::Manifolds(a) => manifolds::run(&a),
         Command::Curves(a) => curves::run(&config::run::curves(&a)?),
         Command::Sweep(a) => sweep::run(&config::run::sweep(&a)?),
         Command::Lyapunov(a) => match config::run::lyapunov_digits(&a)? {

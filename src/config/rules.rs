@@ -248,6 +248,8 @@ pub const CYCLE_N: Rule = rule("n", "n", limits::CYCLE_N, 1.0);
 pub const CONTINUE_MAX_PERIOD: Rule = rule("max-period", "max period", limits::MAX_PERIOD, 16.0);
 /// Values of the second parameter `curves` seeds at.
 pub const CURVE_SEEDS: Rule = rule("seeds", "seeds", limits::CURVE_SEEDS, 5.0);
+/// Arc length of each branch of a manifold.
+pub const MANIFOLD_LENGTH: Rule = rule("length", "length", limits::MANIFOLD_LENGTH, 2.0);
 /// Period doublings a cascade looks for.
 pub const DEPTH: Rule = rule("depth", "depth", limits::CASCADE_DEPTH, 6.0);
 /// D values of `cascade --d LO..HI:N`.

@@ -18,6 +18,7 @@ mod global_cli;
 mod global_shards;
 mod hostile;
 mod hostile_three;
+mod manifolds_cli;
 mod merge_property;
 mod merge_stream;
 mod orbits_cli;

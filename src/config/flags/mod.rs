@@ -79,6 +79,9 @@ pub enum Command {
     Continue(ContinueArgs),
     /// The period-doubling cascade: αₙ, the Feigenbaum ratios, how each 2ⁿ branch ends.
     Cascade(CascadeArgs),
+    /// The unstable manifold of a saddle cycle: both branches, each point by the exact map.
+    #[command(allow_negative_numbers = true)]
+    Manifolds(ManifoldsArgs),
     /// Two-parameter bifurcation curves over (α, r) or (α, D or a table file's parameter): period doublings, folds,
     /// border collisions, grazings, and their codimension-two points.
     #[command(allow_negative_numbers = true)]

@@ -115,6 +115,36 @@ impl CycleGuessArgs {
     }
 }
 
+/// `bouncemap manifolds`.
+#[derive(Args, Debug, Clone)]
+pub struct ManifoldsArgs {
+    #[command(flatten)]
+    pub system: SystemArgs,
+    #[arg(help = rules::K.help("k: of the unstable (1, k) solution, or of the (n, k) cycle with --n"), long, default_value_t = rules::K.default as u32, value_parser = rules::K.whole::<u32>(), value_name = "K")]
+    pub k: u32,
+    #[command(flatten)]
+    pub guess: SaddleGuessArgs,
+    #[arg(help = rules::MANIFOLD_LENGTH.help("Arc length of each branch, in (t, v)"), long, default_value_t = rules::MANIFOLD_LENGTH.default, value_parser = rules::MANIFOLD_LENGTH.real(), value_name = "L")]
+    pub length: f64,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    pub format: Format,
+    #[command(flatten)]
+    pub output: OutArgs,
+}
+
+/// The saddle (n, k) cycle of `manifolds`, by a guess Newton's method starts from
+/// (without: the unstable (1, k) solution).
+#[derive(Args, Debug, Clone, Default)]
+pub struct SaddleGuessArgs {
+    #[arg(help = rules::CYCLE_N.help("Impacts of the saddle (n, k) cycle (with --t0 and --v0, a guess at this α)"), long, value_parser = rules::CYCLE_N.whole::<usize>(), value_name = "N", requires_all = ["t0", "v0"])]
+    pub n: Option<usize>,
+    #[arg(help = rules::T0.help("The guess's launch phase t̂0"), long, value_parser = rules::T0.real(), value_name = "PHASE", requires = "n")]
+    pub t0: Option<f64>,
+    #[arg(help = rules::V0.help("The guess's launch velocity v0 (right after an impact)"), long, value_parser = rules::V0.real(), value_name = "V", allow_hyphen_values = true, requires = "n")]
+    pub v0: Option<f64>,
+}
+
 /// `bouncemap cascade`.
 #[derive(Args, Debug, Clone)]
 pub struct CascadeArgs {

@@ -14,11 +14,13 @@ mod attractors;
 mod branches;
 mod cycle;
 mod global;
+mod manifold;
 mod sweep;
 pub use attractors::*;
 pub use branches::*;
 pub use cycle::*;
 pub use global::*;
+pub use manifold::*;
 pub use sweep::*;
 // (`records::PointRecord` is the sweep's; a continued branch's points have a record of
 // the same name of their own in `branches`.)

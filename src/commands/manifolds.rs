@@ -1,0 +1,120 @@
+//! `bouncemap manifolds`: the unstable manifold of a saddle cycle (the engine's
+//! [`bouncemap_engine::orbits::manifold`]): the unstable (1, k) solution, or the (n, k)
+//! cycle Newton's method finds from `--n --t0 --v0`; both branches, every point
+//! computed by the exact map.
+//!
+//! text: the saddle, its multipliers, each branch's points, length and end; csv: a row
+//! per point; json: all of it.
+
+use crate::config::flags::ManifoldsArgs;
+use crate::config::{self, InputError};
+use crate::output::records::{csv_writer, end_text, side_name, ManifoldDoc, ManifoldRow};
+use crate::output::sink::Sink;
+use crate::output::Format;
+use bouncemap_engine::orbits::fixed::fixed_points;
+use bouncemap_engine::orbits::manifold::{unstable_manifold, ManifoldSpec};
+use bouncemap_engine::orbits::periodic::{cycle, CyclePoint};
+use bouncemap_engine::System;
+use std::io::Write;
+
+pub fn run(args: &ManifoldsArgs) -> anyhow::Result<()> {
+    let sys = config::system(&args.system)?;
+    let saddle = saddle(&sys, args)?;
+    let spec = ManifoldSpec {
+        length: args.length,
+        ..ManifoldSpec::default()
+    };
+    let m = unstable_manifold(&sys, &saddle, &spec)
+        .map_err(|e| InputError(format!("the ({}, {}) cycle is {e}", saddle.n, saddle.k)))?;
+    let mut out = Sink::open(args.output.out.as_deref()).map_err(InputError)?;
+    let written = (|| -> anyhow::Result<()> {
+        match args.format {
+            Format::Json => {
+                let doc = ManifoldDoc::of(sys.table().name(), sys.alpha(), sys.r(), &saddle, &m);
+                serde_json::to_writer(&mut out, &doc)?;
+                writeln!(out)?;
+            }
+            Format::Csv => {
+                let mut w = csv_writer(&mut out, &ManifoldRow::HEADER)?;
+                for b in &m.branches {
+                    for row in ManifoldRow::of(b) {
+                        w.serialize(row)?;
+                    }
+                }
+                w.flush()?;
+            }
+            Format::Text => {
+                let [a, b] = saddle.multipliers;
+                writeln!(
+                    out,
+                    "unstable manifold of the saddle ({}, {}) of {} at alpha {}, r {}",
+                    saddle.n,
+                    saddle.k,
+                    sys.table().name(),
+                    sys.alpha(),
+                    sys.r()
+                )?;
+                writeln!(
+                    out,
+                    "  saddle: t̂ = {}, v = {}; multipliers {} and {}",
+                    m.saddle[0].rem_euclid(1.0),
+                    m.saddle[1],
+                    a.re,
+                    b.re
+                )?;
+                writeln!(
+                    out,
+                    "  grown under the map of {} impact{} ({} period{}): multiplier {}, unstable direction ({:.6}, {:.6}) in (t, v)",
+                    m.events,
+                    if m.events == 1 { "" } else { "s" },
+                    m.periods,
+                    if m.periods == 1 { "" } else { "s" },
+                    m.multiplier,
+                    m.direction[0],
+                    m.direction[1]
+                )?;
+                for br in &m.branches {
+                    let last = br.points.last().copied().unwrap_or(m.saddle);
+                    writeln!(
+                        out,
+                        "  branch {}: {} points, arc length {:.4}, out to t̂ = {:.6}, v = {:.6}; ends: {}",
+                        side_name(br.side),
+                        br.points.len(),
+                        br.length,
+                        last[0].rem_euclid(1.0),
+                        last[1],
+                        end_text(&br.end)
+                    )?;
+                }
+                writeln!(out, "every point: --format csv or json")?;
+            }
+        }
+        Ok(())
+    })();
+    out.end(written)
+}
+
+/// The saddle the flags name: the (n, k) cycle from the guess, or the unstable (1, k)
+/// solution.
+fn saddle(sys: &System, args: &ManifoldsArgs) -> Result<CyclePoint, InputError> {
+    let k = args.k;
+    if let (Some(n), Some(t0), Some(v0)) = (args.guess.n, args.guess.t0, args.guess.v0) {
+        return cycle(sys, n, k, t0, v0).map_err(|e| {
+            InputError(format!(
+                "--n {n} --k {k} --t0 {t0} --v0 {v0}: no ({n}, {k}) cycle found from this guess ({}): valid a guess near a cycle of the exact map at this α",
+                e.as_str()
+            ))
+        });
+    }
+    let points = fixed_points(sys, k).map_err(InputError::from)?;
+    points
+        .iter()
+        .filter_map(|fp| cycle(sys, 1, k, fp.phase, fp.v).ok())
+        .find(|c| !c.stable && c.multipliers.iter().all(|z| z.im == 0.0))
+        .ok_or_else(|| {
+            InputError(format!(
+                "no saddle (1, {k}) solution at alpha {} (`bouncemap fixed --k {k}` lists them): valid an α where one is unstable, or a saddle (n, k) cycle by --n --t0 --v0",
+                sys.alpha()
+            ))
+        })
+}
