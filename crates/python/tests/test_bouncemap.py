@@ -195,6 +195,8 @@ def test_the_readme_example_runs(tmp_path, monkeypatch, capsys):
          ["lyapunov", "--table", "cubic", "--alpha", "0.47", "--near-fixed-point"]),
         (lambda: bouncemap.continue_branches(table="fd:0.1", alpha=(0.45, 0.55), from_="fixed"),
          ["continue", "--table", "fd:0.1", "--alpha", "0.45..0.55", "--from", "fixed"]),
+        (lambda: bouncemap.manifolds(table="fd:0.1", alpha=0.45, length=0.5),
+         ["manifolds", "--table", "fd:0.1", "--alpha", "0.45", "--length", "0.5"]),
     ],
 )
 def test_the_json_commands_give_the_commands_json(call, args):

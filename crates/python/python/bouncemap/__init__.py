@@ -27,6 +27,7 @@ __all__ = [
     "lyapunov",
     "continue_branches",
     "cascade",
+    "manifolds",
     "sweep",
     "plane",
     "basins",
@@ -188,6 +189,18 @@ def cascade(**flags):
     """The period-doubling cascade and Feigenbaum's δ, as ``bouncemap cascade
     --format json``. Flags as ``bouncemap cascade``."""
     return _json("cascade", flags)
+
+
+def manifolds(**flags):
+    """The unstable manifold of a saddle cycle, as ``bouncemap manifolds --format
+    json``: the saddle, its multipliers, the map it is grown under (its multiplier
+    and unstable direction), and both ``branches``, each with its ``points`` [[t,
+    phase, v], ...] from the saddle out, its ``length`` and its ``end``.
+
+    Flags as ``bouncemap manifolds`` (``table``, ``alpha``, ``r``, ``k``, or ``n``,
+    ``k``, ``t0``, ``v0`` for an (n, k) saddle; ``length``).
+    """
+    return _json("manifolds", flags)
 
 
 def curves(**flags):

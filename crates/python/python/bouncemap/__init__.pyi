@@ -82,6 +82,18 @@ def continue_branches(
     v0: float = ...,
     **flags: Value,
 ) -> Dict[str, Any]: ...
+def manifolds(
+    *,
+    table: str = ...,
+    alpha: float = ...,
+    r: float = ...,
+    k: int = ...,
+    n: int = ...,
+    t0: float = ...,
+    v0: float = ...,
+    length: float = ...,
+    **flags: Value,
+) -> Dict[str, Any]: ...
 def cascade(*, table: str = ..., r: float = ..., **flags: Value) -> Dict[str, Any]: ...
 def curves(
     *, table: str = ..., x: str = ..., y: str = ..., max_period: int = ..., **flags: Value
