@@ -375,6 +375,10 @@ fn build(
             let cont = super::attractors::compute(&spec, 0..spec.steps, executor)?;
             Ok(figure::global::attractors_figure(&cont))
         }
+        FigureName::Manifolds(a) => {
+            let (sys, saddle, m) = super::manifolds::compute(a)?;
+            Ok(figure::manifold::manifold_figure(&sys, &saddle, &m))
+        }
         FigureName::Basins(_) => {
             let spec = basin_spec.expect("the basins' grid was checked first");
             let basins = super::basins::compute(&spec, executor)?;

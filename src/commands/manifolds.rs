@@ -6,26 +6,19 @@
 //! text: the saddle, its multipliers, each branch's points, length and end; csv: a row
 //! per point; json: all of it.
 
-use crate::config::flags::ManifoldsArgs;
+use crate::config::flags::{ManifoldsArgs, ManifoldsSpecArgs};
 use crate::config::{self, InputError};
 use crate::output::records::{csv_writer, end_text, side_name, ManifoldDoc, ManifoldRow};
 use crate::output::sink::Sink;
 use crate::output::Format;
 use bouncemap_engine::orbits::fixed::fixed_points;
-use bouncemap_engine::orbits::manifold::{unstable_manifold, ManifoldSpec};
+use bouncemap_engine::orbits::manifold::{unstable_manifold, ManifoldSpec, UnstableManifold};
 use bouncemap_engine::orbits::periodic::{cycle, CyclePoint};
 use bouncemap_engine::System;
 use std::io::Write;
 
 pub fn run(args: &ManifoldsArgs) -> anyhow::Result<()> {
-    let sys = config::system(&args.system)?;
-    let saddle = saddle(&sys, args)?;
-    let spec = ManifoldSpec {
-        length: args.length,
-        ..ManifoldSpec::default()
-    };
-    let m = unstable_manifold(&sys, &saddle, &spec)
-        .map_err(|e| InputError(format!("the ({}, {}) cycle is {e}", saddle.n, saddle.k)))?;
+    let (sys, saddle, m) = compute(&args.spec)?;
     let mut out = Sink::open(args.output.out.as_deref()).map_err(InputError)?;
     let written = (|| -> anyhow::Result<()> {
         match args.format {
@@ -94,9 +87,24 @@ pub fn run(args: &ManifoldsArgs) -> anyhow::Result<()> {
     out.end(written)
 }
 
+/// The system, the saddle and its unstable manifold the flags name.
+pub fn compute(
+    args: &ManifoldsSpecArgs,
+) -> Result<(System, CyclePoint, UnstableManifold), InputError> {
+    let sys = config::system(&args.system)?;
+    let saddle = saddle(&sys, args)?;
+    let spec = ManifoldSpec {
+        length: args.length,
+        ..ManifoldSpec::default()
+    };
+    let m = unstable_manifold(&sys, &saddle, &spec)
+        .map_err(|e| InputError(format!("the ({}, {}) cycle is {e}", saddle.n, saddle.k)))?;
+    Ok((sys, saddle, m))
+}
+
 /// The saddle the flags name: the (n, k) cycle from the guess, or the unstable (1, k)
 /// solution.
-fn saddle(sys: &System, args: &ManifoldsArgs) -> Result<CyclePoint, InputError> {
+fn saddle(sys: &System, args: &ManifoldsSpecArgs) -> Result<CyclePoint, InputError> {
     let k = args.k;
     if let (Some(n), Some(t0), Some(v0)) = (args.guess.n, args.guess.t0, args.guess.v0) {
         return cycle(sys, n, k, t0, v0).map_err(|e| {

@@ -163,7 +163,8 @@ const FIGURES_LAYERS: &[&[&str]] = &[
     &["classes", "labels"],
     &["svg", "raster", "terminal"],
     &[
-        "diagram", "basins", "curves", "global", "lyapunov", "phase", "plane", "scaling", "shapes",
+        "diagram", "basins", "curves", "global", "lyapunov", "manifold", "phase", "plane",
+        "scaling", "shapes",
     ],
 ];
 

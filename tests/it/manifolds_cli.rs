@@ -132,3 +132,52 @@ fn no_saddle_and_bad_input_are_refused_with_one_line() {
         assert!(err.contains(want), "{err}");
     }
 }
+
+#[test]
+fn figure_manifolds_draws_both_branches_and_the_saddle() {
+    let d = crate::scratch::dir("manifolds", "figure");
+    let svg = d.join("m.svg");
+    let svg_s = svg.to_str().unwrap();
+    ok(&[
+        "figure",
+        "manifolds",
+        "--table",
+        "fd:0.1",
+        "--alpha",
+        "0.45",
+        "--length",
+        "1",
+        "--out",
+        svg_s,
+    ]);
+    let text = std::fs::read_to_string(&svg).unwrap();
+    let doc = roxmltree::Document::parse(&text).unwrap();
+    let words: String = doc
+        .descendants()
+        .filter(|n| n.is_text())
+        .filter_map(|n| n.text())
+        .collect::<Vec<_>>()
+        .join(" ");
+    // The legend: each branch's points and length as `manifolds` counts them.
+    let m = json(&[
+        "manifolds",
+        "--table",
+        "fd:0.1",
+        "--alpha",
+        "0.45",
+        "--length",
+        "1",
+        "--format",
+        "json",
+    ]);
+    for b in m["branches"].as_array().unwrap() {
+        let side = if b["branch"] == "+" { "+" } else { "\u{2212}" };
+        let want = format!(
+            "branch {side}: {} points, length {:.3}",
+            b["points"].as_array().unwrap().len(),
+            b["length"].as_f64().unwrap()
+        );
+        assert!(words.contains(&want), "{want} not in {words}");
+    }
+    assert!(words.contains("saddle (1, 1)"), "{words}");
+}

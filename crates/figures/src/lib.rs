@@ -50,6 +50,7 @@ pub mod curves;
 pub mod diagram;
 pub mod global;
 pub mod lyapunov;
+pub mod manifold;
 pub mod phase;
 pub mod plane;
 pub mod raster;

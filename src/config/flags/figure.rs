@@ -103,6 +103,9 @@ pub enum FigureName {
     /// fractions: `attractors`' flags (--table, --r, --alpha LO..HI, --steps, --grid, ...).
     #[command(allow_negative_numbers = true)]
     Attractors(Box<AttractorsSpecArgs>),
+    /// The unstable manifold of a saddle cycle in (t̂, v): `manifolds`' flags (--table, --alpha, --r, --k, or --n --t0 --v0, --length).
+    #[command(allow_negative_numbers = true)]
+    Manifolds(Box<ManifoldsSpecArgs>),
     /// A two-parameter map: `plane`'s flags (--table, --x PARAM:LO..HI, --y PARAM:LO..HI, ...), the pixels as --pixels WxH.
     #[command(allow_negative_numbers = true)]
     Plane(Box<FigurePlaneArgs>),
@@ -129,6 +132,7 @@ impl FigureName {
             FigureName::Lyapunov(_) => "lyapunov",
             FigureName::Basins(_) => "basins",
             FigureName::Attractors(_) => "attractors",
+            FigureName::Manifolds(_) => "manifolds",
             FigureName::Plane(_) => "plane",
             FigureName::Curves(_) => "curves",
         }

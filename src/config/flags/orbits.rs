@@ -119,6 +119,18 @@ impl CycleGuessArgs {
 #[derive(Args, Debug, Clone)]
 pub struct ManifoldsArgs {
     #[command(flatten)]
+    pub spec: ManifoldsSpecArgs,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    pub format: Format,
+    #[command(flatten)]
+    pub output: OutArgs,
+}
+
+/// Which manifold: `manifolds`' and `figure manifolds`' shared flags.
+#[derive(Args, Debug, Clone)]
+pub struct ManifoldsSpecArgs {
+    #[command(flatten)]
     pub system: SystemArgs,
     #[arg(help = rules::K.help("k: of the unstable (1, k) solution, or of the (n, k) cycle with --n"), long, default_value_t = rules::K.default as u32, value_parser = rules::K.whole::<u32>(), value_name = "K")]
     pub k: u32,
@@ -126,11 +138,6 @@ pub struct ManifoldsArgs {
     pub guess: SaddleGuessArgs,
     #[arg(help = rules::MANIFOLD_LENGTH.help("Arc length of each branch, in (t, v)"), long, default_value_t = rules::MANIFOLD_LENGTH.default, value_parser = rules::MANIFOLD_LENGTH.real(), value_name = "L")]
     pub length: f64,
-    /// Output format.
-    #[arg(long, value_enum, default_value_t = Format::Text)]
-    pub format: Format,
-    #[command(flatten)]
-    pub output: OutArgs,
 }
 
 /// The saddle (n, k) cycle of `manifolds`, by a guess Newton's method starts from
