@@ -30,6 +30,26 @@ use std::time::{Duration, Instant};
 /// How often a running computation checks for Ctrl-C.
 const SIGNALS_EVERY: Duration = Duration::from_millis(50);
 
+/// Ctrl-C seen from work running with the GIL released: the GIL taken back at most
+/// every [`SIGNALS_EVERY`] to run Python's signal handlers.
+struct Signals(Instant);
+
+impl Signals {
+    fn new() -> Signals {
+        Signals(Instant::now())
+    }
+
+    /// The error a signal handler raised (KeyboardInterrupt for Ctrl-C), if one ran;
+    /// None until [`SIGNALS_EVERY`] has passed since the last look.
+    fn check(&mut self) -> Option<PyErr> {
+        if self.0.elapsed() < SIGNALS_EVERY {
+            return None;
+        }
+        self.0 = Instant::now();
+        Python::attach(|py| py.check_signals()).err()
+    }
+}
+
 /// The command `argv` asks for, or its refusal as a `ValueError`.
 fn command(argv: &[String]) -> PyResult<Command> {
     bouncemap::parse_command(argv).map_err(PyValueError::new_err)
@@ -63,7 +83,7 @@ where
     let mut interrupted: Option<PyErr> = None;
     let summary = py.detach(|| {
         let handle = executor.start(job, &control);
-        let mut checked = Instant::now();
+        let mut signals = Signals::new();
         loop {
             match handle.receiver().recv_timeout(SIGNALS_EVERY) {
                 Ok(b) => {
@@ -74,12 +94,9 @@ where
                 Err(std::sync::mpsc::RecvTimeoutError::Timeout) => {}
                 Err(std::sync::mpsc::RecvTimeoutError::Disconnected) => break,
             }
-            if checked.elapsed() >= SIGNALS_EVERY {
-                checked = Instant::now();
-                if let Err(e) = Python::attach(|py| py.check_signals()) {
-                    interrupted = Some(e);
-                    handle.cancel();
-                }
+            if let Some(e) = signals.check() {
+                interrupted = Some(e);
+                handle.cancel();
             }
         }
         handle.wait()
@@ -141,16 +158,16 @@ fn orbit<'py>(py: Python<'py>, argv: Vec<String>) -> PyResult<OrbitArrays<'py>> 
     );
     let mut interrupted: Option<PyErr> = None;
     let halt = py.detach(|| {
-        let mut checked = Instant::now();
-        let mut left = args.skip;
-        let mut done = 0u64;
-        let mut halt = None;
-        // Steps in chunks, a signal check between them.
-        let mut chunk = |count: u64, keep: bool, done: &mut u64| -> bool {
-            for _ in 0..count {
-                match map.step() {
-                    Ok(e) => {
-                        if keep {
+        let mut signals = Signals::new();
+        // The skipped events, then the kept ones, in chunks with a signal check between.
+        for (count, keep) in [(args.skip, false), (args.bounces, true)] {
+            let mut left = count;
+            while left > 0 {
+                let c = left.min(1 << 16);
+                left -= c;
+                for _ in 0..c {
+                    match map.step() {
+                        Ok(e) if keep => {
                             period.push(e.period);
                             phase.push(e.phase);
                             v.push(e.v);
@@ -161,43 +178,17 @@ fn orbit<'py>(py: Python<'py>, argv: Vec<String>) -> PyResult<OrbitArrays<'py>> 
                                 EventKind::Release => 2,
                             });
                         }
-                        *done += 1;
-                    }
-                    Err(h) => {
-                        halt = Some(h.to_string());
-                        return false;
+                        Ok(_) => {}
+                        Err(h) => return Some(h.to_string()),
                     }
                 }
-            }
-            true
-        };
-        let mut go_on = true;
-        while go_on && left > 0 {
-            let c = left.min(1 << 16);
-            go_on = chunk(c, false, &mut done);
-            left -= c;
-            if checked.elapsed() >= SIGNALS_EVERY {
-                checked = Instant::now();
-                if let Err(e) = Python::attach(|py| py.check_signals()) {
+                if let Some(e) = signals.check() {
                     interrupted = Some(e);
                     return None;
                 }
             }
         }
-        let mut kept = 0u64;
-        while go_on && kept < args.bounces {
-            let c = (args.bounces - kept).min(1 << 16);
-            go_on = chunk(c, true, &mut done);
-            kept += c;
-            if checked.elapsed() >= SIGNALS_EVERY {
-                checked = Instant::now();
-                if let Err(e) = Python::attach(|py| py.check_signals()) {
-                    interrupted = Some(e);
-                    return None;
-                }
-            }
-        }
-        halt
+        None
     });
     if let Some(e) = interrupted {
         return Err(e);
