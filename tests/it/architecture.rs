@@ -146,7 +146,7 @@ const ENGINE_LAYERS: &[&[&str]] = &[
     &["table"],
     &["system"],
     &["impact", "chatter"],
-    &["map", "tangent", "precise"],
+    &["map", "tangent", "precise", "inverse"],
     &["jobs"],
     &["orbits"],
     &["run"],

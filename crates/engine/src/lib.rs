@@ -63,6 +63,7 @@ mod chatter;
 mod error;
 mod exact_sum;
 mod impact;
+mod inverse;
 mod linalg;
 mod map;
 mod poly;
@@ -76,6 +77,7 @@ mod time;
 
 pub use error::{fmt_value, short_text, EngineError};
 pub use impact::{next_landing, FlightError, Landing, Launch, Solver};
+pub use inverse::{InverseMap, NoPreimage, Preimage, RETURN_TOLERANCE};
 pub use linalg::{eigenvalues_2x2, Complex, Mat2};
 pub use map::{Event, EventKind, Halt, ImpactMap, Mode, State, DEFAULT_HOP, MAX_EVENT_PERIOD};
 pub use precise::{

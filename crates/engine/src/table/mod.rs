@@ -231,6 +231,39 @@ impl Table {
             .map(|m| (&m.family, m.values.as_slice()))
     }
 
+    /// The table run backward in time: (G, c) with G(τ) = F(c − τ) for every τ. A
+    /// ball's flight followed backward from t is a forward flight on G from τ = c − t
+    /// (the inverse map's solver). The sine is its own reversal shifted by half a period
+    /// (sin 2π(½ − τ) = sin 2πτ), so c = ½; a piecewise table's reversal has the pieces
+    /// in reverse order, each p(s) becoming p(L − s) on a piece of length L, and c = 0.
+    pub(crate) fn reversed(&self) -> (Table, f64) {
+        match &self.shape {
+            Shape::Sine => (self.clone(), 0.5),
+            Shape::Piecewise(pieces) => {
+                let rev = pieces
+                    .iter()
+                    .rev()
+                    .map(|p| {
+                        // q(s) = p(L − s): shift by L, then negate the odd powers.
+                        let shifted = p.f.shift(p.len());
+                        let c: Vec<f64> = shifted
+                            .coeffs()
+                            .iter()
+                            .enumerate()
+                            .map(|(i, &a)| if i % 2 == 1 { -a } else { a })
+                            .collect();
+                        let start = if p.end >= 1.0 { 0.0 } else { 1.0 - p.end };
+                        Piece::new(start, 1.0 - p.start, Poly::new(&c))
+                    })
+                    .collect();
+                (
+                    Table::from_pieces(format!("{} reversed", self.name), rev),
+                    0.0,
+                )
+            }
+        }
+    }
+
     fn from_pieces(name: String, pieces: Vec<Piece>) -> Table {
         let range = pieces
             .iter()
@@ -526,6 +559,45 @@ impl fmt::Display for Table {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_reversed_table_is_the_table_backward_in_time() {
+        // G(τ) = F(c − τ) and G'(τ) = −F'(c − τ) at phases spread over a period, on both
+        // sides of every breakpoint.
+        for t in [
+            Table::sine(),
+            Table::fd(0.0).unwrap(),
+            Table::fd(0.37).unwrap(),
+            Table::fd(1.0).unwrap(),
+        ] {
+            let (g, c) = t.reversed();
+            for i in 0..=200 {
+                let tau = i as f64 / 200.0 * 0.999 + 0.0003;
+                let back = (c - tau).rem_euclid(1.0);
+                assert!(
+                    (g.value(tau) - t.value(back)).abs() < 1e-14,
+                    "{} at {tau}",
+                    t.name()
+                );
+                assert!(
+                    (g.derivative(tau, 1) + t.derivative(back, 1)).abs() < 1e-12,
+                    "{} at {tau}",
+                    t.name()
+                );
+            }
+            // Reversed twice: H(σ) = G(c − σ) = F(σ) (c is the same both times).
+            let (gg, c2) = g.reversed();
+            assert_eq!(c, c2);
+            for i in 0..50 {
+                let tau = i as f64 / 50.0 + 0.001;
+                assert!(
+                    (gg.value(tau) - t.value(tau)).abs() < 1e-13,
+                    "{} at {tau}",
+                    t.name()
+                );
+            }
+        }
+    }
 
     fn fd_closed_form(d: f64, t: f64) -> f64 {
         if t < 0.5 {
