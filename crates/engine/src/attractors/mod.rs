@@ -29,6 +29,7 @@ pub mod global;
 pub mod known;
 pub mod lyapunov;
 pub mod sampled;
+pub mod separation;
 pub mod statistics;
 
 use crate::impact::Solver;

@@ -1,32 +1,39 @@
-//! The unstable manifold of a saddle cycle, grown from its fundamental domain.
+//! The unstable and stable manifolds of a saddle cycle, grown from their fundamental
+//! domains.
 //!
 //! For a saddle (n, k) cycle (real multipliers λᵤ, λₛ with |λᵤ| > 1 > |λₛ|), G is the
-//! n-step map, or the 2n-step map where λᵤ < 0 so that each side of the saddle is
-//! invariant. μ is G's unstable multiplier (λᵤ or λᵤ²). Coordinates are the launch
-//! (t, v), t the time measured on from the saddle's launch (not wrapped into a phase),
-//! so a branch is a continuous curve.
+//! n-step map, or the 2n-step map where the multiplier is negative, so that each side
+//! of the saddle is invariant. The unstable manifold is grown under G, the stable one
+//! under G⁻¹ (by the inverse map, [`crate::InverseMap`]: each step back is the previous
+//! launch, found exactly and checked by a forward step). μ is the growth factor along
+//! the manifold's eigenvector: λᵤ (or λᵤ²) for the unstable, 1/λₛ (or 1/λₛ²) for the
+//! stable manifold. Coordinates are the launch (t, v), t the time measured on from the
+//! saddle's launch (not wrapped into a phase), so a branch is a continuous curve.
 //!
-//! Each side σ = ±1 of the unstable eigenvector e gives a branch, the union of the
-//! images Gʲ(D) of the fundamental domain D = {p + σ s e : δ ≤ s ≤ μδ}. A segment of
-//! D is within O(δ²) of the manifold, and that error shrinks by λₛ/λᵤ at each
-//! iteration.
+//! Each side σ = ±1 of the eigenvector e gives a branch, the union of the images
+//! Hʲ(D) (H = G or G⁻¹) of the fundamental domain D = {p + σ s e : δ ≤ s ≤ μδ}. A
+//! segment of D is within O(δ²) of the manifold, and that error shrinks by λₛ/λᵤ at
+//! each iteration.
 //!
-//! Every point of a branch is Gʲ(p + σ s e) for a level j and a parameter s, computed
-//! by the exact map from that start: never interpolated. A level starts from the
-//! previous level's parameters. Where neighbouring points lie more than the step
-//! apart, or the curve turns by more than [`MAX_ANGLE`], the parameter interval is
-//! halved.
+//! Every point of a branch is Hʲ(p + σ s e) for a level j and a parameter s, computed
+//! by the exact map or its exact inverse from that start: never interpolated. A level
+//! starts from the previous level's parameters. Where neighbouring points lie more than
+//! the step apart, or the curve turns by more than [`MAX_ANGLE`], the parameter
+//! interval is halved.
 //!
 //! A branch ends for a reason ([`BranchEnd`]):
 //! * its arc length reaches the length asked;
 //! * a point's orbit sticks to the table, grazes it, or does not land;
+//! * backward, a point's orbit starts from rest on the table (a release after
+//!   sticking, reached from a whole interval of states: no single preimage);
+//! * a point is not a launch (v < f'(t)): the edge of the phase space;
 //! * two neighbouring parameters a rounding apart still map far apart: a
 //!   discontinuity (a grazing or a breakpoint between them);
 //! * the most points are reached.
-//!
-//! The stable manifold (by the inverse map) and the pictures are the next steps.
 
 use super::periodic::{map_for, pass, CyclePoint, PassError};
+use crate::inverse::{InverseMap, NoPreimage};
+use crate::map::ImpactMap;
 use crate::system::System;
 
 /// The largest turn between neighbouring segments of a branch, in radians, before
@@ -73,8 +80,16 @@ pub enum BranchEnd {
         /// Where it grazes.
         phase: f64,
     },
-    /// The orbit of the next point does not land (or leaves from below the table).
+    /// The orbit of the next point does not land, or leaves the engine's ranges.
     NoLanding,
+    /// Backward, the next point's orbit starts from rest on the table at this phase (a
+    /// release after sticking): it has no single preimage.
+    Release {
+        /// Where the ball left the table.
+        phase: f64,
+    },
+    /// The next point is not a launch (v < f'(t)): the edge of the phase space.
+    Edge,
     /// Neighbouring parameters a rounding apart map further apart than the step: a
     /// jump of the manifold (a grazing or a breakpoint between them), after this point.
     Discontinuity,
@@ -90,13 +105,34 @@ impl BranchEnd {
             BranchEnd::Sticking { .. } => "sticking",
             BranchEnd::Grazing { .. } => "grazing",
             BranchEnd::NoLanding => "no_landing",
+            BranchEnd::Release { .. } => "release",
+            BranchEnd::Edge => "edge",
             BranchEnd::Discontinuity => "discontinuity",
             BranchEnd::Points => "points",
         }
     }
 }
 
-/// One side of the unstable manifold.
+/// Which manifold.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Kind {
+    /// The points whose orbits leave the saddle (grown forward).
+    Unstable,
+    /// The points whose orbits approach the saddle (grown backward).
+    Stable,
+}
+
+impl Kind {
+    /// Its name in every output.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Kind::Unstable => "unstable",
+            Kind::Stable => "stable",
+        }
+    }
+}
+
+/// One side of a manifold.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Branch {
     /// +1 or −1: the side of the eigenvector.
@@ -111,16 +147,19 @@ pub struct Branch {
     pub end: BranchEnd,
 }
 
-/// The unstable manifold of a saddle.
+/// A manifold of a saddle.
 #[derive(Clone, Debug, PartialEq)]
-pub struct UnstableManifold {
+pub struct Manifold {
+    /// Unstable or stable.
+    pub kind: Kind,
     /// The saddle's launch (t, v).
     pub saddle: [f64; 2],
-    /// G's unstable multiplier μ (λᵤ, or λᵤ² where λᵤ < 0).
+    /// The growth factor μ along the eigenvector: λᵤ (or λᵤ² where λᵤ < 0) for the
+    /// unstable, 1/λₛ (or 1/λₛ²) for the stable manifold.
     pub multiplier: f64,
-    /// The unit unstable eigenvector e (in (t, v)).
+    /// The unit eigenvector e (in (t, v)).
     pub direction: [f64; 2],
-    /// Events of G: n, or 2n where λᵤ < 0.
+    /// Events of G: n, or 2n where the multiplier is negative.
     pub events: usize,
     /// Table periods of G.
     pub periods: u32,
@@ -128,7 +167,7 @@ pub struct UnstableManifold {
     pub branches: Vec<Branch>,
 }
 
-/// Why there is no unstable manifold to grow.
+/// Why there is no manifold to grow.
 #[derive(Clone, Debug, PartialEq)]
 pub enum ManifoldError {
     /// The cycle's multipliers are not a saddle's (real, one outside and one inside
@@ -151,27 +190,58 @@ impl std::fmt::Display for ManifoldError {
     }
 }
 
-/// G, the map whose unstable manifold is grown.
-struct Map<'a> {
-    sys: &'a System,
+/// G or G⁻¹, the map a manifold is grown under.
+struct Map {
     events: usize,
     periods: u32,
+    forward: ImpactMap,
+    /// Present for the stable manifold.
+    inverse: Option<InverseMap>,
 }
 
-impl Map<'_> {
-    /// G(x), or why the orbit of x ends.
-    fn apply(&self, x: [f64; 2]) -> Result<[f64; 2], BranchEnd> {
-        let mut map = map_for(self.sys);
-        match pass(&mut map, x[0], x[1], self.events, self.periods) {
-            Ok(p) => Ok([x[0] + p.residual[0], x[1] + p.residual[1]]),
-            Err(PassError::Stick { phase }) => Err(BranchEnd::Sticking { phase }),
-            Err(PassError::Grazing { phase }) => Err(BranchEnd::Grazing { phase }),
-            Err(_) => Err(BranchEnd::NoLanding),
+impl Map {
+    fn new(sys: &System, events: usize, periods: u32, kind: Kind) -> Map {
+        Map {
+            events,
+            periods,
+            forward: map_for(sys),
+            inverse: (kind == Kind::Stable).then(|| InverseMap::new(sys)),
         }
     }
 
-    /// Gʲ(x).
-    fn iterate(&self, mut x: [f64; 2], j: u32) -> Result<[f64; 2], BranchEnd> {
+    /// H(x), or why the orbit of x ends.
+    fn apply(&mut self, x: [f64; 2]) -> Result<[f64; 2], BranchEnd> {
+        match &mut self.inverse {
+            None => match pass(&mut self.forward, x[0], x[1], self.events, self.periods) {
+                Ok(p) => Ok([x[0] + p.residual[0], x[1] + p.residual[1]]),
+                Err(PassError::Stick { phase }) => Err(BranchEnd::Sticking { phase }),
+                Err(PassError::Grazing { phase }) => Err(BranchEnd::Grazing { phase }),
+                Err(PassError::BadLaunch) => Err(BranchEnd::Edge),
+                Err(_) => Err(BranchEnd::NoLanding),
+            },
+            Some(inv) => {
+                // Back n launches, the time kept continuous (t − flights), then k
+                // periods on so the point stays beside the saddle.
+                let (mut t, mut v) = (x[0], x[1]);
+                for _ in 0..self.events {
+                    let period = t.floor();
+                    let phase = crate::time::wrap_phase(t - period);
+                    let pre = inv.previous(period as i64, phase, v).map_err(|e| match e {
+                        NoPreimage::NotALaunch => BranchEnd::Edge,
+                        NoPreimage::Release { phase } => BranchEnd::Release { phase },
+                        NoPreimage::NoLanding | NoPreimage::OutOfRange => BranchEnd::NoLanding,
+                        NoPreimage::NotReturning { .. } => BranchEnd::Discontinuity,
+                    })?;
+                    t -= pre.flight;
+                    v = pre.v;
+                }
+                Ok([t + f64::from(self.periods), v])
+            }
+        }
+    }
+
+    /// Hʲ(x).
+    fn iterate(&mut self, mut x: [f64; 2], j: u32) -> Result<[f64; 2], BranchEnd> {
         for _ in 0..j {
             x = self.apply(x)?;
         }
@@ -194,13 +264,14 @@ fn turn(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
     cos.acos()
 }
 
-/// The unstable manifold of the saddle `cycle` of `sys` (a cycle found by
+/// The `kind` manifold of the saddle `cycle` of `sys` (a cycle found by
 /// [`super::periodic::cycle`] at `sys`'s α).
-pub fn unstable_manifold(
+pub fn manifold(
     sys: &System,
     cycle: &CyclePoint,
+    kind: Kind,
     spec: &ManifoldSpec,
-) -> Result<UnstableManifold, ManifoldError> {
+) -> Result<Manifold, ManifoldError> {
     if !(spec.length > 0.0 && spec.length.is_finite()) {
         return Err(ManifoldError::BadSpec("length"));
     }
@@ -220,13 +291,17 @@ pub fn unstable_manifold(
     } else {
         (b.re, a.re)
     };
-    if !real || lu.abs() <= 1.0 || ls.abs() >= 1.0 {
+    if !real || lu.abs() <= 1.0 || ls.abs() >= 1.0 || ls == 0.0 {
         return Err(ManifoldError::NotSaddle(cycle.multipliers));
     }
+    let lambda = match kind {
+        Kind::Unstable => lu,
+        Kind::Stable => ls,
+    };
     let m = cycle.monodromy;
     // (M − λI) e = 0: e ∥ (m01, λ − m00), or (λ − m11, m10), whichever is larger.
-    let e1 = [m[0][1], lu - m[0][0]];
-    let e2 = [lu - m[1][1], m[1][0]];
+    let e1 = [m[0][1], lambda - m[0][0]];
+    let e2 = [lambda - m[1][1], m[1][0]];
     let e = if e1[0].hypot(e1[1]) >= e2[0].hypot(e2[1]) {
         e1
     } else {
@@ -234,24 +309,30 @@ pub fn unstable_manifold(
     };
     let norm = e[0].hypot(e[1]);
     let direction = [e[0] / norm, e[1] / norm];
-    let twice = lu < 0.0;
-    let g = Map {
-        sys,
-        events: if twice { 2 * cycle.n } else { cycle.n },
-        periods: if twice { 2 * cycle.k } else { cycle.k },
+    let twice = lambda < 0.0;
+    let (events, periods) = if twice {
+        (2 * cycle.n, 2 * cycle.k)
+    } else {
+        (cycle.n, cycle.k)
     };
-    let mu = if twice { lu * lu } else { lu };
+    let mut g = Map::new(sys, events, periods, kind);
+    let growth = if twice { lambda * lambda } else { lambda };
+    let mu = match kind {
+        Kind::Unstable => growth,
+        Kind::Stable => 1.0 / growth,
+    };
     let saddle = [cycle.t0, cycle.velocities[0]];
     let branches = [1i8, -1]
         .into_iter()
-        .map(|side| grow(&g, saddle, direction, side, mu, spec))
+        .map(|side| grow(&mut g, saddle, direction, side, mu, spec))
         .collect();
-    Ok(UnstableManifold {
+    Ok(Manifold {
+        kind,
         saddle,
         multiplier: mu,
         direction,
-        events: g.events,
-        periods: g.periods,
+        events,
+        periods,
         branches,
     })
 }
@@ -260,7 +341,7 @@ pub fn unstable_manifold(
 const DOMAIN_SAMPLES: usize = 16;
 
 /// One branch: the fundamental domain's images, level by level, refined.
-fn grow(g: &Map, p: [f64; 2], e: [f64; 2], side: i8, mu: f64, spec: &ManifoldSpec) -> Branch {
+fn grow(g: &mut Map, p: [f64; 2], e: [f64; 2], side: i8, mu: f64, spec: &ManifoldSpec) -> Branch {
     let sigma = f64::from(side);
     let start = |s: f64| [p[0] + sigma * s * e[0], p[1] + sigma * s * e[1]];
     let (lo, hi) = (spec.delta, spec.delta * mu);
@@ -380,12 +461,16 @@ mod tests {
         (sys, saddle, sink)
     }
 
-    fn map_of<'a>(sys: &'a System, m: &UnstableManifold) -> Map<'a> {
-        Map {
-            sys,
-            events: m.events,
-            periods: m.periods,
-        }
+    fn map_of(sys: &System, m: &Manifold) -> Map {
+        Map::new(sys, m.events, m.periods, m.kind)
+    }
+
+    fn unstable_manifold(
+        sys: &System,
+        c: &CyclePoint,
+        spec: &ManifoldSpec,
+    ) -> Result<Manifold, ManifoldError> {
+        manifold(sys, c, Kind::Unstable, spec)
     }
 
     /// The distance from `y` to the segment a–b.
@@ -425,7 +510,7 @@ mod tests {
         assert!((m.multiplier - 4.395087772098843).abs() < 1e-9);
         assert!((me[0] - m.multiplier * e[0]).abs() < 1e-9);
         assert!((me[1] - m.multiplier * e[1]).abs() < 1e-9);
-        let g = map_of(&sys, &m);
+        let mut g = map_of(&sys, &m);
         for b in &m.branches {
             assert_eq!(b.end, BranchEnd::Length);
             assert!(b.length <= spec.length && b.length > spec.length - spec.max_step);
@@ -459,7 +544,7 @@ mod tests {
             ..ManifoldSpec::default()
         };
         let m = unstable_manifold(&sys, &c, &spec).unwrap();
-        let g = map_of(&sys, &m);
+        let mut g = map_of(&sys, &m);
         let e = m.direction;
         let mut checked = 0;
         for b in &m.branches {
@@ -528,7 +613,7 @@ mod tests {
         let m = unstable_manifold(&sys, &c, &spec).unwrap();
         assert_eq!((m.events, m.periods), (2, 2));
         assert!((m.multiplier - lu * lu).abs() < 1e-9 * m.multiplier);
-        let g = map_of(&sys, &m);
+        let mut g = map_of(&sys, &m);
         let e = m.direction;
         for b in &m.branches {
             assert!(b.points.len() > 10, "{:?}", b.end);
@@ -540,6 +625,79 @@ mod tests {
                     at(spec.delta * m.multiplier)
                 ) < 1e-12
             );
+        }
+    }
+
+    #[test]
+    fn the_stable_manifold_returns_to_the_saddle_under_the_map() {
+        // Each point of the stable manifold is G⁻ʲ(p + σ s e) by the inverse map: the
+        // forward map takes it back within 1e-9 to the local stable segment, G once takes
+        // it to the point of level j − 1 with the same s, and near the saddle the branch
+        // leaves along the stable eigenvector (M e = λₛ e).
+        let (sys, c, _) = saddle();
+        let spec = ManifoldSpec {
+            length: 1.5,
+            ..ManifoldSpec::default()
+        };
+        let m = manifold(&sys, &c, Kind::Stable, &spec).unwrap();
+        let (mm, e) = (c.monodromy, m.direction);
+        let ls = c.multipliers[0].re.min(c.multipliers[1].re);
+        assert!((m.multiplier - 1.0 / ls).abs() < 1e-9 * m.multiplier);
+        assert!((mm[0][0] * e[0] + mm[0][1] * e[1] - ls * e[0]).abs() < 1e-9);
+        assert!((mm[1][0] * e[0] + mm[1][1] * e[1] - ls * e[1]).abs() < 1e-9);
+        let mut forward = Map::new(&sys, m.events, m.periods, Kind::Unstable);
+        let mut checked = 0;
+        for b in &m.branches {
+            assert!(b.points.len() > 20, "{:?}", b.end);
+            let sigma = f64::from(b.side);
+            let at = |x: f64| {
+                [
+                    m.saddle[0] + sigma * x * e[0],
+                    m.saddle[1] + sigma * x * e[1],
+                ]
+            };
+            for (k, (&x, &(j, s))) in b.points.iter().zip(&b.params).enumerate().skip(1) {
+                let back = forward.iterate(x, j).unwrap();
+                let off = distance(back, at(s));
+                assert!(off < 1e-9, "{k}: level {j}, {off}");
+                if j >= 1 {
+                    let once = forward.apply(x).unwrap();
+                    let mut g = map_of(&sys, &m);
+                    let previous = g.iterate(at(s), j - 1).unwrap();
+                    assert!(
+                        distance(once, previous) < 1e-9,
+                        "{k}: {}",
+                        distance(once, previous)
+                    );
+                }
+                checked += 1;
+            }
+        }
+        assert!(checked > 50, "{checked}");
+    }
+
+    #[test]
+    fn the_two_manifolds_cross_only_transversally_at_the_saddle() {
+        // The stable and unstable eigenvectors differ, and both manifolds of the flip
+        // saddle grow under the second iterate.
+        let sys = System::new(Table::fd(0.1).unwrap(), 0.52, 0.8).unwrap();
+        let fp = fixed_points(&sys, 1)
+            .unwrap()
+            .into_iter()
+            .min_by(|a, b| a.phase.total_cmp(&b.phase))
+            .unwrap();
+        let c = cycle(&sys, 1, 1, fp.phase, fp.v).unwrap();
+        let spec = ManifoldSpec {
+            length: 0.3,
+            ..ManifoldSpec::default()
+        };
+        let u = manifold(&sys, &c, Kind::Unstable, &spec).unwrap();
+        let s = manifold(&sys, &c, Kind::Stable, &spec).unwrap();
+        assert_eq!((s.events, s.periods), (2, 2));
+        let cross = u.direction[0] * s.direction[1] - u.direction[1] * s.direction[0];
+        assert!(cross.abs() > 1e-3, "{cross}");
+        for b in &s.branches {
+            assert!(b.points.len() > 5, "{:?}", b.end);
         }
     }
 
