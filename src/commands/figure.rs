@@ -16,9 +16,12 @@ use crate::config::{self, InputError};
 use crate::output::sink::AtomicFile;
 use bouncemap_engine::attractors::basins::BasinSpec;
 use bouncemap_engine::attractors::global::GlobalSpec;
+use bouncemap_engine::attractors::separation::{baseline, separation};
+use bouncemap_engine::attractors::Registry;
 use bouncemap_engine::jobs::grid::Shard;
 use bouncemap_engine::jobs::{Control, Executor, Progress as JobProgress};
 use bouncemap_engine::orbits::curves::curves;
+use bouncemap_engine::orbits::manifold::{Kind, Manifold};
 use bouncemap_engine::orbits::scaling::{log_spaced, scaling_row, ScalingRow};
 use bouncemap_engine::plane::PlaneSpec;
 use bouncemap_engine::sweep::{self, SweepSpec};
@@ -90,7 +93,7 @@ pub fn run(args: &FigureArgs) -> anyhow::Result<()> {
     };
     let basin_spec = match &args.name {
         FigureName::Basins(a) => {
-            let mut spec = config::basin_spec(a)?;
+            let mut spec = config::basin_spec(&a.spec)?;
             if args.quick {
                 spec.nx = spec.nx.min(QUICK_GRID.0);
                 spec.ny = spec.ny.min(QUICK_GRID.1);
@@ -376,13 +379,39 @@ fn build(
             Ok(figure::global::attractors_figure(&cont))
         }
         FigureName::Manifolds(a) => {
-            let (sys, saddle, m) = super::manifolds::compute(a)?;
-            Ok(figure::manifold::manifold_figure(&sys, &saddle, &m))
+            let (sys, saddle, ms) = super::manifolds::compute(a)?;
+            Ok(figure::manifold::manifold_figure(&sys, &saddle, &ms))
         }
-        FigureName::Basins(_) => {
+        FigureName::Basins(a) => {
             let spec = basin_spec.expect("the basins' grid was checked first");
+            // The saddle and its manifolds first: a refusal before the picture's work.
+            let overlay = match a.manifolds {
+                Some(choice) => {
+                    let saddle = super::manifolds::saddle(&spec.sys, choice.k, choice.guess)?;
+                    let ms = super::manifolds::grow(
+                        &spec.sys,
+                        &saddle,
+                        &[Kind::Unstable, Kind::Stable],
+                        a.manifold_length,
+                    )?;
+                    Some((saddle, ms))
+                }
+                None => None,
+            };
             let basins = super::basins::compute(&spec, executor)?;
-            Ok(figure::basins::basins_figure(&spec, &basins))
+            let mut fig = figure::basins::basins_figure(&spec, &basins);
+            if let Some((saddle, ms)) = overlay {
+                let split = split_report(&spec, &ms);
+                figure::manifold::overlay_on_basins(
+                    &mut fig,
+                    &spec.sys,
+                    spec.w_max,
+                    &saddle,
+                    &ms,
+                    split.as_ref(),
+                );
+            }
+            Ok(fig)
         }
         FigureName::Curves(_) => {
             let (plane, seeds) = curves_task.expect("the curves' plane was checked first");
@@ -399,4 +428,29 @@ fn build(
             Ok(diagram::diagram_figure("diagram", diagram))
         }
     }
+}
+
+/// Pairs of starts across the stable manifold in `ms`, half a grid cell's diagonal on
+/// either side, against as many pairs spread over the picture (see
+/// [`bouncemap_engine::attractors::separation`]).
+fn split_report(spec: &BasinSpec, ms: &[Manifold]) -> Option<figure::manifold::SplitReport> {
+    let stable = ms.iter().find(|m| m.kind == Kind::Stable)?;
+    let offset = 0.5 * (1.0 / spec.nx as f64).hypot(spec.w_max / spec.ny as f64);
+    let mut reg = Registry::new();
+    let never = &mut |_| false;
+    let across = separation(&spec.sys, stable, offset, &spec.settle, &mut reg, never)?;
+    let pairs = across.pairs.max(100);
+    let base = baseline(
+        &spec.sys,
+        spec.w_max,
+        pairs,
+        offset,
+        &spec.settle,
+        &mut reg,
+        never,
+    )?;
+    Some(figure::manifold::SplitReport {
+        across,
+        baseline: base,
+    })
 }

@@ -1,10 +1,10 @@
-//! `bouncemap manifolds`: the unstable manifold of a saddle cycle (the engine's
-//! [`bouncemap_engine::orbits::manifold`]): the unstable (1, k) solution, or the (n, k)
-//! cycle Newton's method finds from `--n --t0 --v0`; both branches, every point
-//! computed by the exact map.
+//! `bouncemap manifolds`: the unstable and stable manifolds of a saddle cycle (the
+//! engine's [`bouncemap_engine::orbits::manifold`]): the unstable (1, k) solution, or
+//! the (n, k) cycle Newton's method finds from `--n --t0 --v0`; both branches of each,
+//! every point computed by the exact map or its exact inverse.
 //!
-//! text: the saddle, its multipliers, each branch's points, length and end; csv: a row
-//! per point; json: all of it.
+//! text: the saddle, its multipliers, each manifold's map and direction and each
+//! branch's points, length and end; csv: a row per point; json: all of it.
 
 use crate::config::flags::{ManifoldsArgs, ManifoldsSpecArgs};
 use crate::config::{self, InputError};
@@ -12,26 +12,28 @@ use crate::output::records::{csv_writer, end_text, side_name, ManifoldDoc, Manif
 use crate::output::sink::Sink;
 use crate::output::Format;
 use bouncemap_engine::orbits::fixed::fixed_points;
-use bouncemap_engine::orbits::manifold::{unstable_manifold, ManifoldSpec, UnstableManifold};
+use bouncemap_engine::orbits::manifold::{manifold, Kind, Manifold, ManifoldSpec};
 use bouncemap_engine::orbits::periodic::{cycle, CyclePoint};
 use bouncemap_engine::System;
 use std::io::Write;
 
 pub fn run(args: &ManifoldsArgs) -> anyhow::Result<()> {
-    let (sys, saddle, m) = compute(&args.spec)?;
+    let (sys, saddle, ms) = compute(&args.spec)?;
     let mut out = Sink::open(args.output.out.as_deref()).map_err(InputError)?;
     let written = (|| -> anyhow::Result<()> {
         match args.format {
             Format::Json => {
-                let doc = ManifoldDoc::of(sys.table().name(), sys.alpha(), sys.r(), &saddle, &m);
+                let doc = ManifoldDoc::of(sys.table().name(), sys.alpha(), sys.r(), &saddle, &ms);
                 serde_json::to_writer(&mut out, &doc)?;
                 writeln!(out)?;
             }
             Format::Csv => {
                 let mut w = csv_writer(&mut out, &ManifoldRow::HEADER)?;
-                for b in &m.branches {
-                    for row in ManifoldRow::of(b) {
-                        w.serialize(row)?;
+                for m in &ms {
+                    for b in &m.branches {
+                        for row in ManifoldRow::of(m.kind, b) {
+                            w.serialize(row)?;
+                        }
                     }
                 }
                 w.flush()?;
@@ -40,7 +42,7 @@ pub fn run(args: &ManifoldsArgs) -> anyhow::Result<()> {
                 let [a, b] = saddle.multipliers;
                 writeln!(
                     out,
-                    "unstable manifold of the saddle ({}, {}) of {} at alpha {}, r {}",
+                    "manifolds of the saddle ({}, {}) of {} at alpha {}, r {}",
                     saddle.n,
                     saddle.k,
                     sys.table().name(),
@@ -50,34 +52,41 @@ pub fn run(args: &ManifoldsArgs) -> anyhow::Result<()> {
                 writeln!(
                     out,
                     "  saddle: t̂ = {}, v = {}; multipliers {} and {}",
-                    m.saddle[0].rem_euclid(1.0),
-                    m.saddle[1],
+                    saddle.t0.rem_euclid(1.0),
+                    saddle.velocities[0],
                     a.re,
                     b.re
                 )?;
-                writeln!(
-                    out,
-                    "  grown under the map of {} impact{} ({} period{}): multiplier {}, unstable direction ({:.6}, {:.6}) in (t, v)",
-                    m.events,
-                    if m.events == 1 { "" } else { "s" },
-                    m.periods,
-                    if m.periods == 1 { "" } else { "s" },
-                    m.multiplier,
-                    m.direction[0],
-                    m.direction[1]
-                )?;
-                for br in &m.branches {
-                    let last = br.points.last().copied().unwrap_or(m.saddle);
+                for m in &ms {
+                    let (how, factor) = match m.kind {
+                        Kind::Unstable => ("the map", "multiplier"),
+                        Kind::Stable => ("the inverse map", "growth 1/multiplier"),
+                    };
                     writeln!(
                         out,
-                        "  branch {}: {} points, arc length {:.4}, out to t̂ = {:.6}, v = {:.6}; ends: {}",
-                        side_name(br.side),
-                        br.points.len(),
-                        br.length,
-                        last[0].rem_euclid(1.0),
-                        last[1],
-                        end_text(&br.end)
+                        "  {} manifold, grown under {how} of {} impact{} ({} period{}): {factor} {}, direction ({:.6}, {:.6}) in (t, v)",
+                        m.kind.as_str(),
+                        m.events,
+                        if m.events == 1 { "" } else { "s" },
+                        m.periods,
+                        if m.periods == 1 { "" } else { "s" },
+                        m.multiplier,
+                        m.direction[0],
+                        m.direction[1]
                     )?;
+                    for br in &m.branches {
+                        let last = br.points.last().copied().unwrap_or(m.saddle);
+                        writeln!(
+                            out,
+                            "    branch {}: {} points, arc length {:.4}, out to t̂ = {:.6}, v = {:.6}; ends: {}",
+                            side_name(br.side),
+                            br.points.len(),
+                            br.length,
+                            last[0].rem_euclid(1.0),
+                            last[1],
+                            end_text(&br.end)
+                        )?;
+                    }
                 }
                 writeln!(out, "every point: --format csv or json")?;
             }
@@ -87,26 +96,52 @@ pub fn run(args: &ManifoldsArgs) -> anyhow::Result<()> {
     out.end(written)
 }
 
-/// The system, the saddle and its unstable manifold the flags name.
+/// The system, the saddle and the manifolds the flags name.
 pub fn compute(
     args: &ManifoldsSpecArgs,
-) -> Result<(System, CyclePoint, UnstableManifold), InputError> {
+) -> Result<(System, CyclePoint, Vec<Manifold>), InputError> {
     let sys = config::system(&args.system)?;
-    let saddle = saddle(&sys, args)?;
-    let spec = ManifoldSpec {
-        length: args.length,
-        ..ManifoldSpec::default()
-    };
-    let m = unstable_manifold(&sys, &saddle, &spec)
-        .map_err(|e| InputError(format!("the ({}, {}) cycle is {e}", saddle.n, saddle.k)))?;
-    Ok((sys, saddle, m))
+    let saddle = saddle(
+        &sys,
+        args.k,
+        args.guess
+            .n
+            .zip(args.guess.t0)
+            .zip(args.guess.v0)
+            .map(|((n, t0), v0)| (n, t0, v0)),
+    )?;
+    let ms = grow(&sys, &saddle, args.which.kinds(), args.length)?;
+    Ok((sys, saddle, ms))
 }
 
-/// The saddle the flags name: the (n, k) cycle from the guess, or the unstable (1, k)
-/// solution.
-fn saddle(sys: &System, args: &ManifoldsSpecArgs) -> Result<CyclePoint, InputError> {
-    let k = args.k;
-    if let (Some(n), Some(t0), Some(v0)) = (args.guess.n, args.guess.t0, args.guess.v0) {
+/// The `kinds` manifolds of `saddle`, each branch `length` long.
+pub fn grow(
+    sys: &System,
+    saddle: &CyclePoint,
+    kinds: &[Kind],
+    length: f64,
+) -> Result<Vec<Manifold>, InputError> {
+    let spec = ManifoldSpec {
+        length,
+        ..ManifoldSpec::default()
+    };
+    kinds
+        .iter()
+        .map(|&kind| {
+            manifold(sys, saddle, kind, &spec)
+                .map_err(|e| InputError(format!("the ({}, {}) cycle is {e}", saddle.n, saddle.k)))
+        })
+        .collect()
+}
+
+/// The saddle a user names: the (n, k) cycle from the guess (n, t̂0, v0), or the
+/// unstable (1, k) solution.
+pub fn saddle(
+    sys: &System,
+    k: u32,
+    guess: Option<(usize, f64, f64)>,
+) -> Result<CyclePoint, InputError> {
+    if let Some((n, t0, v0)) = guess {
         return cycle(sys, n, k, t0, v0).map_err(|e| {
             InputError(format!(
                 "--n {n} --k {k} --t0 {t0} --v0 {v0}: no ({n}, {k}) cycle found from this guess ({}): valid a guess near a cycle of the exact map at this α",

@@ -1,5 +1,6 @@
-//! `manifolds` (the unstable manifold of a saddle cycle) as a user runs it, checked
-//! against `fixed`'s closed-form (1, 1) solution and its Jacobian, and bad input.
+//! `manifolds` (the unstable and stable manifolds of a saddle cycle) as a user runs it,
+//! checked against `fixed`'s closed-form (1, 1) solution and its Jacobian, and bad
+//! input.
 
 use crate::cli::{json, ok, run};
 
@@ -10,7 +11,7 @@ fn with<'a>(base: &[&'a str], more: &[&'a str]) -> Vec<&'a str> {
 }
 
 #[test]
-fn the_manifold_leaves_the_closed_form_saddle_along_its_jacobians_eigenvector() {
+fn the_manifolds_leave_the_closed_form_saddle_along_its_jacobians_eigenvectors() {
     let f = json(&[
         "fixed", "--table", "fd:0.1", "--alpha", "0.45", "--format", "json",
     ]);
@@ -28,52 +29,79 @@ fn the_manifold_leaves_the_closed_form_saddle_along_its_jacobians_eigenvector() 
         s["phase"].as_f64().unwrap()
     );
     assert_eq!(m["saddle"][1].as_f64().unwrap(), 0.5);
-    // The closed-form Jacobian J of the (1, 1) solution: J e = μ e for the manifold's
-    // direction e and multiplier μ, and μ is J's eigenvalue outside the unit circle.
+    // The closed-form Jacobian J of the (1, 1) solution: J e = λ e for each manifold's
+    // direction e, with λ = μ (unstable) or 1/μ (stable), J's eigenvalues outside and
+    // inside the unit circle.
     let j = |a: usize, b: usize| s["jacobian"][a][b].as_f64().unwrap();
-    let e = [
-        m["direction"][0].as_f64().unwrap(),
-        m["direction"][1].as_f64().unwrap(),
-    ];
-    let mu = m["multiplier"].as_f64().unwrap();
-    let je = [
-        j(0, 0) * e[0] + j(0, 1) * e[1],
-        j(1, 0) * e[0] + j(1, 1) * e[1],
-    ];
-    assert!((je[0] - mu * e[0]).abs() < 1e-9 && (je[1] - mu * e[1]).abs() < 1e-9);
     let (tr, det) = (j(0, 0) + j(1, 1), j(0, 0) * j(1, 1) - j(0, 1) * j(1, 0));
-    let largest = 0.5 * (tr + (tr * tr - 4.0 * det).sqrt());
-    assert!((mu - largest).abs() < 1e-9 * largest, "{mu} {largest}");
-    for b in m["branches"].as_array().unwrap() {
-        assert_eq!(b["end"], "length");
-        let pts = b["points"].as_array().unwrap();
-        assert!(pts.len() > 20);
-        // From the saddle out, a step at most 0.01 apart, the arc length as stated.
-        let p = |i: usize| [pts[i][0].as_f64().unwrap(), pts[i][2].as_f64().unwrap()];
-        let mut length = 0.0;
-        for i in 1..pts.len() {
-            let d = (p(i)[0] - p(i - 1)[0]).hypot(p(i)[1] - p(i - 1)[1]);
-            assert!(d <= 0.01);
-            length += d;
+    let root = (tr * tr - 4.0 * det).sqrt();
+    let (largest, smallest) = (0.5 * (tr + root), 0.5 * (tr - root));
+    let ms = m["manifolds"].as_array().unwrap();
+    assert_eq!(ms.len(), 2);
+    for mf in ms {
+        let e = [
+            mf["direction"][0].as_f64().unwrap(),
+            mf["direction"][1].as_f64().unwrap(),
+        ];
+        let mu = mf["multiplier"].as_f64().unwrap();
+        let lambda = match mf["manifold"].as_str().unwrap() {
+            "unstable" => {
+                assert!((mu - largest).abs() < 1e-9 * largest, "{mu} {largest}");
+                mu
+            }
+            "stable" => {
+                assert!((1.0 / mu - smallest).abs() < 1e-9, "{mu} {smallest}");
+                1.0 / mu
+            }
+            other => panic!("{other}"),
+        };
+        let je = [
+            j(0, 0) * e[0] + j(0, 1) * e[1],
+            j(1, 0) * e[0] + j(1, 1) * e[1],
+        ];
+        assert!((je[0] - lambda * e[0]).abs() < 1e-9 && (je[1] - lambda * e[1]).abs() < 1e-9);
+        for b in mf["branches"].as_array().unwrap() {
+            assert_eq!(b["end"], "length");
+            let pts = b["points"].as_array().unwrap();
+            assert!(pts.len() > 20);
+            // From the saddle out, a step at most 0.01 apart, the arc length as stated.
+            let p = |i: usize| [pts[i][0].as_f64().unwrap(), pts[i][2].as_f64().unwrap()];
+            let mut length = 0.0;
+            for i in 1..pts.len() {
+                let d = (p(i)[0] - p(i - 1)[0]).hypot(p(i)[1] - p(i - 1)[1]);
+                assert!(d <= 0.01);
+                length += d;
+            }
+            assert!((length - b["length"].as_f64().unwrap()).abs() < 1e-12);
+            assert!(length <= 0.5 && length > 0.49);
         }
-        assert!((length - b["length"].as_f64().unwrap()).abs() < 1e-12);
-        assert!(length <= 0.5 && length > 0.49);
     }
     // The csv holds the same points, a row each.
     let csv = ok(&with(&SADDLE, &["--length", "0.5", "--format", "csv"]));
     let rows = csv.lines().count() - 1;
-    let points: usize = m["branches"]
-        .as_array()
-        .unwrap()
+    let points: usize = ms
         .iter()
+        .flat_map(|mf| mf["branches"].as_array().unwrap())
         .map(|b| b["points"].as_array().unwrap().len())
         .sum();
     assert_eq!(rows, points);
     let text = ok(&SADDLE);
-    assert!(
-        text.contains("branch +:") && text.contains("branch -:"),
-        "{text}"
-    );
+    for want in [
+        "unstable manifold",
+        "stable manifold, grown under the inverse map",
+        "branch +:",
+        "branch -:",
+    ] {
+        assert!(text.contains(want), "{want}: {text}");
+    }
+    // --which picks one.
+    let only = json(&with(
+        &SADDLE,
+        &["--length", "0.5", "--which", "stable", "--format", "json"],
+    ));
+    let only = only["manifolds"].as_array().unwrap();
+    assert_eq!(only.len(), 1);
+    assert_eq!(only[0]["manifold"], "stable");
 }
 
 #[test]
@@ -96,8 +124,10 @@ fn a_flip_saddle_is_grown_under_the_second_iterate() {
         "--format",
         "json",
     ]);
+    let u = &m["manifolds"][0];
+    assert_eq!(u["manifold"], "unstable");
     assert_eq!(
-        (m["events"].as_u64(), m["periods"].as_u64()),
+        (u["events"].as_u64(), u["periods"].as_u64()),
         (Some(2), Some(2))
     );
     let lu = m["multipliers"]
@@ -107,7 +137,19 @@ fn a_flip_saddle_is_grown_under_the_second_iterate() {
         .map(|z| z[0].as_f64().unwrap())
         .find(|x| *x < -1.0)
         .unwrap();
-    assert!((m["multiplier"].as_f64().unwrap() - lu * lu).abs() < 1e-9);
+    assert!((u["multiplier"].as_f64().unwrap() - lu * lu).abs() < 1e-9);
+    // The stable manifold under the same second iterate of the inverse: 1/λₛ².
+    let s = &m["manifolds"][1];
+    assert_eq!(s["manifold"], "stable");
+    let ls = m["multipliers"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|z| z[0].as_f64().unwrap())
+        .find(|x| x.abs() < 1.0)
+        .unwrap();
+    assert!(ls < 0.0);
+    assert!((s["multiplier"].as_f64().unwrap() * ls * ls - 1.0).abs() < 1e-9);
 }
 
 #[test]
@@ -134,7 +176,7 @@ fn no_saddle_and_bad_input_are_refused_with_one_line() {
 }
 
 #[test]
-fn figure_manifolds_draws_both_branches_and_the_saddle() {
+fn figure_manifolds_draws_every_branch_and_the_saddle() {
     let d = crate::scratch::dir("manifolds", "figure");
     let svg = d.join("m.svg");
     let svg_s = svg.to_str().unwrap();
@@ -170,14 +212,99 @@ fn figure_manifolds_draws_both_branches_and_the_saddle() {
         "--format",
         "json",
     ]);
-    for b in m["branches"].as_array().unwrap() {
+    for mf in m["manifolds"].as_array().unwrap() {
+        for b in mf["branches"].as_array().unwrap() {
+            let side = if b["branch"] == "+" { "+" } else { "\u{2212}" };
+            let want = format!(
+                "{} {side}: {} points, length {:.3}",
+                mf["manifold"].as_str().unwrap(),
+                b["points"].as_array().unwrap().len(),
+                b["length"].as_f64().unwrap()
+            );
+            assert!(words.contains(&want), "{want} not in {words}");
+        }
+    }
+    assert!(words.contains("saddle (1, 1)"), "{words}");
+}
+
+#[test]
+fn figure_basins_draws_the_manifolds_and_counts_the_pairs_across_the_stable_one() {
+    let d = crate::scratch::dir("manifolds", "basins");
+    let svg = d.join("b.svg");
+    let svg_s = svg.to_str().unwrap();
+    ok(&[
+        "figure",
+        "basins",
+        "--table",
+        "cubic",
+        "--alpha",
+        "0.47",
+        "--grid",
+        "100x50",
+        "--manifolds",
+        "--manifold-length",
+        "1",
+        "--out",
+        svg_s,
+    ]);
+    let text = std::fs::read_to_string(&svg).unwrap();
+    let doc = roxmltree::Document::parse(&text).unwrap();
+    let words: String = doc
+        .descendants()
+        .filter(|n| n.is_text())
+        .filter_map(|n| n.text())
+        .collect::<Vec<_>>()
+        .join(" ");
+    for want in [
+        "stable + manifold",
+        "unstable − manifold",
+        "saddle (1, 1)",
+        "end on different attractors in",
+    ] {
+        assert!(words.contains(want), "{want} not in {words}");
+    }
+    // The stable manifold's branches, as `manifolds` grows them.
+    let m = json(&[
+        "manifolds",
+        "--table",
+        "cubic",
+        "--alpha",
+        "0.47",
+        "--length",
+        "1",
+        "--which",
+        "stable",
+        "--format",
+        "json",
+    ]);
+    for b in m["manifolds"][0]["branches"].as_array().unwrap() {
         let side = if b["branch"] == "+" { "+" } else { "\u{2212}" };
         let want = format!(
-            "branch {side}: {} points, length {:.3}",
-            b["points"].as_array().unwrap().len(),
+            "stable {side} manifold, length {:.3}",
             b["length"].as_f64().unwrap()
         );
         assert!(words.contains(&want), "{want} not in {words}");
     }
-    assert!(words.contains("saddle (1, 1)"), "{words}");
+    // A saddle that is not there, or not a saddle value at all: one line, status 2.
+    for (value, want) in [
+        ("1:1:0.5", "is not a saddle: valid K"),
+        ("0", "k: 0 is out of range"),
+        ("1:1:0.15:0.5", "not a saddle"),
+    ] {
+        let (code, _, err) = run(&[
+            "figure",
+            "basins",
+            "--table",
+            "cubic",
+            "--alpha",
+            "0.47",
+            "--manifolds",
+            value,
+            "--out",
+            svg_s,
+        ]);
+        assert_eq!(code, 2, "{value}: {err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+        assert!(err.contains(want), "{value}: {err}");
+    }
 }

@@ -1,14 +1,16 @@
-//! `figure manifolds`: the unstable manifold of a saddle cycle in the phase plane
-//! (t̂, v): each branch a curve in its own colour (broken where it wraps around the
-//! period), the saddle's impacts marked, the legend naming each branch's points,
-//! arc length and why it ends.
+//! `figure manifolds`: the unstable and stable manifolds of a saddle cycle in the phase
+//! plane (t̂, v): the unstable manifold red, the stable blue, the + branch of each solid
+//! and the − branch dashed (broken where they wrap around the period), the saddle's
+//! impacts marked, the legend naming each branch's points, arc length and why it ends.
+//! [`overlay_on_basins`] draws them over a basins figure, in the basins' coordinates.
 
 use crate::labels::table_title;
 use crate::model::{
     Axis, Color, Corner, Dash, Figure, Layer, Legend, Marker, Panel, Swatch, COLUMN,
 };
+use bouncemap_engine::attractors::separation::Separation;
 use bouncemap_engine::fmt_value as shortest;
-use bouncemap_engine::orbits::manifold::{BranchEnd, UnstableManifold};
+use bouncemap_engine::orbits::manifold::{BranchEnd, Kind, Manifold};
 use bouncemap_engine::orbits::periodic::CyclePoint;
 use bouncemap_engine::System;
 
@@ -19,6 +21,8 @@ fn end_words(end: &BranchEnd) -> &'static str {
         BranchEnd::Sticking { .. } => "sticks",
         BranchEnd::Grazing { .. } => "grazes",
         BranchEnd::NoLanding => "no landing",
+        BranchEnd::Release { .. } => "no preimage (release)",
+        BranchEnd::Edge => "edge v = f'",
         BranchEnd::Discontinuity => "jump",
         BranchEnd::Points => "most points",
     }
@@ -40,12 +44,57 @@ fn pieces(points: &[[f64; 2]]) -> Vec<Vec<[f64; 2]>> {
     out
 }
 
-/// The figure of the unstable manifold `m` of the saddle `cycle` of `sys`.
-pub fn manifold_figure(sys: &System, cycle: &CyclePoint, m: &UnstableManifold) -> Figure {
-    let colours = [Color::BLUE, Color::RED];
-    let all_v = m
-        .branches
+/// The colour of a manifold: unstable red, stable blue.
+fn colour(kind: Kind) -> Color {
+    match kind {
+        Kind::Unstable => Color::RED,
+        Kind::Stable => Color::BLUE,
+    }
+}
+
+/// The dash of a branch: + solid, − dashed.
+fn dash(side: i8) -> Dash {
+    if side > 0 {
+        Dash::Solid
+    } else {
+        Dash::Dashed
+    }
+}
+
+/// The branches of `ms` as line layers in (t̂, v), with a legend entry each.
+pub fn manifold_layers(ms: &[Manifold]) -> (Vec<Layer>, Vec<(Swatch, String)>) {
+    let mut layers = Vec::new();
+    let mut entries = Vec::new();
+    for m in ms {
+        for b in &m.branches {
+            let side = if b.side > 0 { "+" } else { "\u{2212}" };
+            let name = format!("{} {side}", m.kind.as_str());
+            layers.push(Layer::Lines {
+                name: name.clone(),
+                lines: pieces(&b.points),
+                color: colour(m.kind),
+                dash: dash(b.side),
+                width: 0.8,
+            });
+            entries.push((
+                Swatch::line(colour(m.kind), dash(b.side)),
+                format!(
+                    "{name}: {} points, length {:.3}, {}",
+                    b.points.len(),
+                    b.length,
+                    end_words(&b.end)
+                ),
+            ));
+        }
+    }
+    (layers, entries)
+}
+
+/// The figure of the manifolds `ms` of the saddle `cycle` of `sys`.
+pub fn manifold_figure(sys: &System, cycle: &CyclePoint, ms: &[Manifold]) -> Figure {
+    let all_v = ms
         .iter()
+        .flat_map(|m| m.branches.iter())
         .flat_map(|b| b.points.iter().map(|p| p[1]))
         .chain(cycle.velocities.iter().copied());
     let mut panel = Panel::new(
@@ -58,26 +107,8 @@ pub fn manifold_figure(sys: &System, cycle: &CyclePoint, m: &UnstableManifold) -
         shortest(sys.alpha()),
         shortest(sys.r())
     ));
-    let mut entries = Vec::new();
-    for (b, &color) in m.branches.iter().zip(&colours) {
-        let side = if b.side > 0 { "+" } else { "\u{2212}" };
-        panel.layers.push(Layer::Lines {
-            name: format!("branch {side}"),
-            lines: pieces(&b.points),
-            color,
-            dash: Dash::Solid,
-            width: 0.8,
-        });
-        entries.push((
-            Swatch::line(color, Dash::Solid),
-            format!(
-                "branch {side}: {} points, length {:.3}, {}",
-                b.points.len(),
-                b.length,
-                end_words(&b.end)
-            ),
-        ));
-    }
+    let (layers, mut entries) = manifold_layers(ms);
+    panel.layers.extend(layers);
     let saddle: Vec<[f64; 2]> = cycle
         .phases
         .iter()
@@ -99,19 +130,136 @@ pub fn manifold_figure(sys: &System, cycle: &CyclePoint, m: &UnstableManifold) -
         entries,
     });
     let [a, b] = cycle.multipliers;
+    let events = ms.first().map_or(cycle.n, |m| m.events);
     Figure {
         name: "manifolds".into(),
         panels: vec![panel],
         columns: 1,
         caption: vec![format!(
-            "The unstable manifold of the saddle ({}, {}) (multipliers {} and {}), grown under the map of {} impact{} from its fundamental domain (every point computed by the exact map, at most 0.01 apart), in the launch phase $t\u{302}$ and velocity $v$; each side of the unstable direction a branch.",
+            "The manifolds of the saddle ({}, {}) (multipliers {} and {}) in the launch phase $t\u{302}$ and velocity $v$: the unstable manifold (red) grown under the map of {} impact{}, the stable manifold (blue) under its inverse, each from its fundamental domain, every point computed by the exact map or its exact inverse, at most 0.01 apart; each side of the eigenvector a branch (+ solid, \u{2212} dashed).",
             cycle.n,
             cycle.k,
             shortest(a.re),
             shortest(b.re),
-            m.events,
-            if m.events == 1 { "" } else { "s" }
+            events,
+            if events == 1 { "" } else { "s" }
         )],
         size: (COLUMN * 1.6, 3.2),
     }
+}
+
+/// How far pairs of starts across a stable manifold split, beside the baseline (see
+/// [`bouncemap_engine::attractors::separation`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct SplitReport {
+    /// Pairs across the stable manifold.
+    pub across: Separation,
+    /// Pairs at places spread over the picture, at the same offset.
+    pub baseline: Separation,
+}
+
+/// The colour of a manifold drawn over basins (whose colours are the attractors'):
+/// stable black, unstable yellow.
+fn overlay_colour(kind: Kind) -> Color {
+    match kind {
+        Kind::Unstable => Color(250, 215, 0),
+        Kind::Stable => Color::BLACK,
+    }
+}
+
+/// A branch in the basins' coordinates (t̂, w = v − f'(t̂)), cut where the phase
+/// wraps or the curve leaves the picture's w range.
+fn basin_pieces(points: &[[f64; 2]], sys: &System, w_max: f64) -> Vec<Vec<[f64; 2]>> {
+    let mut out = Vec::new();
+    for piece in pieces(points) {
+        let mut run: Vec<[f64; 2]> = Vec::new();
+        for [t, v] in piece {
+            let w = v - sys.df(t);
+            if (0.0..=w_max).contains(&w) {
+                run.push([t, w]);
+            } else if !run.is_empty() {
+                out.push(std::mem::take(&mut run));
+            }
+        }
+        if !run.is_empty() {
+            out.push(run);
+        }
+    }
+    out
+}
+
+/// Draw the manifolds `ms` of the saddle `cycle` over the basins figure `fig` of
+/// `sys` (w up to `w_max`), with the split counts `split` in the legend and caption.
+pub fn overlay_on_basins(
+    fig: &mut Figure,
+    sys: &System,
+    w_max: f64,
+    cycle: &CyclePoint,
+    ms: &[Manifold],
+    split: Option<&SplitReport>,
+) {
+    let Some(panel) = fig.panels.first_mut() else {
+        return;
+    };
+    let mut entries = Vec::new();
+    for m in ms {
+        for b in &m.branches {
+            let side = if b.side > 0 { "+" } else { "\u{2212}" };
+            let name = format!("{} {side}", m.kind.as_str());
+            panel.layers.push(Layer::Lines {
+                name: name.clone(),
+                lines: basin_pieces(&b.points, sys, w_max),
+                color: overlay_colour(m.kind),
+                dash: dash(b.side),
+                width: 1.0,
+            });
+            entries.push((
+                Swatch::line(overlay_colour(m.kind), dash(b.side)),
+                format!(
+                    "{name} manifold, length {:.3}, {}",
+                    b.length,
+                    end_words(&b.end)
+                ),
+            ));
+        }
+    }
+    let saddle: Vec<[f64; 2]> = cycle
+        .phases
+        .iter()
+        .zip(&cycle.velocities)
+        .map(|(&t, &v)| {
+            let t = t.rem_euclid(1.0);
+            [t, v - sys.df(t)]
+        })
+        .collect();
+    panel.layers.push(Layer::Markers {
+        name: "saddle".into(),
+        points: saddle,
+        marker: Marker::Disc,
+        color: Color::BLACK,
+    });
+    entries.push((
+        Swatch::marker(Color::BLACK, Marker::Disc),
+        format!("saddle ({}, {})", cycle.n, cycle.k),
+    ));
+    if let Some(legend) = panel.beside.first_mut() {
+        legend.entries.extend(entries);
+    }
+    let mut text = format!(
+        "Over the basins: the manifolds of the saddle ({}, {}), stable black, unstable yellow (+ branch solid, \u{2212} dashed), in the basins' coordinates ($t\u{302}$, $w$), every point computed by the exact map or its exact inverse.",
+        cycle.n, cycle.k
+    );
+    if let Some(s) = split {
+        text.push_str(&format!(
+            " Pairs of starts {} apart on either side of the stable manifold end on different attractors in {} of {} pairs ({:.1}%); pairs the same distance apart at {} places spread over the picture in {} ({:.1}%).",
+            crate::format::significant(2.0 * s.across.offset, 3),
+            s.across.split,
+            s.across.pairs,
+            100.0 * s.across.fraction(),
+            s.baseline.pairs,
+            s.baseline.split,
+            100.0 * s.baseline.fraction()
+        ));
+    }
+    fig.caption.push(text);
 }

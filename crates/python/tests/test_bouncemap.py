@@ -197,6 +197,9 @@ def test_the_readme_example_runs(tmp_path, monkeypatch, capsys):
          ["continue", "--table", "fd:0.1", "--alpha", "0.45..0.55", "--from", "fixed"]),
         (lambda: bouncemap.manifolds(table="fd:0.1", alpha=0.45, length=0.5),
          ["manifolds", "--table", "fd:0.1", "--alpha", "0.45", "--length", "0.5"]),
+        (lambda: bouncemap.manifolds(table="cubic", alpha=0.47, length=0.3, which="stable"),
+         ["manifolds", "--table", "cubic", "--alpha", "0.47", "--length", "0.3",
+          "--which", "stable"]),
     ],
 )
 def test_the_json_commands_give_the_commands_json(call, args):

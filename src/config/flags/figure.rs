@@ -96,14 +96,14 @@ pub enum FigureName {
     /// A sweep's diagram with its largest Lyapunov exponent underneath: `sweep`'s flags.
     #[command(allow_negative_numbers = true)]
     Lyapunov(Box<SweepSpecArgs>),
-    /// The basins of attraction of one system: `basins`' flags (--table, --alpha, --r, --grid, ...).
+    /// The basins of attraction of one system: `basins`' flags (--table, --alpha, --r, --grid, ...), with --manifolds the manifolds of a saddle over them.
     #[command(allow_negative_numbers = true)]
-    Basins(Box<BasinsSpecArgs>),
+    Basins(Box<FigureBasinsArgs>),
     /// Attractors followed along α, coloured by attractor, over their stacked basin
     /// fractions: `attractors`' flags (--table, --r, --alpha LO..HI, --steps, --grid, ...).
     #[command(allow_negative_numbers = true)]
     Attractors(Box<AttractorsSpecArgs>),
-    /// The unstable manifold of a saddle cycle in (t̂, v): `manifolds`' flags (--table, --alpha, --r, --k, or --n --t0 --v0, --length).
+    /// The unstable and stable manifolds of a saddle cycle in (t̂, v): `manifolds`' flags (--table, --alpha, --r, --k, or --n --t0 --v0, --length, --which).
     #[command(allow_negative_numbers = true)]
     Manifolds(Box<ManifoldsSpecArgs>),
     /// A two-parameter map: `plane`'s flags (--table, --x PARAM:LO..HI, --y PARAM:LO..HI, ...), the pixels as --pixels WxH.
@@ -159,4 +159,55 @@ pub fn parse_size(s: &str) -> Result<(f64, f64), String> {
         })
     };
     Ok((side(w, "width")?, side(h, "height")?))
+}
+
+/// `bouncemap figure basins`: the basins' flags, and a saddle whose manifolds are drawn
+/// over them.
+#[derive(Args, Debug, Clone)]
+pub struct FigureBasinsArgs {
+    #[command(flatten)]
+    pub spec: BasinsSpecArgs,
+    /// Draw the stable and unstable manifolds of a saddle over the basins, and count how
+    /// often pairs of starts a grid cell apart across the stable manifold end on
+    /// different attractors: K for the unstable (1, K) solution (--manifolds alone: K =
+    /// 1), or N:K:T0:V0 for the (n, k) cycle Newton's method finds from that guess.
+    #[arg(long, num_args = 0..=1, default_missing_value = "1", value_parser = parse_saddle, value_name = "K|N:K:T0:V0")]
+    pub manifolds: Option<SaddleChoice>,
+    #[arg(help = rules::MANIFOLD_LENGTH.help("Arc length of each manifold branch drawn"), long, default_value_t = rules::MANIFOLD_LENGTH.default, value_parser = rules::MANIFOLD_LENGTH.real(), value_name = "L")]
+    pub manifold_length: f64,
+}
+
+/// A saddle named on the command line: the unstable (1, k) solution, or the (n, k) cycle
+/// from a guess.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SaddleChoice {
+    pub k: u32,
+    /// (n, t̂0, v0) of a guess.
+    pub guess: Option<(usize, f64, f64)>,
+}
+
+/// `K` or `N:K:T0:V0`, each number checked against its range.
+pub fn parse_saddle(s: &str) -> Result<SaddleChoice, String> {
+    let parts: Vec<&str> = s.split(':').collect();
+    let whole = |rule: &'static rules::Rule, text: &str| -> Result<u64, String> {
+        rule.whole::<u64>()(text).map_err(|e| format!("{}: {e}", rule.key))
+    };
+    match parts.as_slice() {
+        [k] => Ok(SaddleChoice {
+            k: whole(&rules::K, k)? as u32,
+            guess: None,
+        }),
+        [n, k, t0, v0] => Ok(SaddleChoice {
+            k: whole(&rules::K, k)? as u32,
+            guess: Some((
+                whole(&rules::CYCLE_N, n)? as usize,
+                rules::T0.parse(t0).map_err(|e| format!("t0: {e}"))?,
+                rules::V0.parse(v0).map_err(|e| format!("v0: {e}"))?,
+            )),
+        }),
+        _ => Err(format!(
+            "{} is not a saddle: valid K (the unstable (1, K) solution) or N:K:T0:V0 (a guess at an (n, k) cycle)",
+            quoted(s)
+        )),
+    }
 }

@@ -79,7 +79,7 @@ pub enum Command {
     Continue(ContinueArgs),
     /// The period-doubling cascade: αₙ, the Feigenbaum ratios, how each 2ⁿ branch ends.
     Cascade(CascadeArgs),
-    /// The unstable manifold of a saddle cycle: both branches, each point by the exact map.
+    /// The unstable and stable manifolds of a saddle cycle: both branches of each, every point by the exact map or its exact inverse.
     #[command(allow_negative_numbers = true)]
     Manifolds(ManifoldsArgs),
     /// Two-parameter bifurcation curves over (α, r) or (α, D or a table file's parameter): period doublings, folds,

@@ -1,7 +1,8 @@
 //! The periodic-orbit commands' flags: `fixed`, `two-cycle`, `continue`, `curves`,
-//! `cascade` and `scaling`, and the (n, k) cycle guess `continue` and `curves` share.
+//! `cascade`, `scaling` and `manifolds`, and the (n, k) cycle guess `continue` and `curves` share.
 
 use super::*;
+use bouncemap_engine::orbits::manifold::Kind;
 
 /// `bouncemap fixed`.
 #[derive(Args, Debug, Clone)]
@@ -138,6 +139,29 @@ pub struct ManifoldsSpecArgs {
     pub guess: SaddleGuessArgs,
     #[arg(help = rules::MANIFOLD_LENGTH.help("Arc length of each branch, in (t, v)"), long, default_value_t = rules::MANIFOLD_LENGTH.default, value_parser = rules::MANIFOLD_LENGTH.real(), value_name = "L")]
     pub length: f64,
+    /// Which manifolds: the unstable (grown by the map), the stable (grown by the
+    /// inverse map), or both.
+    #[arg(long, value_enum, default_value_t = Which::Both)]
+    pub which: Which,
+}
+
+/// `--which` of `manifolds`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Which {
+    Unstable,
+    Stable,
+    Both,
+}
+
+impl Which {
+    /// The manifolds it names, unstable first.
+    pub fn kinds(self) -> &'static [Kind] {
+        match self {
+            Which::Unstable => &[Kind::Unstable],
+            Which::Stable => &[Kind::Stable],
+            Which::Both => &[Kind::Unstable, Kind::Stable],
+        }
+    }
 }
 
 /// The saddle (n, k) cycle of `manifolds`, by a guess Newton's method starts from

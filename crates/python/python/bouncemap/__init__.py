@@ -192,13 +192,16 @@ def cascade(**flags):
 
 
 def manifolds(**flags):
-    """The unstable manifold of a saddle cycle, as ``bouncemap manifolds --format
-    json``: the saddle, its multipliers, the map it is grown under (its multiplier
-    and unstable direction), and both ``branches``, each with its ``points`` [[t,
-    phase, v], ...] from the saddle out, its ``length`` and its ``end``.
+    """The unstable and stable manifolds of a saddle cycle, as ``bouncemap
+    manifolds --format json``: the saddle, its multipliers, and ``manifolds``, each
+    with its kind (``manifold``: ``unstable`` or ``stable``), the map it is grown
+    under (its growth factor ``multiplier`` and ``direction``) and both
+    ``branches``, each with its ``points`` [[t, phase, v], ...] from the saddle
+    out, its ``length`` and its ``end``.
 
     Flags as ``bouncemap manifolds`` (``table``, ``alpha``, ``r``, ``k``, or ``n``,
-    ``k``, ``t0``, ``v0`` for an (n, k) saddle; ``length``).
+    ``k``, ``t0``, ``v0`` for an (n, k) saddle; ``length``; ``which`` =
+    ``"unstable"``, ``"stable"`` or ``"both"``).
     """
     return _json("manifolds", flags)
 

@@ -92,6 +92,7 @@ def manifolds(
     t0: float = ...,
     v0: float = ...,
     length: float = ...,
+    which: str = ...,
     **flags: Value,
 ) -> Dict[str, Any]: ...
 def cascade(*, table: str = ..., r: float = ..., **flags: Value) -> Dict[str, Any]: ...
