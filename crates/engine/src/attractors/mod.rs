@@ -25,6 +25,7 @@
 //! from [`default_w_max`]; [`box_start`] spreads any number of them over it.
 
 pub mod basins;
+pub mod crisis;
 pub mod global;
 pub mod known;
 pub mod lyapunov;
