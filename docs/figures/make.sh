@@ -4,7 +4,8 @@
 # events). Builds the release binary first. On an idle 2-core machine Fig. 3 takes about
 # a minute and Fig. 4 about five (values that never settle run the whole transient);
 # the (α, D) plane after them, about 8 s with its curves, the curves figure about 5 s,
-# and the attractors along α about 5 s.
+# the attractors along α about 5 s, the manifolds over the basins about 1 s and the
+# crisis of the sine's two-band attractor about 20 s.
 set -eu
 cd "$(dirname "$0")/../.."
 cargo build --release --locked
@@ -17,3 +18,5 @@ bouncemap figure fig5 --dpi 200 --out docs/figures/fig5.png
 bouncemap figure plane --x alpha:0.45..0.60 --y d:0..1 --r 0.8 --pixels 400x200 --curves 8 --dpi 200 --out docs/figures/plane.png
 bouncemap figure curves --table fd --x alpha:0.45..0.7 --y d:0..1 --max-period 16 --dpi 200 --out docs/figures/curves.png
 bouncemap figure attractors --table cubic --r 0.8 --alpha 0.44..0.56 --steps 121 --grid 60x60 --dpi 200 --out docs/figures/attractors.png
+bouncemap figure basins --table cubic --alpha 0.47 --grid 400x200 --manifolds --dpi 200 --out docs/figures/basins-manifolds.png
+bouncemap figure attractors --table sine --r 0.8 --alpha 0.0316..0.0319 --steps 31 --grid 24x24 --crises --dpi 200 --out docs/figures/crisis.png

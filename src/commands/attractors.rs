@@ -19,16 +19,25 @@ use crate::output::records::{
 };
 use crate::output::sink::Sink;
 use crate::output::text::shortest;
+use bouncemap_engine::attractors::crisis::{
+    crises, CrisisSpec, Located, EMBEDDED, MAX_SADDLE_EVENTS,
+};
 use bouncemap_engine::attractors::global::{
-    ChangeKind, Continuation, GlobalSpec, Join, MATCH_DISTANCE,
+    Cause, ChangeKind, Continuation, GlobalSpec, Join, MATCH_DISTANCE,
 };
 use bouncemap_engine::jobs::{Control, Executor, Progress as JobProgress};
+use bouncemap_engine::EventKind;
 use bouncemap_figures::global::alpha_decimals;
 use std::io::Write;
 use std::time::Instant;
 
 pub fn run(run: &AttractorsRun) -> anyhow::Result<()> {
-    let AttractorsRun { spec, job, part } = run;
+    let AttractorsRun {
+        spec,
+        job,
+        part,
+        crises,
+    } = run;
     let values = match part {
         Some((shard, _)) => computed(spec.steps, *shard),
         None => 0..spec.steps,
@@ -80,9 +89,115 @@ pub fn run(run: &AttractorsRun) -> anyhow::Result<()> {
             let text = write_part(header, *shard, &cont).map_err(anyhow::Error::msg)?;
             writeln!(sink, "{text}").map_err(|e| sink.describe(e.into()))?;
         }
-        None => write(run.job.layout, &cont, &[], &mut sink).map_err(|e| sink.describe(e))?,
+        None => {
+            let located = crises.then(|| locate_crises(&cont));
+            write(run.job.layout, &cont, &[], located.as_deref(), &mut sink)
+                .map_err(|e| sink.describe(e))?
+        }
     }
     sink.finish()
+}
+
+/// Locate every crisis of `cont` (the engine's [`crises`]), saying on stderr which.
+pub fn locate_crises(cont: &Continuation) -> Vec<Located> {
+    let steps = cont.steps();
+    let changes = cont.changes();
+    let spec = CrisisSpec::default();
+    let mut n = 0;
+    crises(
+        cont,
+        &spec,
+        &mut |i, total| {
+            n = total;
+            let c = changes
+                .iter()
+                .filter(|c| {
+                    matches!(c.what, ChangeKind::Death { .. }) && c.cause == Some(Cause::Crisis)
+                })
+                .nth(i);
+            if let Some(c) = c {
+                eprintln!(
+                    "bouncemap: locating crisis {} of {n}: attractor {} between alpha {} and {}",
+                    i + 1,
+                    c.track + 1,
+                    shortest(steps[c.step - 1].alpha),
+                    shortest(steps[c.step].alpha)
+                );
+            }
+        },
+        &mut |_| false,
+    )
+}
+
+/// The crises section of the text report.
+fn crisis_text(cont: &Continuation, ls: &[Located], alpha: &dyn Fn(f64) -> String) -> Vec<String> {
+    let spec = CrisisSpec::default();
+    let mut out = vec![String::new()];
+    if ls.is_empty() {
+        out.push("crises: none (no chaotic attractor is gone without a local bifurcation)".into());
+        return out;
+    }
+    out.push(format!(
+        "crises (each located by bisection in α to {}: at the lower end orbits from {} points of the attractor all stay within {} of it for {} events, at the upper end one leaves; the saddle is, of the saddle cycles the leaving orbits pass, the nearest the attractor outside it):",
+        shortest(spec.tolerance),
+        spec.runs,
+        shortest(spec.radius),
+        spec.events
+    ));
+    let steps = cont.steps();
+    for l in ls {
+        let c = &cont.changes()[l.change];
+        let (a, b) = (steps[c.step - 1].alpha, steps[c.step].alpha);
+        let n = l.track + 1;
+        match &l.result {
+            Err(e) => out.push(format!(
+                "  attractor {n} (gone between α {} and {}): not located: {e}",
+                alpha(a),
+                alpha(b)
+            )),
+            Ok(x) => {
+                let digits = (-(x.hi - x.lo).max(1e-16).log10()).ceil() as usize + 1;
+                let left: Vec<String> = x
+                    .left_after
+                    .iter()
+                    .map(|e| e.map_or("never".to_string(), |k| k.to_string()))
+                    .collect();
+                out.push(format!(
+                    "  attractor {n}: destroyed at α in [{:.digits$}, {:.digits$}] (width {:.1e}); at the upper end its orbits leave after {} events ({} first)",
+                    x.lo,
+                    x.hi,
+                    x.hi - x.lo,
+                    left.join(", "),
+                    match x.left_by {
+                        EventKind::Stick => "sticking",
+                        _ => "an impact outside",
+                    }
+                ));
+                match &x.saddle {
+                    Some(s) => {
+                        let [m0, m1] = s.cycle.multipliers;
+                        out.push(format!(
+                            "    through the saddle ({}, {}) at t̂ = {:.6}, v = {:.6} (multipliers {} and {}): the leaving orbits pass within {:.1e} of it; of {} saddle cycles they pass, the nearest the attractor outside it; at the lower end it lies {:.1e} outside the attractor's sampled points",
+                            s.cycle.n,
+                            s.cycle.k,
+                            s.cycle.phases[0].rem_euclid(1.0),
+                            s.cycle.velocities[0],
+                            crate::output::text::significant(m0.re, 6),
+                            crate::output::text::significant(m1.re, 6),
+                            s.passes,
+                            x.considered,
+                            s.outside_by
+                        ));
+                    }
+                    None => out.push(format!(
+                        "    no saddle found: of the {} saddle cycles of up to {MAX_SADDLE_EVENTS} events the leaving orbits pass, none lies {EMBEDDED:e} or more outside the attractor",
+                        x.considered
+                    )),
+                }
+            }
+        }
+    }
+    out
 }
 
 /// A bound on the run's memory, in bytes: one basin picture at a time (its labels,
@@ -185,6 +300,7 @@ pub fn write(
     layout: Option<Layout>,
     cont: &Continuation,
     joins: &[Join],
+    crises: Option<&[Located]>,
     out: &mut Sink,
 ) -> anyhow::Result<()> {
     match layout {
@@ -198,11 +314,11 @@ pub fn write(
             w.flush()?;
         }
         Some(Layout::Json) => {
-            serde_json::to_writer(&mut *out, &AttractorsDoc::of(cont, joins))?;
+            serde_json::to_writer(&mut *out, &AttractorsDoc::of(cont, joins, crises))?;
             writeln!(out)?;
         }
         None => {
-            for line in text(cont, joins) {
+            for line in text(cont, joins, crises) {
                 writeln!(out, "{line}")?;
             }
         }
@@ -211,7 +327,7 @@ pub fn write(
 }
 
 /// The text report: the attractors, the changes, a line per α.
-fn text(cont: &Continuation, joins: &[Join]) -> Vec<String> {
+fn text(cont: &Continuation, joins: &[Join], crises: Option<&[Located]>) -> Vec<String> {
     let spec = cont.spec();
     let steps = cont.steps();
     let decimals = alpha_decimals(spec);
@@ -308,6 +424,9 @@ fn text(cont: &Continuation, joins: &[Join]) -> Vec<String> {
                 if n == 1 { "" } else { "s" }
             ));
         }
+    }
+    if let Some(ls) = crises {
+        out.extend(crisis_text(cont, ls, &shortest));
     }
     out.push(String::new());
     out.push(

@@ -114,7 +114,7 @@ pub fn run(args: &FigureArgs) -> anyhow::Result<()> {
     }
     let attractors_spec = match &args.name {
         FigureName::Attractors(a) => {
-            let mut spec = config::attractors_spec(a)?;
+            let mut spec = config::attractors_spec(&a.spec)?;
             if args.quick {
                 let (steps, side, transient) = QUICK_ATTRACTORS;
                 spec.steps = spec.steps.min(steps);
@@ -373,10 +373,15 @@ fn build(
                 }),
             ))
         }
-        FigureName::Attractors(_) => {
+        FigureName::Attractors(a) => {
             let spec = attractors_spec.expect("the continuation was checked first");
             let cont = super::attractors::compute(&spec, 0..spec.steps, executor)?;
-            Ok(figure::global::attractors_figure(&cont))
+            let mut fig = figure::global::attractors_figure(&cont);
+            if a.crises {
+                let located = super::attractors::locate_crises(&cont);
+                figure::global::mark_crises(&mut fig, &located);
+            }
+            Ok(fig)
         }
         FigureName::Manifolds(a) => {
             let (sys, saddle, ms) = super::manifolds::compute(a)?;

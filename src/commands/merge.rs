@@ -139,7 +139,8 @@ fn merge_attractors(args: &MergeArgs, mut sink: Sink) -> anyhow::Result<()> {
         Some(AttractorsFormat::Json) => Some(Layout::Json),
         Some(AttractorsFormat::Text) | None => None,
     };
-    super::attractors::write(layout, &whole, &joins, &mut sink).map_err(|e| sink.describe(e))?;
+    super::attractors::write(layout, &whole, &joins, None, &mut sink)
+        .map_err(|e| sink.describe(e))?;
     sink.finish()
 }
 

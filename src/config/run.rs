@@ -204,6 +204,8 @@ pub struct AttractorsRun {
     /// With `--shard` (or in a Slurm array task): the part to compute, and the run's
     /// header its part file states.
     pub part: Option<(Shard, AttractorsHeader)>,
+    /// `--crises`: locate each crisis after the continuation.
+    pub crises: bool,
 }
 
 /// `attractors`' flags, settled.
@@ -228,6 +230,12 @@ pub fn attractors(args: &AttractorsArgs) -> Result<AttractorsRun, InputError> {
                 spec.steps
             )));
         }
+    }
+    if args.crises && sharded {
+        return Err(InputError(
+            "--crises with --shard: crises are located from the whole window; valid without --shard (or on one machine over the window)"
+                .into(),
+        ));
     }
     if args.resume && !sharded {
         return Err(InputError(
@@ -254,7 +262,12 @@ pub fn attractors(args: &AttractorsArgs) -> Result<AttractorsRun, InputError> {
         resume: args.resume,
     };
     let part = sharded.then(|| (shard, attractors_header(&args.spec, &spec)));
-    Ok(AttractorsRun { spec, job, part })
+    Ok(AttractorsRun {
+        spec,
+        job,
+        part,
+        crises: args.crises,
+    })
 }
 
 /// The header of the run `args` defines, whose spec is `spec` (its part files state

@@ -310,3 +310,109 @@ fn many_one_start_attractors_are_called_likely_transients() {
     let cubic = ok(&with(&CUBIC, &["--grid", "20x20"]));
     assert!(!cubic.contains("likely transients"), "{cubic}");
 }
+
+#[test]
+fn attractors_crises_locate_the_sines_crisis_and_name_a_saddle_cycle_of_the_map() {
+    // The sine's two-band chaotic attractor after its (1, 1) cascade is destroyed near
+    // α = 0.03179 (guide: saddles, manifolds and crises).
+    let d = crate::cli::json(&[
+        "attractors",
+        "--table",
+        "sine",
+        "--alpha",
+        "0.03177..0.03181",
+        "--steps",
+        "5",
+        "--grid",
+        "20x20",
+        "--crises",
+        "--format",
+        "json",
+    ]);
+    let crises = d["crises"].as_array().expect("crises with --crises");
+    let c = crises
+        .iter()
+        .find(|c| c["located"] == true)
+        .expect("one located");
+    let (lo, hi) = (c["lo"].as_f64().unwrap(), c["hi"].as_f64().unwrap());
+    assert!(hi - lo <= 1e-6 && lo > 0.03177 && hi < 0.03181, "{c}");
+    // Below the value where the continuation no longer saw it (the bracket moves down
+    // where the continuation's last value was a long transient already).
+    let between = c["between"].as_array().unwrap();
+    assert!(hi <= between[1].as_f64().unwrap(), "{c}");
+    // The saddle is a cycle of the exact map: `orbit` from its point returns after n
+    // events, k periods on.
+    let s = &c["saddle"];
+    let (n, k) = (s["n"].as_u64().unwrap(), s["k"].as_u64().unwrap());
+    let (t0, v0) = (
+        s["phases"][0].as_f64().unwrap(),
+        s["velocities"][0].as_f64().unwrap(),
+    );
+    let csv = crate::cli::ok(&[
+        "orbit",
+        "--table",
+        "sine",
+        "--alpha",
+        &hi.to_string(),
+        "--t0",
+        &t0.to_string(),
+        "--v0",
+        &v0.to_string(),
+        "--bounces",
+        &n.to_string(),
+        "--format",
+        "csv",
+    ]);
+    let last = csv.lines().last().unwrap();
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    let col = |name: &str| {
+        let i = header.iter().position(|h| *h == name).unwrap();
+        last.split(',').nth(i).unwrap().parse::<f64>().unwrap()
+    };
+    // Back at its launch k periods on (the start is at period 0).
+    let back = col("period") + col("phase") - t0;
+    assert!((back - k as f64).abs() < 1e-9, "{last}");
+    assert!((col("v") - v0).abs() < 1e-9, "{last}");
+    // Outside the attractor, and a saddle: one multiplier out, one in.
+    assert!(s["outside_by"].as_f64().unwrap() >= 1e-3);
+    let m: Vec<f64> = s["multipliers"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|z| z[0].as_f64().unwrap().abs())
+        .collect();
+    assert!((m[0] > 1.0) != (m[1] > 1.0), "{m:?}");
+    // Without --crises there is no such field; with --shard it is refused.
+    let plain = crate::cli::json(&[
+        "attractors",
+        "--table",
+        "sine",
+        "--alpha",
+        "0.03177..0.03181",
+        "--steps",
+        "2",
+        "--grid",
+        "6x6",
+        "--format",
+        "json",
+    ]);
+    assert!(plain.get("crises").is_none());
+    let (code, _, err) = crate::cli::run(&[
+        "attractors",
+        "--table",
+        "sine",
+        "--alpha",
+        "0.03177..0.03181",
+        "--steps",
+        "2",
+        "--grid",
+        "6x6",
+        "--crises",
+        "--shard",
+        "1/2",
+        "--out",
+        "/dev/null",
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("--crises with --shard"), "{err}");
+}

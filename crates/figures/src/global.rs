@@ -5,6 +5,7 @@
 //! basin entropy S_b as a black line, births (filled) and deaths (open circles) on the
 //! upper edge. Attractors are numbered in order of appearance along α, as
 //! `bouncemap attractors` numbers them.
+//! [`mark_crises`] marks located crises on it.
 
 use crate::basins::{is_attractor, kind_text};
 use crate::classes::{attractor_colour, REST};
@@ -12,6 +13,7 @@ use crate::labels::table_title;
 use crate::model::{
     Axis, Color, Corner, Dash, Figure, Layer, Legend, Marker, Panel, Swatch, COLUMN,
 };
+use bouncemap_engine::attractors::crisis::{Crisis, Located};
 use bouncemap_engine::attractors::global::{Cause, ChangeKind, Continuation, GlobalSpec, Member};
 use bouncemap_engine::fmt_value as shortest;
 
@@ -248,4 +250,60 @@ pub fn attractors_figure(cont: &Continuation) -> Figure {
         ],
         size: (2.0 * COLUMN, 5.6),
     }
+}
+
+/// Mark the located crises `ls` on an attractors figure `fig`: a dashed
+/// vertical line in both panels at each crisis (the middle of its bracket), a legend
+/// entry naming the attractor, the bracket and the saddle, and a sentence of caption.
+pub fn mark_crises(fig: &mut Figure, ls: &[Located]) {
+    let found: Vec<(&Located, &Crisis)> = ls
+        .iter()
+        .filter_map(|l| l.result.as_ref().ok().map(|c| (l, c)))
+        .collect();
+    if found.is_empty() {
+        return;
+    }
+    for (k, panel) in fig.panels.iter_mut().enumerate() {
+        let (lo, hi) = (panel.y.lo, panel.y.hi);
+        for (l, c) in &found {
+            let a = 0.5 * (c.lo + c.hi);
+            panel.layers.push(Layer::Lines {
+                name: format!("crisis of attractor {}", l.track + 1),
+                lines: vec![vec![[a, lo], [a, hi]]],
+                color: Color::BLACK,
+                dash: Dash::Dashed,
+                width: 0.8,
+            });
+        }
+        if k == 0 {
+            if let Some(legend) = panel.beside.first_mut() {
+                for (l, c) in &found {
+                    let saddle = c
+                        .saddle
+                        .as_ref()
+                        .map(|s| format!(", saddle ({}, {})", s.cycle.n, s.cycle.k))
+                        .unwrap_or_default();
+                    legend.entries.push((
+                        Swatch::line(Color::BLACK, Dash::Dashed),
+                        format!("crisis of {}: {}{saddle}", l.track + 1, crisis_alpha(c)),
+                    ));
+                }
+            }
+        }
+    }
+    fig.caption.push(format!(
+        "Dashed: {}, each located by bisection in $\u{3b1}$ (orbits from points of the attractor stay below, leave above) and named by the saddle cycle the leaving orbits pass that lies nearest the attractor.",
+        if found.len() == 1 { "the crisis where a chaotic attractor is destroyed" } else { "the crises where chaotic attractors are destroyed" }
+    ));
+}
+
+/// A crisis's bracket for a legend: its middle, ± half its width.
+fn crisis_alpha(c: &Crisis) -> String {
+    let half = 0.5 * (c.hi - c.lo);
+    let digits = (-(half.max(1e-16)).log10()).ceil().max(0.0) as usize + 1;
+    format!(
+        "$\u{3b1}$ = {:.digits$} \u{b1} {}",
+        0.5 * (c.lo + c.hi),
+        crate::format::significant(half, 2)
+    )
 }

@@ -83,6 +83,12 @@ pub struct AttractorsArgs {
     /// why); any other file is refused with status 2 and left as it is.
     #[arg(long)]
     pub resume: bool,
+    /// Locate each crisis: where a chaotic attractor is destroyed with no local
+    /// bifurcation, bisect α to 1e-6 (orbits on it stay 2·10⁶ events below, leave
+    /// above) and name the saddle the leaving orbits pass (text and json; not with
+    /// --shard).
+    #[arg(long)]
+    pub crises: bool,
     #[command(flatten)]
     pub workers: ThreadsArgs,
     #[command(flatten)]

@@ -102,7 +102,7 @@ pub enum FigureName {
     /// Attractors followed along α, coloured by attractor, over their stacked basin
     /// fractions: `attractors`' flags (--table, --r, --alpha LO..HI, --steps, --grid, ...).
     #[command(allow_negative_numbers = true)]
-    Attractors(Box<AttractorsSpecArgs>),
+    Attractors(Box<FigureAttractorsArgs>),
     /// The unstable and stable manifolds of a saddle cycle in (t̂, v): `manifolds`' flags (--table, --alpha, --r, --k, or --n --t0 --v0, --length, --which).
     #[command(allow_negative_numbers = true)]
     Manifolds(Box<ManifoldsSpecArgs>),
@@ -210,4 +210,16 @@ pub fn parse_saddle(s: &str) -> Result<SaddleChoice, String> {
             quoted(s)
         )),
     }
+}
+
+/// `bouncemap figure attractors`: the continuation's flags, and whether its crises are
+/// located and marked.
+#[derive(Args, Debug, Clone)]
+pub struct FigureAttractorsArgs {
+    #[command(flatten)]
+    pub spec: AttractorsSpecArgs,
+    /// Locate each crisis (as `attractors --crises`) and mark it: a dashed line at its α,
+    /// named by its saddle in the legend.
+    #[arg(long)]
+    pub crises: bool,
 }

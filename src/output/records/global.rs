@@ -2,6 +2,7 @@
 //! document), and the words for a member and a change that the text report uses too.
 
 use super::*;
+use bouncemap_engine::attractors::crisis::Located;
 use bouncemap_engine::attractors::global::{Cause, Change, ChangeKind, Continuation, Join, Step};
 
 pub use bouncemap_figures::global::{cause_text, describe_member};
@@ -279,6 +280,88 @@ pub struct AttractorsDoc<'a> {
     /// Where the parts of a merged run were joined (absent for a run in one part).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub joins: Vec<JoinRecord>,
+    /// With `--crises`: each crisis located (absent without it).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub crises: Option<Vec<CrisisRecord>>,
+}
+
+/// A crisis located (json).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct CrisisRecord {
+    /// The attractor destroyed.
+    pub attractor: usize,
+    /// The two α values of the continuation it happens between.
+    pub between: [f64; 2],
+    /// Whether it was located; if not, why.
+    pub located: bool,
+    pub reason: Option<String>,
+    /// The bracket: every orbit stays `stayed_events` events at `lo`; at `hi` they leave
+    /// after `left_after` events (null: stayed).
+    pub lo: Option<f64>,
+    pub hi: Option<f64>,
+    pub stayed_events: Option<u64>,
+    pub left_after: Vec<Option<u64>>,
+    /// The kind of a leaving orbit's first event outside: impact or stick.
+    pub left_by: Option<&'static str>,
+    pub saddle: Option<CrisisSaddleRecord>,
+}
+
+/// The saddle of a crisis (json).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct CrisisSaddleRecord {
+    pub n: usize,
+    pub k: u32,
+    /// Its impact phases and launch velocities at the upper end of the bracket.
+    pub phases: Vec<f64>,
+    pub velocities: Vec<f64>,
+    /// Its multipliers [re, im].
+    pub multipliers: [[f64; 2]; 2],
+    /// The closest a leaving orbit came to it.
+    pub passes: f64,
+    /// How far it lies from the attractor's sample at the lower end.
+    pub outside_by: f64,
+}
+
+impl CrisisRecord {
+    pub fn of(cont: &Continuation, l: &Located) -> CrisisRecord {
+        let c = &cont.changes()[l.change];
+        let steps = cont.steps();
+        let between = [steps[c.step - 1].alpha, steps[c.step].alpha];
+        match &l.result {
+            Ok(x) => CrisisRecord {
+                attractor: l.track + 1,
+                between,
+                located: true,
+                reason: None,
+                lo: Some(x.lo),
+                hi: Some(x.hi),
+                stayed_events: Some(x.stayed),
+                left_after: x.left_after.clone(),
+                left_by: Some(x.left_by.as_str()),
+                saddle: x.saddle.as_ref().map(|s| CrisisSaddleRecord {
+                    n: s.cycle.n,
+                    k: s.cycle.k,
+                    phases: s.cycle.phases.iter().map(|t| t.rem_euclid(1.0)).collect(),
+                    velocities: s.cycle.velocities.clone(),
+                    multipliers: s.cycle.multipliers.map(|z| [z.re, z.im]),
+                    passes: s.passes,
+                    outside_by: s.outside_by,
+                }),
+            },
+            Err(e) => CrisisRecord {
+                attractor: l.track + 1,
+                between,
+                located: false,
+                reason: Some(e.to_string()),
+                lo: None,
+                hi: None,
+                stayed_events: None,
+                left_after: Vec::new(),
+                left_by: None,
+                saddle: None,
+            },
+        }
+    }
 }
 
 /// Where two parts of a merged run were joined (json).
@@ -297,7 +380,11 @@ pub struct JoinRecord {
 }
 
 impl<'a> AttractorsDoc<'a> {
-    pub fn of(cont: &'a Continuation, joins: &[Join]) -> AttractorsDoc<'a> {
+    pub fn of(
+        cont: &'a Continuation,
+        joins: &[Join],
+        crises: Option<&[Located]>,
+    ) -> AttractorsDoc<'a> {
         use bouncemap_engine::attractors::global::MATCH_DISTANCE;
         let spec = cont.spec();
         let steps = cont.steps();
@@ -395,6 +482,7 @@ impl<'a> AttractorsDoc<'a> {
                     fraction_difference: j.fraction_difference,
                 })
                 .collect(),
+            crises: crises.map(|ls| ls.iter().map(|l| CrisisRecord::of(cont, l)).collect()),
         }
     }
 }
