@@ -11,8 +11,7 @@ use crate::config::{self, InputError};
 use crate::output::records::{csv_writer, end_text, side_name, ManifoldDoc, ManifoldRow};
 use crate::output::sink::Sink;
 use crate::output::Format;
-use bouncemap_engine::orbits::fixed::fixed_points;
-use bouncemap_engine::orbits::manifold::{manifold, Kind, Manifold, ManifoldSpec};
+use bouncemap_engine::orbits::manifold::{first_saddle, manifold, Kind, Manifold, ManifoldSpec};
 use bouncemap_engine::orbits::periodic::{cycle, CyclePoint};
 use bouncemap_engine::System;
 use std::io::Write;
@@ -149,11 +148,8 @@ pub fn saddle(
             ))
         });
     }
-    let points = fixed_points(sys, k).map_err(InputError::from)?;
-    points
-        .iter()
-        .filter_map(|fp| cycle(sys, 1, k, fp.phase, fp.v).ok())
-        .find(|c| !c.stable && c.multipliers.iter().all(|z| z.im == 0.0))
+    first_saddle(sys, k)
+        .map_err(InputError::from)?
         .ok_or_else(|| {
             InputError(format!(
                 "no saddle (1, {k}) solution at alpha {} (`bouncemap fixed --k {k}` lists them): valid an α where one is unstable, or a saddle (n, k) cycle by --n --t0 --v0",

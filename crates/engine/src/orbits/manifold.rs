@@ -337,6 +337,16 @@ pub fn manifold(
     })
 }
 
+/// The first unstable (1, k) solution of `sys` with real multipliers (a saddle, whose
+/// manifolds [`manifold`] grows), in the order [`super::fixed::fixed_points`] lists them;
+/// None if every (1, k) solution is stable or has complex multipliers.
+pub fn first_saddle(sys: &System, k: u32) -> Result<Option<CyclePoint>, crate::error::EngineError> {
+    Ok(super::fixed::fixed_points(sys, k)?
+        .iter()
+        .filter_map(|fp| super::periodic::cycle(sys, 1, k, fp.phase, fp.v).ok())
+        .find(|c| !c.stable && c.multipliers.iter().all(|z| z.im == 0.0)))
+}
+
 /// Samples of the fundamental domain at the start: this many, spread evenly in s.
 const DOMAIN_SAMPLES: usize = 16;
 
