@@ -37,6 +37,7 @@ pub enum Action {
     TableView,
     TogglePlane,
     PlaneCurves,
+    Manifolds,
     ToggleGlobal,
     CyclePanels,
     Messages,
@@ -49,7 +50,7 @@ pub enum Action {
 
 impl Action {
     /// Every action, in help order.
-    pub const ALL: [Action; 36] = [
+    pub const ALL: [Action; 37] = [
         Action::Up,
         Action::Down,
         Action::Left,
@@ -75,6 +76,7 @@ impl Action {
         Action::TableView,
         Action::TogglePlane,
         Action::PlaneCurves,
+        Action::Manifolds,
         Action::ToggleGlobal,
         Action::CyclePanels,
         Action::Presets,
@@ -119,6 +121,7 @@ impl Action {
             Action::TableView => "table_view",
             Action::TogglePlane => "plane",
             Action::PlaneCurves => "plane_curves",
+            Action::Manifolds => "manifolds",
             Action::ToggleGlobal => "attractors_along",
             Action::CyclePanels => "cycle_panels",
             Action::Messages => "messages",
@@ -165,6 +168,7 @@ impl Action {
             Action::TableView => "the table: F, F′, F″ with breakpoints, t̂* and release phases",
             Action::TogglePlane => "the α × D plane (t: another axis) in place of the diagram",
             Action::PlaneCurves => "plane: two-parameter curves (PD, fold, BC, G) on/off",
+            Action::Manifolds => "phase and basins: the (1, k) saddle's manifolds on/off",
             Action::ToggleGlobal => "attractors along α and their basins, in place of the diagram",
             Action::CyclePanels => "narrow screen: show the bottom panel left out",
             Action::Messages => "the messages so far, each in full (the status line cuts them)",
@@ -418,6 +422,7 @@ impl Default for Keymap {
             (Key::ch('T'), Action::TableView),
             (Key::ch('M'), Action::TogglePlane),
             (Key::ch('C'), Action::PlaneCurves),
+            (Key::ch('W'), Action::Manifolds),
             (Key::ch('A'), Action::ToggleGlobal),
             (Key::ch('p'), Action::Presets),
             (Key::ch('e'), Action::Export),

@@ -271,3 +271,47 @@ fn every_legend_line_fits_80_columns() {
         assert!(l.width() <= 78, "{} columns: {l}", l.width());
     }
 }
+
+/// `W` switches the (1, k) saddle's manifolds on over the phase plot: the work starts
+/// in the background, and what it computes (both manifolds of the unstable (1, 1)
+/// solution ◇, as `bouncemap manifolds` grows them) is drawn, ▪ unstable, · stable,
+/// noted in the panel's title and explained on the status line; a change of α starts
+/// it again; `W` again takes them off.
+#[test]
+fn w_draws_the_saddles_manifolds_over_the_phase_plot() {
+    use bouncemap::tui::components::manifold_overlay::lines;
+    use bouncemap::tui::components::{Effect, Msg, Target};
+    let mut a = app(Marker::Braille);
+    fill(&mut a);
+    let before = screen(&mut a, 120, 40);
+    assert!(!before.contains('▪'), "{before}");
+    a.handle(Action::Manifolds);
+    assert!(a.shared.show_manifolds);
+    let fx = a.take_effects();
+    assert!(fx.contains(&Effect::Start(Target::Manifolds)), "{fx:?}");
+    // What the worker computes, delivered as it would.
+    let sys = a.shared.system();
+    let m = lines(&sys, a.shared.params.k)
+        .unwrap()
+        .expect("a saddle at the default α");
+    assert_eq!((m.n, m.k), (1, 1));
+    // The saddle is the closed-form unstable (1, 1) solution: v* = ½ after the impact.
+    assert!((m.saddle[0].1 - 0.5).abs() < 1e-12);
+    assert!(m.unstable.len() > 50 && m.stable.len() > 50);
+    a.panels.manifolds.gen = 5;
+    a.receive(Msg::Manifolds(5, Ok(Some(m))));
+    let s = screen(&mut a, 120, 40);
+    assert!(s.contains("▪· (1, 1)"), "{s}");
+    assert!(s.contains("▪ unstable · stable"), "{s}");
+    assert!(s.matches('▪').count() > 10 && s.contains('◇'), "{s}");
+    // A change of α starts them again.
+    let before = a.shared.params.clone();
+    let r = a.shared.params.set_text(ParamId::Alpha, "0.46");
+    a.shared.after_change(ParamId::Alpha, r, &before);
+    a.handle(Action::Cancel);
+    assert!(a.take_effects().contains(&Effect::Start(Target::Manifolds)));
+    a.handle(Action::Manifolds);
+    assert!(!a.shared.show_manifolds && a.shared.manifolds.is_none());
+    let off = screen(&mut a, 120, 40);
+    assert!(!off.contains('▪') && !off.contains("▪·"), "{off}");
+}

@@ -113,7 +113,10 @@ impl BasinsPanel {
         };
         let n = b.registry().attractors().len();
         let state = self.view.progress(b, shared);
-        format!("{head} · {n} found · {state} ")
+        format!(
+            "{head} · {n} found · {state}{} ",
+            super::manifold_overlay::title_note(shared)
+        )
     }
 }
 
@@ -220,6 +223,16 @@ impl Component for BasinsPanel {
                 }
             }
         }
+        // The saddle's manifolds (when on), in (t̂0, w0 = v − f'(t̂0)).
+        super::manifold_overlay::draw(app, buf, |t, v| {
+            let w = v - spec.sys.df(t);
+            if !(0.0..spec.w_max).contains(&w) || plot.width == 0 || plot.height == 0 {
+                return None;
+            }
+            let c = ((t * plot.width as f64) as u16).min(plot.width - 1);
+            let r = (((1.0 - w / spec.w_max) * plot.height as f64) as u16).min(plot.height - 1);
+            Some((plot.x + c, plot.y + r))
+        });
         // The legend: largest basins first.
         let lines: Vec<Line> = reg
             .ranked()

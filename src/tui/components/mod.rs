@@ -35,6 +35,7 @@ pub mod global;
 pub mod grid_picture;
 pub mod help;
 pub mod legend;
+pub mod manifold_overlay;
 pub mod messages;
 pub mod parameters;
 pub mod phase_plot;
@@ -59,6 +60,7 @@ use bouncemap_engine::plane::Plane;
 use branches::Branches;
 use diagram::Diagram;
 use global::GlobalView;
+use manifold_overlay::ManifoldOverlay;
 use parameters::Parameters;
 use phase_plot::PhasePlot;
 use plane::PlanePanel;
@@ -91,6 +93,9 @@ registry! {
     Stability   => stability:  Stability,    slot Some(Slot::Stability), new |_| Stability::default();
     /// The continued branches ([`Shared::branches`]), drawn by the diagram.
     Branches    => branches:   Branches,     slot None,                  new |_| Branches::default();
+    /// The (1, k) saddle's manifolds ([`Shared::manifolds`]), drawn by the phase plot and
+    /// the basins.
+    Manifolds   => manifolds:  ManifoldOverlay, slot None,               new |_| ManifoldOverlay::default();
     /// The two-parameter curves ([`Shared::plane_curves`]), drawn by the plane view.
     PlaneCurves => plane_curves: PlaneCurves, slot None,               new |_| PlaneCurves::default();
     /// `E`'s plane figure at the export's resolution ([`view_export`]).

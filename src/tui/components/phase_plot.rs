@@ -159,8 +159,9 @@ impl Component for PhasePlot {
             "running".into()
         };
         let title = format!(
-            " Phase (t̂, v) {} pts, {state} ",
-            compact(self.points.len() as f64)
+            " Phase (t̂, v) {} pts, {state}{} ",
+            compact(self.points.len() as f64),
+            super::manifold_overlay::title_note(app)
         );
         let block = panel(app, title, false);
         let inner = block.inner(area);
@@ -187,6 +188,13 @@ impl Component for PhasePlot {
             &recent,
             app.theme.recent(),
         );
+        // The saddle's manifolds (when on), under the marks.
+        let (sx, sy) = self.grid.marker().resolution();
+        super::manifold_overlay::draw(app, buf, |t, v| {
+            let (i, j) = self.grid.sub_cell(t, v)?;
+            let (c, r) = ((i / sx) as u16, (j / sy) as u16);
+            (c < plot.width && r < plot.height).then_some((plot.x + c, plot.y + r))
+        });
         // Analytic solutions: ◆ for (1, k) (filled if stable), ✕ for the (2, 2k) points;
         // ▣ the state the bounce panel stepped to.
         let mut marks: Vec<((f64, f64), &str, ratatui::style::Style)> = Vec::new();

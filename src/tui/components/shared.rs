@@ -82,6 +82,10 @@ pub struct Shared {
     /// does not have: its family's first parameter, else r).
     pub plane_y: Option<SweepParam>,
     pub branches: Option<Result<Skeleton, String>>,
+    /// Whether the phase plot and the basins draw the (1, k) saddle's manifolds, and
+    /// the manifolds (None while they compute or when off; `Ok(None)`: no saddle).
+    pub show_manifolds: bool,
+    pub manifolds: Option<Result<Option<super::manifold_overlay::ManifoldLines>, String>>,
     /// The continued branch nearest the diagram's cursor (its index) and its cycle at
     /// the cursor's α, while the diagram has the focus.
     pub under_cursor: Option<(usize, CyclePoint)>,
@@ -118,6 +122,8 @@ impl Shared {
             orbits: None,
             stepped: None,
             branches: None,
+            show_manifolds: false,
+            manifolds: None,
             plane_curves: None,
             show_plane_curves: false,
             plane_y: None,
