@@ -188,6 +188,17 @@ fn crisis_text(cont: &Continuation, ls: &[Located], alpha: &dyn Fn(f64) -> Strin
                             x.considered,
                             s.outside_by
                         ));
+                        if !s.to_stable_manifold.is_empty() {
+                            let d: Vec<String> = s
+                                .to_stable_manifold
+                                .iter()
+                                .map(|&(a, d)| format!("{d:.1e} at α {}", shortest(a)))
+                                .collect();
+                            out.push(format!(
+                                "    the attractor's sampled points come within {} of the saddle's stable manifold",
+                                d.join(", ")
+                            ));
+                        }
                     }
                     None => out.push(format!(
                         "    no saddle found: of the {} saddle cycles of up to {MAX_SADDLE_EVENTS} events the leaving orbits pass, none lies {EMBEDDED:e} or more outside the attractor",

@@ -373,8 +373,19 @@ fn attractors_crises_locate_the_sines_crisis_and_name_a_saddle_cycle_of_the_map(
     let back = col("period") + col("phase") - t0;
     assert!((back - k as f64).abs() < 1e-9, "{last}");
     assert!((col("v") - v0).abs() < 1e-9, "{last}");
-    // Outside the attractor, and a saddle: one multiplier out, one in.
-    assert!(s["outside_by"].as_f64().unwrap() >= 1e-3);
+    // Outside the attractor, and a saddle: one multiplier out, one in; the attractor
+    // nears its stable manifold as α nears the crisis, closer than to the saddle.
+    let outside = s["outside_by"].as_f64().unwrap();
+    assert!(outside >= 1e-3);
+    let touch: Vec<(f64, f64)> = s["to_stable_manifold"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| (p[0].as_f64().unwrap(), p[1].as_f64().unwrap()))
+        .collect();
+    assert_eq!(touch.len(), 2, "{s}");
+    assert!(touch[0].0 < touch[1].0 && touch[1].0 == lo, "{s}");
+    assert!(touch[1].1 < touch[0].1 && touch[1].1 < outside, "{s}");
     let m: Vec<f64> = s["multipliers"]
         .as_array()
         .unwrap()

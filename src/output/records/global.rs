@@ -320,6 +320,9 @@ pub struct CrisisSaddleRecord {
     pub passes: f64,
     /// How far it lies from the attractor's sample at the lower end.
     pub outside_by: f64,
+    /// The least distance from the attractor's sample to the saddle's stable manifold:
+    /// [[α, distance], …], lower α first.
+    pub to_stable_manifold: Vec<[f64; 2]>,
 }
 
 impl CrisisRecord {
@@ -346,6 +349,7 @@ impl CrisisRecord {
                     multipliers: s.cycle.multipliers.map(|z| [z.re, z.im]),
                     passes: s.passes,
                     outside_by: s.outside_by,
+                    to_stable_manifold: s.to_stable_manifold.iter().map(|&(a, d)| [a, d]).collect(),
                 }),
             },
             Err(e) => CrisisRecord {

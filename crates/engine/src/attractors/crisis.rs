@@ -91,6 +91,68 @@ pub struct CrisisSaddle {
     /// The least distance from the attractor's sample at the lower end to the saddle's
     /// points there.
     pub outside_by: f64,
+    /// The least distance from the attractor's sample to the saddle's stable manifold
+    /// (its piece through each point of the cycle, each branch [`TOUCH_LENGTH`] long): (α, distance) where the attractor was first
+    /// sampled below the bracket (or one continuation step below it), then at its lower
+    /// end.
+    /// At the crisis the attractor touches the stable manifold, so the distance falls
+    /// towards 0 as α nears it.
+    pub to_stable_manifold: Vec<(f64, f64)>,
+}
+
+/// Arc length of each branch of the stable manifold the attractor's distance is
+/// measured to.
+pub const TOUCH_LENGTH: f64 = 1.0;
+
+/// The least distance from `sample` (points (t̂, v)) to the stable manifold of the
+/// saddle cycle `c` of `sys`: the piece through each of its points, [`TOUCH_LENGTH`]
+/// per branch; None if no piece can be grown.
+fn distance_to_stable_manifold(sys: &System, c: &CyclePoint, sample: &[(f64, f64)]) -> Option<f64> {
+    use crate::orbits::manifold::{manifold, Kind, ManifoldSpec};
+    let spec = ManifoldSpec {
+        length: TOUCH_LENGTH,
+        ..ManifoldSpec::default()
+    };
+    let mut best = f64::INFINITY;
+    let mut grown = false;
+    for i in 0..c.n {
+        // The cycle from its i-th launch: the piece of the manifold through it.
+        let Ok(ci) = cycle(sys, c.n, c.k, c.phases[i], c.velocities[i]) else {
+            continue;
+        };
+        let Ok(m) = manifold(sys, &ci, Kind::Stable, &spec) else {
+            continue;
+        };
+        grown = true;
+        for b in &m.branches {
+            for w in b.points.windows(2) {
+                // A segment in phase: both ends moved by the same whole period.
+                let shift = w[0][0].floor();
+                let (a, z) = ([w[0][0] - shift, w[0][1]], [w[1][0] - shift, w[1][1]]);
+                let d = [z[0] - a[0], z[1] - a[1]];
+                let len2 = d[0] * d[0] + d[1] * d[1];
+                let mid = [0.5 * (a[0] + z[0]), 0.5 * (a[1] + z[1])];
+                let half = 0.5 * len2.sqrt();
+                for &(t, v) in sample {
+                    // The sample point's copies one period either side, for segments
+                    // across the wrap; far ones skipped by the segment's half length.
+                    for p in [t - 1.0, t, t + 1.0] {
+                        let reach = best + half;
+                        if (p - mid[0]).powi(2) + (v - mid[1]).powi(2) > reach * reach {
+                            continue;
+                        }
+                        let u = if len2 == 0.0 {
+                            0.0
+                        } else {
+                            (((p - a[0]) * d[0] + (v - a[1]) * d[1]) / len2).clamp(0.0, 1.0)
+                        };
+                        best = best.min((p - a[0] - u * d[0]).hypot(v - a[1] - u * d[1]));
+                    }
+                }
+            }
+        }
+    }
+    grown.then_some(best)
 }
 
 /// A located crisis.
@@ -325,6 +387,7 @@ fn locate_above(
             other => break other?,
         }
     };
+    let sampled_at = lo;
     let mut evaluations = 0;
     // Evaluate an α: every start's run.
     let evaluate = |alpha: f64,
@@ -388,6 +451,16 @@ fn locate_above(
         })
         .unwrap_or(EventKind::Impact);
     let sys_hi = at(sys, hi);
+    // The attractor at the final lo (where the bisection moved it up), else the first
+    // sample.
+    let first_sample = sample;
+    let sample = if lo > sampled_at {
+        sample_at(&at(sys, lo), point, spec, cancelled)
+            .map(|x| x.1)
+            .unwrap_or_else(|_| first_sample.clone())
+    } else {
+        first_sample.clone()
+    };
     // Every saddle the leaving orbits pass, with the closest pass, continued to lo and
     // measured against the attractor's sample there.
     let mut candidates: Vec<(CyclePoint, f64)> = Vec::new();
@@ -424,9 +497,31 @@ fn locate_above(
                 cycle: c,
                 passes,
                 outside_by,
+                to_stable_manifold: Vec::new(),
             })
         })
         .min_by(|a, b| a.outside_by.total_cmp(&b.outside_by));
+    // How close the attractor comes to the saddle's stable manifold, at lo and one
+    // continuation step below.
+    let saddle = saddle.map(|mut s| {
+        let at_alpha = |alpha: f64, sample: &[(f64, f64)]| {
+            let sys_a = at(sys, alpha);
+            let c = &s.cycle;
+            let cl = cycle(&sys_a, c.n, c.k, c.phases[c.n - 1], c.velocities[c.n - 1]).ok()?;
+            distance_to_stable_manifold(&sys_a, &cl, sample).map(|d| (alpha, d))
+        };
+        let mut touches = Vec::new();
+        if lo > sampled_at {
+            touches.extend(at_alpha(sampled_at, &first_sample));
+        } else if lo - width > 0.0 {
+            if let Ok((_, below, _)) = sample_at(&at(sys, lo - width), point, spec, cancelled) {
+                touches.extend(at_alpha(lo - width, &below));
+            }
+        }
+        touches.extend(at_alpha(lo, &sample));
+        s.to_stable_manifold = touches;
+        s
+    });
     Ok(Crisis {
         lo,
         hi,
@@ -605,6 +700,14 @@ mod tests {
         assert!(s.passes < 0.02, "{s:?}");
         // Outside the attractor, but close to it: on its basin boundary.
         assert!(s.outside_by >= EMBEDDED && s.outside_by < 0.02, "{s:?}");
+        // The attractor nears the saddle's stable manifold as α nears the crisis, and
+        // comes closer to it than to the saddle itself.
+        let touch = &s.to_stable_manifold;
+        assert_eq!(touch.len(), 2, "{s:?}");
+        assert!(
+            touch[1].1 < touch[0].1 && touch[1].1 < s.outside_by,
+            "{s:?}"
+        );
         // A second method: orbits from the paper's start (not the sampled states), with
         // sticking as the sign of leaving (the attractor has none): below the bracket
         // none in 2·10⁶ events, above it one within them.
