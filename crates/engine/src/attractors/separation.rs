@@ -69,36 +69,8 @@ pub fn separation(
         }
     }
     let stride = sites.len().div_ceil(MAX_PAIRS).max(1);
-    let mut out = Separation {
-        offset,
-        pairs: 0,
-        split: 0,
-        skipped: 0,
-    };
-    for &(p, n) in sites.iter().step_by(stride) {
-        let mut ids = [0usize; 2];
-        let mut launched = true;
-        for (id, sign) in ids.iter_mut().zip([1.0, -1.0]) {
-            let t = wrap_phase(p[0] + sign * offset * n[0]);
-            let v = p[1] + sign * offset * n[1];
-            let w = v - sys.df(t);
-            let Some(start) = (w > 0.0).then(|| launch(sys, t, w)).flatten() else {
-                launched = false;
-                break;
-            };
-            let (found, ..) = settle(sys, start, how, 1, cancelled)?;
-            *id = registry.assign(&found);
-        }
-        if !launched {
-            out.skipped += 1;
-            continue;
-        }
-        out.pairs += 1;
-        if ids[0] != ids[1] {
-            out.split += 1;
-        }
-    }
-    Some(out)
+    let sites = sites.into_iter().step_by(stride);
+    pairs(sys, sites, offset, how, registry, cancelled)
 }
 
 /// The same test at `count` places spread over the launch box t̂ ∈ [0, 1), w ∈ (0, w_max]
@@ -118,26 +90,41 @@ pub fn baseline(
     // The R₃ sequence (Roberts): fractional parts of i·(1/φ₃, 1/φ₃², 1/φ₃³).
     const G: f64 = 1.220_744_084_605_759_5;
     let a = [1.0 / G, 1.0 / (G * G), 1.0 / (G * G * G)];
+    let sites = (1..=count).map(|i| {
+        let x = a.map(|c| (0.5 + c * i as f64).fract());
+        let (t, w) = (x[0], w_max * x[1]);
+        let angle = std::f64::consts::TAU * x[2];
+        // The place in (t, v), and a direction of its own.
+        ([t, sys.df(t) + w], [angle.cos(), angle.sin()])
+    });
+    pairs(sys, sites, offset, how, registry, cancelled)
+}
+
+/// Run the pair of starts ± `offset` along `n` from each place `p` (in (t, v)) to
+/// their attractors, registered in `registry`, and count the pairs that split. None if
+/// cancelled.
+fn pairs(
+    sys: &System,
+    sites: impl Iterator<Item = ([f64; 2], [f64; 2])>,
+    offset: f64,
+    how: &Settle,
+    registry: &mut Registry,
+    cancelled: &mut dyn FnMut(u64) -> bool,
+) -> Option<Separation> {
     let mut out = Separation {
         offset,
         pairs: 0,
         split: 0,
         skipped: 0,
     };
-    for i in 1..=count {
-        let x = a.map(|c| (0.5 + c * i as f64).fract());
-        let (t, w) = (x[0], w_max * x[1]);
-        let angle = std::f64::consts::TAU * x[2];
-        let n = [angle.cos(), angle.sin()];
+    for (p, n) in sites {
         let mut ids = [0usize; 2];
         let mut launched = true;
         for (id, sign) in ids.iter_mut().zip([1.0, -1.0]) {
-            let ts = wrap_phase(t + sign * offset * n[0]);
-            // The offset is taken in (t, v): w changes by the velocity's offset less
-            // the table's velocity change.
-            let v = sys.df(t) + w + sign * offset * n[1];
-            let ws = v - sys.df(ts);
-            let Some(start) = (ws > 0.0).then(|| launch(sys, ts, ws)).flatten() else {
+            let t = wrap_phase(p[0] + sign * offset * n[0]);
+            let v = p[1] + sign * offset * n[1];
+            let w = v - sys.df(t);
+            let Some(start) = (w > 0.0).then(|| launch(sys, t, w)).flatten() else {
                 launched = false;
                 break;
             };
