@@ -108,7 +108,7 @@ pub const TOUCH_LENGTH: f64 = 1.0;
 /// saddle cycle `c` of `sys`: the piece through each of its points, [`TOUCH_LENGTH`]
 /// per branch; None if no piece can be grown.
 fn distance_to_stable_manifold(sys: &System, c: &CyclePoint, sample: &[(f64, f64)]) -> Option<f64> {
-    use crate::orbits::manifold::{manifold, Kind, ManifoldSpec};
+    use crate::orbits::manifold::{manifold, segment_distance, Kind, ManifoldSpec};
     let spec = ManifoldSpec {
         length: TOUCH_LENGTH,
         ..ManifoldSpec::default()
@@ -129,10 +129,8 @@ fn distance_to_stable_manifold(sys: &System, c: &CyclePoint, sample: &[(f64, f64
                 // A segment in phase: both ends moved by the same whole period.
                 let shift = w[0][0].floor();
                 let (a, z) = ([w[0][0] - shift, w[0][1]], [w[1][0] - shift, w[1][1]]);
-                let d = [z[0] - a[0], z[1] - a[1]];
-                let len2 = d[0] * d[0] + d[1] * d[1];
                 let mid = [0.5 * (a[0] + z[0]), 0.5 * (a[1] + z[1])];
-                let half = 0.5 * len2.sqrt();
+                let half = 0.5 * (z[0] - a[0]).hypot(z[1] - a[1]);
                 for &(t, v) in sample {
                     // The sample point's copies one period either side, for segments
                     // across the wrap; far ones skipped by the segment's half length.
@@ -141,12 +139,7 @@ fn distance_to_stable_manifold(sys: &System, c: &CyclePoint, sample: &[(f64, f64
                         if (p - mid[0]).powi(2) + (v - mid[1]).powi(2) > reach * reach {
                             continue;
                         }
-                        let u = if len2 == 0.0 {
-                            0.0
-                        } else {
-                            (((p - a[0]) * d[0] + (v - a[1]) * d[1]) / len2).clamp(0.0, 1.0)
-                        };
-                        best = best.min((p - a[0] - u * d[0]).hypot(v - a[1] - u * d[1]));
+                        best = best.min(segment_distance([p, v], a, z));
                     }
                 }
             }
@@ -454,13 +447,10 @@ fn locate_above(
     // The attractor at the final lo (where the bisection moved it up), else the first
     // sample.
     let first_sample = sample;
-    let sample = if lo > sampled_at {
-        sample_at(&at(sys, lo), point, spec, cancelled)
-            .map(|x| x.1)
-            .unwrap_or_else(|_| first_sample.clone())
-    } else {
-        first_sample.clone()
-    };
+    let resampled = (lo > sampled_at)
+        .then(|| sample_at(&at(sys, lo), point, spec, cancelled).ok())
+        .flatten();
+    let sample = resampled.as_ref().map_or(&first_sample, |x| &x.1);
     // Every saddle the leaving orbits pass, with the closest pass, continued to lo and
     // measured against the attractor's sample there.
     let mut candidates: Vec<(CyclePoint, f64)> = Vec::new();
@@ -475,24 +465,11 @@ fn locate_above(
         }
     }
     let at_lo = at(sys, lo);
-    let distance_to_sample = |cl: &CyclePoint| {
-        cl.phases
-            .iter()
-            .zip(&cl.velocities)
-            .map(|(&t, &v)| {
-                sample
-                    .iter()
-                    .map(|&(st, sv)| phase_distance(st, t.rem_euclid(1.0)).hypot(sv - v))
-                    .fold(f64::INFINITY, f64::min)
-            })
-            .fold(f64::INFINITY, f64::min)
-    };
     let considered = candidates.len();
     let saddle = candidates
         .into_iter()
         .filter_map(|(c, passes)| {
-            let cl = cycle(&at_lo, c.n, c.k, c.phases[c.n - 1], c.velocities[c.n - 1]).ok()?;
-            let outside_by = distance_to_sample(&cl);
+            let outside_by = to_cycle(&continued(&at_lo, &c)?, sample.iter().copied());
             (outside_by >= EMBEDDED).then_some(CrisisSaddle {
                 cycle: c,
                 passes,
@@ -506,8 +483,7 @@ fn locate_above(
     let saddle = saddle.map(|mut s| {
         let at_alpha = |alpha: f64, sample: &[(f64, f64)]| {
             let sys_a = at(sys, alpha);
-            let c = &s.cycle;
-            let cl = cycle(&sys_a, c.n, c.k, c.phases[c.n - 1], c.velocities[c.n - 1]).ok()?;
+            let cl = continued(&sys_a, &s.cycle)?;
             distance_to_stable_manifold(&sys_a, &cl, sample).map(|d| (alpha, d))
         };
         let mut touches = Vec::new();
@@ -518,7 +494,7 @@ fn locate_above(
                 touches.extend(at_alpha(lo - width, &below));
             }
         }
-        touches.extend(at_alpha(lo, &sample));
+        touches.extend(at_alpha(lo, sample));
         s.to_stable_manifold = touches;
         s
     });
@@ -638,17 +614,29 @@ fn saddles_on(sys: &System, path: &[(i64, f64, f64)]) -> Vec<(CyclePoint, f64)> 
     found
         .into_iter()
         .map(|c| {
-            let passes =
-                path.iter()
-                    .flat_map(|&(_, t, v)| {
-                        c.phases.iter().zip(&c.velocities).map(move |(&ct, &cv)| {
-                            phase_distance(t, ct.rem_euclid(1.0)).hypot(v - cv)
-                        })
-                    })
-                    .fold(f64::INFINITY, f64::min);
+            let passes = to_cycle(&c, path.iter().map(|&(_, t, v)| (t, v)));
             (c, passes)
         })
         .collect()
+}
+
+/// The least distance (in (t̂, v), phases around the circle) from `points` to the
+/// points of the cycle `c`.
+fn to_cycle(c: &CyclePoint, points: impl IntoIterator<Item = (f64, f64)>) -> f64 {
+    points
+        .into_iter()
+        .flat_map(|(t, v)| {
+            c.phases
+                .iter()
+                .zip(&c.velocities)
+                .map(move |(&ct, &cv)| phase_distance(t, ct.rem_euclid(1.0)).hypot(v - cv))
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// The cycle `c` continued by Newton's method to the α of `sys`, from its launch.
+fn continued(sys: &System, c: &CyclePoint) -> Option<CyclePoint> {
+    cycle(sys, c.n, c.k, c.phases[c.n - 1], c.velocities[c.n - 1]).ok()
 }
 
 /// The cycle `c` as its shortest period: if its events repeat after m < n events (and

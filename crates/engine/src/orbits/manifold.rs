@@ -253,6 +253,18 @@ fn distance(a: [f64; 2], b: [f64; 2]) -> f64 {
     (a[0] - b[0]).hypot(a[1] - b[1])
 }
 
+/// The distance from `y` to the segment a–b (in (t, v)).
+pub(crate) fn segment_distance(y: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
+    let ab = [b[0] - a[0], b[1] - a[1]];
+    let len2 = ab[0] * ab[0] + ab[1] * ab[1];
+    let t = if len2 == 0.0 {
+        0.0
+    } else {
+        (((y[0] - a[0]) * ab[0] + (y[1] - a[1]) * ab[1]) / len2).clamp(0.0, 1.0)
+    };
+    distance(y, [a[0] + t * ab[0], a[1] + t * ab[1]])
+}
+
 /// The angle between the segments a→b and b→c (0 where one is empty).
 fn turn(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
     let (u, w) = ([b[0] - a[0], b[1] - a[1]], [c[0] - b[0], c[1] - b[1]]);
@@ -481,18 +493,6 @@ mod tests {
         spec: &ManifoldSpec,
     ) -> Result<Manifold, ManifoldError> {
         manifold(sys, c, Kind::Unstable, spec)
-    }
-
-    /// The distance from `y` to the segment a–b.
-    fn segment_distance(y: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
-        let ab = [b[0] - a[0], b[1] - a[1]];
-        let len2 = ab[0] * ab[0] + ab[1] * ab[1];
-        let t = if len2 == 0.0 {
-            0.0
-        } else {
-            (((y[0] - a[0]) * ab[0] + (y[1] - a[1]) * ab[1]) / len2).clamp(0.0, 1.0)
-        };
-        distance(y, [a[0] + t * ab[0], a[1] + t * ab[1]])
     }
 
     /// The distance from `y` to the polyline `pts`.
