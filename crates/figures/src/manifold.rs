@@ -10,7 +10,7 @@ use crate::model::{
 };
 use bouncemap_engine::attractors::separation::Separation;
 use bouncemap_engine::fmt_value as shortest;
-use bouncemap_engine::orbits::manifold::{BranchEnd, Kind, Manifold};
+use bouncemap_engine::orbits::manifold::{Branch, BranchEnd, Kind, Manifold};
 use bouncemap_engine::orbits::periodic::CyclePoint;
 use bouncemap_engine::System;
 
@@ -63,6 +63,25 @@ fn dash(side: i8) -> Dash {
 
 /// The branches of `ms` as line layers in (t̂, v), with a legend entry each.
 pub fn manifold_layers(ms: &[Manifold]) -> (Vec<Layer>, Vec<(Swatch, String)>) {
+    branch_layers(ms, colour, 0.8, pieces, |name, b| {
+        format!(
+            "{name}: {} points, length {:.3}, {}",
+            b.points.len(),
+            b.length,
+            end_words(&b.end)
+        )
+    })
+}
+
+/// A line layer per branch of `ms`, named "kind ±", in `colour` by kind, the branch's
+/// points cut into lines by `lines`; with a legend entry each, worded by `label`.
+fn branch_layers(
+    ms: &[Manifold],
+    colour: fn(Kind) -> Color,
+    width: f64,
+    lines: impl Fn(&[[f64; 2]]) -> Vec<Vec<[f64; 2]>>,
+    label: impl Fn(&str, &Branch) -> String,
+) -> (Vec<Layer>, Vec<(Swatch, String)>) {
     let mut layers = Vec::new();
     let mut entries = Vec::new();
     for m in ms {
@@ -71,20 +90,12 @@ pub fn manifold_layers(ms: &[Manifold]) -> (Vec<Layer>, Vec<(Swatch, String)>) {
             let name = format!("{} {side}", m.kind.as_str());
             layers.push(Layer::Lines {
                 name: name.clone(),
-                lines: pieces(&b.points),
+                lines: lines(&b.points),
                 color: colour(m.kind),
                 dash: dash(b.side),
-                width: 0.8,
+                width,
             });
-            entries.push((
-                Swatch::line(colour(m.kind), dash(b.side)),
-                format!(
-                    "{name}: {} points, length {:.3}, {}",
-                    b.points.len(),
-                    b.length,
-                    end_words(&b.end)
-                ),
-            ));
+            entries.push((Swatch::line(colour(m.kind), dash(b.side)), label(&name, b)));
         }
     }
     (layers, entries)
@@ -201,28 +212,20 @@ pub fn overlay_on_basins(
     let Some(panel) = fig.panels.first_mut() else {
         return;
     };
-    let mut entries = Vec::new();
-    for m in ms {
-        for b in &m.branches {
-            let side = if b.side > 0 { "+" } else { "\u{2212}" };
-            let name = format!("{} {side}", m.kind.as_str());
-            panel.layers.push(Layer::Lines {
-                name: name.clone(),
-                lines: basin_pieces(&b.points, sys, w_max),
-                color: overlay_colour(m.kind),
-                dash: dash(b.side),
-                width: 1.0,
-            });
-            entries.push((
-                Swatch::line(overlay_colour(m.kind), dash(b.side)),
-                format!(
-                    "{name} manifold, length {:.3}, {}",
-                    b.length,
-                    end_words(&b.end)
-                ),
-            ));
-        }
-    }
+    let (layers, mut entries) = branch_layers(
+        ms,
+        overlay_colour,
+        1.0,
+        |points| basin_pieces(points, sys, w_max),
+        |name, b| {
+            format!(
+                "{name} manifold, length {:.3}, {}",
+                b.length,
+                end_words(&b.end)
+            )
+        },
+    );
+    panel.layers.extend(layers);
     let saddle: Vec<[f64; 2]> = cycle
         .phases
         .iter()
