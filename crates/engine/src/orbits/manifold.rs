@@ -483,6 +483,19 @@ mod tests {
         (sys, saddle, sink)
     }
 
+    /// Past the period doubling (α_PD ≈ 0.506 at D = 0.1, r = 0.8) at α = 0.52: the (1, 1)
+    /// solution with f'' < 0, a saddle with λᵤ < −1.
+    fn flip_saddle() -> (System, CyclePoint) {
+        let sys = System::new(Table::fd(0.1).unwrap(), 0.52, 0.8).unwrap();
+        let fp = fixed_points(&sys, 1)
+            .unwrap()
+            .into_iter()
+            .min_by(|a, b| a.phase.total_cmp(&b.phase))
+            .unwrap();
+        let c = cycle(&sys, 1, 1, fp.phase, fp.v).unwrap();
+        (sys, c)
+    }
+
     fn map_of(sys: &System, m: &Manifold) -> Map {
         Map::new(sys, m.events, m.periods, m.kind)
     }
@@ -608,13 +621,7 @@ mod tests {
     fn a_flip_saddle_grows_each_side_under_the_second_iterate() {
         // Past the period doubling (α_PD ≈ 0.506 at D = 0.1) the (1, 1) solution is a
         // saddle with λᵤ < −1: G = F², μ = λᵤ², and each side is invariant under G.
-        let sys = System::new(Table::fd(0.1).unwrap(), 0.52, 0.8).unwrap();
-        let fp = fixed_points(&sys, 1)
-            .unwrap()
-            .into_iter()
-            .min_by(|a, b| a.phase.total_cmp(&b.phase))
-            .unwrap();
-        let c = cycle(&sys, 1, 1, fp.phase, fp.v).unwrap();
+        let (sys, c) = flip_saddle();
         let lu = c.multipliers[0].re.abs().max(c.multipliers[1].re.abs());
         let spec = ManifoldSpec {
             length: 0.3,
@@ -690,13 +697,7 @@ mod tests {
     fn the_two_manifolds_cross_only_transversally_at_the_saddle() {
         // The stable and unstable eigenvectors differ, and both manifolds of the flip
         // saddle grow under the second iterate.
-        let sys = System::new(Table::fd(0.1).unwrap(), 0.52, 0.8).unwrap();
-        let fp = fixed_points(&sys, 1)
-            .unwrap()
-            .into_iter()
-            .min_by(|a, b| a.phase.total_cmp(&b.phase))
-            .unwrap();
-        let c = cycle(&sys, 1, 1, fp.phase, fp.v).unwrap();
+        let (sys, c) = flip_saddle();
         let spec = ManifoldSpec {
             length: 0.3,
             ..ManifoldSpec::default()
