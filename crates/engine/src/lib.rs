@@ -87,7 +87,7 @@ pub use precise::{
     PreciseMap, PreciseRefusal, PreciseSetup, PreciseState, PreciseSystem, Slot, StickingCycle,
     Written, CYCLE_EVENTS, PATH_EVENTS, PRECISE_MAX_DEGREE,
 };
-pub use real::{bits_for_digits, Big, Number, Real};
+pub use real::{bits_for_digits, Big, Interval, Number, Real};
 pub use system::{kappa_c, System};
 pub use table::Table;
 pub use tangent::{flight, tangent, Flight, Tangent};

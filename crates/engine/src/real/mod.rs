@@ -4,6 +4,9 @@
 //! epsilon, conversion to f64), implemented by `f64` and by [`Big`], a binary float of
 //! any precision.
 //!
+//! [`Interval`] implements [`Number`] too: an enclosure with outward rounding, in which a
+//! table's expressions evaluate to intervals containing the exact table (for proofs).
+//!
 //! A type carries its precision in a [`Number::Context`]: nothing for f64, the number
 //! of bits for [`Big`]. Constants enter through the context, so a decimal such as `0.6`
 //! is three fifths rounded once to the working precision, not the double nearest it;
@@ -11,8 +14,10 @@
 //! nearest to its decimal parameters.
 
 mod big;
+mod interval;
 
 pub use big::{bits_for_digits, Big};
+pub use interval::Interval;
 
 use std::fmt::Debug;
 use std::ops::{Add, Div, Mul, Neg, Sub};
