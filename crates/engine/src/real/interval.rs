@@ -359,13 +359,13 @@ fn decimal_is_exact(text: &str) -> Option<bool> {
         }
     } else {
         for _ in 0..(-e) {
-            if m % 5 != 0 {
+            if !m.is_multiple_of(5) {
                 return Some(false);
             }
             m /= 5;
         }
     }
-    while m % 2 == 0 {
+    while m > 0 && m.is_multiple_of(2) {
         m /= 2;
     }
     Some(m <= 1 << 53 && e.abs() < 1000)
