@@ -120,9 +120,64 @@ pub fn solve<const N: usize>(mut a: [[f64; N]; N], mut b: [f64; N]) -> Option<[f
     x.iter().all(|v| v.is_finite()).then_some(x)
 }
 
+/// The inverse of the square matrix `a` (rows) by Gauss–Jordan elimination with partial
+/// pivoting, for matrices whose size is known only at run time (the preconditioner of
+/// a proof, which needs no rigour itself); None when a pivot is zero or not finite.
+pub(crate) fn inverse(a: &[Vec<f64>]) -> Option<Vec<Vec<f64>>> {
+    let n = a.len();
+    let mut m: Vec<Vec<f64>> = a
+        .iter()
+        .enumerate()
+        .map(|(i, row)| {
+            let mut r = row.clone();
+            r.extend((0..n).map(|j| if i == j { 1.0 } else { 0.0 }));
+            r
+        })
+        .collect();
+    for c in 0..n {
+        let p = (c..n).max_by(|&i, &j| m[i][c].abs().total_cmp(&m[j][c].abs()))?;
+        if m[p][c] == 0.0 || !m[p][c].is_finite() {
+            return None;
+        }
+        m.swap(c, p);
+        let pivot = m[c][c];
+        for x in m[c].iter_mut() {
+            *x /= pivot;
+        }
+        let row = m[c].clone();
+        for (i, other) in m.iter_mut().enumerate() {
+            if i != c && other[c] != 0.0 {
+                let f = other[c];
+                for (x, p) in other.iter_mut().zip(&row) {
+                    *x -= f * p;
+                }
+            }
+        }
+    }
+    let inv: Vec<Vec<f64>> = m.into_iter().map(|r| r[n..].to_vec()).collect();
+    inv.iter().flatten().all(|v| v.is_finite()).then_some(inv)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_inverse_times_the_matrix_is_the_identity() {
+        let a = vec![
+            vec![2.0, 1.0, 0.0],
+            vec![1.0, 3.0, 1.0],
+            vec![0.0, 1.0, 4.0],
+        ];
+        let inv = inverse(&a).unwrap();
+        for (i, row) in a.iter().enumerate() {
+            for j in 0..3 {
+                let p: f64 = row.iter().zip(&inv).map(|(x, r)| x * r[j]).sum();
+                assert!((p - if i == j { 1.0 } else { 0.0 }).abs() < 1e-15);
+            }
+        }
+        assert!(inverse(&[vec![1.0, 2.0], vec![2.0, 4.0]]).is_none());
+    }
 
     #[test]
     fn eigenvalues_of_known_matrices() {

@@ -18,6 +18,10 @@
 //!   window exit) and the helpers that locate them.
 //! * [`cascade`]: the period-doubling cascade from a (1, k) solution: α₁ < α₂ < …, how
 //!   each 2ⁿ branch ends, and the Feigenbaum ratios.
+//! * [`certify`]: proofs by interval arithmetic that an exact (n, k) cycle lies in a
+//!   small box (the Krawczyk test on the cycle's equations, each landing shown to be
+//!   its flight's first contact), with its stability where the multipliers' enclosure
+//!   decides it.
 //! * [`scaling`]: the power laws ΔT ∝ Δκ and Δt ∝ Δκ^½ near the period-doubling point
 //!   (the paper's Fig. 4 and Fig. 5), from exact solutions and from simulated orbits.
 //!
@@ -27,6 +31,7 @@
 
 pub mod border;
 pub mod cascade;
+pub mod certify;
 pub mod continuation;
 pub mod curves;
 pub mod events;
