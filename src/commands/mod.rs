@@ -11,6 +11,7 @@ pub mod attractors;
 pub mod basins;
 pub mod bench;
 pub mod cascade;
+pub mod certify;
 pub mod continuation;
 pub mod curves;
 pub mod digits;
@@ -47,6 +48,7 @@ pub fn run(cmd: Command) -> anyhow::Result<()> {
         Command::Scaling(a) => scaling::run(&a),
         Command::Continue(a) => continuation::run(&config::run::continuation(&a)?),
         Command::Cascade(a) => cascade::run(&config::run::cascade(&a)?),
+        Command::Certify(a) => certify::run(&a),
         Command::Manifolds(a) => manifolds::run(&a),
         Command::Curves(a) => curves::run(&config::run::curves(&a)?),
         Command::Sweep(a) => sweep::run(&config::run::sweep(&a)?),

@@ -244,6 +244,8 @@ pub const DIGITS: Rule = rule("digits", "digits", limits::DIGITS, 60.0);
 pub const MAX_DIGITS: Rule = rule("max-digits", "max digits", limits::DIGITS, 400.0);
 /// Impacts of a cycle `continue` starts on.
 pub const CYCLE_N: Rule = rule("n", "n", limits::CYCLE_N, 1.0);
+/// Impacts of the cycle `certify` proves.
+pub const CERTIFY_N: Rule = rule("n", "n", limits::CERTIFY_N, 1.0);
 /// The longest period `continue` starts doubled branches up to.
 pub const CONTINUE_MAX_PERIOD: Rule = rule("max-period", "max period", limits::MAX_PERIOD, 16.0);
 /// Values of the second parameter `curves` seeds at.

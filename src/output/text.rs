@@ -20,6 +20,48 @@ pub fn shortest(x: f64) -> String {
     bouncemap_engine::fmt_value(x)
 }
 
+/// An enclosure as `mid ± radius` (the interval [mid − radius, mid + radius] contains
+/// it): the middle to the digits its width leaves, the radius rounded up to two digits;
+/// a thin interval as its one value.
+pub fn interval(i: bouncemap_engine::Interval) -> String {
+    let (lo, hi) = (i.lo(), i.hi());
+    if lo == hi {
+        return shortest(lo);
+    }
+    if !lo.is_finite() || !hi.is_finite() {
+        return format!("[{}, {}]", shortest(lo), shortest(hi));
+    }
+    let mid = 0.5 * lo + 0.5 * hi;
+    let size = lo.abs().max(hi.abs());
+    let width = hi - lo;
+    // Significant digits down to the width's order.
+    let digits = ((size / width).log10().ceil() as i64 + 1).clamp(1, 17) as usize;
+    let m = if mid != 0.0 && !(1e-4..1e6).contains(&mid.abs()) {
+        format!("{:.*e}", digits - 1, mid)
+    } else {
+        let whole = if mid == 0.0 {
+            0
+        } else {
+            mid.abs().log10().floor() as i64
+        };
+        format!(
+            "{:.*}",
+            (digits as i64 - 1 - whole).clamp(0, 20) as usize,
+            mid
+        )
+    };
+    let mv: f64 = m.parse().unwrap_or(mid);
+    let rad = (hi - mv).max(mv - lo).max(f64::MIN_POSITIVE);
+    let e = rad.log10().floor() as i32;
+    let q = (rad / 10f64.powi(e - 1) * (1.0 + 1e-12)).ceil() as i64;
+    let (q, e) = if q >= 100 {
+        (10, e + 1)
+    } else {
+        (q.max(10), e)
+    };
+    format!("{m} ± {}.{}e{e}", q / 10, q % 10)
+}
+
 /// `text` with control characters (escape codes, newlines) written as escapes, so a
 /// name from a file can never disturb a terminal or break a line of output.
 pub fn escape(text: &str) -> String {

@@ -4,6 +4,7 @@
 mod architecture;
 mod array_and_resume;
 mod attractors_cli;
+mod certify_cli;
 mod check_memory;
 mod cli;
 mod cli_orbit;

@@ -202,6 +202,8 @@ pub const CASCADE_DEPTH: Limit = whole("depth", 1.0, 12.0, "a whole number in [1
 pub const CURVE_SEEDS: Limit = whole("seeds", 1.0, 64.0, "a whole number in [1, 64]");
 /// Impacts per cycle of a continued orbit.
 pub const CYCLE_N: Limit = whole("n", 1.0, 1024.0, "a whole number in [1, 1024]");
+/// Impacts of a cycle a proof takes (its equations are 2n × 2n, solved densely).
+pub const CERTIFY_N: Limit = whole("n", 1.0, 64.0, "a whole number in [1, 64]");
 /// Arc length of each branch of a manifold, in the metric of (t, v).
 pub const MANIFOLD_LENGTH: Limit = open_closed("length", 0.0, 1000.0, "(0, 1000]");
 /// Number of D values of a cascade over the F_D family.

@@ -79,6 +79,9 @@ pub enum Command {
     Continue(ContinueArgs),
     /// The period-doubling cascade: αₙ, the Feigenbaum ratios, how each 2ⁿ branch ends.
     Cascade(CascadeArgs),
+    /// Prove an (n, k) cycle by interval arithmetic: an exact cycle in a small box, its landings first contacts, its stability where the enclosure decides it.
+    #[command(allow_negative_numbers = true)]
+    Certify(CertifyArgs),
     /// The unstable and stable manifolds of a saddle cycle: both branches of each, every point by the exact map or its exact inverse.
     #[command(allow_negative_numbers = true)]
     Manifolds(ManifoldsArgs),

@@ -116,6 +116,26 @@ impl CycleGuessArgs {
     }
 }
 
+/// `bouncemap certify`.
+#[derive(Args, Debug, Clone)]
+pub struct CertifyArgs {
+    #[command(flatten)]
+    pub system: SystemArgs,
+    #[arg(help = rules::CERTIFY_N.help("Impacts n of the (n, k) cycle to prove"), long, default_value_t = rules::CERTIFY_N.default as usize, value_parser = rules::CERTIFY_N.whole::<usize>(), value_name = "N")]
+    pub n: usize,
+    #[arg(help = rules::K.help("Table periods k of the (n, k) cycle"), long, default_value_t = rules::K.default as u32, value_parser = rules::K.whole::<u32>(), value_name = "K")]
+    pub k: u32,
+    #[arg(help = rules::T0.help("The guess's launch phase t̂0 (without it: the stable (1, k) solution, or where the orbit from next to the (1, 1) solution settles)"), long, value_parser = rules::T0.real(), value_name = "PHASE", requires = "v0")]
+    pub t0: Option<f64>,
+    #[arg(help = rules::V0.help("The guess's launch velocity v0 (right after an impact)"), long, value_parser = rules::V0.real(), value_name = "V", allow_hyphen_values = true, requires = "t0")]
+    pub v0: Option<f64>,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    pub format: Format,
+    #[command(flatten)]
+    pub output: OutArgs,
+}
+
 /// `bouncemap manifolds`.
 #[derive(Args, Debug, Clone)]
 pub struct ManifoldsArgs {

@@ -12,12 +12,14 @@ use std::io::Write;
 
 mod attractors;
 mod branches;
+mod certify;
 mod cycle;
 mod global;
 mod manifold;
 mod sweep;
 pub use attractors::*;
 pub use branches::*;
+pub use certify::*;
 pub use cycle::*;
 pub use global::*;
 pub use manifold::*;
