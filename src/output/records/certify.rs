@@ -32,6 +32,7 @@ pub fn failure_name(f: &Failure) -> &'static str {
         Failure::Flight { why, .. } => match why {
             FlightFailure::NotLaunched { .. } => "not_launched",
             FlightFailure::GrazingLanding { .. } => "grazing_landing",
+            FlightFailure::NoFlight => "no_flight",
             FlightFailure::Close { .. } => "near_grazing",
             FlightFailure::EarlierContact { .. } => "earlier_contact",
         },
@@ -65,6 +66,9 @@ pub fn failure_text(c: &Certificate, f: &Failure) -> String {
                 ),
                 FlightFailure::GrazingLanding { speed } => format!(
                     "the flight after impact {i} lands with relative velocity not shown below zero (|u| down to {speed:.3e}): a grazing landing"
+                ),
+                FlightFailure::NoFlight => format!(
+                    "the flight after impact {i} is not shown to take a positive time"
                 ),
                 FlightFailure::Close { tau, height } => format!(
                     "the flight after impact {i} comes within {height:.2e} of the table {tau:.12} after its launch: near grazing, positivity of the gap cannot be shown there"

@@ -57,6 +57,8 @@ pub enum FlightFailure {
         /// The gap there is below this.
         height: f64,
     },
+    /// The flight time to the landing is not shown positive.
+    NoFlight,
     /// The gap is not positive somewhere before the landing: the ball meets the table
     /// earlier.
     EarlierContact {
@@ -73,6 +75,9 @@ pub fn first_landing(
     v: Interval,
     landing: Interval,
 ) -> Result<FlightProof, FlightFailure> {
+    if !landing.positive() {
+        return Err(FlightFailure::NoFlight);
+    }
     let [f0, d0] = sys.hull(phase);
     let w = v - d0;
     if !w.positive() {
