@@ -27,9 +27,14 @@
 //! conditions with 0 < det M < 1); either below zero proves a multiplier outside it.
 
 mod flight;
+mod special;
 mod table;
 
 pub use flight::{FlightFailure, FlightProof};
+pub use special::{
+    certify_border_collision, certify_period_doubling, CertifiedSpecial, SpecialFailure,
+    SpecialKind,
+};
 
 use crate::linalg::inverse;
 use crate::orbits::periodic::{cycle, CyclePoint, PassError};
@@ -229,14 +234,19 @@ pub fn certify(sys: &System, n: usize, k: u32, t0: f64, v0: f64) -> Certificate 
         out.cycle = Some(pt);
         return out;
     }
-    certify_with(&enc, &pt, &mut out);
+    certify_with(&enc, &pt, &[], &mut out);
     out.cycle = Some(pt);
     out
 }
 
 /// Prove the cycle `pt` (an accepted point of [`crate::orbits::periodic`]).
 pub fn certify_cycle(sys: &System, pt: &CyclePoint) -> Certificate {
-    let enc = Enclosed::of(sys);
+    prove(&Enclosed::of(sys), pt, &[])
+}
+
+/// Prove the cycle near `pt` of the system `enc` (whose α may be an interval), with the
+/// impacts `forced` on a piece's polynomial.
+fn prove(enc: &Enclosed, pt: &CyclePoint, forced: &[Option<(f64, usize)>]) -> Certificate {
     let mut out = Certificate {
         n: pt.n,
         k: pt.k,
@@ -248,7 +258,7 @@ pub fn certify_cycle(sys: &System, pt: &CyclePoint) -> Certificate {
         stability: None,
         failure: None,
     };
-    certify_with(&enc, pt, &mut out);
+    certify_with(enc, pt, forced, &mut out);
     out
 }
 
@@ -258,6 +268,9 @@ struct Equations<'a> {
     n: usize,
     /// Whole periods before each impact, and k after the last.
     periods: Vec<i64>,
+    /// Impacts whose table is one piece's polynomial wherever the box lies (a border
+    /// collision's near side): (whole periods, piece index).
+    forced: &'a [Option<(f64, usize)>],
 }
 
 impl Equations<'_> {
@@ -270,10 +283,12 @@ impl Equations<'_> {
 
     fn jets(&self, x: &[Interval]) -> Result<Vec<[Interval; 3]>, Failure> {
         (0..self.n)
-            .map(|i| {
-                self.enc
+            .map(|i| match self.forced.get(i).copied().flatten() {
+                Some(piece) => Ok(self.enc.jet_on(x[i], piece)),
+                None => self
+                    .enc
                     .jet(x[i])
-                    .map_err(|AtBreakpoint(phase)| Failure::Breakpoint { impact: i, phase })
+                    .map_err(|AtBreakpoint(phase)| Failure::Breakpoint { impact: i, phase }),
             })
             .collect()
     }
@@ -331,7 +346,12 @@ fn thin(x: &[f64]) -> Vec<Interval> {
     x.iter().map(|&v| Interval::point(v)).collect()
 }
 
-fn certify_with(enc: &Enclosed, pt: &CyclePoint, out: &mut Certificate) {
+fn certify_with(
+    enc: &Enclosed,
+    pt: &CyclePoint,
+    forced: &[Option<(f64, usize)>],
+    out: &mut Certificate,
+) {
     let n = pt.n;
     // Whole periods before each impact, from the flight times.
     let mut periods = vec![0i64];
@@ -348,6 +368,7 @@ fn certify_with(enc: &Enclosed, pt: &CyclePoint, out: &mut Certificate) {
         enc,
         n,
         periods: periods.clone(),
+        forced,
     };
     let mut x: Vec<f64> = pt.phases.iter().chain(&pt.velocities).copied().collect();
     // Refine on the cycle's own equations.
@@ -485,9 +506,13 @@ fn prove_flights_and_stability(eq: &Equations, bx: &[Interval], out: &mut Certif
             }
         }
     }
-    let Ok(jets) = eq.jets(bx) else {
-        return;
-    };
+    out.stability = stability(eq, bx);
+}
+
+/// The multipliers over the box, and what they prove.
+fn stability(eq: &Equations, bx: &[Interval]) -> Option<Stability> {
+    let n = eq.n;
+    let jets = eq.jets(bx).ok()?;
     let r = eq.enc.r;
     let one = Interval::point(1.0);
     let mut m = [[one, Interval::point(0.0)], [Interval::point(0.0), one]];
@@ -532,7 +557,40 @@ fn prove_flights_and_stability(eq: &Equations, bx: &[Interval], out: &mut Certif
     } else {
         StabilityVerdict::Undecided { near: Near::Fold }
     };
-    out.stability = Some(st);
+    Some(st)
+}
+
+/// The one zero of the cycle's equations in the box `bx` (proved for parameters
+/// holding those of `enc`) enclosed again at the parameters of `enc`: K(bx) ∩ bx, which
+/// holds every zero in bx, with the stability over it (the landings are not shown
+/// again). None where the equations cannot be evaluated on the box.
+fn reenclose(
+    enc: &Enclosed,
+    forced: &[Option<(f64, usize)>],
+    k: u32,
+    bx: &Enclosure,
+) -> Option<(Vec<Interval>, Option<Stability>)> {
+    let n = bx.phases.len();
+    let mut periods = bx.periods.clone();
+    periods.push(k as i64);
+    let eq = Equations {
+        enc,
+        n,
+        periods,
+        forced,
+    };
+    let b: Vec<Interval> = bx.phases.iter().chain(&bx.velocities).copied().collect();
+    let x: Vec<f64> = b.iter().map(Interval::mid).collect();
+    let res = eq.residual(&thin(&x)).ok()?;
+    let c = inverse(&mids(&eq.jacobian(&thin(&x)).ok()?))?;
+    let kx = krawczyk(&eq, &x, &res, &c, &b).ok()?;
+    let tight: Vec<Interval> = kx
+        .iter()
+        .zip(&b)
+        .map(|(ki, bi)| ki.intersect(bi))
+        .collect::<Option<Vec<Interval>>>()?;
+    let st = stability(&eq, &tight);
+    Some((tight, st))
 }
 
 /// The roots of λ² − tr λ + det over the enclosures.

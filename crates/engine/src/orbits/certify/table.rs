@@ -28,8 +28,8 @@ pub(crate) struct Enclosed {
     pub alpha: Interval,
     /// The restitution.
     pub r: Interval,
-    /// An upper bound of |f''| = α|F''| over a period.
-    accel: f64,
+    /// An upper bound of |F''| over a period.
+    second: f64,
 }
 
 /// A box of phases met a breakpoint (at about this phase).
@@ -76,16 +76,58 @@ impl Enclosed {
                 .fold(0.0, f64::max),
         };
         Enclosed {
-            accel: (alpha * Interval::point(second)).hi(),
+            second,
             form,
             alpha,
             r,
         }
     }
 
+    /// The same system over the amplitudes `alpha`.
+    pub fn with_alpha(mut self, alpha: Interval) -> Enclosed {
+        self.alpha = alpha;
+        self
+    }
+
     /// An upper bound of |f''| over a period.
     pub fn accel_bound(&self) -> f64 {
-        self.accel
+        (self.alpha * Interval::point(self.second)).hi()
+    }
+
+    /// The piece the phase `x` (any real) lies in, as (whole periods, its index); None
+    /// for the sine.
+    pub fn piece_at(&self, x: f64) -> Option<(f64, usize)> {
+        let Form::Pieces(ps) = &self.form else {
+            return None;
+        };
+        let whole = x.floor();
+        let q = x - whole;
+        let i = ps.iter().rposition(|p| p.start.mid() <= q).unwrap_or(0);
+        Some((whole, i))
+    }
+
+    /// The jet of piece `index` of the period starting at `whole`, continued as its
+    /// polynomial to any phase box `x` (for a border collision: the near side's
+    /// equations on both sides of the breakpoint).
+    pub fn jet_on(&self, x: Interval, (whole, index): (f64, usize)) -> [Interval; 3] {
+        match &self.form {
+            Form::Sine => self.jet(x).expect("the sine has no breakpoints"),
+            Form::Pieces(ps) => {
+                let p = &ps[index];
+                let s = x - Interval::point(whole) - p.start;
+                [0, 1, 2].map(|d| self.alpha * derivative_at(&p.coeffs, d, s))
+            }
+        }
+    }
+
+    /// The start of piece `index` (a breakpoint) in the period starting at `whole`, and
+    /// the end of the piece.
+    pub fn piece_ends(&self, (whole, index): (f64, usize)) -> Option<(Interval, Interval)> {
+        let Form::Pieces(ps) = &self.form else {
+            return None;
+        };
+        let w = Interval::point(whole);
+        Some((ps[index].start + w, ps[index].end + w))
     }
 
     /// (f, f', f'') over the phase box `x` (any real phases), which must lie strictly

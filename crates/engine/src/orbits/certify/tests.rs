@@ -222,3 +222,93 @@ fn parameters_are_enclosed_as_written() {
     assert!((cert.r * Interval::point(5.0)).contains(4.0));
     assert!(cert.proved(), "{:?}", cert.failure);
 }
+
+/// The (1, 1) period doubling of fd:0.1, fd:0.5, fd:1 and the sine is proved in an
+/// α-interval at most 1e-12 wide that holds the closed-form α_PD (f''(t̂*) = κ_c), with
+/// the period-doubling test of opposite signs at its ends; the (2, 2) border
+/// collision is proved in one that holds `two_cycle`'s (found by continuing the
+/// two-cycle's own equations).
+#[test]
+fn period_doublings_and_border_collisions_are_proved_as_alpha_intervals() {
+    for table in [
+        Table::fd(0.1).unwrap(),
+        Table::fd(0.5).unwrap(),
+        Table::fd(1.0).unwrap(),
+        Table::sine(),
+    ] {
+        let w = stability_window(&table, 0.8, 1).unwrap().unwrap();
+        let sys = System::new(table.clone(), w.alpha_end, 0.8).unwrap();
+        let pt = cycle(&sys, 1, 1, w.phase_end, 0.5).unwrap();
+        let c = certify_period_doubling(&table, 0.8, &pt);
+        let what = format!("{}: {:?} {:?}", table.name(), c.alpha, c.failure);
+        assert!(c.proved(), "{what}");
+        let a = c.alpha.unwrap();
+        assert!(a.contains(w.alpha_end) && a.width() <= 1e-12, "{what}");
+        let [lo, hi] = c.ends.unwrap();
+        assert!(
+            lo.positive() && hi.negative(),
+            "{what}: stable below, unstable above"
+        );
+        if table.breakpoints().is_empty() {
+            continue;
+        }
+        let bc = crate::orbits::two_cycle::border_collision(&table, 0.8, 1).unwrap();
+        let sys = System::new(table.clone(), bc.alpha, 0.8).unwrap();
+        let pt = cycle(&sys, 2, 2, bc.phase0, bc.v0).unwrap();
+        let j = (0..2)
+            .min_by(|&x, &y| {
+                let d = |i: usize| crate::time::phase_distance(pt.phases[i], bc.phase);
+                d(x).total_cmp(&d(y))
+            })
+            .unwrap();
+        let c = certify_border_collision(&table, 0.8, &pt, j, bc.phase);
+        let what = format!(
+            "{} BC: {:?} {:?} against {}",
+            table.name(),
+            c.alpha,
+            c.failure,
+            bc.alpha
+        );
+        assert!(c.proved(), "{what}");
+        let a = c.alpha.unwrap();
+        assert!(a.contains(bc.alpha) && a.width() <= 1e-12, "{what}");
+        let [lo, hi] = c.ends.unwrap();
+        assert!(lo.positive() != hi.positive() && !lo.contains(0.0) && !hi.contains(0.0));
+    }
+}
+
+/// The cascade's α₂ and α₃ (period doublings of the (2, 2) and (4, 4) cycles, located
+/// by the continuation's test function) lie within 1e-11 of proved intervals; the sine
+/// has no breakpoint to collide with, and away from a period doubling no bracket is
+/// found.
+#[test]
+fn higher_period_doublings_and_refusals() {
+    for table in [Table::fd(1.0).unwrap(), Table::sine()] {
+        let c = cascade(&table, 0.8, 1, 3).unwrap();
+        for level in &c.levels[1..3] {
+            let end = &level.end;
+            let p = certify_period_doubling(&table, 0.8, &end.point);
+            let what = format!(
+                "{} ({}): {:?} {:?} against {}",
+                table.name(),
+                level.period,
+                p.alpha,
+                p.failure,
+                end.alpha
+            );
+            assert!(p.proved(), "{what}");
+            let a = p.alpha.unwrap();
+            assert!(
+                a.width() <= 1e-12 && (a.mid() - end.alpha).abs() < 1e-11,
+                "{what}"
+            );
+        }
+    }
+    let sys = System::new(Table::sine(), 0.02, 0.8).unwrap();
+    let p = fixed_points(&sys, 1).unwrap()[0];
+    let pt = cycle(&sys, 1, 1, p.phase, p.v).unwrap();
+    let c = certify_period_doubling(&Table::sine(), 0.8, &pt);
+    assert_eq!(c.failure, Some(SpecialFailure::NoBracket));
+    let c = certify_border_collision(&Table::sine(), 0.8, &pt, 0, 0.0);
+    assert_eq!(c.failure, Some(SpecialFailure::NoBreakpoint));
+}
