@@ -7,11 +7,13 @@
 use crate::config::run::{CascadeRun, CascadeTables};
 use crate::config::InputError;
 use crate::output::records::{
-    csv_writer, CascadeDoc, FamilyDoc, FamilyRecord, FamilyRow, LevelRecord, FEIGENBAUM_DELTA,
+    csv_writer, special_text, CascadeDoc, FamilyDoc, FamilyRecord, FamilyRow, LevelRecord,
+    FEIGENBAUM_DELTA,
 };
 use crate::output::sink::Sink;
 use crate::output::Format;
 use bouncemap_engine::orbits::cascade::{cascade, Cascade};
+use bouncemap_engine::orbits::certify::{certify_special, CertifiedSpecial};
 use bouncemap_engine::orbits::continuation::NoStart;
 use bouncemap_engine::table::Table;
 use std::io::Write;
@@ -53,6 +55,17 @@ fn single(
     table: &Table,
     c: Result<Cascade, String>,
 ) -> anyhow::Result<()> {
+    // With --certify: each level's end proved as an α-interval (period doublings and
+    // border collisions; other ends have no proof).
+    let proofs: Vec<Option<CertifiedSpecial>> = match (&c, args.certify) {
+        (Ok(c), true) => c
+            .levels
+            .iter()
+            .map(|l| certify_special(table, args.r, &l.end))
+            .collect(),
+        (Ok(c), false) => vec![None; c.levels.len()],
+        (Err(_), _) => Vec::new(),
+    };
     match args.format {
         Format::Json => {
             let doc = CascadeDoc {
@@ -76,8 +89,10 @@ fn single(
                     .map(|e| e.1),
                 feigenbaum_delta: FEIGENBAUM_DELTA,
                 levels: c.as_ref().map_or(Vec::new(), |c| {
-                    (0..c.levels.len())
-                        .map(|i| LevelRecord::new(c, i))
+                    proofs
+                        .iter()
+                        .enumerate()
+                        .map(|(i, p)| LevelRecord::new(c, i, p.as_ref()))
                         .collect()
                 }),
                 unborn: c.as_ref().ok().and_then(|c| c.unborn.clone()),
@@ -88,8 +103,8 @@ fn single(
         Format::Csv => {
             let mut w = csv_writer(&mut *out, &LevelRecord::HEADER)?;
             if let Ok(c) = &c {
-                for i in 0..c.levels.len() {
-                    w.serialize(LevelRecord::new(c, i))?;
+                for (i, p) in proofs.iter().enumerate() {
+                    w.serialize(LevelRecord::new(c, i, p.as_ref()))?;
                 }
             }
             w.flush()?;
@@ -136,6 +151,21 @@ fn single(
             }
             if let Some(why) = &c.unborn {
                 writeln!(out, "{why}")?;
+            }
+            if args.certify {
+                writeln!(out, "proved by interval arithmetic (--certify):")?;
+                for (i, (l, p)) in c.levels.iter().zip(&proofs).enumerate() {
+                    match p {
+                        Some(p) => writeln!(out, "  alpha_{} {}", i + 1, special_text(p))?,
+                        None => writeln!(
+                            out,
+                            "  the ({}, {}) branch's end ({}) has no proof",
+                            l.period,
+                            l.period as u32 * args.k,
+                            l.end.kind.as_str()
+                        )?,
+                    }
+                }
             }
             for l in &c.levels {
                 let persists = match l.end.collision {

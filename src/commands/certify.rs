@@ -127,7 +127,7 @@ fn write_text(
     match (&c.failure, &c.enclosure) {
         (None, Some(e)) => writeln!(
             out,
-            "  verdict: proved: exactly one ({n}, {k}) cycle of the impact map lies in the box below (Krawczyk test on a box of relative half-width {:e}), and each of its landings is its flight's first contact with the table",
+            "  verdict: proved: exactly one ({n}, {k}) cycle of the impact map lies in the box below (Krawczyk test on a box of relative half-width {:.1e}), and each of its landings is its flight's first contact with the table",
             e.inflation
         )?,
         (Some(f), _) => writeln!(out, "  verdict: not proved: {}", failure_text(c, f))?,
@@ -143,7 +143,7 @@ fn write_text(
             writeln!(
                 out,
                 "  {:>6}  {:<34}  {:<34}  {}",
-                i + 1,
+                i,
                 iv(e.phases[i]),
                 iv(e.velocities[i]),
                 c.flights

@@ -404,6 +404,8 @@ pub struct ContinueRun {
     pub start: Start,
     /// Its bounds.
     pub options: Options,
+    /// Prove every point and special point (`--certify`).
+    pub certify: bool,
     /// The output format.
     pub format: Format,
 }
@@ -430,6 +432,7 @@ pub fn continuation(args: &ContinueArgs) -> Result<ContinueRun, InputError> {
             max_period: args.max_period,
             ..Options::default()
         },
+        certify: args.certify,
         format: args.format,
     })
 }
@@ -454,6 +457,8 @@ pub struct CascadeRun {
     pub k: u32,
     /// Period doublings looked for.
     pub depth: usize,
+    /// Prove each αₙ as an α-interval.
+    pub certify: bool,
     /// The output format.
     pub format: Format,
 }
@@ -473,6 +478,7 @@ pub fn cascade(args: &CascadeArgs) -> Result<CascadeRun, InputError> {
         r: args.r,
         k: args.k,
         depth: args.depth,
+        certify: args.certify,
         format: args.format,
     })
 }

@@ -93,7 +93,7 @@ fn the_two_cycle_is_proved_around_two_cycles_solution() {
     for (i, row) in rows.iter().enumerate() {
         assert_eq!(row[5], "proved");
         assert_eq!(row[7], "stable");
-        assert_eq!(row[8], (i + 1).to_string());
+        assert_eq!(row[8], i.to_string());
         let lo: f64 = row[9].parse().unwrap();
         let hi: f64 = row[10].parse().unwrap();
         assert_eq!((lo, hi), pair(&b["phases"][i]));
@@ -204,4 +204,153 @@ fn bad_input_is_one_line_with_the_valid_range() {
     assert_eq!(code, 2, "{err}");
     assert_eq!(err.trim().lines().count(), 1, "{err}");
     assert!(err.contains("--t0 PHASE --v0 V"), "{err}");
+}
+
+/// `cascade --certify`: α₁ of fd:0.1 proved in an interval under 1e-12 holding
+/// `fixed`'s closed-form α_PD, and fd:0.5's α₂ (a border collision) in one holding
+/// `two-cycle`'s border collision; `--d` is refused beside it.
+#[test]
+fn the_cascade_proves_its_alphas() {
+    let f = json(&[
+        "fixed", "--table", "fd:0.1", "--alpha", "0.45", "--format", "json",
+    ]);
+    let alpha_pd = f["alpha_pd"].as_f64().unwrap();
+    let c = json(&[
+        "cascade",
+        "--table",
+        "fd:0.1",
+        "--depth",
+        "2",
+        "--certify",
+        "--format",
+        "json",
+    ]);
+    let l = &c["levels"][0];
+    assert_eq!(l["proof"], "proved", "{l}");
+    let (lo, hi) = (
+        l["alpha_lo"].as_f64().unwrap(),
+        l["alpha_hi"].as_f64().unwrap(),
+    );
+    assert!(
+        lo <= alpha_pd && alpha_pd <= hi && hi - lo <= 1e-12,
+        "{lo} {hi} {alpha_pd}"
+    );
+
+    let t = json(&[
+        "two-cycle",
+        "--table",
+        "fd:0.5",
+        "--alpha",
+        "0.53",
+        "--format",
+        "json",
+    ]);
+    let bc = t["border_collision"]["alpha"].as_f64().unwrap();
+    let csv = ok(&[
+        "cascade",
+        "--table",
+        "fd:0.5",
+        "--certify",
+        "--format",
+        "csv",
+    ]);
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let row: Vec<&str> = csv
+        .lines()
+        .find(|l| l.contains("border_collision"))
+        .unwrap()
+        .split(',')
+        .collect();
+    assert_eq!(row[col("proof")], "proved");
+    let lo: f64 = row[col("alpha_lo")].parse().unwrap();
+    let hi: f64 = row[col("alpha_hi")].parse().unwrap();
+    assert!(lo <= bc && bc <= hi && hi - lo <= 1e-12, "{lo} {hi} {bc}");
+
+    let (code, _, err) = run(&["cascade", "--d", "0.1..1:2", "--certify"]);
+    assert_eq!(code, 2, "{err}");
+}
+
+/// `continue --certify` on the sine: every point carries its proof, a point proved
+/// stable is one the continuation calls stable and one proved unstable is not, and the
+/// period doubling it passes is proved in an interval holding `fixed`'s α_PD.
+#[test]
+fn continue_proves_its_points_and_special_points() {
+    let f = json(&[
+        "fixed", "--table", "sine", "--alpha", "0.02", "--format", "json",
+    ]);
+    let alpha_pd = f["alpha_pd"].as_f64().unwrap();
+    let c = json(&[
+        "continue",
+        "--table",
+        "sine",
+        "--alpha",
+        "0.01..0.03",
+        "--max-period",
+        "2",
+        "--certify",
+        "--format",
+        "json",
+    ]);
+    let branches = c["branches"].as_array().unwrap();
+    assert_eq!(branches.len(), 2);
+    let mut proved = 0;
+    for b in branches {
+        for p in b["points"].as_array().unwrap() {
+            let proof = &p["proof"];
+            assert!(proof.is_object(), "{p}");
+            if proof["verdict"] == "proved" {
+                proved += 1;
+                match proof["stability"].as_str().unwrap() {
+                    "stable" => assert_eq!(p["stable"], true),
+                    "unstable" => assert_eq!(p["stable"], false),
+                    _ => {}
+                }
+            } else {
+                assert!(proof["reason"].is_string());
+            }
+        }
+    }
+    assert!(proved >= 30, "{proved}");
+    let pd = branches[0]["specials"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|s| s["kind"] == "period_doubling")
+        .unwrap();
+    assert_eq!(pd["proof"]["verdict"], "proved", "{pd}");
+    let (lo, hi) = pair(&pd["proof"]["alpha"]);
+    assert!(lo <= alpha_pd && alpha_pd <= hi, "{lo} {hi} {alpha_pd}");
+    // Without --certify no proof is made or printed.
+    let c = json(&[
+        "continue",
+        "--table",
+        "sine",
+        "--alpha",
+        "0.01..0.03",
+        "--max-period",
+        "1",
+        "--format",
+        "json",
+    ]);
+    assert!(c["branches"][0]["points"][0]["proof"].is_null());
+    let points = c["branches"][0]["points"].as_array().unwrap().len();
+    let text = ok(&[
+        "continue",
+        "--table",
+        "sine",
+        "--alpha",
+        "0.01..0.03",
+        "--max-period",
+        "1",
+        "--certify",
+    ]);
+    assert!(
+        text.contains("proved by interval arithmetic: in ["),
+        "{text}"
+    );
+    assert!(
+        text.contains(&format!("proved: {points} of {points} points")),
+        "{text}"
+    );
 }

@@ -56,6 +56,11 @@ pub struct ContinueArgs {
     pub guess: CycleGuessArgs,
     #[arg(help = rules::CONTINUE_MAX_PERIOD.help("No doubled branch is started beyond this period"), long, default_value_t = rules::CONTINUE_MAX_PERIOD.default as usize, value_parser = rules::CONTINUE_MAX_PERIOD.whole::<usize>(), value_name = "P")]
     pub max_period: usize,
+    /// Prove every point by interval arithmetic (an exact cycle in a small box, its
+    /// stability where decided) and each period doubling and border collision as an
+    /// α-interval (see `certify`).
+    #[arg(long)]
+    pub certify: bool,
     /// Output format.
     #[arg(long, value_enum, default_value_t = Format::Text)]
     pub format: Format,
@@ -211,6 +216,10 @@ pub struct CascadeArgs {
     /// [0, 1] (one row per D).
     #[arg(long, value_parser = parse_d_family, value_name = "LO..HI:N")]
     pub d: Option<DFamily>,
+    /// Prove each αₙ (a period doubling, or a border collision) as an α-interval by
+    /// interval arithmetic (see `certify`).
+    #[arg(long, conflicts_with = "d")]
+    pub certify: bool,
     /// Output format.
     #[arg(long, value_enum, default_value_t = Format::Text)]
     pub format: Format,

@@ -1,8 +1,13 @@
 //! Records of `continue` (branches of periodic orbits) and `cascade` (period-doubling
 //! points, how each 2ⁿ branch ends, one row per D of a family).
 
-use super::ComplexRecord;
+use super::{
+    failure_name, special_failure_name, special_verdict_name, stability_name, verdict_name,
+    BranchProofs, ComplexRecord, PointProofRecord, SpecialProofRecord,
+};
 use bouncemap_engine::orbits::cascade::Cascade;
+use bouncemap_engine::orbits::certify::Certificate;
+use bouncemap_engine::orbits::certify::CertifiedSpecial;
 use bouncemap_engine::orbits::continuation::{Branch, Special};
 use bouncemap_engine::orbits::periodic::CyclePoint;
 use serde::Serialize;
@@ -42,10 +47,13 @@ pub struct SpecialRecord {
     pub last_step: Option<f64>,
     pub stable: bool,
     pub multipliers: [ComplexRecord; 2],
+    /// With `--certify`: the point proved as an α-interval, or why not (null for kinds
+    /// no proof is made of, and without `--certify`).
+    pub proof: Option<SpecialProofRecord>,
 }
 
-impl From<&Special> for SpecialRecord {
-    fn from(s: &Special) -> Self {
+impl SpecialRecord {
+    fn new(s: &Special, proof: Option<&CertifiedSpecial>) -> Self {
         SpecialRecord {
             kind: s.kind.as_str(),
             label: s.kind.label(),
@@ -60,6 +68,7 @@ impl From<&Special> for SpecialRecord {
             last_step: s.last_step,
             stable: s.point.stable,
             multipliers: s.point.multipliers.map(ComplexRecord::from),
+            proof: proof.map(SpecialProofRecord::of),
         }
     }
 }
@@ -73,10 +82,12 @@ pub struct PointRecord {
     pub phases: Vec<f64>,
     pub velocities: Vec<f64>,
     pub return_error: f64,
+    /// With `--certify`: the point's proof.
+    pub proof: Option<PointProofRecord>,
 }
 
-impl From<&CyclePoint> for PointRecord {
-    fn from(p: &CyclePoint) -> Self {
+impl PointRecord {
+    fn new(p: &CyclePoint, proof: Option<&Certificate>) -> Self {
         PointRecord {
             alpha: p.alpha,
             stable: p.stable,
@@ -84,6 +95,7 @@ impl From<&CyclePoint> for PointRecord {
             phases: p.phases.clone(),
             velocities: p.velocities.clone(),
             return_error: p.return_error,
+            proof: proof.map(PointProofRecord::of),
         }
     }
 }
@@ -102,16 +114,29 @@ pub struct BranchRecord {
 }
 
 impl BranchRecord {
-    pub fn new(index: usize, b: &Branch) -> Self {
+    /// Branch `index`, with its proofs if they were made.
+    pub fn new(index: usize, b: &Branch, proofs: Option<&BranchProofs>) -> Self {
         BranchRecord {
             index,
             n: b.n,
             k: b.k,
             parent: b.parent,
-            begin: SpecialRecord::from(&b.begin),
-            end: SpecialRecord::from(&b.end),
-            specials: b.specials.iter().map(SpecialRecord::from).collect(),
-            points: b.points.iter().map(PointRecord::from).collect(),
+            begin: SpecialRecord::new(&b.begin, proofs.and_then(|p| p.begin.as_ref())),
+            end: SpecialRecord::new(&b.end, proofs.and_then(|p| p.end.as_ref())),
+            specials: b
+                .specials
+                .iter()
+                .enumerate()
+                .map(|(i, s)| {
+                    SpecialRecord::new(s, proofs.and_then(|p| p.specials.get(i)?.as_ref()))
+                })
+                .collect(),
+            points: b
+                .points
+                .iter()
+                .enumerate()
+                .map(|(i, p)| PointRecord::new(p, proofs.and_then(|q| q.points.get(i))))
+                .collect(),
         }
     }
 }
@@ -152,10 +177,17 @@ pub struct ContinueRow {
     pub return_error: f64,
     pub phases: String,
     pub velocities: String,
+    /// With `--certify`: `proved` or `not_proved`, why not, a point's proved stability,
+    /// and a special point's α-interval.
+    pub proof: Option<&'static str>,
+    pub proof_reason: Option<&'static str>,
+    pub proved_stability: Option<&'static str>,
+    pub alpha_lo: Option<f64>,
+    pub alpha_hi: Option<f64>,
 }
 
 impl ContinueRow {
-    pub const HEADER: [&'static str; 19] = [
+    pub const HEADER: [&'static str; 24] = [
         "branch",
         "n",
         "k",
@@ -175,9 +207,14 @@ impl ContinueRow {
         "return_error",
         "phases",
         "velocities",
+        "proof",
+        "proof_reason",
+        "proved_stability",
+        "alpha_lo",
+        "alpha_hi",
     ];
 
-    pub fn point(branch: usize, b: &Branch, p: &CyclePoint) -> Self {
+    pub fn point(branch: usize, b: &Branch, p: &CyclePoint, proof: Option<&Certificate>) -> Self {
         let [l1, l2] = p.multipliers;
         ContinueRow {
             branch,
@@ -199,10 +236,22 @@ impl ContinueRow {
             return_error: p.return_error,
             phases: joined(&p.phases),
             velocities: joined(&p.velocities),
+            proof: proof.map(verdict_name),
+            proof_reason: proof.and_then(|c| c.failure.as_ref()).map(failure_name),
+            proved_stability: proof
+                .and_then(|c| c.stability)
+                .map(|s| stability_name(&s.verdict)),
+            alpha_lo: None,
+            alpha_hi: None,
         }
     }
 
-    pub fn special(branch: usize, b: &Branch, s: &Special) -> Self {
+    pub fn special(
+        branch: usize,
+        b: &Branch,
+        s: &Special,
+        proof: Option<&CertifiedSpecial>,
+    ) -> Self {
         ContinueRow {
             record: s.kind.as_str(),
             alpha: s.alpha,
@@ -211,7 +260,14 @@ impl ContinueRow {
             persists: s.persists(),
             crossing: s.collision.map(|c| c.crossing.as_str()),
             condition_error: s.condition_error(),
-            ..ContinueRow::point(branch, b, &s.point)
+            proof: proof.map(special_verdict_name),
+            proof_reason: proof
+                .and_then(|p| p.failure.as_ref())
+                .map(special_failure_name),
+            proved_stability: None,
+            alpha_lo: proof.and_then(|p| p.alpha).map(|a| a.lo()),
+            alpha_hi: proof.and_then(|p| p.alpha).map(|a| a.hi()),
+            ..ContinueRow::point(branch, b, &s.point, None)
         }
     }
 }
@@ -230,11 +286,17 @@ pub struct LevelRecord {
     /// At a border collision: what happens there (see `SpecialRecord::crossing`).
     pub crossing: Option<&'static str>,
     pub delta: Option<f64>,
+    /// With `--certify`: `proved` or `not_proved` (empty where nothing was proved of
+    /// this kind of end, or without `--certify`), the α-interval, and why not.
+    pub proof: Option<&'static str>,
+    pub alpha_lo: Option<f64>,
+    pub alpha_hi: Option<f64>,
+    pub proof_reason: Option<&'static str>,
 }
 
 impl LevelRecord {
     /// The csv header, in the fields' order.
-    pub const HEADER: [&'static str; 9] = [
+    pub const HEADER: [&'static str; 13] = [
         "period",
         "alpha_start",
         "end",
@@ -244,10 +306,15 @@ impl LevelRecord {
         "persists",
         "crossing",
         "delta",
+        "proof",
+        "alpha_lo",
+        "alpha_hi",
+        "proof_reason",
     ];
 
-    /// Level `i` of the cascade (δ at αᵢ₊₁ is δ index i − 1).
-    pub fn new(c: &Cascade, i: usize) -> Self {
+    /// Level `i` of the cascade (δ at αᵢ₊₁ is δ index i − 1), with the proof of its
+    /// end if one was made.
+    pub fn new(c: &Cascade, i: usize, proof: Option<&CertifiedSpecial>) -> Self {
         let l = &c.levels[i];
         LevelRecord {
             period: l.period,
@@ -259,6 +326,12 @@ impl LevelRecord {
             persists: l.end.persists(),
             crossing: l.end.collision.map(|c| c.crossing.as_str()),
             delta: i.checked_sub(1).and_then(|j| c.deltas.get(j)).copied(),
+            proof: proof.map(special_verdict_name),
+            alpha_lo: proof.and_then(|p| p.alpha).map(|a| a.lo()),
+            alpha_hi: proof.and_then(|p| p.alpha).map(|a| a.hi()),
+            proof_reason: proof
+                .and_then(|p| p.failure.as_ref())
+                .map(special_failure_name),
         }
     }
 }

@@ -4,7 +4,8 @@
 
 use super::*;
 use bouncemap_engine::orbits::certify::{
-    Certificate, Failure, FlightFailure, Multipliers, Near, StabilityVerdict,
+    Certificate, CertifiedSpecial, Failure, FlightFailure, Multipliers, Near, SpecialFailure,
+    SpecialKind, StabilityVerdict,
 };
 use bouncemap_engine::Interval;
 
@@ -52,14 +53,13 @@ pub fn failure_text(c: &Certificate, f: &Failure) -> String {
             bouncemap_engine::orbits::certify::GUESS_DISTANCE
         ),
         Failure::Breakpoint { impact, phase } => format!(
-            "impact {}'s box reaches the table's breakpoint at phase {phase:.12}, where f'' jumps (a border collision is near)",
-            impact + 1
+            "impact {impact}'s box (0 is the launch's) reaches the table's breakpoint at phase {phase:.12}, where f'' jumps (a border collision is near)"
         ),
         Failure::NotContracting { width } => format!(
             "enclosure too wide: the Krawczyk operator maps no box up to a relative half-width of 1e-9 into itself (its image is {width:.2e} wide): a fold (multiplier +1) near, or a cycle too unstable for double precision"
         ),
         Failure::Flight { flight, why } => {
-            let i = flight + 1;
+            let i = *flight;
             match why {
                 FlightFailure::NotLaunched { w } => format!(
                     "the launch after impact {i} is not shown to leave the table (relative velocity up to {w:.3e})"
@@ -228,8 +228,8 @@ impl<'a> CertifyDoc<'a> {
     }
 }
 
-/// One csv row of `certify`: an impact of the box (one row without impact fields when
-/// there is no box).
+/// One csv row of `certify`: an impact of the box, 0 the launch's (one row without
+/// impact fields when there is no box).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct CertifyRow<'a> {
     pub table: &'a str,
@@ -291,7 +291,7 @@ impl<'a> CertifyRow<'a> {
         };
         (0..c.n)
             .map(|i| CertifyRow {
-                impact: Some(i + 1),
+                impact: Some(i),
                 phase_lo: Some(e.phases[i].lo()),
                 phase_hi: Some(e.phases[i].hi()),
                 v_lo: Some(e.velocities[i].lo()),
@@ -301,5 +301,111 @@ impl<'a> CertifyRow<'a> {
                 ..base.clone()
             })
             .collect()
+    }
+}
+
+/// `proved` or `not_proved`, of a special point.
+pub fn special_verdict_name(s: &CertifiedSpecial) -> &'static str {
+    if s.proved() {
+        "proved"
+    } else {
+        "not_proved"
+    }
+}
+
+/// Why a special point is not proved, in every format.
+pub fn special_failure_name(f: &SpecialFailure) -> &'static str {
+    match f {
+        SpecialFailure::NoBracket => "no_bracket",
+        SpecialFailure::Cycle(f) => failure_name(f),
+        SpecialFailure::EndsUndecided => "ends_undecided",
+        SpecialFailure::NoBreakpoint => "no_breakpoint",
+    }
+}
+
+/// A proved special point or why not, for people (one line, without the α name).
+pub fn special_text(s: &CertifiedSpecial) -> String {
+    let (n, k) = (s.n, s.k);
+    let what = match s.kind {
+        SpecialKind::PeriodDoubling => format!(
+            "period doubling of the ({n}, {k}) cycle (1 + tr M + det M of opposite signs at the ends: a multiplier −1 between)"
+        ),
+        SpecialKind::BorderCollision { impact, breakpoint } => format!(
+            "border collision of the ({n}, {k}) cycle's impact {impact} with the breakpoint at phase {} (its phase on opposite sides at the ends)",
+            crate::output::text::shortest(breakpoint)
+        ),
+    };
+    match (&s.failure, s.alpha) {
+        (None, Some(a)) => format!(
+            "in [{}, {}] (width {:.1e}): {what}",
+            crate::output::text::shortest(a.lo()),
+            crate::output::text::shortest(a.hi()),
+            a.width()
+        ),
+        (Some(f), _) => format!(
+            "not proved ({}): {}",
+            special_failure_name(f),
+            match f {
+                SpecialFailure::NoBracket =>
+                    "proofs within 1e-5 of the point do not give the condition opposite signs"
+                        .to_string(),
+                SpecialFailure::Cycle(_) => "the cycle is not proved over the interval".to_string(),
+                SpecialFailure::EndsUndecided =>
+                    "the condition's sign at the interval's ends is not decided".to_string(),
+                SpecialFailure::NoBreakpoint => "no breakpoint of the table there".to_string(),
+            }
+        ),
+        (None, None) => "not proved".to_string(),
+    }
+}
+
+/// `continue --certify`: the proofs of one branch, beside it.
+#[derive(Clone, Debug)]
+pub struct BranchProofs {
+    /// One per point, in the branch's order.
+    pub points: Vec<Certificate>,
+    /// Of its begin, its special points and its end (None: no proof of that kind).
+    pub begin: Option<CertifiedSpecial>,
+    pub specials: Vec<Option<CertifiedSpecial>>,
+    pub end: Option<CertifiedSpecial>,
+}
+
+/// A point's proof in json.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct PointProofRecord {
+    pub verdict: &'static str,
+    pub reason: Option<&'static str>,
+    /// `stable`, `unstable` or `undecided` (null when not proved).
+    pub stability: Option<&'static str>,
+    pub width: Option<f64>,
+}
+
+impl PointProofRecord {
+    pub fn of(c: &Certificate) -> Self {
+        PointProofRecord {
+            verdict: verdict_name(c),
+            reason: c.failure.as_ref().map(failure_name),
+            stability: c.stability.map(|s| stability_name(&s.verdict)),
+            width: c.enclosure.as_ref().map(|e| e.width),
+        }
+    }
+}
+
+/// A special point's proof in json.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SpecialProofRecord {
+    pub verdict: &'static str,
+    pub reason: Option<&'static str>,
+    /// The α-interval [lo, hi] holding the point.
+    pub alpha: Option<[f64; 2]>,
+}
+
+impl SpecialProofRecord {
+    pub fn of(s: &CertifiedSpecial) -> Self {
+        SpecialProofRecord {
+            verdict: special_verdict_name(s),
+            reason: s.failure.as_ref().map(special_failure_name),
+            alpha: s.alpha.map(pair),
+        }
     }
 }

@@ -32,8 +32,8 @@ mod table;
 
 pub use flight::{FlightFailure, FlightProof};
 pub use special::{
-    certify_border_collision, certify_period_doubling, CertifiedSpecial, SpecialFailure,
-    SpecialKind,
+    certify_border_collision, certify_period_doubling, certify_special, CertifiedSpecial,
+    SpecialFailure, SpecialKind,
 };
 
 use crate::linalg::inverse;
@@ -48,6 +48,8 @@ use table::{AtBreakpoint, Enclosed};
 pub const GUESS_DISTANCE: f64 = 0.05;
 /// The box's half-widths tried, relative to max(1, |x̃ᵢ|).
 const INFLATIONS: [f64; 7] = [1e-15, 1e-14, 1e-13, 1e-12, 1e-11, 1e-10, 1e-9];
+/// Multiples of a hint's widths a box around it is widened by.
+const HINT_WIDENINGS: [f64; 4] = [0.5, 2.0, 8.0, 32.0];
 /// Newton steps on the cycle's equations before the proof (the map's solution is
 /// already within 1e-11; these take it to the last bits).
 const REFINE_STEPS: usize = 4;
@@ -234,19 +236,25 @@ pub fn certify(sys: &System, n: usize, k: u32, t0: f64, v0: f64) -> Certificate 
         out.cycle = Some(pt);
         return out;
     }
-    certify_with(&enc, &pt, &[], &mut out);
+    certify_with(&enc, &pt, &[], None, &mut out);
     out.cycle = Some(pt);
     out
 }
 
 /// Prove the cycle `pt` (an accepted point of [`crate::orbits::periodic`]).
 pub fn certify_cycle(sys: &System, pt: &CyclePoint) -> Certificate {
-    prove(&Enclosed::of(sys), pt, &[])
+    prove(&Enclosed::of(sys), pt, &[], None)
 }
 
 /// Prove the cycle near `pt` of the system `enc` (whose α may be an interval), with the
-/// impacts `forced` on a piece's polynomial.
-fn prove(enc: &Enclosed, pt: &CyclePoint, forced: &[Option<(f64, usize)>]) -> Certificate {
+/// impacts `forced` on a piece's polynomial; the boxes tried are around the hint
+/// (phases then velocities) if one is given.
+fn prove(
+    enc: &Enclosed,
+    pt: &CyclePoint,
+    forced: &[Option<(f64, usize)>],
+    hint: Option<&[Interval]>,
+) -> Certificate {
     let mut out = Certificate {
         n: pt.n,
         k: pt.k,
@@ -258,7 +266,7 @@ fn prove(enc: &Enclosed, pt: &CyclePoint, forced: &[Option<(f64, usize)>]) -> Ce
         stability: None,
         failure: None,
     };
-    certify_with(enc, pt, forced, &mut out);
+    certify_with(enc, pt, forced, hint, &mut out);
     out
 }
 
@@ -336,6 +344,23 @@ impl Equations<'_> {
     }
 }
 
+impl Equations<'_> {
+    /// ∂(G, H)/∂α over the boxes: F(φᵢ) − F(φᵢ₊₁) and −(1 + r) F'(φᵢ₊₁) (f = αF).
+    fn alpha_column(&self, x: &[Interval]) -> Result<Vec<Interval>, Failure> {
+        let n = self.n;
+        let jets = self.jets(x)?;
+        let a = self.enc.alpha;
+        let one = Interval::point(1.0);
+        let mut out = vec![Interval::point(0.0); 2 * n];
+        for i in 0..n {
+            let j = (i + 1) % n;
+            out[i] = (jets[i][0] - jets[j][0]) / a;
+            out[n + i] = -((one + self.enc.r) * jets[j][1] / a);
+        }
+        Ok(out)
+    }
+}
+
 fn mids(m: &[Vec<Interval>]) -> Vec<Vec<f64>> {
     m.iter()
         .map(|row| row.iter().map(Interval::mid).collect())
@@ -350,6 +375,7 @@ fn certify_with(
     enc: &Enclosed,
     pt: &CyclePoint,
     forced: &[Option<(f64, usize)>],
+    hint: Option<&[Interval]>,
     out: &mut Certificate,
 ) {
     let n = pt.n;
@@ -391,7 +417,16 @@ fn certify_with(
         }
     }
     let xt = thin(&x);
-    let res = match eq.residual(&xt) {
+    // F at x̃ and at the middle α̃ of α's enclosure; the rest of α's enclosure enters
+    // through F's α-column (the centred form in α keeps C F's correlations).
+    let enc_mid = enc.clone().with_alpha(Interval::point(enc.alpha.mid()));
+    let eq_mid = Equations {
+        enc: &enc_mid,
+        n,
+        periods: eq.periods.clone(),
+        forced,
+    };
+    let res = match eq_mid.residual(&xt) {
         Ok(r) => r,
         Err(f) => {
             out.failure = Some(f);
@@ -411,15 +446,41 @@ fn certify_with(
             return;
         }
     };
-    let mut widest = f64::INFINITY;
-    for rho in INFLATIONS {
-        let b: Vec<Interval> = x
+    // The boxes tried: x̃ ± ρ max(1, |x̃ᵢ|), or the hint (with x̃) widened by a multiple
+    // of its widths.
+    let boxes: Vec<Vec<Interval>> = match hint {
+        None => INFLATIONS
             .iter()
-            .map(|&v| {
-                let rad = rho * v.abs().max(1.0);
-                Interval::new(v - rad, v + rad).expect("finite")
+            .map(|rho| {
+                x.iter()
+                    .map(|&v| {
+                        let rad = rho * v.abs().max(1.0);
+                        Interval::new(v - rad, v + rad).expect("finite")
+                    })
+                    .collect()
             })
-            .collect();
+            .collect(),
+        Some(h) => HINT_WIDENINGS
+            .iter()
+            .map(|f| {
+                h.iter()
+                    .zip(&x)
+                    .map(|(hi, &v)| {
+                        let span = hi.hull(&Interval::point(v));
+                        let rad = f * span.width().max(INFLATIONS[0] * v.abs().max(1.0));
+                        Interval::new(span.lo() - rad, span.hi() + rad).expect("finite")
+                    })
+                    .collect()
+            })
+            .collect(),
+    };
+    let mut widest = f64::INFINITY;
+    for b in boxes {
+        let rho = b
+            .iter()
+            .zip(&x)
+            .map(|(bi, &v)| 0.5 * bi.width() / v.abs().max(1.0))
+            .fold(0.0, f64::max);
         let k = match krawczyk(&eq, &x, &res, &c, &b) {
             Ok(k) => k,
             Err(f) => {
@@ -475,11 +536,22 @@ fn krawczyk(
         .zip(x)
         .map(|(bi, &xi)| *bi - Interval::point(xi))
         .collect();
+    let alpha = eq.enc.alpha;
+    let d_alpha = alpha - Interval::point(alpha.mid());
+    let col = if alpha.width() > 0.0 {
+        Some(eq.alpha_column(b)?)
+    } else {
+        None
+    };
     let zero = Interval::point(0.0);
     Ok((0..m)
         .map(|i| {
             let cf = (0..m).fold(zero, |s, l| s + Interval::point(c[i][l]) * res[l]);
             let mut acc = Interval::point(x[i]) - cf;
+            if let Some(col) = &col {
+                let ca = (0..m).fold(zero, |s, l| s + Interval::point(c[i][l]) * col[l]);
+                acc = acc - ca * d_alpha;
+            }
             for j in 0..m {
                 let cj = (0..m).fold(zero, |s, l| s + Interval::point(c[i][l]) * jac[l][j]);
                 let e = if i == j {
@@ -558,39 +630,6 @@ fn stability(eq: &Equations, bx: &[Interval]) -> Option<Stability> {
         StabilityVerdict::Undecided { near: Near::Fold }
     };
     Some(st)
-}
-
-/// The one zero of the cycle's equations in the box `bx` (proved for parameters
-/// holding those of `enc`) enclosed again at the parameters of `enc`: K(bx) ∩ bx, which
-/// holds every zero in bx, with the stability over it (the landings are not shown
-/// again). None where the equations cannot be evaluated on the box.
-fn reenclose(
-    enc: &Enclosed,
-    forced: &[Option<(f64, usize)>],
-    k: u32,
-    bx: &Enclosure,
-) -> Option<(Vec<Interval>, Option<Stability>)> {
-    let n = bx.phases.len();
-    let mut periods = bx.periods.clone();
-    periods.push(k as i64);
-    let eq = Equations {
-        enc,
-        n,
-        periods,
-        forced,
-    };
-    let b: Vec<Interval> = bx.phases.iter().chain(&bx.velocities).copied().collect();
-    let x: Vec<f64> = b.iter().map(Interval::mid).collect();
-    let res = eq.residual(&thin(&x)).ok()?;
-    let c = inverse(&mids(&eq.jacobian(&thin(&x)).ok()?))?;
-    let kx = krawczyk(&eq, &x, &res, &c, &b).ok()?;
-    let tight: Vec<Interval> = kx
-        .iter()
-        .zip(&b)
-        .map(|(ki, bi)| ki.intersect(bi))
-        .collect::<Option<Vec<Interval>>>()?;
-    let st = stability(&eq, &tight);
-    Some((tight, st))
 }
 
 /// The roots of λ² − tr λ + det over the enclosures.

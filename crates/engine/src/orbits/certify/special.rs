@@ -21,7 +21,7 @@
 //! condition moves by O(1) per unit of α.
 
 use super::table::Enclosed;
-use super::{prove, reenclose, Enclosure, Failure, Stability};
+use super::{prove, Certificate, Enclosure, Failure, Stability};
 use crate::orbits::periodic::CyclePoint;
 use crate::real::Interval;
 use crate::system::System;
@@ -88,8 +88,6 @@ const BISECTIONS: usize = 80;
 const FIRST_STEP: f64 = 1e-11;
 /// The last.
 const LAST_STEP: f64 = 1e-5;
-/// Times the shrunk interval is tripled before giving up.
-const WIDENINGS: usize = 12;
 
 /// A special point's condition on a box of the cycle (phases then velocities) with its
 /// stability: an enclosure of the condition's value.
@@ -120,17 +118,16 @@ impl Search<'_> {
         Some(Enclosed::of(&sys).with_alpha(alpha))
     }
 
-    /// The condition at α, from a proof there (for finding the bracket).
-    fn probe(&self, alpha: f64) -> Option<Interval> {
+    /// The condition at α, from a proof there, and the proof.
+    fn probe(&self, alpha: f64) -> Option<(Interval, Certificate)> {
         let enc = self.enclosed(Interval::point(alpha))?;
-        let cert = prove(&enc, self.pt, &self.forced);
-        let e = cert.enclosure.as_ref()?;
-        let bx: Vec<Interval> = e.phases.iter().chain(&e.velocities).copied().collect();
-        (self.condition)(&bx, cert.stability.as_ref())
+        let cert = prove(&enc, self.pt, &self.forced, None);
+        let c = (self.condition)(&boxed(&cert)?, cert.stability.as_ref())?;
+        Some((c, cert))
     }
 
     fn sign_at(&self, alpha: f64) -> i8 {
-        self.probe(alpha).map_or(0, |c| sign(&c))
+        self.probe(alpha).map_or(0, |(c, _)| sign(&c))
     }
 
     /// Ends a and b (a < b) with opposite signs, nearest the point.
@@ -198,53 +195,48 @@ impl Search<'_> {
             out.failure = Some(SpecialFailure::NoBracket);
             return out;
         };
-        let (mut a, mut b) = self.shrink(bracket);
-        // The shrunk ends are where single proofs just decide the sign; on the
-        // interval's box the ends' enclosures are wider, so the interval is widened
-        // (threefold each time) until they decide it there too.
-        let mut last = SpecialFailure::EndsUndecided;
-        for _ in 0..WIDENINGS {
-            match self.over(a, b) {
-                Ok((bx, ca, cb)) => {
-                    out.alpha = Some(Interval::new(a, b).expect("a < b"));
-                    out.ends = Some([ca, cb]);
-                    out.enclosure = Some(bx);
-                    return out;
-                }
-                Err(f) => last = f,
+        let (a, b) = self.shrink(bracket);
+        match self.over(a, b) {
+            Ok((bx, ca, cb)) => {
+                out.alpha = Some(Interval::new(a, b).expect("a < b"));
+                out.ends = Some([ca, cb]);
+                out.enclosure = Some(bx);
             }
-            let w = b - a;
-            a -= w;
-            b += w;
+            Err(f) => out.failure = Some(f),
         }
-        out.failure = Some(last);
         out
     }
 
-    /// The cycle proved over [a, b], and the condition at a and b on it.
+    /// The cycle proved over [a, b] in a box holding the ends' proved boxes (so their
+    /// cycles are its), and the condition at a and b.
     fn over(&self, a: f64, b: f64) -> Result<(Enclosure, Interval, Interval), SpecialFailure> {
-        let alpha = Interval::new(a, b).expect("a < b");
-        let enc = self.enclosed(alpha).ok_or(SpecialFailure::NoBracket)?;
-        let whole = prove(&enc, self.pt, &self.forced);
-        if let Some(f) = whole.failure {
-            return Err(SpecialFailure::Cycle(f));
-        }
-        let bx = whole.enclosure.ok_or(SpecialFailure::EndsUndecided)?;
-        // The interval's one cycle at each end, and the condition's sign there.
-        let at = |x: f64| {
-            let enc = self.enclosed(Interval::point(x))?;
-            let (tight, st) = reenclose(&enc, &self.forced, self.pt.k, &bx)?;
-            (self.condition)(&tight, st.as_ref())
-        };
-        let (Some(ca), Some(cb)) = (at(a), at(b)) else {
+        let (Some((ca, pa)), Some((cb, pb))) = (self.probe(a), self.probe(b)) else {
             return Err(SpecialFailure::EndsUndecided);
         };
         if sign(&ca) == 0 || sign(&ca) != -sign(&cb) {
             return Err(SpecialFailure::EndsUndecided);
         }
+        let (Some(ba), Some(bb)) = (boxed(&pa), boxed(&pb)) else {
+            return Err(SpecialFailure::EndsUndecided);
+        };
+        let hint: Vec<Interval> = ba.iter().zip(&bb).map(|(x, y)| x.hull(y)).collect();
+        let alpha = Interval::new(a, b).expect("a < b");
+        let enc = self.enclosed(alpha).ok_or(SpecialFailure::NoBracket)?;
+        let whole = prove(&enc, self.pt, &self.forced, Some(&hint));
+        if let Some(f) = whole.failure {
+            return Err(SpecialFailure::Cycle(f));
+        }
+        let bx = whole.enclosure.ok_or(SpecialFailure::EndsUndecided)?;
         Ok((bx, ca, cb))
     }
 }
+
+/// A proof's box as one list, phases then velocities.
+fn boxed(c: &Certificate) -> Option<Vec<Interval>> {
+    let e = c.enclosure.as_ref()?;
+    Some(e.phases.iter().chain(&e.velocities).copied().collect())
+}
+
 /// Prove the period doubling near the cycle `pt` (at `pt.alpha`, a multiplier near −1)
 /// of `table` at restitution `r` as an α-interval.
 pub fn certify_period_doubling(table: &Table, r: f64, pt: &CyclePoint) -> CertifiedSpecial {
@@ -314,4 +306,22 @@ pub fn certify_border_collision(
         condition: &condition,
     }
     .run(kind)
+}
+
+/// The special point `s` of a branch of `table` at restitution `r` proved as an
+/// α-interval: a period doubling of the branch's own cycle, or a border collision; None
+/// for the kinds no proof is made of (folds, grazings, window exits, ...).
+pub fn certify_special(
+    table: &Table,
+    r: f64,
+    s: &crate::orbits::events::Special,
+) -> Option<CertifiedSpecial> {
+    use crate::orbits::events::Kind;
+    match s.kind {
+        Kind::PeriodDoubling => Some(certify_period_doubling(table, r, &s.point)),
+        Kind::BorderCollision => Some(certify_border_collision(
+            table, r, &s.point, s.impact, s.phase,
+        )),
+        _ => None,
+    }
 }
