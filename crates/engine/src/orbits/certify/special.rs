@@ -7,9 +7,9 @@
 //!    exactly when a multiplier is −1, since det M = r²ⁿ > 0), or the impact phase
 //!    minus the breakpoint.
 //! 2. Over the whole interval [α̲, ᾱ] (α an interval in the Krawczyk test) the cycle's
-//!    equations have exactly one solution in one box, for every α: it depends
-//!    continuously on α (its Jacobian is regular on the box), and the ends' cycles are
-//!    that solution (their boxes lie inside the interval's).
+//!    equations have exactly one solution in a box holding both ends' boxes, for every
+//!    α: it depends continuously on α (its Jacobian is regular on the box), and the
+//!    ends' cycles are that solution.
 //! 3. So the condition, continuous in α, vanishes at some α* in (α̲, ᾱ). For the border
 //!    collision the impact's equations are those of the piece on one side, continued as
 //!    its polynomial past the breakpoint; at α* they are the table's (F and F' are
