@@ -22,7 +22,7 @@
 //! X's interior proves that F has exactly one zero in X, for every parameter value in
 //! the enclosures; ρ grows from 1e-15 until that holds or 1e-9 fails. Each impact's box
 //! must lie inside one piece of the table (f'' jumps at a breakpoint), and each flight
-//! is shown to meet the table first at its landing ([`flight::first_landing`]).
+//! is shown to meet the table first at its landing (`flight::first_landing`).
 //!
 //! The multipliers: M = ∏ Jᵢ over the box (the tangent map of each impact, as
 //! [`crate::tangent`] writes it), det M = r²ⁿ exactly on a cycle. Both multipliers are
