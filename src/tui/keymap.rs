@@ -38,6 +38,7 @@ pub enum Action {
     TogglePlane,
     PlaneCurves,
     Manifolds,
+    Certify,
     ToggleGlobal,
     CyclePanels,
     Messages,
@@ -50,7 +51,7 @@ pub enum Action {
 
 impl Action {
     /// Every action, in help order.
-    pub const ALL: [Action; 37] = [
+    pub const ALL: [Action; 38] = [
         Action::Up,
         Action::Down,
         Action::Left,
@@ -77,6 +78,7 @@ impl Action {
         Action::TogglePlane,
         Action::PlaneCurves,
         Action::Manifolds,
+        Action::Certify,
         Action::ToggleGlobal,
         Action::CyclePanels,
         Action::Presets,
@@ -122,6 +124,7 @@ impl Action {
             Action::TogglePlane => "plane",
             Action::PlaneCurves => "plane_curves",
             Action::Manifolds => "manifolds",
+            Action::Certify => "certify",
             Action::ToggleGlobal => "attractors_along",
             Action::CyclePanels => "cycle_panels",
             Action::Messages => "messages",
@@ -169,6 +172,7 @@ impl Action {
             Action::TogglePlane => "the α × D plane (t: another axis) in place of the diagram",
             Action::PlaneCurves => "plane: two-parameter curves (PD, fold, BC, G) on/off",
             Action::Manifolds => "phase and basins: the (1, k) saddle's manifolds on/off",
+            Action::Certify => "proofs on/off: the cycle under the cursor (else the (1, k) solutions) and the branches, by interval arithmetic",
             Action::ToggleGlobal => "attractors along α and their basins, in place of the diagram",
             Action::CyclePanels => "narrow screen: show the bottom panel left out",
             Action::Messages => "the messages so far, each in full (the status line cuts them)",
@@ -423,6 +427,7 @@ impl Default for Keymap {
             (Key::ch('M'), Action::TogglePlane),
             (Key::ch('C'), Action::PlaneCurves),
             (Key::ch('W'), Action::Manifolds),
+            (Key::ch('V'), Action::Certify),
             (Key::ch('A'), Action::ToggleGlobal),
             (Key::ch('p'), Action::Presets),
             (Key::ch('e'), Action::Export),

@@ -315,3 +315,67 @@ fn w_draws_the_saddles_manifolds_over_the_phase_plot() {
     let off = screen(&mut a, 120, 40);
     assert!(!off.contains('▪') && !off.contains("▪·"), "{off}");
 }
+
+/// `V` switches proofs on: the work starts in the background; what it proves of the
+/// (1, 1) solutions (no cursor on a branch) is shown in the stability panel, the
+/// stable one (|λ| < 1 in closed form) proved stable and the saddle proved unstable;
+/// the continued branches' points are proved too and counted on the status line, and
+/// the marks belong to the skeleton they were made for; a change of α starts the work
+/// again; `V` again takes everything off.
+#[test]
+fn v_proves_the_solutions_and_the_branches() {
+    use bouncemap::tui::components::proofs::{prove_asked, prove_branches, ProofMsg};
+    use bouncemap::tui::components::{Effect, Msg, Target};
+    use bouncemap::tui::skeleton::compute;
+    let mut a = app(Marker::Braille);
+    fill(&mut a);
+    a.handle(Action::Certify);
+    assert!(a.shared.show_proofs);
+    let fx = a.take_effects();
+    assert!(fx.contains(&Effect::Start(Target::Proofs)), "{fx:?}");
+    let sys = a.shared.system();
+    let k = a.shared.params.k;
+    let view = prove_asked(&sys, k, None).unwrap();
+    let fps = bouncemap_engine::orbits::fixed_points(&sys, k).unwrap();
+    assert_eq!(view.lines.len(), fps.len());
+    for (l, p) in view.lines.iter().zip(&fps) {
+        let closed_form_stable = p.eigenvalues.iter().all(|e| e.abs() < 1.0);
+        let want = if closed_form_stable {
+            "proved, stable"
+        } else {
+            "proved, unstable"
+        };
+        assert!(l.contains(want), "{l} against {:?}", p.eigenvalues);
+    }
+    a.panels.proofs.gen = 7;
+    a.receive(Msg::Proofs(7, ProofMsg::Cycle(Ok(view))));
+    let s = screen(&mut a, 120, 40);
+    assert!(s.contains("✓ t̂*") && s.contains("proved, stable"), "{s}");
+    // The branches of the window, proved point by point.
+    let p = &a.shared.params;
+    let sk = compute(p.table(), p.r, p.k, (p.lo, p.hi)).unwrap();
+    let marks = prove_branches(&sk);
+    assert!(marks.of(&sk).is_some());
+    let (all, proved) = marks
+        .proved
+        .iter()
+        .flatten()
+        .fold((0, 0), |(a, p), &x| (a + 1, p + usize::from(x)));
+    assert!(proved > all / 2 && all > 20, "{proved} of {all}");
+    a.shared.branches = Some(Ok(sk));
+    a.receive(Msg::Proofs(7, ProofMsg::Branches(marks)));
+    let s = screen(&mut a, 120, 40);
+    assert!(
+        s.contains(&format!("proofs: {proved} of {all} branch points proved")),
+        "{s}"
+    );
+    let before = a.shared.params.clone();
+    let r = a.shared.params.set_text(ParamId::Alpha, "0.46");
+    a.shared.after_change(ParamId::Alpha, r, &before);
+    a.handle(Action::Cancel);
+    assert!(a.take_effects().contains(&Effect::Start(Target::Proofs)));
+    a.handle(Action::Certify);
+    assert!(!a.shared.show_proofs && a.shared.proof.is_none() && a.shared.branch_proofs.is_none());
+    let off = screen(&mut a, 120, 40);
+    assert!(!off.contains("✓ t̂*"), "{off}");
+}

@@ -35,6 +35,7 @@ pub const SECTIONS: &[(&str, &[(&str, &str)])] = &[
                 "⠉ lines",
                 "periodic branches (α sweeps): stable solid, unstable dotted",
             ),
+            ("red ⠉", "with proofs on (V): stretches not proved"),
             (
                 "PD F BC",
                 "on the axis: period doubling, fold, border collision",
@@ -76,6 +77,10 @@ pub const SECTIONS: &[(&str, &[(&str, &str)])] = &[
                 "(α, r) plane: birth and α_PD curves of (1,k) (E: other end)",
             ),
             ("◎", "the current (α, r)"),
+            (
+                "✓ ✗",
+                "proofs (V): proved (with the stability) or not, and why",
+            ),
         ],
     ),
     (

@@ -42,6 +42,7 @@ pub mod phase_plot;
 pub mod plane;
 pub mod plane_curves;
 pub mod presets;
+pub mod proofs;
 pub mod shared;
 pub mod stability;
 pub mod status;
@@ -65,6 +66,7 @@ use parameters::Parameters;
 use phase_plot::PhasePlot;
 use plane::PlanePanel;
 use plane_curves::PlaneCurves;
+use proofs::Proofs;
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::text::Line;
@@ -96,6 +98,9 @@ registry! {
     /// The (1, k) saddle's manifolds ([`Shared::manifolds`]), drawn by the phase plot and
     /// the basins.
     Manifolds   => manifolds:  ManifoldOverlay, slot None,               new |_| ManifoldOverlay::default();
+    /// Proofs of the cycle under the cursor and of the branches ([`Shared::proof`],
+    /// [`Shared::branch_proofs`]), shown by the stability panel and the diagram.
+    Proofs      => proofs:     Proofs,       slot None,                  new |_| Proofs::default();
     /// The two-parameter curves ([`Shared::plane_curves`]), drawn by the plane view.
     PlaneCurves => plane_curves: PlaneCurves, slot None,               new |_| PlaneCurves::default();
     /// `E`'s plane figure at the export's resolution ([`view_export`]).

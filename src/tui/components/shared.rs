@@ -86,6 +86,11 @@ pub struct Shared {
     /// the manifolds (None while they compute or when off; `Ok(None)`: no saddle).
     pub show_manifolds: bool,
     pub manifolds: Option<Result<Option<super::manifold_overlay::ManifoldLines>, String>>,
+    /// Whether proofs are on (`V`), the proof of the cycle asked about (None while it
+    /// computes or when off), and which points of the branches are proved.
+    pub show_proofs: bool,
+    pub proof: Option<Result<super::proofs::ProofView, String>>,
+    pub branch_proofs: Option<super::proofs::BranchMarks>,
     /// The continued branch nearest the diagram's cursor (its index) and its cycle at
     /// the cursor's α, while the diagram has the focus.
     pub under_cursor: Option<(usize, CyclePoint)>,
@@ -127,6 +132,9 @@ impl Shared {
             plane_curves: None,
             show_plane_curves: false,
             plane_y: None,
+            show_proofs: false,
+            proof: None,
+            branch_proofs: None,
             under_cursor: None,
             at_cursor: None,
             along_alpha: None,

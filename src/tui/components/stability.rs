@@ -165,6 +165,33 @@ fn render(app: &Shared, area: Rect, buf: &mut Buffer) {
             multipliers(&p.multipliers.map(|c| (c.re, c.im)))
         )));
     }
+    // Proofs (`V`): the verdicts of the cycle asked about, even on a short panel.
+    if app.show_proofs {
+        match &app.proof {
+            None => lines.push(Line::styled(
+                "proving (interval arithmetic)…",
+                app.theme.dim(),
+            )),
+            Some(Err(e)) => lines.push(Line::styled(format!("proof: {e}"), app.theme.error())),
+            Some(Ok(v)) => {
+                if !short {
+                    for l in wrap_words(&format!("proofs of {}:", v.what), inner.width as usize) {
+                        lines.push(Line::styled(l, app.theme.focus()));
+                    }
+                }
+                for l in &v.lines {
+                    let (mark, style) = if l.contains("not proved") {
+                        ("✗", app.theme.error())
+                    } else {
+                        ("✓", app.theme.stable())
+                    };
+                    for w in wrap_words(&format!("{mark} {l}"), inner.width as usize) {
+                        lines.push(Line::styled(w, style));
+                    }
+                }
+            }
+        }
+    }
     let text_h = (lines.len() as u16).min(inner.height);
     let [text, plots] =
         Layout::vertical([Constraint::Length(text_h), Constraint::Min(0)]).areas(inner);

@@ -1,6 +1,7 @@
 //! The continued branches over the diagram (α sweeps): each impact of each cycle as a
 //! curve in the plot's marker (braille dots, half blocks or dots), stable stretches
-//! solid, unstable ones dotted and dim; where a braille curve crosses a cell with data
+//! solid, unstable ones dotted and dim, and with proofs on (`V`) the stretches not
+//! proved by interval arithmetic in the error colour; where a braille curve crosses a cell with data
 //! its dots are added to the data's. Their special
 //! points (PD period doubling, F fold, BC border collision) are labelled on the x
 //! axis's row, beside the B and P of the (1, k) solution.
@@ -44,6 +45,7 @@ impl Dots {
 /// `velocity`). Returns nothing; the axis row below `plot` gets the labels.
 pub fn draw(
     sk: &Skeleton,
+    proved: Option<&[Vec<bool>]>,
     (x, y, velocity): (Range, Range, bool),
     plot: Rect,
     marker: Marker,
@@ -56,6 +58,7 @@ pub fn draw(
     }
     let mut stable = Dots::new(w, h);
     let mut unstable = Dots::new(w, h);
+    let mut unproved = Dots::new(w, h);
     let (sx, sy) = (2.0 * w as f64, 4.0 * h as f64);
     let sub = |a: f64, v: f64| -> Option<(usize, usize)> {
         if !x.contains(a) || !y.contains(v) {
@@ -65,15 +68,19 @@ pub fn draw(
         let j = ((1.0 - y.frac(v)) * sy).min(sy - 1.0) as usize;
         Some((i, j))
     };
-    for b in &sk.branches {
-        for pair in b.points.windows(2) {
+    for (bi, b) in sk.branches.iter().enumerate() {
+        for (pi, pair) in b.points.windows(2).enumerate() {
             let (p, q) = (&pair[0], &pair[1]);
+            // A stretch is proved when both its ends are.
+            let not_proved = proved.is_some_and(|m| !(m[bi][pi] && m[bi][pi + 1]));
             let (ys, yq) = if velocity {
                 (&p.velocities, &q.velocities)
             } else {
                 (&p.phases, &q.phases)
             };
-            let layer = if p.stable && q.stable {
+            let layer = if not_proved {
+                &mut unproved
+            } else if p.stable && q.stable {
                 &mut stable
             } else {
                 &mut unstable
@@ -102,6 +109,7 @@ pub fn draw(
     }
     paint(&unstable, plot, marker, buf, theme.dim());
     paint(&stable, plot, marker, buf, theme.mark2());
+    paint(&unproved, plot, marker, buf, theme.error());
     labels(sk, x, plot, buf, theme);
 }
 

@@ -550,7 +550,12 @@ impl Component for Diagram {
         // The continued branches of this window (α sweeps), under the marks below.
         if let (Some(Ok(sk)), SweepParam::Alpha) = (&app.branches, app.params.param) {
             let axes = (x, y, self.axis == Axis::Velocity);
-            branch_layer::draw(sk, axes, plot, app.marker, buf, &app.theme);
+            let proved = app
+                .branch_proofs
+                .as_ref()
+                .filter(|_| app.show_proofs)
+                .and_then(|m| m.of(sk));
+            branch_layer::draw(sk, proved, axes, plot, app.marker, buf, &app.theme);
         }
         if let Some(a) = strip_area {
             strip::draw(&self.slots, x, a, LABEL_W, app.marker, buf, &app.theme);
