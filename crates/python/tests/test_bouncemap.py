@@ -200,6 +200,10 @@ def test_the_readme_example_runs(tmp_path, monkeypatch, capsys):
         (lambda: bouncemap.manifolds(table="cubic", alpha=0.47, length=0.3, which="stable"),
          ["manifolds", "--table", "cubic", "--alpha", "0.47", "--length", "0.3",
           "--which", "stable"]),
+        (lambda: bouncemap.certify(table="fd:1", alpha=0.52, n=2, k=2),
+         ["certify", "--table", "fd:1", "--alpha", "0.52", "--n", "2", "--k", "2"]),
+        (lambda: bouncemap.cascade(table="sine", depth=2, certify=True),
+         ["cascade", "--table", "sine", "--depth", "2", "--certify"]),
     ],
 )
 def test_the_json_commands_give_the_commands_json(call, args):

@@ -28,6 +28,7 @@ __all__ = [
     "continue_branches",
     "cascade",
     "manifolds",
+    "certify",
     "sweep",
     "plane",
     "basins",
@@ -204,6 +205,21 @@ def manifolds(**flags):
     ``"unstable"``, ``"stable"`` or ``"both"``).
     """
     return _json("manifolds", flags)
+
+
+def certify(**flags):
+    """A proof of an (n, k) cycle by interval arithmetic, as ``bouncemap certify
+    --format json``: ``verdict`` (``"proved"`` or ``"not_proved"``), ``reason`` and
+    ``message`` when not proved, the parameters' enclosures ``alpha_enclosure`` and
+    ``r_enclosure``, Newton's ``cycle``, the ``box`` ([lo, hi] of every phase and
+    velocity, the landings' ``impact_speeds``, its ``width``) and ``stability``
+    (``verdict`` ``"stable"``, ``"unstable"`` or ``"undecided"``, the enclosures of
+    ``trace``, ``det``, ``pd_test``, ``fold_test`` and the ``multipliers``).
+
+    Flags as ``bouncemap certify`` (``table``, ``alpha``, ``r``, ``n``, ``k``, and
+    optionally ``t0`` with ``v0``).
+    """
+    return _json("certify", flags)
 
 
 def curves(**flags):

@@ -95,6 +95,17 @@ def manifolds(
     which: str = ...,
     **flags: Value,
 ) -> Dict[str, Any]: ...
+def certify(
+    *,
+    table: str = ...,
+    alpha: float = ...,
+    r: float = ...,
+    n: int = ...,
+    k: int = ...,
+    t0: float = ...,
+    v0: float = ...,
+    **flags: Value,
+) -> Dict[str, Any]: ...
 def cascade(*, table: str = ..., r: float = ..., **flags: Value) -> Dict[str, Any]: ...
 def curves(
     *, table: str = ..., x: str = ..., y: str = ..., max_period: int = ..., **flags: Value
