@@ -330,6 +330,9 @@ pub fn special_text(s: &CertifiedSpecial) -> String {
         SpecialKind::PeriodDoubling => format!(
             "period doubling of the ({n}, {k}) cycle (1 + tr M + det M of opposite signs at the ends: a multiplier −1 between)"
         ),
+        SpecialKind::Fold => format!(
+            "fold of the ({n}, {k}) cycle (1 − tr M + det M of opposite signs along the branch: a multiplier +1 between; α over that stretch)"
+        ),
         SpecialKind::BorderCollision { impact, breakpoint } => format!(
             "border collision of the ({n}, {k}) cycle's impact {impact} with the breakpoint at phase {} (its phase on opposite sides at the ends)",
             crate::output::text::shortest(breakpoint)

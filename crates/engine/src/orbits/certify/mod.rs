@@ -30,10 +30,12 @@
 //! conditions with 0 < det M < 1); either below zero proves a multiplier outside it.
 
 mod flight;
+mod fold;
 mod special;
 mod table;
 
 pub use flight::{FlightFailure, FlightProof};
+pub use fold::certify_fold;
 pub use special::{
     certify_border_collision, certify_period_doubling, certify_special, CertifiedSpecial,
     SpecialFailure, SpecialKind,
@@ -364,6 +366,22 @@ impl Equations<'_> {
     }
 }
 
+/// Whole periods before each impact of `pt` from its first (0), and k after its last.
+fn periods_of(pt: &CyclePoint) -> Vec<i64> {
+    let n = pt.n;
+    let mut periods = vec![0i64];
+    let mut t = pt.phases[0];
+    for i in 0..n {
+        t += pt.flights[i];
+        periods.push(if i + 1 == n {
+            pt.k as i64
+        } else {
+            (t - pt.phases[i + 1]).round() as i64
+        });
+    }
+    periods
+}
+
 fn mids(m: &[Vec<Interval>]) -> Vec<Vec<f64>> {
     m.iter()
         .map(|row| row.iter().map(Interval::mid).collect())
@@ -382,17 +400,7 @@ fn certify_with(
     out: &mut Certificate,
 ) {
     let n = pt.n;
-    // Whole periods before each impact, from the flight times.
-    let mut periods = vec![0i64];
-    let mut t = pt.phases[0];
-    for i in 0..n {
-        t += pt.flights[i];
-        periods.push(if i + 1 == n {
-            pt.k as i64
-        } else {
-            (t - pt.phases[i + 1]).round() as i64
-        });
-    }
+    let periods = periods_of(pt);
     let eq = Equations {
         enc,
         n,
@@ -533,27 +541,40 @@ fn krawczyk(
     b: &[Interval],
 ) -> Result<Vec<Interval>, Failure> {
     let jac = eq.jacobian(b)?;
+    let alpha = eq.enc.alpha;
+    let col = if alpha.width() > 0.0 {
+        Some((eq.alpha_column(b)?, alpha - Interval::point(alpha.mid())))
+    } else {
+        None
+    };
+    Ok(krawczyk_step(x, res, c, &jac, col.as_ref(), b))
+}
+
+/// K(X) = x̃ − C F(x̃, p̃) − (C ∂F/∂p)(p − p̃) + (I − C J(X))(X − x̃), from F at x̃ and
+/// the parameter's middle p̃ (`res`), J over the box X (`b`) and the parameter's column
+/// over it with p − p̃ (`param`, if the parameter is an interval).
+fn krawczyk_step(
+    x: &[f64],
+    res: &[Interval],
+    c: &[Vec<f64>],
+    jac: &[Vec<Interval>],
+    param: Option<&(Vec<Interval>, Interval)>,
+    b: &[Interval],
+) -> Vec<Interval> {
     let m = x.len();
     let dx: Vec<Interval> = b
         .iter()
         .zip(x)
         .map(|(bi, &xi)| *bi - Interval::point(xi))
         .collect();
-    let alpha = eq.enc.alpha;
-    let d_alpha = alpha - Interval::point(alpha.mid());
-    let col = if alpha.width() > 0.0 {
-        Some(eq.alpha_column(b)?)
-    } else {
-        None
-    };
     let zero = Interval::point(0.0);
-    Ok((0..m)
+    (0..m)
         .map(|i| {
             let cf = (0..m).fold(zero, |s, l| s + Interval::point(c[i][l]) * res[l]);
             let mut acc = Interval::point(x[i]) - cf;
-            if let Some(col) = &col {
+            if let Some((col, d)) = param {
                 let ca = (0..m).fold(zero, |s, l| s + Interval::point(c[i][l]) * col[l]);
-                acc = acc - ca * d_alpha;
+                acc = acc - ca * *d;
             }
             for j in 0..m {
                 let cj = (0..m).fold(zero, |s, l| s + Interval::point(c[i][l]) * jac[l][j]);
@@ -566,7 +587,7 @@ fn krawczyk(
             }
             acc
         })
-        .collect())
+        .collect()
 }
 
 fn prove_flights_and_stability(eq: &Equations, bx: &[Interval], out: &mut Certificate) {

@@ -32,6 +32,9 @@ use crate::table::Table;
 pub enum SpecialKind {
     /// A multiplier −1.
     PeriodDoubling,
+    /// A multiplier +1 (the interval is of α over the stretch of the branch, in its
+    /// first launch phase, where the fold lies).
+    Fold,
     /// Impact `impact` (0 is the launch's) on the breakpoint at `breakpoint`.
     BorderCollision {
         /// Which impact.
@@ -94,7 +97,7 @@ const LAST_STEP: f64 = 1e-5;
 type Condition<'a> = &'a dyn Fn(&[Interval], Option<&Stability>) -> Option<Interval>;
 
 /// The sign of an enclosure: 1, −1, or 0 where it contains zero.
-fn sign(i: &Interval) -> i8 {
+pub(super) fn sign(i: &Interval) -> i8 {
     if i.positive() {
         1
     } else if i.negative() {
@@ -104,41 +107,30 @@ fn sign(i: &Interval) -> i8 {
     }
 }
 
-struct Search<'a> {
-    table: &'a Table,
-    r: f64,
-    pt: &'a CyclePoint,
-    forced: Vec<Option<(f64, usize)>>,
-    condition: Condition<'a>,
+/// A value of a parameter where a condition changes sign, bracketed by proofs: the
+/// nearest ends either side of `center` (steps from [`FIRST_STEP`] to [`LAST_STEP`]
+/// times `scale`) with opposite signs, shrunk by bisection as far as the proofs decide
+/// the sign.
+pub(super) struct Bracket<'a> {
+    /// The condition's enclosure at a value, from a proof there.
+    pub condition_at: &'a dyn Fn(f64) -> Option<Interval>,
+    pub center: f64,
+    pub scale: f64,
 }
 
-impl Search<'_> {
-    fn enclosed(&self, alpha: Interval) -> Option<Enclosed> {
-        let sys = System::new(self.table.clone(), alpha.mid(), self.r).ok()?;
-        Some(Enclosed::of(&sys).with_alpha(alpha))
+impl Bracket<'_> {
+    fn sign_at(&self, p: f64) -> i8 {
+        (self.condition_at)(p).map_or(0, |c| sign(&c))
     }
 
-    /// The condition at α, from a proof there, and the proof.
-    fn probe(&self, alpha: f64) -> Option<(Interval, Certificate)> {
-        let enc = self.enclosed(Interval::point(alpha))?;
-        let cert = prove(&enc, self.pt, &self.forced, None);
-        let c = (self.condition)(&boxed(&cert)?, cert.stability.as_ref())?;
-        Some((c, cert))
-    }
-
-    fn sign_at(&self, alpha: f64) -> i8 {
-        self.probe(alpha).map_or(0, |(c, _)| sign(&c))
-    }
-
-    /// Ends a and b (a < b) with opposite signs, nearest the point.
-    fn bracket(&self) -> Option<(f64, f64)> {
-        let a0 = self.pt.alpha;
-        let mut h = FIRST_STEP * a0.abs().max(1.0);
-        while h <= LAST_STEP * a0.abs().max(1.0) {
-            let (a, b) = (a0 - h, a0 + h);
+    /// The bracket (a < b), or None.
+    pub fn find(&self) -> Option<(f64, f64)> {
+        let mut h = FIRST_STEP * self.scale;
+        while h <= LAST_STEP * self.scale {
+            let (a, b) = (self.center - h, self.center + h);
             let (sa, sb) = (self.sign_at(a), self.sign_at(b));
             if sa != 0 && sb != 0 && sa != sb {
-                return Some((a, b));
+                return Some(self.shrink((a, b)));
             }
             h *= 10.0;
         }
@@ -180,6 +172,29 @@ impl Search<'_> {
         }
         from
     }
+}
+
+struct Search<'a> {
+    table: &'a Table,
+    r: f64,
+    pt: &'a CyclePoint,
+    forced: Vec<Option<(f64, usize)>>,
+    condition: Condition<'a>,
+}
+
+impl Search<'_> {
+    fn enclosed(&self, alpha: Interval) -> Option<Enclosed> {
+        let sys = System::new(self.table.clone(), alpha.mid(), self.r).ok()?;
+        Some(Enclosed::of(&sys).with_alpha(alpha))
+    }
+
+    /// The condition at α, from a proof there, and the proof.
+    fn probe(&self, alpha: f64) -> Option<(Interval, Certificate)> {
+        let enc = self.enclosed(Interval::point(alpha))?;
+        let cert = prove(&enc, self.pt, &self.forced, None);
+        let c = (self.condition)(&boxed(&cert)?, cert.stability.as_ref())?;
+        Some((c, cert))
+    }
 
     fn run(&self, kind: SpecialKind) -> CertifiedSpecial {
         let mut out = CertifiedSpecial {
@@ -191,11 +206,16 @@ impl Search<'_> {
             enclosure: None,
             failure: None,
         };
-        let Some(bracket) = self.bracket() else {
+        let condition_at = |alpha: f64| self.probe(alpha).map(|(c, _)| c);
+        let bracket = Bracket {
+            condition_at: &condition_at,
+            center: self.pt.alpha,
+            scale: self.pt.alpha.abs().max(1.0),
+        };
+        let Some((a, b)) = bracket.find() else {
             out.failure = Some(SpecialFailure::NoBracket);
             return out;
         };
-        let (a, b) = self.shrink(bracket);
         match self.over(a, b) {
             Ok((bx, ca, cb)) => {
                 out.alpha = Some(Interval::new(a, b).expect("a < b"));
@@ -319,6 +339,7 @@ pub fn certify_special(
     use crate::orbits::events::Kind;
     match s.kind {
         Kind::PeriodDoubling => Some(certify_period_doubling(table, r, &s.point)),
+        Kind::Fold => Some(super::fold::certify_fold(table, r, &s.point)),
         Kind::BorderCollision => Some(certify_border_collision(
             table, r, &s.point, s.impact, s.phase,
         )),

@@ -312,3 +312,23 @@ fn higher_period_doublings_and_refusals() {
     let c = certify_border_collision(&Table::sine(), 0.8, &pt, 0, 0.0);
     assert_eq!(c.failure, Some(SpecialFailure::NoBreakpoint));
 }
+
+/// The sine's (1, k) solutions are born in a fold at α_birth = c/(2π), c = k(1 − r)/
+/// (2(1 + r)) (where f'(t̂*) = c first has a solution, at t̂* = 0): the fold is proved in
+/// an α-interval holding it, under 1e-12 wide.
+#[test]
+fn the_sines_births_are_proved_folds() {
+    for k in [1u32, 2] {
+        let c = crate::orbits::fixed::fixed_point_slope(0.8, k);
+        let alpha_birth = c / (2.0 * std::f64::consts::PI);
+        let alpha = alpha_birth * (1.0 + 1e-9);
+        let sys = System::new(Table::sine(), alpha, 0.8).unwrap();
+        let p = fixed_points(&sys, k).unwrap()[0];
+        let pt = cycle(&sys, 1, k, p.phase, p.v).unwrap();
+        let f = certify_fold(&Table::sine(), 0.8, &pt);
+        let what = format!("k {k}: {:?} {:?} against {alpha_birth}", f.alpha, f.failure);
+        assert!(f.proved(), "{what}");
+        let a = f.alpha.unwrap();
+        assert!(a.contains(alpha_birth) && a.width() <= 1e-12, "{what}");
+    }
+}
