@@ -172,7 +172,7 @@ impl Action {
             Action::TogglePlane => "the α × D plane (t: another axis) in place of the diagram",
             Action::PlaneCurves => "plane: two-parameter curves (PD, fold, BC, G) on/off",
             Action::Manifolds => "phase and basins: the (1, k) saddle's manifolds on/off",
-            Action::Certify => "proofs on/off: the cycle under the cursor (else the (1, k) solutions) and the branches, by interval arithmetic",
+            Action::Certify => "stability: prove the cycle under the cursor; the branches too",
             Action::ToggleGlobal => "attractors along α and their basins, in place of the diagram",
             Action::CyclePanels => "narrow screen: show the bottom panel left out",
             Action::Messages => "the messages so far, each in full (the status line cuts them)",
