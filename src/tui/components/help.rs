@@ -24,10 +24,13 @@ pub fn draw(app: &Shared, scroll: usize, area: Rect, buf: &mut Buffer) {
             ])
         })
         .collect();
-    lines.push(Line::styled(
-        " Enter types a value in the parameters panel; l explains the marks; Esc closes.",
-        app.theme.dim(),
-    ));
+    // The hint where there is room for it (Enter, l and Esc are in the list anyway).
+    if lines.len() < area.height.saturating_sub(2) as usize {
+        lines.push(Line::styled(
+            " Enter types a value in the parameters panel; l explains the marks; Esc closes.",
+            app.theme.dim(),
+        ));
+    }
     scrolled(app, "Keys", lines, scroll, area, buf);
 }
 

@@ -37,14 +37,15 @@ mod table;
 pub use flight::{FlightFailure, FlightProof};
 pub use fold::certify_fold;
 pub use special::{
-    certify_border_collision, certify_period_doubling, certify_special, CertifiedSpecial,
-    SpecialFailure, SpecialKind,
+    certify_border_collision, certify_period_doubling, CertifiedSpecial, SpecialFailure,
+    SpecialKind,
 };
 
 use crate::linalg::inverse;
 use crate::orbits::periodic::{cycle, CyclePoint, PassError};
 use crate::real::Interval;
 use crate::system::System;
+use crate::table::Table;
 use crate::time::{phase_distance, wrap_phase};
 use table::{AtBreakpoint, Enclosed};
 
@@ -273,6 +274,25 @@ fn prove(
     };
     certify_with(enc, pt, forced, hint, &mut out);
     out
+}
+
+/// The special point `s` of a branch of `table` at restitution `r` proved as an
+/// α-interval: a period doubling of the branch's own cycle, a fold or a border
+/// collision; None for the kinds no proof is made of (grazings, window exits, ...).
+pub fn certify_special(
+    table: &Table,
+    r: f64,
+    s: &crate::orbits::events::Special,
+) -> Option<CertifiedSpecial> {
+    use crate::orbits::events::Kind;
+    match s.kind {
+        Kind::PeriodDoubling => Some(certify_period_doubling(table, r, &s.point)),
+        Kind::Fold => Some(certify_fold(table, r, &s.point)),
+        Kind::BorderCollision => Some(certify_border_collision(
+            table, r, &s.point, s.impact, s.phase,
+        )),
+        _ => None,
+    }
 }
 
 /// The cycle's equations at one set of boxes.

@@ -327,22 +327,3 @@ pub fn certify_border_collision(
     }
     .run(kind)
 }
-
-/// The special point `s` of a branch of `table` at restitution `r` proved as an
-/// α-interval: a period doubling of the branch's own cycle, or a border collision; None
-/// for the kinds no proof is made of (folds, grazings, window exits, ...).
-pub fn certify_special(
-    table: &Table,
-    r: f64,
-    s: &crate::orbits::events::Special,
-) -> Option<CertifiedSpecial> {
-    use crate::orbits::events::Kind;
-    match s.kind {
-        Kind::PeriodDoubling => Some(certify_period_doubling(table, r, &s.point)),
-        Kind::Fold => Some(super::fold::certify_fold(table, r, &s.point)),
-        Kind::BorderCollision => Some(certify_border_collision(
-            table, r, &s.point, s.impact, s.phase,
-        )),
-        _ => None,
-    }
-}
