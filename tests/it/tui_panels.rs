@@ -320,8 +320,8 @@ fn w_draws_the_saddles_manifolds_over_the_phase_plot() {
 /// (1, 1) solutions (no cursor on a branch) is shown in the stability panel, the
 /// stable one (|λ| < 1 in closed form) proved stable and the saddle proved unstable;
 /// the continued branches' points are proved too and counted on the status line, and
-/// the marks belong to the skeleton they were made for; a change of α starts the work
-/// again; `V` again takes everything off.
+/// the marks belong to the skeleton they were made for; new branches and a change of α
+/// start the work again; `V` again takes everything off.
 #[test]
 fn v_proves_the_solutions_and_the_branches() {
     use bouncemap::tui::components::proofs::{prove_asked, prove_branches, ProofMsg};
@@ -362,7 +362,11 @@ fn v_proves_the_solutions_and_the_branches() {
         .flatten()
         .fold((0, 0), |(a, p), &x| (a + 1, p + usize::from(x)));
     assert!(proved > all / 2 && all > 20, "{proved} of {all}");
-    a.shared.branches = Some(Ok(sk));
+    // New branches with proofs on start the proofs again.
+    a.take_effects();
+    a.panels.branches.gen = 9;
+    a.receive(Msg::Branches(9, Ok(sk)));
+    assert!(a.take_effects().contains(&Effect::Start(Target::Proofs)));
     a.receive(Msg::Proofs(7, ProofMsg::Branches(marks)));
     let s = screen(&mut a, 120, 40);
     assert!(

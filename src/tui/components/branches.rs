@@ -3,7 +3,8 @@
 //! doubled branches), computed in the background whenever the table, r, k or the window
 //! changes (not when only α moves; parked while the application is paused). The diagram draws them (stable solid, unstable
 //! dotted) with their special points on the axis; the stability panel lists the branch
-//! under the diagram's cursor. Draw-only otherwise: it has no panel of its own.
+//! under the diagram's cursor; with proofs on, new branches start the proofs again
+//! ([`super::proofs`]). Draw-only otherwise: it has no panel of its own.
 
 use super::{Component, Effect, Registered, Shared, Workers};
 use crate::tui::params::ParamId;
@@ -57,6 +58,11 @@ impl Component for Branches {
         shared.branches = Some(msg);
         self.pending = false;
         shared.dirty = true;
+        // New branches with proofs on: prove them too (the proofs started with the
+        // change that started these had none to prove).
+        if shared.show_proofs {
+            shared.effect(Effect::Start(super::Target::Proofs));
+        }
     }
 
     fn busy(&self) -> bool {

@@ -17,8 +17,7 @@
 //! is evaluated in [`Interval`]s over the parameters' enclosures (α, r and the table's
 //! coefficients as the decimals they are written as, `table::Enclosed`); F(x̃) is
 //! taken at the middle α̃ of α's enclosure and the rest enters as (C ∂F/∂α)(α − α̃), so
-//! that a wide α-interval (a special point's) keeps C F's correlations.
-//! K(X) inside
+//! that a wide α-interval (a special point's) keeps C F's correlations. K(X) inside
 //! X's interior proves that F has exactly one zero in X, for every parameter value in
 //! the enclosures; ρ grows from 1e-15 until that holds or 1e-9 fails. Each impact's box
 //! must lie inside one piece of the table (f'' jumps at a breakpoint), and each flight
