@@ -17,13 +17,14 @@ use crate::output::records::{
     csv_writer, failure_text, near_name, stability_name, CertifyDoc, CertifyRow,
 };
 use crate::output::sink::Sink;
+use crate::output::text::interval as iv;
 use crate::output::Format;
 use bouncemap_engine::orbits::certify::{
     certify, Certificate, Multipliers, Near, StabilityVerdict,
 };
 use bouncemap_engine::orbits::{fixed_points, Classification};
 use bouncemap_engine::run::start::near_fixed_point;
-use bouncemap_engine::{EventKind, ImpactMap, Interval, Solver, State, System};
+use bouncemap_engine::{EventKind, ImpactMap, Solver, State, System};
 use std::io::Write;
 
 /// Events the orbit from next to the (1, 1) solution runs before its state is the
@@ -98,10 +99,6 @@ fn default_guess(sys: &System, n: usize, k: u32) -> Result<(f64, f64), InputErro
         Some(EventKind::Impact) => Ok((map.state().phase(), map.state().v())),
         _ => Err(none()),
     }
-}
-
-fn iv(i: Interval) -> String {
-    crate::output::text::interval(i)
 }
 
 fn write_text(

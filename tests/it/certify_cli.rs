@@ -10,6 +10,14 @@ fn pair(v: &serde_json::Value) -> (f64, f64) {
     (v[0].as_f64().unwrap(), v[1].as_f64().unwrap())
 }
 
+/// `fixed`'s closed-form α_PD of the (1, 1) solution of `table` (asked at α `alpha`).
+fn fixed_alpha_pd(table: &str, alpha: &str) -> f64 {
+    let f = json(&[
+        "fixed", "--table", table, "--alpha", alpha, "--format", "json",
+    ]);
+    f["alpha_pd"].as_f64().unwrap()
+}
+
 fn inside(x: f64, v: &serde_json::Value) -> bool {
     let (lo, hi) = pair(v);
     lo <= x && x <= hi
@@ -211,10 +219,7 @@ fn bad_input_is_one_line_with_the_valid_range() {
 /// `two-cycle`'s border collision; `--d` is refused beside it.
 #[test]
 fn the_cascade_proves_its_alphas() {
-    let f = json(&[
-        "fixed", "--table", "fd:0.1", "--alpha", "0.45", "--format", "json",
-    ]);
-    let alpha_pd = f["alpha_pd"].as_f64().unwrap();
+    let alpha_pd = fixed_alpha_pd("fd:0.1", "0.45");
     let c = json(&[
         "cascade",
         "--table",
@@ -276,10 +281,7 @@ fn the_cascade_proves_its_alphas() {
 /// period doubling it passes is proved in an interval holding `fixed`'s α_PD.
 #[test]
 fn continue_proves_its_points_and_special_points() {
-    let f = json(&[
-        "fixed", "--table", "sine", "--alpha", "0.02", "--format", "json",
-    ]);
-    let alpha_pd = f["alpha_pd"].as_f64().unwrap();
+    let alpha_pd = fixed_alpha_pd("sine", "0.02");
     let c = json(&[
         "continue",
         "--table",

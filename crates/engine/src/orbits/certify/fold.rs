@@ -14,8 +14,8 @@
 use super::special::{sign, Bracket, CertifiedSpecial, SpecialFailure, SpecialKind};
 use super::table::Enclosed;
 use super::{
-    flight, inverse, krawczyk_step, mids, periods_of, stability, thin, Enclosure, Equations,
-    Failure, Stability, HINT_WIDENINGS, INFLATIONS, REFINE_STEPS,
+    candidate_boxes, flight, inverse, krawczyk_step, mids, periods_of, refine, stability, thin,
+    Enclosure, Equations, Failure, Stability,
 };
 use crate::orbits::periodic::CyclePoint;
 use crate::real::Interval;
@@ -87,26 +87,9 @@ impl FoldSystem {
     fn refine(&self, s: f64, z0: &[f64]) -> Vec<f64> {
         let mut z = z0.to_vec();
         let sp = Interval::point(s);
-        for _ in 0..REFINE_STEPS {
-            let (Ok(res), Ok((jz, _))) =
-                (self.residual(sp, &thin(&z)), self.jacobian(sp, &thin(&z)))
-            else {
-                break;
-            };
-            let Some(c) = inverse(&mids(&jz)) else {
-                break;
-            };
-            let step: Vec<f64> = c
-                .iter()
-                .map(|row| row.iter().zip(&res).map(|(a, b)| a * b.mid()).sum())
-                .collect();
-            if step.iter().any(|x| !x.is_finite()) {
-                break;
-            }
-            for (zi, st) in z.iter_mut().zip(&step) {
-                *zi -= st;
-            }
-        }
+        refine(&mut z, |zb| {
+            Some((self.residual(sp, zb).ok()?, self.jacobian(sp, zb).ok()?.0))
+        });
         z
     }
 
@@ -125,32 +108,7 @@ impl FoldSystem {
         let c = inverse(&mids(&j0)).ok_or(Failure::NotContracting {
             width: f64::INFINITY,
         })?;
-        let boxes: Vec<Vec<Interval>> = match hint {
-            None => INFLATIONS
-                .iter()
-                .map(|rho| {
-                    z.iter()
-                        .map(|&v| {
-                            let rad = rho * v.abs().max(1.0);
-                            Interval::new(v - rad, v + rad).expect("finite")
-                        })
-                        .collect()
-                })
-                .collect(),
-            Some(h) => HINT_WIDENINGS
-                .iter()
-                .map(|f| {
-                    h.iter()
-                        .zip(&z)
-                        .map(|(hi, &v)| {
-                            let span = hi.hull(&Interval::point(v));
-                            let rad = f * span.width().max(INFLATIONS[0] * v.abs().max(1.0));
-                            Interval::new(span.lo() - rad, span.hi() + rad).expect("finite")
-                        })
-                        .collect()
-                })
-                .collect(),
-        };
+        let boxes = candidate_boxes(&z, hint);
         let mut widest = f64::INFINITY;
         for b in boxes {
             let (jz, js) = self.jacobian(s, &b)?;
@@ -183,15 +141,7 @@ impl FoldSystem {
 /// Prove the fold near the cycle `pt` (at `pt.alpha`, a multiplier near +1) of `table`
 /// at restitution `r`: α over a stretch of the branch around the fold.
 pub fn certify_fold(table: &Table, r: f64, pt: &CyclePoint) -> CertifiedSpecial {
-    let mut out = CertifiedSpecial {
-        kind: SpecialKind::Fold,
-        n: pt.n,
-        k: pt.k,
-        alpha: None,
-        ends: None,
-        enclosure: None,
-        failure: None,
-    };
+    let mut out = CertifiedSpecial::start(SpecialKind::Fold, pt.n, pt.k);
     let Ok(sys) = System::new(table.clone(), pt.alpha, r) else {
         out.failure = Some(SpecialFailure::NoBracket);
         return out;

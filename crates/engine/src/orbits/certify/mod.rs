@@ -83,6 +83,21 @@ pub struct Certificate {
 }
 
 impl Certificate {
+    /// Nothing shown yet of the (n, k) cycle `cycle` (Newton's, if found) of `enc`.
+    fn start(enc: &Enclosed, n: usize, k: u32, cycle: Option<CyclePoint>) -> Certificate {
+        Certificate {
+            n,
+            k,
+            alpha: enc.alpha,
+            r: enc.r,
+            cycle,
+            enclosure: None,
+            flights: Vec::new(),
+            stability: None,
+            failure: None,
+        }
+    }
+
     /// An exact (n, k) cycle of the impact map is proved in the box.
     pub fn proved(&self) -> bool {
         self.failure.is_none() && self.enclosure.is_some()
@@ -212,38 +227,29 @@ pub enum Failure {
 /// Prove the (n, k) cycle that Newton's method finds from the launch guess (t̂₀, v₀).
 pub fn certify(sys: &System, n: usize, k: u32, t0: f64, v0: f64) -> Certificate {
     let enc = Enclosed::of(sys);
-    let mut out = Certificate {
-        n,
-        k,
-        alpha: enc.alpha,
-        r: enc.r,
-        cycle: None,
-        enclosure: None,
-        flights: Vec::new(),
-        stability: None,
-        failure: None,
-    };
     let pt = match cycle(sys, n, k, t0, v0) {
         Ok(pt) => pt,
         Err(e) => {
-            out.failure = Some(Failure::NoCycle(e));
-            return out;
+            return Certificate {
+                failure: Some(Failure::NoCycle(e)),
+                ..Certificate::start(&enc, n, k, None)
+            }
         }
     };
     let distance = phase_distance(pt.phases[0], wrap_phase(t0))
         .max((pt.velocities[0] - v0).abs() / (1.0 + v0.abs()));
     if distance > GUESS_DISTANCE {
-        out.failure = Some(Failure::FarFromGuess {
+        let far = Failure::FarFromGuess {
             phase: pt.phases[0],
             v: pt.velocities[0],
             distance,
-        });
-        out.cycle = Some(pt);
-        return out;
+        };
+        return Certificate {
+            failure: Some(far),
+            ..Certificate::start(&enc, n, k, Some(pt))
+        };
     }
-    certify_with(&enc, &pt, &[], None, &mut out);
-    out.cycle = Some(pt);
-    out
+    prove(&enc, &pt, &[], None)
 }
 
 /// Prove the cycle `pt` (an accepted point of [`crate::orbits::periodic`]).
@@ -260,17 +266,7 @@ fn prove(
     forced: &[Option<(f64, usize)>],
     hint: Option<&[Interval]>,
 ) -> Certificate {
-    let mut out = Certificate {
-        n: pt.n,
-        k: pt.k,
-        alpha: enc.alpha,
-        r: enc.r,
-        cycle: Some(pt.clone()),
-        enclosure: None,
-        flights: Vec::new(),
-        stability: None,
-        failure: None,
-    };
+    let mut out = Certificate::start(enc, pt.n, pt.k, Some(pt.clone()));
     certify_with(enc, pt, forced, hint, &mut out);
     out
 }
@@ -385,6 +381,65 @@ impl Equations<'_> {
     }
 }
 
+/// Newton's method in doubles from `x` on the equations `eval` gives at a thin box (their
+/// values and Jacobian): at most [`REFINE_STEPS`] steps, stopping where they cannot be
+/// evaluated or a step is not finite.
+fn refine(
+    x: &mut [f64],
+    eval: impl Fn(&[Interval]) -> Option<(Vec<Interval>, Vec<Vec<Interval>>)>,
+) {
+    for _ in 0..REFINE_STEPS {
+        let Some((res, jac)) = eval(&thin(x)) else {
+            break;
+        };
+        let Some(c) = inverse(&mids(&jac)) else {
+            break;
+        };
+        let step: Vec<f64> = c
+            .iter()
+            .map(|row| row.iter().zip(&res).map(|(a, b)| a * b.mid()).sum())
+            .collect();
+        if step.iter().any(|s| !s.is_finite()) {
+            break;
+        }
+        for (xi, s) in x.iter_mut().zip(&step) {
+            *xi -= s;
+        }
+    }
+}
+
+/// The boxes a Krawczyk test tries around x̃: x̃ ± ρ max(1, |x̃ᵢ|) for each of
+/// [`INFLATIONS`], or the hint (with x̃) widened by each of [`HINT_WIDENINGS`] times its
+/// widths.
+fn candidate_boxes(x: &[f64], hint: Option<&[Interval]>) -> Vec<Vec<Interval>> {
+    match hint {
+        None => INFLATIONS
+            .iter()
+            .map(|rho| {
+                x.iter()
+                    .map(|&v| {
+                        let rad = rho * v.abs().max(1.0);
+                        Interval::new(v - rad, v + rad).expect("finite")
+                    })
+                    .collect()
+            })
+            .collect(),
+        Some(h) => HINT_WIDENINGS
+            .iter()
+            .map(|f| {
+                h.iter()
+                    .zip(x)
+                    .map(|(hi, &v)| {
+                        let span = hi.hull(&Interval::point(v));
+                        let rad = f * span.width().max(INFLATIONS[0] * v.abs().max(1.0));
+                        Interval::new(span.lo() - rad, span.hi() + rad).expect("finite")
+                    })
+                    .collect()
+            })
+            .collect(),
+    }
+}
+
 /// Whole periods before each impact of `pt` from its first (0), and k after its last.
 fn periods_of(pt: &CyclePoint) -> Vec<i64> {
     let n = pt.n;
@@ -428,24 +483,9 @@ fn certify_with(
     };
     let mut x: Vec<f64> = pt.phases.iter().chain(&pt.velocities).copied().collect();
     // Refine on the cycle's own equations.
-    for _ in 0..REFINE_STEPS {
-        let (Ok(res), Ok(jac)) = (eq.residual(&thin(&x)), eq.jacobian(&thin(&x))) else {
-            break;
-        };
-        let Some(c) = inverse(&mids(&jac)) else {
-            break;
-        };
-        let step: Vec<f64> = c
-            .iter()
-            .map(|row| row.iter().zip(&res).map(|(a, b)| a * b.mid()).sum())
-            .collect();
-        if step.iter().any(|s| !s.is_finite()) {
-            break;
-        }
-        for (xi, s) in x.iter_mut().zip(&step) {
-            *xi -= s;
-        }
-    }
+    refine(&mut x, |xb| {
+        Some((eq.residual(xb).ok()?, eq.jacobian(xb).ok()?))
+    });
     let xt = thin(&x);
     // F at x̃ and at the middle α̃ of α's enclosure; the rest of α's enclosure enters
     // through F's α-column (the centred form in α keeps C F's correlations).
@@ -476,34 +516,7 @@ fn certify_with(
             return;
         }
     };
-    // The boxes tried: x̃ ± ρ max(1, |x̃ᵢ|), or the hint (with x̃) widened by a multiple
-    // of its widths.
-    let boxes: Vec<Vec<Interval>> = match hint {
-        None => INFLATIONS
-            .iter()
-            .map(|rho| {
-                x.iter()
-                    .map(|&v| {
-                        let rad = rho * v.abs().max(1.0);
-                        Interval::new(v - rad, v + rad).expect("finite")
-                    })
-                    .collect()
-            })
-            .collect(),
-        Some(h) => HINT_WIDENINGS
-            .iter()
-            .map(|f| {
-                h.iter()
-                    .zip(&x)
-                    .map(|(hi, &v)| {
-                        let span = hi.hull(&Interval::point(v));
-                        let rad = f * span.width().max(INFLATIONS[0] * v.abs().max(1.0));
-                        Interval::new(span.lo() - rad, span.hi() + rad).expect("finite")
-                    })
-                    .collect()
-            })
-            .collect(),
-    };
+    let boxes = candidate_boxes(&x, hint);
     let mut widest = f64::INFINITY;
     for b in boxes {
         let rho = b

@@ -79,6 +79,27 @@ pub struct CertifiedSpecial {
 }
 
 impl CertifiedSpecial {
+    /// Nothing shown yet of the point `kind` of the (n, k) cycle.
+    pub(super) fn start(kind: SpecialKind, n: usize, k: u32) -> CertifiedSpecial {
+        CertifiedSpecial {
+            kind,
+            n,
+            k,
+            alpha: None,
+            ends: None,
+            enclosure: None,
+            failure: None,
+        }
+    }
+
+    /// The point `kind` of the (n, k) cycle, not proved for `why`.
+    pub(super) fn not_proved(kind: SpecialKind, n: usize, k: u32, why: SpecialFailure) -> Self {
+        CertifiedSpecial {
+            failure: Some(why),
+            ..CertifiedSpecial::start(kind, n, k)
+        }
+    }
+
     /// The point is proved in `alpha`.
     pub fn proved(&self) -> bool {
         self.failure.is_none() && self.alpha.is_some()
@@ -197,15 +218,7 @@ impl Search<'_> {
     }
 
     fn run(&self, kind: SpecialKind) -> CertifiedSpecial {
-        let mut out = CertifiedSpecial {
-            kind,
-            n: self.pt.n,
-            k: self.pt.k,
-            alpha: None,
-            ends: None,
-            enclosure: None,
-            failure: None,
-        };
+        let mut out = CertifiedSpecial::start(kind, self.pt.n, self.pt.k);
         let condition_at = |alpha: f64| self.probe(alpha).map(|(c, _)| c);
         let bracket = Bracket {
             condition_at: &condition_at,
@@ -281,15 +294,7 @@ pub fn certify_border_collision(
     breakpoint: f64,
 ) -> CertifiedSpecial {
     let kind = SpecialKind::BorderCollision { impact, breakpoint };
-    let fail = |f| CertifiedSpecial {
-        kind,
-        n: pt.n,
-        k: pt.k,
-        alpha: None,
-        ends: None,
-        enclosure: None,
-        failure: Some(f),
-    };
+    let fail = |f| CertifiedSpecial::not_proved(kind, pt.n, pt.k, f);
     let Ok(sys) = System::new(table.clone(), pt.alpha, r) else {
         return fail(SpecialFailure::NoBracket);
     };
