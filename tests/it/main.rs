@@ -18,6 +18,7 @@ mod generated_docs;
 mod global_cli;
 mod global_shards;
 mod hostile;
+mod hostile_outputs;
 mod hostile_three;
 mod manifolds_cli;
 mod merge_property;
