@@ -313,3 +313,105 @@ fn the_curves_do_not_depend_on_the_seeds_and_go_on_where_they_go_on() {
         }
     }
 }
+
+/// The (8, 8) border collision at phase 0 over F_D's D is one curve where the (8, 8)
+/// is born 10⁻⁴ in α from it (it used to stop on both sides of D ≈ 0.52, the cycle
+/// falling onto the (4, 4) run twice): it passes through the α where the one-parameter
+/// continuation finds it at D = 0.519 … 0.523. And the (4, 4) border collision at
+/// phase 0 goes on through its double border at D ≈ 0.687 (where another impact meets
+/// the breakpoint ½, and the curve turns) down to D = 0, ending where its cycle is born,
+/// whichever side it was seeded on.
+#[test]
+fn border_collision_curves_go_on_next_to_a_birth_and_through_a_corner() {
+    let plane = Plane {
+        table: Table::fd(0.5).unwrap(),
+        r: 0.8,
+        alpha: (0.4, 0.7),
+        second: SweepParam::D,
+        window: (0.0, 1.0),
+    };
+    let run = |max_period, count| {
+        let seeds = Seeds::FromFixed {
+            k: 1,
+            max_period,
+            at: 0.5,
+            count,
+        };
+        curves(&plane, seeds).unwrap()
+    };
+    let eight = run(8, 5);
+    for d in [0.519, 0.521, 0.523] {
+        let found = branches(
+            &Table::fd(d).unwrap(),
+            0.8,
+            (0.45, 0.57),
+            Start::Fixed { k: 1 },
+            Options {
+                max_period: 8,
+                ..Options::default()
+            },
+        )
+        .unwrap();
+        let bc: Vec<&Special> = found
+            .iter()
+            .filter(|br| br.n == 8)
+            .flat_map(|br| br.specials.iter())
+            .filter(|s| s.kind == Kind::BorderCollision && s.phase.abs() < 1e-12)
+            .collect();
+        assert!(
+            !bc.is_empty(),
+            "D = {d}: the continuation's (8, 8) border collision"
+        );
+        for s in bc {
+            let on: Vec<&Curve> = eight
+                .curves
+                .iter()
+                .filter(|c| {
+                    c.n == 8
+                        && c.kind.as_str() == "border_collision"
+                        && c.passes_near(s.alpha, d, 1e-5)
+                })
+                .collect();
+            assert_eq!(on.len(), 1, "D = {d}: one curve through α {}", s.alpha);
+            // Whole: from the birth of its cycle to a double border, not a stalled end.
+            for end in on[0].ends {
+                assert!(
+                    matches!(end.as_str(), "collapse" | "border_collision"),
+                    "D = {d}: {:?}",
+                    on[0].ends
+                );
+            }
+        }
+    }
+    for count in [5, 20] {
+        let four = run(4, count);
+        let bc: Vec<&Curve> = four
+            .curves
+            .iter()
+            .filter(|c| {
+                c.n == 4
+                    && matches!(c.kind, bouncemap_engine::orbits::curves::CurveKind::BorderCollision { breakpoint, .. } if breakpoint == 0.0)
+            })
+            .collect();
+        assert_eq!(
+            bc.len(),
+            1,
+            "seeds {count}: one (4, 4) border collision at 0"
+        );
+        let c = bc[0];
+        let ds: Vec<f64> = c.points.iter().map(|q| q.p).collect();
+        let (lo, hi) = ds
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+                (a.min(x), b.max(x))
+            });
+        assert!(lo == 0.0 && hi > 0.687, "seeds {count}: D {lo}..{hi}");
+        let mut ends: Vec<&str> = c.ends.iter().map(|e| e.as_str()).collect();
+        ends.sort();
+        assert_eq!(ends, ["collapse", "window"], "seeds {count}");
+        // Every point holds: the impact on the breakpoint and the cycle returning.
+        for q in &c.points {
+            assert!(q.condition.abs() <= 1e-9, "{q:?}");
+        }
+    }
+}

@@ -35,8 +35,10 @@ impl Tracer<'_> {
             .system(y[0], y[1])
             .map_err(|_| PassError::BadLaunch)?;
         let pt = cycle(&sys, self.n, self.k, guess.t0, guess.velocities[0])?;
-        // The same cycle, not another one nearby: the launch moved continuously.
-        if moved(&pt, guess) > 0.05 {
+        // The same cycle, not another one nearby: the launch moved continuously, and a
+        // doubled cycle did not fall onto the cycle of half its period run twice (next
+        // to its birth Newton's method may find that one, also a cycle of n impacts).
+        if moved(&pt, guess) > 0.05 || (collapsed(&pt) && !collapsed(guess)) {
             return Err(PassError::NoConvergence);
         }
         let g = self.kind.condition(&sys, &pt);
@@ -48,6 +50,22 @@ impl Tracer<'_> {
 
     /// ∇G by central differences, the cycle re-solved at each.
     pub(super) fn gradient(&self, e: &Eval) -> Result<[f64; 2], PassError> {
+        let own = matches!(self.kind, CurveKind::BorderCollision { .. }) && e.g != 0.0;
+        let tests = self.border_tests(&e.pt);
+        // A difference is taken within the pieces of the point's cycle: every other
+        // impact on its side of every breakpoint (next to a double border a step may
+        // cross, and beyond, the condition is another function, whose zero set is
+        // another curve), and for a border collision its own impact on the point's
+        // side too (its condition has its kink on the curve itself, and across it
+        // Newton's method converges only linearly).
+        let keeps = |q: &Eval| {
+            let crossed = self
+                .border_tests(&q.pt)
+                .iter()
+                .zip(&tests)
+                .any(|(a, b)| (a < &0.0) != (b < &0.0) && (a - b).abs() <= 0.5);
+            !crossed && (!own || ((q.g < 0.0) == (e.g < 0.0) && q.g != 0.0))
+        };
         let mut grad = [0.0; 2];
         for (i, g) in grad.iter_mut().enumerate() {
             let h = 1e-7 * (1.0 + e.y[i].abs());
@@ -56,35 +74,26 @@ impl Tracer<'_> {
             plus[i] += h;
             minus[i] -= h;
             let valid = |y: [f64; 2]| self.plane.system(y[0], y[1]).is_ok();
-            // A border collision's condition has its kink on the curve itself (f''
-            // jumps where the impact crosses the breakpoint): its slope is taken on
-            // the point's side, or Newton's method converges only linearly.
-            if matches!(self.kind, CurveKind::BorderCollision { .. }) && e.g != 0.0 {
-                let same = |y: [f64; 2]| -> Result<Option<f64>, PassError> {
-                    if !valid(y) {
-                        return Ok(None);
-                    }
-                    let gy = self.eval(y, &e.pt)?.g;
-                    Ok(((gy < 0.0) == (e.g < 0.0) && gy != 0.0).then_some(gy))
-                };
-                if let Some(gp) = same(plus)? {
-                    *g = (gp - e.g) / h;
-                    continue;
-                }
-                if let Some(gm) = same(minus)? {
-                    *g = (e.g - gm) / h;
-                    continue;
-                }
-            }
-            // Central where the cycle exists on both sides; one-sided at the end of the
-            // parameter's range (D = 0 or 1) or where the cycle ends on one side (at a
-            // grazing the flight would cross the table beyond the curve).
+            // Central where the cycle exists on both sides within its pieces; else
+            // one-sided: at the end of the parameter's range (D = 0 or 1), where the
+            // cycle ends on one side (at a grazing the flight would cross the table
+            // beyond the curve), or where one side lies in other pieces.
             let at = |y: [f64; 2]| valid(y).then(|| self.eval(y, &e.pt).ok()).flatten();
-            *g = match (at(plus), at(minus)) {
+            let (p, m) = (at(plus), at(minus));
+            let (pk, mk) = (
+                p.as_ref().filter(|q| keeps(q)),
+                m.as_ref().filter(|q| keeps(q)),
+            );
+            *g = match (pk, mk) {
                 (Some(p), Some(m)) => (p.g - m.g) / (2.0 * h),
                 (Some(p), None) => (p.g - e.g) / h,
                 (None, Some(m)) => (e.g - m.g) / h,
-                (None, None) => return Err(PassError::NoConvergence),
+                (None, None) => match (p, m) {
+                    (Some(p), Some(m)) => (p.g - m.g) / (2.0 * h),
+                    (Some(p), None) => (p.g - e.g) / h,
+                    (None, Some(m)) => (e.g - m.g) / h,
+                    (None, None) => return Err(PassError::NoConvergence),
+                },
             };
         }
         if !(grad[0].is_finite() && grad[1].is_finite()) || grad == [0.0, 0.0] {
@@ -233,6 +242,13 @@ impl Tracer<'_> {
         guess: &CyclePoint,
     ) -> Result<(Eval, [f64; 2]), PassError> {
         let mut x = [y[0], y[1], guess.t0, guess.velocities[0]];
+        // On a border collision the point's impact lies on the breakpoint, where f''
+        // jumps and the map's derivatives jump with it: the map's own derivatives are
+        // those of the piece the impact's phase falls in (G ≥ 0: the one after the
+        // breakpoint), and the p column must be a difference on that same side, or the
+        // Jacobian, mixed from two pieces, has the wrong null vector (both pieces
+        // agree along the border, so either one's gives the curve's tangent).
+        let border = matches!(self.kind, CurveKind::BorderCollision { .. });
         let jacobian = |x: [f64; 4], f: [f64; 3], p: &periodic::Pass| {
             let m = p.monodromy;
             let mut j = [
@@ -240,6 +256,24 @@ impl Tracer<'_> {
                 [p.alpha_column[1], 0.0, m[1][0], m[1][1] - 1.0],
                 [0.0; 4],
             ];
+            // The p column on the side of the point's own piece (a border collision).
+            let mut side_column = None;
+            if border {
+                let h = 1e-7 * (1.0 + x[1].abs());
+                let side = |g: f64| g >= 0.0;
+                for s in [1.0, -1.0] {
+                    let mut xs = x;
+                    xs[1] += s * h;
+                    match self.fold_system(xs) {
+                        Ok((fs, _)) if side(fs[2]) == side(f[2]) => {
+                            side_column =
+                                Some([(fs[0] - f[0]) / (s * h), (fs[1] - f[1]) / (s * h)]);
+                            break;
+                        }
+                        _ => {}
+                    }
+                }
+            }
             for col in 0..4 {
                 let h = 1e-7 * (1.0 + x[col].abs());
                 let mut xp = x;
@@ -247,8 +281,9 @@ impl Tracer<'_> {
                 let (fp, _) = self.fold_system(xp)?;
                 j[2][col] = (fp[2] - f[2]) / h;
                 if col == 1 {
-                    j[0][1] = (fp[0] - f[0]) / h;
-                    j[1][1] = (fp[1] - f[1]) / h;
+                    let [a, b] = side_column.unwrap_or([(fp[0] - f[0]) / h, (fp[1] - f[1]) / h]);
+                    j[0][1] = a;
+                    j[1][1] = b;
                 }
             }
             Ok::<_, PassError>(j)

@@ -40,7 +40,16 @@
 //! (its value is kept as the evidence). A step the corrector cannot take, or one whose
 //! cycle jumped (an impact phase or velocity moving far more than the step), is halved;
 //! below the smallest step the curve ends with the reason the cycle gives (grazing, a
-//! stick, no convergence). Where a step would leave the window, the point on the window's
+//! stick, no convergence). A corrected point must be the guessed cycle moved on: not
+//! the cycle of half its period run twice (a doubled cycle next to its birth), not
+//! farther from the predicted point than the step (another part of the curve), and
+//! not across a breakpoint whose crossing cannot be located on the curve (the other arm
+//! of a cusp). The slope of G is taken within the pieces the cycle's impacts lie in:
+//! next to a breakpoint a difference may cross it, and beyond, G is another function.
+//! A border-collision curve reaching a double border goes on through it: the point
+//! beyond, where the other impact has crossed into the next piece, is solved on small
+//! circles round the corner, and the curve must get under way from there, or it ends at
+//! the corner. Where a step would leave the window, the point on the window's
 //! edge is solved instead and the curve ends there.
 //!
 //! Between accepted points the test functions of the codimension-two points are watched

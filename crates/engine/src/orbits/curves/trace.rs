@@ -1,6 +1,7 @@
 //! Following one two-parameter curve with the corrector of [`super::corrector`]: the
-//! predictor steps and their halving, the window's edges, and the
-//! test functions of the codimension-two points watched between consecutive points.
+//! predictor steps and their halving, the window's edges, the test functions of the
+//! codimension-two points watched between consecutive points, and a border collision's
+//! way through a double border.
 
 use super::corrector::{collapsed, Tracer};
 use super::{
@@ -12,6 +13,15 @@ use crate::orbits::periodic::{cycle, CyclePoint, PassError};
 use crate::orbits::roots::bracketed_root_nan;
 use crate::time::signed_distance;
 
+/// The directions a curve may leave a double border in, in degrees from the way it
+/// came, nearest first: all round but straight back (the corner may be a cusp; the
+/// arm it came along has the other impact on its own side, and is refused).
+const TURNS: [f64; 23] = [
+    0.0, 15.0, -15.0, 30.0, -30.0, 45.0, -45.0, 60.0, -60.0, 75.0, -75.0, 90.0, -90.0, 105.0,
+    -105.0, 120.0, -120.0, 135.0, -135.0, 150.0, -150.0, 165.0, -165.0,
+];
+/// Beyond a corner, steps under this share of the largest are not yet under way.
+const CORNER_STEP: f64 = 1e-2;
 /// A step under this share of the largest counts as small ...
 const STALL_STEP: f64 = 1e-3;
 /// ... and this many small steps in a row stall a curve ([`CurveEnd::Stalled`]).
@@ -138,6 +148,10 @@ impl Tracer<'_> {
         let mut tau = tau0;
         let mut travelled = 0.0;
         let mut small = 0;
+        // Points before the last corner passed while the curve is not yet under way
+        // beyond it, and the short steps taken since.
+        let mut corner: Option<usize> = None;
+        let mut crawl = 0;
         for _ in 0..MAX_STEPS {
             let y = [cur.alpha, cur.p];
             let pred = [y[0] + h * tau[0], y[1] + h * tau[1]];
@@ -164,8 +178,19 @@ impl Tracer<'_> {
                 (start[0] - y[0]).hypot(start[1] - y[1]),
             );
             let step = self.correct(start, c, d, &guess).and_then(|(e, grad)| {
-                // A point outside the window is not this curve's to report.
-                let lost = !near_edge(self.plane, e.y);
+                // A point outside the window is not this curve's to report, nor one
+                // the corrector found far from the predicted point (on another part
+                // of the curve, where it comes back close to itself).
+                // Where the curve has a corner (another impact crossing a breakpoint
+                // turns it), the point lies beyond the predicted one by h tan θ: a
+                // small step accepts that, up to θ = 70°.
+                let off = (e.y[0] - start[0]).hypot(e.y[1] - start[1]);
+                let reach = if h < STALL_STEP * h_max {
+                    2.75 * h
+                } else {
+                    1.5 * h
+                };
+                let lost = !near_edge(self.plane, e.y) || off > reach;
                 let next = (!lost).then(|| self.point(e));
                 match next {
                     Some(next) if !self.crosses_border(&cur, &next, tau, index, codim2) => {
@@ -216,6 +241,22 @@ impl Tracer<'_> {
                             },
                         );
                     }
+                    // Past a corner the curve must get under way: steps that stay
+                    // short ([`CORNER_STEP`]) for a while mean it was not found beyond
+                    // after all, and it ends at the corner.
+                    if let Some(at) = corner {
+                        if h >= 0.1 * h_max {
+                            corner = None;
+                        } else if h < CORNER_STEP * h_max {
+                            crawl += 1;
+                            if crawl >= STALL_STEPS {
+                                out.truncate(at);
+                                return (out, CurveEnd::Border);
+                            }
+                        } else {
+                            crawl = 0;
+                        }
+                    }
                     // Only tiny steps for a long while: the cycle changes too fast along
                     // the curve for the corrector to follow at any useful cost.
                     small = if h < STALL_STEP * h_max { small + 1 } else { 0 };
@@ -238,6 +279,20 @@ impl Tracer<'_> {
                         // cross it (its condition is another function beyond): the
                         // steps shrink toward the codimension-two point there.
                         if self.border_end(prev.as_ref(), &cur, index, codim2) {
+                            // A border collision goes on through a double border:
+                            // beyond the corner the other impact falls in the next
+                            // piece, and the curve turns there.
+                            if let Some((next, dir)) = self.past_corner(&cur, codim2.last()) {
+                                tau = dir;
+                                prev = None;
+                                corner = Some(out.len());
+                                crawl = 0;
+                                cur = next;
+                                out.push(cur.clone());
+                                h = (16.0 * h_min).max(1e-6 * scale);
+                                small = 0;
+                                continue;
+                            }
                             return (out, CurveEnd::Border);
                         }
                         // Stopped on the window's edge itself: it left the window.
@@ -310,6 +365,62 @@ impl Tracer<'_> {
         true
     }
 
+    /// A border-collision curve stopped at a double border `corner` (another impact
+    /// reaching another breakpoint): its point beyond, where that impact has crossed
+    /// into the next piece, solved on circles of growing radius around the corner in
+    /// directions turned up to 75° either way from the way it came (the corner turns
+    /// the curve, f'' jumping for the other impact), with the direction it leaves in.
+    /// None for the other kinds (their condition is another function beyond) and where
+    /// the cycle does not go on beyond the corner.
+    fn past_corner(
+        &self,
+        cur: &CurvePoint,
+        corner: Option<&Codim2>,
+    ) -> Option<(CurvePoint, [f64; 2])> {
+        let CurveKind::BorderCollision { impact, breakpoint } = self.kind else {
+            return None;
+        };
+        let corner = corner.filter(|c| c.kind == Codim2Kind::DoubleBorder)?;
+        let (j, bp) = corner.impact?;
+        // The twin impact of a doubled cycle on the same breakpoint: the cycle
+        // collapses there onto the one of half its period, which is no corner.
+        if bp == breakpoint && self.n.is_multiple_of(2) && (j + self.n / 2) % self.n == impact {
+            return None;
+        }
+        let side = |q: &CurvePoint| signed_distance(q.cycle.phases[j], bp) < 0.0;
+        let here = side(cur);
+        let y0 = [corner.alpha, corner.p];
+        let came = [y0[0] - cur.alpha, y0[1] - cur.p];
+        let len = came[0].hypot(came[1]);
+        if len.is_nan() || len <= 0.0 {
+            return None;
+        }
+        let came = [came[0] / len, came[1] / len];
+        let scale = self.plane.scale();
+        for rho in [1e-6, 1e-5, 1e-4].map(|f| f * scale) {
+            for deg in TURNS {
+                let (s, c) = deg.to_radians().sin_cos();
+                let dir = [c * came[0] - s * came[1], s * came[0] + c * came[1]];
+                let y = [y0[0] + rho * dir[0], y0[1] + rho * dir[1]];
+                if !self.plane.inside(y) {
+                    continue;
+                }
+                let d = dir[0] * y0[0] + dir[1] * y0[1] + rho;
+                let r = self.correct(y, dir, d, &cur.cycle);
+                let Ok((e, _)) = r else {
+                    continue;
+                };
+                let q = self.point(e);
+                let dist = (q.alpha - y0[0]).hypot(q.p - y0[1]);
+                if side(&q) != here && dist <= 10.0 * rho && self.plane.inside([q.alpha, q.p]) {
+                    let out = [(q.alpha - y0[0]) / dist, (q.p - y0[1]) / dist];
+                    return Some((q, out));
+                }
+            }
+        }
+        None
+    }
+
     /// Where the curve stopped at a codimension-two point located on it (within a
     /// hundred-thousandth of the plane): the end it makes (a collapse, or a border).
     fn end_at_codim2(&self, cur: &CurvePoint, codim2: &[Codim2], index: usize) -> Option<CurveEnd> {
@@ -379,12 +490,18 @@ impl Tracer<'_> {
             let (impact, bp) = (j / nb, self.jumps[j % nb]);
             let test = |q: &CurvePoint| signed_distance(q.cycle.phases[impact], bp);
             let mut g = |s: f64| at(s).map_or(f64::NAN, |q| test(&q));
+            // A crossing that cannot be located on the curve between the two points is
+            // no crossing of this curve: the step jumped onto another curve close by
+            // (two arms of a cusp, the other impact on either side of its breakpoint),
+            // and is refused.
             let Some(q) = bracketed_root_nan(&mut g, 0.0, h, ga, gb).and_then(at) else {
-                continue;
+                return true;
             };
             let second = test(&q);
-            // Located only where the corrector worked up to the crossing.
-            if second.abs() <= CONDITION_TOLERANCE {
+            if second.abs() > CONDITION_TOLERANCE {
+                return true;
+            }
+            {
                 codim2.push(Codim2 {
                     kind: if collapsed(&q.cycle) {
                         Codim2Kind::Collapse
