@@ -181,9 +181,10 @@ impl Tracer<'_> {
                 // A point outside the window is not this curve's to report, nor one
                 // the corrector found far from the predicted point (on another part
                 // of the curve, where it comes back close to itself).
-                // Where the curve has a corner (another impact crossing a breakpoint
-                // turns it), the point lies beyond the predicted one by h tan θ: a
-                // small step accepts that, up to θ = 70°.
+                // A tangent off by θ puts the point h tan θ from the predicted one: a
+                // step accepts up to 1.5 h (θ = 56°), and a small one, where the curve
+                // may have a corner (another impact crossing a breakpoint turns it),
+                // up to 2.75 h (θ = 70°).
                 let off = (e.y[0] - start[0]).hypot(e.y[1] - start[1]);
                 let reach = if h < STALL_STEP * h_max {
                     2.75 * h
@@ -368,8 +369,8 @@ impl Tracer<'_> {
     /// A border-collision curve stopped at a double border `corner` (another impact
     /// reaching another breakpoint): its point beyond, where that impact has crossed
     /// into the next piece, solved on circles of growing radius around the corner in
-    /// directions turned up to 75° either way from the way it came (the corner turns
-    /// the curve, f'' jumping for the other impact), with the direction it leaves in.
+    /// the directions [`TURNS`] (the corner turns the curve, f'' jumping for the other
+    /// impact), with the direction it leaves in.
     /// None for the other kinds (their condition is another function beyond) and where
     /// the cycle does not go on beyond the corner.
     fn past_corner(
@@ -501,22 +502,20 @@ impl Tracer<'_> {
             if second.abs() > CONDITION_TOLERANCE {
                 return true;
             }
-            {
-                codim2.push(Codim2 {
-                    kind: if collapsed(&q.cycle) {
-                        Codim2Kind::Collapse
-                    } else {
-                        Codim2Kind::DoubleBorder
-                    },
-                    curve: index,
-                    alpha: q.alpha,
-                    p: q.p,
-                    condition: q.condition,
-                    second_condition: second,
-                    impact: Some((impact, bp)),
-                    meets: vec![index],
-                });
-            }
+            codim2.push(Codim2 {
+                kind: if collapsed(&q.cycle) {
+                    Codim2Kind::Collapse
+                } else {
+                    Codim2Kind::DoubleBorder
+                },
+                curve: index,
+                alpha: q.alpha,
+                p: q.p,
+                condition: q.condition,
+                second_condition: second,
+                impact: Some((impact, bp)),
+                meets: vec![index],
+            });
         }
         if let (Some(ca), Some(cb)) = (a.criticality, b.criticality) {
             if ca.supercritical().is_some()
