@@ -280,23 +280,7 @@ fn the_curves_do_not_depend_on_the_seeds_and_go_on_where_they_go_on() {
     }
     // The (4, 4) border collision at ½ against the one-parameter continuation.
     for d in [0.70, 0.72] {
-        let found = branches(
-            &Table::fd(d).unwrap(),
-            0.8,
-            (0.45, 0.65),
-            Start::Fixed { k: 1 },
-            Options {
-                max_period: 4,
-                ..Options::default()
-            },
-        )
-        .unwrap();
-        let bc: Vec<&Special> = found
-            .iter()
-            .filter(|br| br.n == 4)
-            .flat_map(|br| br.specials.iter().chain([&br.begin, &br.end]))
-            .filter(|s| s.kind == Kind::BorderCollision && (s.phase - 0.5).abs() < 1e-12)
-            .collect();
+        let bc = continuation_borders(d, (0.45, 0.65), 4, 0.5);
         assert!(
             !bc.is_empty(),
             "D = {d}: the continuation's (4, 4) border collision"
@@ -341,23 +325,7 @@ fn border_collision_curves_go_on_next_to_a_birth_and_through_a_corner() {
     };
     let eight = run(8, 5);
     for d in [0.519, 0.521, 0.523] {
-        let found = branches(
-            &Table::fd(d).unwrap(),
-            0.8,
-            (0.45, 0.57),
-            Start::Fixed { k: 1 },
-            Options {
-                max_period: 8,
-                ..Options::default()
-            },
-        )
-        .unwrap();
-        let bc: Vec<&Special> = found
-            .iter()
-            .filter(|br| br.n == 8)
-            .flat_map(|br| br.specials.iter())
-            .filter(|s| s.kind == Kind::BorderCollision && s.phase.abs() < 1e-12)
-            .collect();
+        let bc = continuation_borders(d, (0.45, 0.57), 8, 0.0);
         assert!(
             !bc.is_empty(),
             "D = {d}: the continuation's (8, 8) border collision"
@@ -414,4 +382,28 @@ fn border_collision_curves_go_on_next_to_a_birth_and_through_a_corner() {
             assert!(q.condition.abs() <= 1e-9, "{q:?}");
         }
     }
+}
+
+/// The border collisions at the breakpoint `phase` of the (n, n) branches the
+/// one-parameter continuation from the (1, 1) solution finds on F_D at r = 0.8 over
+/// the α window (passed, begun or ended there).
+fn continuation_borders(d: f64, alpha: (f64, f64), n: usize, phase: f64) -> Vec<Special> {
+    let found = branches(
+        &Table::fd(d).unwrap(),
+        0.8,
+        alpha,
+        Start::Fixed { k: 1 },
+        Options {
+            max_period: n,
+            ..Options::default()
+        },
+    )
+    .unwrap();
+    found
+        .iter()
+        .filter(|br| br.n == n)
+        .flat_map(|br| br.specials.iter().chain([&br.begin, &br.end]))
+        .filter(|s| s.kind == Kind::BorderCollision && (s.phase - phase).abs() < 1e-12)
+        .cloned()
+        .collect()
 }

@@ -79,22 +79,20 @@ impl Tracer<'_> {
             // cycle ends on one side (at a grazing the flight would cross the table
             // beyond the curve), or where one side lies in other pieces.
             let at = |y: [f64; 2]| valid(y).then(|| self.eval(y, &e.pt).ok()).flatten();
+            let difference = |p: Option<&Eval>, m: Option<&Eval>| match (p, m) {
+                (Some(p), Some(m)) => Some((p.g - m.g) / (2.0 * h)),
+                (Some(p), None) => Some((p.g - e.g) / h),
+                (None, Some(m)) => Some((e.g - m.g) / h),
+                (None, None) => None,
+            };
             let (p, m) = (at(plus), at(minus));
             let (pk, mk) = (
                 p.as_ref().filter(|q| keeps(q)),
                 m.as_ref().filter(|q| keeps(q)),
             );
-            *g = match (pk, mk) {
-                (Some(p), Some(m)) => (p.g - m.g) / (2.0 * h),
-                (Some(p), None) => (p.g - e.g) / h,
-                (None, Some(m)) => (e.g - m.g) / h,
-                (None, None) => match (p, m) {
-                    (Some(p), Some(m)) => (p.g - m.g) / (2.0 * h),
-                    (Some(p), None) => (p.g - e.g) / h,
-                    (None, Some(m)) => (e.g - m.g) / h,
-                    (None, None) => return Err(PassError::NoConvergence),
-                },
-            };
+            *g = difference(pk, mk)
+                .or_else(|| difference(p.as_ref(), m.as_ref()))
+                .ok_or(PassError::NoConvergence)?;
         }
         if !(grad[0].is_finite() && grad[1].is_finite()) || grad == [0.0, 0.0] {
             return Err(PassError::NoConvergence);
