@@ -407,8 +407,7 @@ impl Tracer<'_> {
                     continue;
                 }
                 let d = dir[0] * y0[0] + dir[1] * y0[1] + rho;
-                let r = self.correct(y, dir, d, &cur.cycle);
-                let Ok((e, _)) = r else {
+                let Ok((e, _)) = self.correct(y, dir, d, &cur.cycle) else {
                     continue;
                 };
                 let q = self.point(e);
