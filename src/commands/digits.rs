@@ -14,9 +14,12 @@ use crate::config::run::{DigitsRun, LyapunovDigits};
 use crate::output::records::{cycle_text, CycleRecord};
 use crate::output::sink::Sink;
 use crate::output::Format;
+use bouncemap_engine::attractors::lyapunov::Spectrum;
+use bouncemap_engine::attractors::{Found, Kind};
 use bouncemap_engine::{
-    orbit_to_digits, sticking_cycle_to_digits, Big, CycleVerdict, DigitsOrbit, DigitsProgress,
-    Real, CYCLE_EVENTS,
+    cycles_near, impact_cycle_to_digits, orbit_to_digits, sticking_cycle_to_digits, Agreed, Big,
+    CycleVerdict, DigitsOrbit, DigitsProgress, ImpactCycle, ImpactCycleVerdict, Real, Stability,
+    CYCLE_EVENTS,
 };
 use serde_json::json;
 use std::io::Write;
@@ -197,15 +200,57 @@ impl Reporter {
     }
 }
 
-/// `lyapunov --digits N`: the sticking cycle of the orbit decided at any precision
-/// ([`sticking_cycle_to_digits`]): its length in table periods, where it is released
-/// and how long after the release it sticks, to the digits the two precisions agree on;
-/// or what could not be decided, and the digits it would need.
+/// `lyapunov --digits N`: what the orbit settles on (by the f64 run), at any precision.
+/// A cycle of impacts is solved by Newton's method at two precisions
+/// ([`impact_cycle_to_digits`]): its launch, multipliers and exponents to the digits both
+/// agree on. Otherwise the sticking cycle is decided ([`sticking_cycle_to_digits`]):
+/// its length in table periods, where it is released and how long after the release it
+/// sticks; or what could not be decided, and the digits it would need.
 pub fn lyapunov(run: &LyapunovDigits) -> anyhow::Result<()> {
     let spec = &run.spec;
     // Standard output is the output before the work starts: progress then knows whether
     // the results stream into another program.
     let mut out = Sink::stdout();
+    let double = &run.double;
+    let found = super::lyapunov::measure(&double.sys, double.start, &double.settle)?;
+    if let Some((n, k, point)) = impacts_only(&found) {
+        let verdict = solve_impact_cycle(run, n, k, point)?;
+        let origin = "the cycle of impacts the orbit settles on (double precision)";
+        return impact_cycle(run, &verdict, (n, k), origin, out);
+    }
+    // An orbit that did not settle in double precision but does not grow either (next
+    // to a bifurcation a multiplier is near the unit circle and the orbit converges too
+    // slowly): the stable cycle of impacts next to its end, if the precision decides one.
+    if let (Kind::Unsettled | Kind::Converging, Some(point)) = (found.kind, found.point) {
+        let mut first = None;
+        for c in cycles_near(&double.sys, point.0, point.1, NEAR_EVENTS) {
+            let launch = (c.phases[0], c.velocities[0]);
+            let verdict = solve_impact_cycle(run, c.n, c.k, launch)?;
+            let stable = matches!(&verdict, ImpactCycleVerdict::Found(f) if f.stability == Stability::Stable);
+            if stable {
+                first = Some((verdict, c.n, c.k, true));
+                break;
+            }
+            if first.is_none() && matches!(verdict, ImpactCycleVerdict::Found(_)) {
+                first = Some((verdict, c.n, c.k, false));
+            }
+        }
+        if let Some((verdict, n, k, stable)) = first {
+            let unsettled = format!(
+                "the cycle of impacts next to the orbit's end, which double precision did not settle on ({}{})",
+                found.kind.as_str(),
+                found
+                    .lyapunov()
+                    .map_or(String::new(), |l| format!(", largest exponent by QR {}", crate::output::text::significant(l, 3)))
+            );
+            let origin = if stable {
+                unsettled
+            } else {
+                format!("{unsettled}; no stable cycle of up to {NEAR_EVENTS} impacts is next to it")
+            };
+            return impact_cycle(run, &verdict, (n, k), &origin, out);
+        }
+    }
     let mut report = Reporter::new(
         "lyapunov",
         CYCLE_EVENTS,
@@ -256,15 +301,13 @@ pub fn lyapunov(run: &LyapunovDigits) -> anyhow::Result<()> {
                 }
             }
             Format::Csv => {
-                writeln!(
-                    out,
-                    "table,alpha,r,parameters,digits,verdict,periods,releases,release_phase,stick_after,agreed_digits,need_digits"
-                )?;
+                writeln!(out, "{LYAPUNOV_CSV}")?;
                 let row = CycleRecord::of(&verdict);
                 let cell = |x: Option<String>| x.unwrap_or_default();
+                // (The columns of a cycle of impacts empty.)
                 writeln!(
                     out,
-                    "{},{},{},{},{},{},{},{},{},{},{},{}",
+                    "{},{},{},{},{},{},{},{},{},{},{},{},,,,,,,,,",
                     spec.table,
                     spec.written.0,
                     spec.written.1,
@@ -306,4 +349,291 @@ pub fn lyapunov(run: &LyapunovDigits) -> anyhow::Result<()> {
         Ok(())
     })();
     out.end(written)
+}
+
+/// (n, k, launch) of the cycle of impacts the f64 orbit settled on, if it did (not a
+/// sticking cycle, which has no finite exponents).
+fn impacts_only(found: &Found) -> Option<(usize, u32, (f64, f64))> {
+    match (
+        found.kind,
+        found.spectrum,
+        found.events,
+        found.periods,
+        found.point,
+    ) {
+        (Kind::Periodic, Some(Spectrum::Finite(_)), Some(n), Some(k), Some(point)) => {
+            Some((n, u32::try_from(k).ok().filter(|k| *k > 0)?, point))
+        }
+        _ => None,
+    }
+}
+
+/// The csv header of `lyapunov --digits`: the sticking cycle's fields, then a cycle of
+/// impacts' (each filled for its own kind of verdict).
+const LYAPUNOV_CSV: &str = "table,alpha,r,parameters,digits,verdict,periods,releases,release_phase,stick_after,agreed_digits,need_digits,events,phase,v,multiplier1,multiplier2,complex,lambda1,lambda2,stability";
+
+/// The most impacts of a cycle looked for next to the end of an orbit that did not
+/// settle.
+const NEAR_EVENTS: usize = 64;
+
+/// The (n, k) cycle of impacts through `point` (a double's launch) solved at two
+/// precisions ([`impact_cycle_to_digits`]), with progress on stderr.
+fn solve_impact_cycle(
+    run: &LyapunovDigits,
+    n: usize,
+    k: u32,
+    point: (f64, f64),
+) -> anyhow::Result<ImpactCycleVerdict> {
+    let spec = &run.spec;
+    // What one pair of precisions computes at most: Newton's passes at both.
+    let bound = 2 * (bouncemap_engine::NEWTON_STEPS as u64 + 1) * n as u64;
+    let mut report = Reporter::new(
+        "lyapunov",
+        bound,
+        &format!(
+            "{}  alpha {}  r {}  the ({n}, {k}) cycle of impacts to {} digits",
+            spec.table, spec.written.0, spec.written.1, spec.digits
+        ),
+    );
+    let verdict = impact_cycle_to_digits(
+        &|bits| spec.make(bits),
+        n,
+        k,
+        point,
+        spec.digits,
+        spec.max_digits,
+        &mut |p| {
+            report.update(p);
+            std::ops::ControlFlow::Continue(())
+        },
+    );
+    report.finish();
+    // (Only a progress report that asks to stop ends it without a verdict.)
+    verdict.ok_or_else(|| anyhow::anyhow!("the run at any precision stopped without a verdict"))
+}
+
+/// `lyapunov --digits` on a cycle of impacts (`origin` says which): printed to the
+/// digits the two precisions agree on, with the identity det M = r²ⁿ (the exponents' sum
+/// 2 ln r) as evidence.
+fn impact_cycle(
+    run: &LyapunovDigits,
+    verdict: &ImpactCycleVerdict,
+    (n, k): (usize, u32),
+    origin: &str,
+    mut out: Sink,
+) -> anyhow::Result<()> {
+    let spec = &run.spec;
+    let parameters = if spec.binary { "doubles" } else { "decimals" };
+    let text = |a: &Agreed| a.value.to_digits(a.digits.max(1) as usize);
+    // Exponents per table period: per impact times n/k.
+    let per_period = |a: &Agreed| Agreed {
+        value: a.value.clone() * Big::from_f64(n as f64, &a.value.context())
+            / Big::from_f64(f64::from(k), &a.value.context()),
+        digits: a.digits,
+    };
+    let stability = |c: &ImpactCycle| match c.stability {
+        Stability::Stable => "stable",
+        Stability::Unstable => "unstable",
+        Stability::Undecided => "undecided",
+    };
+    let (name, agreed, need) = match verdict {
+        ImpactCycleVerdict::Found(c) => (
+            "periodic",
+            Some(
+                [
+                    &c.phase,
+                    &c.v,
+                    &c.multipliers[0],
+                    &c.multipliers[1],
+                    &c.exponents[0],
+                    &c.exponents[1],
+                ]
+                .iter()
+                .map(|a| a.digits)
+                .min()
+                .unwrap_or(0),
+            ),
+            None,
+        ),
+        ImpactCycleVerdict::Undecided { agreed, need, .. } => {
+            ("periodic_undecided", Some(*agreed), Some(*need))
+        }
+        ImpactCycleVerdict::Lost { .. } => ("periodic_lost", None, None),
+    };
+    let summary = impact_text(verdict, n, k, origin, spec.digits, spec.max_digits);
+    let written = (|| -> anyhow::Result<()> {
+        match run.format {
+            Format::Text => {
+                writeln!(
+                    out,
+                    "table {}  alpha {}  r {}  parameters {}  digits {}",
+                    spec.table,
+                    spec.written.0,
+                    spec.written.1,
+                    if spec.binary {
+                        "as doubles"
+                    } else {
+                        "as written"
+                    },
+                    spec.digits
+                )?;
+                writeln!(out, "{summary}")?;
+                if let ImpactCycleVerdict::Found(c) = verdict {
+                    writeln!(
+                        out,
+                        "launch: phase {}  v {}  (right after an impact)",
+                        text(&c.phase),
+                        text(&c.v)
+                    )?;
+                    if c.complex {
+                        writeln!(
+                            out,
+                            "multipliers: a complex pair {} ± {} i, of modulus r^{n}",
+                            text(&c.multipliers[0]),
+                            text(&c.multipliers[1]),
+                        )?;
+                    } else {
+                        writeln!(
+                            out,
+                            "multipliers: real, {} and {}",
+                            text(&c.multipliers[0]),
+                            text(&c.multipliers[1])
+                        )?;
+                    }
+                    let sign = if c.margin < 0.0 { "-" } else { "+" };
+                    writeln!(
+                        out,
+                        "{}: the largest |multiplier| is 1 {sign} {:.2e}{}",
+                        stability(c),
+                        c.margin.abs(),
+                        match c.stability {
+                            Stability::Undecided => ", within the difference of the two runs",
+                            _ => "",
+                        }
+                    )?;
+                    writeln!(out, "exponents per impact:")?;
+                    for (i, e) in c.exponents.iter().enumerate() {
+                        writeln!(out, "   lambda{}  {}", i + 1, text(e))?;
+                    }
+                    let sum = c.exponents[0].value.clone() + c.exponents[1].value.clone();
+                    let digits = c.exponents[0].digits.min(c.exponents[1].digits);
+                    writeln!(
+                        out,
+                        "       sum  {}  (2 ln r = {})",
+                        sum.to_digits(digits as usize),
+                        c.two_ln_r.to_digits(digits as usize)
+                    )?;
+                    if n as u32 != k {
+                        writeln!(out, "exponents per table period (x {n}/{k}):")?;
+                        for (i, e) in c.exponents.iter().enumerate() {
+                            writeln!(out, "   lambda{}  {}", i + 1, text(&per_period(e)))?;
+                        }
+                    }
+                    writeln!(
+                        out,
+                        "evidence: det M / r^{} - 1 = {:.1e}; return residual {:.1e}; smallest landing speed |u| {}",
+                        2 * n,
+                        c.det_error,
+                        c.residual,
+                        crate::output::text::significant(c.min_speed, 6)
+                    )?;
+                }
+            }
+            Format::Csv => {
+                writeln!(out, "{LYAPUNOV_CSV}")?;
+                let cell = |x: Option<String>| x.unwrap_or_default();
+                let found = match verdict {
+                    ImpactCycleVerdict::Found(c) => Some(&**c),
+                    _ => None,
+                };
+                let f = |g: &dyn Fn(&ImpactCycle) -> String| cell(found.map(g));
+                writeln!(
+                    out,
+                    "{},{},{},{parameters},{},{name},{k},,,,{},{},{n},{},{},{},{},{},{},{},{}",
+                    spec.table,
+                    spec.written.0,
+                    spec.written.1,
+                    spec.digits,
+                    cell(agreed.map(|x| x.to_string())),
+                    cell(need.map(|x| x.to_string())),
+                    f(&|c| text(&c.phase)),
+                    f(&|c| text(&c.v)),
+                    f(&|c| text(&c.multipliers[0])),
+                    f(&|c| text(&c.multipliers[1])),
+                    f(&|c| c.complex.to_string()),
+                    f(&|c| text(&c.exponents[0])),
+                    f(&|c| text(&c.exponents[1])),
+                    f(&|c| stability(c).to_string()),
+                )?;
+            }
+            Format::Json => {
+                let found = match verdict {
+                    ImpactCycleVerdict::Found(c) => Some(&**c),
+                    _ => None,
+                };
+                let doc = json!({
+                    "table": spec.table,
+                    "alpha": spec.alpha,
+                    "r": spec.r,
+                    "alpha_written": spec.written.0,
+                    "r_written": spec.written.1,
+                    "parameters": parameters,
+                    "digits": spec.digits,
+                    "start": run.initial,
+                    "verdict": name,
+                    "events": n,
+                    "periods": k,
+                    "agreed_digits": agreed,
+                    "need_digits": need,
+                    "phase": found.map(|c| text(&c.phase)),
+                    "v": found.map(|c| text(&c.v)),
+                    "multipliers": found.map(|c| [text(&c.multipliers[0]), text(&c.multipliers[1])]),
+                    "complex": found.map(|c| c.complex),
+                    "lambda1": found.map(|c| text(&c.exponents[0])),
+                    "lambda2": found.map(|c| text(&c.exponents[1])),
+                    "lambda1_per_period": found.map(|c| text(&per_period(&c.exponents[0]))),
+                    "lambda2_per_period": found.map(|c| text(&per_period(&c.exponents[1]))),
+                    "two_ln_r": found.map(|c| c.two_ln_r.to_digits(spec.digits as usize)),
+                    "stability": found.map(stability),
+                    "margin": found.map(|c| c.margin),
+                    "det_error": found.map(|c| c.det_error),
+                    "residual": found.map(|c| c.residual),
+                    "min_speed": found.map(|c| c.min_speed),
+                    "working_digits": found.map(|c| [c.precision.0, c.precision.1]),
+                    "text": summary,
+                });
+                serde_json::to_writer(&mut out, &doc)?;
+                writeln!(out)?;
+            }
+        }
+        Ok(())
+    })();
+    out.end(written)
+}
+
+/// The verdict on a cycle of impacts in a line.
+fn impact_text(
+    v: &ImpactCycleVerdict,
+    n: usize,
+    k: u32,
+    origin: &str,
+    digits: u32,
+    max_digits: u32,
+) -> String {
+    let cycle = format!("cycle: periodic ({n}, {k}), {origin}");
+    match v {
+        ImpactCycleVerdict::Found(c) => format!(
+            "{cycle}, solved by Newton's method at any precision: the runs at {} and {} digits agree on every value below",
+            c.precision.0, c.precision.1
+        ),
+        ImpactCycleVerdict::Undecided { tried, agreed, need } => format!(
+            "{cycle}: not decided within --max-digits {max_digits}: solved at {} and {} digits, the runs agree to {agreed} digits only; it needs at least about {need} digits (--max-digits {})",
+            tried.0,
+            tried.1,
+            bouncemap_engine::max_digits_for(digits, *need)
+        ),
+        ImpactCycleVerdict::Lost { digits, why } => format!(
+            "{cycle}: lost at {digits} digits: {why}; no values at any precision"
+        ),
+    }
 }

@@ -92,7 +92,7 @@ pub fn run(run: &LyapunovRun) -> anyhow::Result<()> {
 /// does not grow with the transient or the sample (the run keeps one point, the QR
 /// measurement its sums and block means, the sample the cells it visits). A standard
 /// output whose reader has gone stops it (a quiet end).
-fn measure(sys: &System, start: State, settle: &Settle) -> anyhow::Result<Found> {
+pub(super) fn measure(sys: &System, start: State, settle: &Settle) -> anyhow::Result<Found> {
     let total = settle.sample as usize;
     let spec = format!(
         "table {}  alpha {}  r {}  transient {} periods  impacts {}",

@@ -589,11 +589,14 @@ fn precise_spec(
     }))
 }
 
-/// `lyapunov --digits`, settled: the sticking cycle decided at any precision.
+/// `lyapunov --digits`, settled: the cycle the orbit settles on (by the f64 run), at
+/// any precision: a cycle of impacts solved there, a sticking cycle decided there.
 #[derive(Clone, Debug)]
 pub struct LyapunovDigits {
     /// The system, the start and the digits.
     pub spec: PreciseSpec,
+    /// The f64 run that says what the orbit settles on.
+    pub double: LyapunovRun,
     /// The most table periods the orbit is followed to find its cycle.
     pub transient: u64,
     /// How the start was given, as the output names it.
@@ -621,8 +624,9 @@ pub fn lyapunov_digits(args: &LyapunovArgs) -> Result<Option<LyapunovDigits>, In
     Ok(Some(LyapunovDigits {
         spec,
         transient: args.transient,
-        initial: run.initial,
+        initial: run.initial.clone(),
         format: args.format,
+        double: run,
     }))
 }
 

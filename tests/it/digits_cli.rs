@@ -244,6 +244,10 @@ fn bad_digits_get_one_line_and_status_two() {
     }
 }
 
+/// The csv header of `lyapunov --digits`: a sticking cycle's fields, then a cycle of
+/// impacts'.
+const LYAPUNOV_HEADER: &str = "table,alpha,r,parameters,digits,verdict,periods,releases,release_phase,stick_after,agreed_digits,need_digits,events,phase,v,multiplier1,multiplier2,complex,lambda1,lambda2,stability";
+
 fn lyapunov_csv(args: &[&str]) -> Vec<String> {
     let mut all = vec!["lyapunov", "--r", "0.8", "--format", "csv"];
     all.extend_from_slice(args);
@@ -255,10 +259,7 @@ fn lyapunov_csv(args: &[&str]) -> Vec<String> {
     );
     let text = String::from_utf8(out.stdout).unwrap();
     let mut lines = text.lines();
-    assert_eq!(
-        lines.next(),
-        Some("table,alpha,r,parameters,digits,verdict,periods,releases,release_phase,stick_after,agreed_digits,need_digits")
-    );
+    assert_eq!(lines.next(), Some(LYAPUNOV_HEADER));
     lines.next().unwrap().split(',').map(String::from).collect()
 }
 
@@ -524,4 +525,61 @@ fn a_parameter_with_more_digits_than_a_double_is_read_as_written() {
         (short_b[6].as_str(), short_b[9].as_str())
     );
     assert_eq!(typed_b[6], "142");
+}
+
+/// ln 0.8 to 70 digits (ln 4 − ln 5), from an independent multiple-precision library.
+const LN_08: &str = "-0.2231435513142097557662950903098345033746010855480072136712878724873917";
+
+/// Next to the cubic table's period doubling at α ≈ 0.559466561328 the (2, 2) cycle's
+/// multiplier is −1 + 2·10⁻⁹: the f64 orbit converges too slowly to settle (unsettled,
+/// its QR exponent −4·10⁻⁵ ± 10⁻⁵). `lyapunov --digits 30` solves the cycle by Newton's
+/// method at two precisions and prints it to 30 digits; every value holds the
+/// identities of the map: μ₁μ₂ = det M = r⁴, λᵢ = ln|μᵢ|/2 per impact, λ₁ + λ₂ = 2 ln r
+/// (ln 0.8 from an independent library), and asked for 50 digits it is the same to 30.
+#[test]
+fn lyapunov_solves_a_cycle_of_impacts_double_precision_cannot_settle() {
+    let base = ["--table", "cubic", "--alpha", "0.5594665613"];
+    let f64_run = bouncemap(&[&["lyapunov"], &base[..]].concat());
+    let text = String::from_utf8(f64_run.stdout).unwrap();
+    assert!(text.contains("orbit: unsettled"), "{text}");
+    let at = |digits: &str| {
+        let mut a = base.to_vec();
+        a.extend_from_slice(&["--digits", digits]);
+        lyapunov_csv(&a)
+    };
+    let (row, fifty) = (at("30"), at("50"));
+    let field = |r: &[String], name: &str| {
+        let i = LYAPUNOV_HEADER.split(',').position(|h| h == name).unwrap();
+        r[i].clone()
+    };
+    for (name, want) in [
+        ("verdict", "periodic"),
+        ("events", "2"),
+        ("periods", "2"),
+        ("agreed_digits", "30"),
+        ("complex", "false"),
+        ("stability", "stable"),
+    ] {
+        assert_eq!(field(&row, name), want, "{name}: {row:?}");
+    }
+    let bits = bits_for_digits(60);
+    let big = |s: &str| Big::from_decimal(s, &bits).unwrap();
+    let digits = |a: &Big, b: &Big| bouncemap_engine::agreeing_digits(a, b, 60);
+    let (m1, m2) = (
+        big(&field(&row, "multiplier1")),
+        big(&field(&row, "multiplier2")),
+    );
+    let (l1, l2) = (big(&field(&row, "lambda1")), big(&field(&row, "lambda2")));
+    let r4 = big("0.4096");
+    assert!(digits(&(m1.clone() * m2.clone()), &r4) >= 29);
+    let two_ln_r = big("2") * big(LN_08);
+    assert!(digits(&(l1.clone() + l2.clone()), &two_ln_r) >= 29);
+    // λ₁ = ln|μ₁|/2 from μ₁'s 30 digits: |μ₁| − 1 ≈ 2·10⁻⁹ leaves about 21.
+    assert!(digits(&(m1.abs().ln() / big("2")), &l1) >= 20);
+    assert!(digits(&(m2.abs().ln() / big("2")), &l2) >= 29);
+    assert!(m1.abs() < big("1") && m1.to_f64() > -1.0 + 1e-9);
+    for name in ["phase", "v", "multiplier1", "lambda1"] {
+        let (a, b) = (field(&row, name), field(&fifty, name));
+        assert!(same_digits(&a, &b) >= 29, "{name}: {a} vs {b}");
+    }
 }

@@ -80,12 +80,15 @@ pub use impact::{next_landing, FlightError, Landing, Launch, Solver};
 pub use inverse::{InverseMap, NoPreimage, Preimage, RETURN_TOLERANCE};
 pub use linalg::{eigenvalues_2x2, Complex, Mat2};
 pub use map::{Event, EventKind, Halt, ImpactMap, Mode, State, DEFAULT_HOP, MAX_EVENT_PERIOD};
+pub use orbits::periodic::cycles_near;
 pub use precise::{
     agreeing_digits, check_digits, decide_in_job, decide_sticking_cycle, digits_bytes,
-    max_digits_for, orbit_to_digits, precise_takes, sticking_cycle_to_digits, CycleSummary,
-    CycleVerdict, DigitsAsk, DigitsOrbit, DigitsProgress, MakeBig, PreciseEvent, PreciseHalt,
-    PreciseMap, PreciseRefusal, PreciseSetup, PreciseState, PreciseSystem, Slot, StickingCycle,
-    Written, CYCLE_EVENTS, PATH_EVENTS, PRECISE_MAX_DEGREE,
+    impact_cycle_to_digits, max_digits_for, orbit_to_digits, precise_takes, solve_cycle,
+    sticking_cycle_to_digits, Agreed, CycleAt, CycleLost, CycleSummary, CycleVerdict, DigitsAsk,
+    DigitsOrbit, DigitsProgress, ImpactCycle, ImpactCycleVerdict, MakeBig, Multipliers,
+    PreciseEvent, PreciseHalt, PreciseMap, PreciseRefusal, PreciseSetup, PreciseState,
+    PreciseSystem, Slot, Stability, StickingCycle, Written, CYCLE_EVENTS, NEWTON_STEPS,
+    PATH_EVENTS, PRECISE_MAX_DEGREE,
 };
 pub use real::{bits_for_digits, Big, Interval, Number, Real};
 pub use system::{kappa_c, System};

@@ -27,7 +27,25 @@
 //! ([`Tangent::Grazing`]).
 
 use crate::map::{Event, EventKind, State};
+use crate::real::Number;
 use crate::system::System;
+
+/// ∂tᵢ₊₁/∂tᵢ = (wᵢ − τ)/uᵢ₊₁ and ∂tᵢ₊₁/∂vᵢ = −τ/uᵢ₊₁ of a flight launched with relative
+/// velocity `w`, lasting `tau` and landing with relative velocity `u`: written once for
+/// every number type (the f64 map's [`Flight`] and the map at any precision).
+#[inline]
+pub fn flight_partials<R: Number>(w: R, tau: R, u: R) -> (R, R) {
+    ((w - tau.clone()) / u.clone(), -tau / u)
+}
+
+/// The Jacobian of an impact in (t, v) from the flight's partials `a`, `b` and f'' =
+/// `ddf` at the landing: [[a, b], [s a − r, s b − r]] with s = (1 + r) f'' + r.
+#[inline]
+pub fn impact_jacobian<R: Number>(a: R, b: R, ddf: R, r: R, one: R) -> [[R; 2]; 2] {
+    let s = (one + r.clone()) * ddf + r.clone();
+    let (sa, sb) = (s.clone() * a.clone(), s * b.clone());
+    [[a, b], [sa - r.clone(), sb - r]]
+}
 
 /// The Jacobian of one event in the coordinates (t, v) right after it.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -104,9 +122,10 @@ pub fn flight(sys: &System, before: &State, e: &Event) -> Option<Flight> {
     let w = before.w;
     let table = sys.table();
     let big_f = table.value(before.phase) - table.value(e.phase);
+    let (a, b) = flight_partials(w, tau, u);
     Some(Flight {
-        a: (w - tau) / u,
-        b: -tau / u,
+        a,
+        b,
         c: -big_f / u,
         df_alpha: table.derivative(e.phase, 1),
         ddf: sys.ddf(e.phase),
@@ -123,9 +142,7 @@ impl Flight {
 
     /// The Jacobian with f'' = `ddf` at the landing (a one-sided value at a breakpoint).
     pub fn jacobian_with(&self, ddf: f64) -> [[f64; 2]; 2] {
-        let (a, b, r) = (self.a, self.b, self.r);
-        let s = (1.0 + self.r) * ddf + r;
-        [[a, b], [s * a - r, s * b - r]]
+        impact_jacobian(self.a, self.b, ddf, self.r, 1.0)
     }
 
     /// ∂(tᵢ₊₁, vᵢ₊₁)/∂α with f'' = `ddf` at the landing.

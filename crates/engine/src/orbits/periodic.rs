@@ -315,6 +315,66 @@ pub fn cycle(sys: &System, n: usize, k: u32, t0: f64, v0: f64) -> Result<CyclePo
     solve_at(&mut map_for(sys), n, k, t0, v0)
 }
 
+/// The cycles of impacts of up to `max_events` impacts next to the launch (t₀, v₀)
+/// (right after an impact), shortest first: for each n whose n-th event returns within
+/// 0.05 of the launch in phase and in velocity (relative) after n impacts, the (n, k)
+/// cycle Newton's method finds from there, k the table periods those n took (a shorter
+/// cycle run several times is taken as the shorter one). Each cycle is listed once. For an orbit that did not settle
+/// (converging too slowly next to a bifurcation, where a multiplier is near the unit
+/// circle), these are the cycles it may be approaching.
+pub fn cycles_near(sys: &System, t0: f64, v0: f64, max_events: usize) -> Vec<CyclePoint> {
+    let mut out: Vec<CyclePoint> = Vec::new();
+    let Ok(start) = State::launch(sys, 0, wrap_phase(t0), v0, 0.0) else {
+        return out;
+    };
+    let mut map = ImpactMap::new(sys.clone(), Solver::Exact, start);
+    for n in 1..=max_events {
+        let Ok(e) = map.step() else { break };
+        if e.kind != EventKind::Impact {
+            break;
+        }
+        let near = crate::time::signed_distance(e.phase, start.phase()).abs() <= 0.05
+            && (e.v - v0).abs() <= 0.05 * (1.0 + v0.abs());
+        let Ok(k) = u32::try_from(e.period) else {
+            break;
+        };
+        if !near || k == 0 {
+            continue;
+        }
+        let Ok(mut c) = cycle(sys, n, k, start.phase(), v0) else {
+            continue;
+        };
+        // Newton's method may have found a shorter cycle run several times: the
+        // shortest whose launch returns after d of the n impacts is the cycle.
+        let same = |i: usize| {
+            crate::time::signed_distance(c.phases[i], c.phases[0]).abs() < 1e-9
+                && (c.velocities[i] - c.velocities[0]).abs() < 1e-9 * (1.0 + v0.abs())
+        };
+        if let Some(d) = (1..n).find(|d| n % d == 0 && same(*d)) {
+            let kd = k as usize * d / n;
+            if kd * n != k as usize * d || kd == 0 {
+                continue;
+            }
+            match cycle(sys, d, kd as u32, c.phases[0], c.velocities[0]) {
+                Ok(shorter) => c = shorter,
+                Err(_) => continue,
+            }
+        }
+        // A repeat of a shorter cycle: its launch is on one found already.
+        let repeat = out.iter().any(|o| {
+            c.n % o.n == 0
+                && o.phases.iter().zip(&o.velocities).any(|(p, v)| {
+                    crate::time::signed_distance(*p, c.phases[0]).abs() < 1e-9
+                        && (v - c.velocities[0]).abs() < 1e-9 * (1.0 + v.abs())
+                })
+        });
+        if !repeat {
+            out.push(c);
+        }
+    }
+    out
+}
+
 /// The corrector of pseudo-arclength continuation: the (n, k) cycle with
 /// τ·(x − x₀) = h, started from x₀ + hτ.
 pub(crate) fn correct(

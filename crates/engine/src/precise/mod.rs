@@ -26,11 +26,16 @@
 //!   series near the launch), and the flight advances by safe steps to the first zero of
 //!   its rigorous lower bound g + g'δ − (1 + αω²)δ²/2.
 
+mod cycle;
 mod digits;
 mod roots;
 mod setup;
 mod sine;
 
+pub use cycle::{
+    impact_cycle_to_digits, solve_cycle, Agreed, CycleAt, CycleLost, ImpactCycle,
+    ImpactCycleVerdict, Multipliers, Stability, NEWTON_STEPS,
+};
 pub use digits::{
     agreeing_digits, max_digits_for, orbit_to_digits, sticking_cycle_to_digits, CycleSummary,
     CycleVerdict, DigitsOrbit, DigitsProgress, MakeBig, StickingCycle, PATH_EVENTS,

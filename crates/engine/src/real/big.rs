@@ -127,6 +127,10 @@ impl Real for Big {
         Big(self.0.asin())
     }
 
+    fn ln(&self) -> Big {
+        Big(self.0.ln())
+    }
+
     fn floor(&self) -> Big {
         Big::at(self.0.floor(), &self.bits())
     }

@@ -54,6 +54,8 @@ pub trait Real: Number + PartialOrd + Debug {
     fn sin_cos(&self) -> (Self, Self);
     /// asin x, |x| ≤ 1.
     fn asin(&self) -> Self;
+    /// ln x, x > 0, correctly rounded to the precision.
+    fn ln(&self) -> Self;
     /// The largest integer not above x.
     fn floor(&self) -> Self;
     /// The precision's unit roundoff: the relative error of one rounding, 2^−(bits − 1)
@@ -96,6 +98,9 @@ impl Real for f64 {
     }
     fn asin(&self) -> f64 {
         f64::asin(*self)
+    }
+    fn ln(&self) -> f64 {
+        f64::ln(*self)
     }
     fn floor(&self) -> f64 {
         f64::floor(*self)

@@ -10,5 +10,6 @@ mod long_cycles;
 mod long_runs;
 mod orbits;
 mod plane;
+mod precise_cycles;
 mod precision;
 mod sweep;

@@ -650,10 +650,8 @@ fn stability(eq: &Equations, bx: &[Interval]) -> Option<Stability> {
         let vi = bx[n + i];
         let w = vi - jets[i][1];
         let u = vi - tau - jets[j][1];
-        let a = (w - tau) / u;
-        let b = -tau / u;
-        let s = (one + r) * jets[j][2] + r;
-        let ji = [[a, b], [s * a - r, s * b - r]];
+        let (a, b) = crate::tangent::flight_partials(w, tau, u);
+        let ji = crate::tangent::impact_jacobian(a, b, jets[j][2], r, one);
         m = [
             [
                 ji[0][0] * m[0][0] + ji[0][1] * m[1][0],
