@@ -576,10 +576,11 @@ fn precise_spec(
             .ok_or_else(|| super::digits::digits_refusal(table))?
             .above(z0)
             .as_written(&p.written);
+    setup.check_written().map_err(InputError)?;
     let written = (setup.decimal(Slot::Alpha), setup.decimal(Slot::R));
     Ok(Some(PreciseSpec {
+        table: setup.table_name(),
         setup,
-        table: table.name().to_string(),
         alpha: system.alpha,
         r: system.r,
         written,

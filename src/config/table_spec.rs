@@ -104,6 +104,33 @@ impl TableSpec {
         ))
     }
 
+    /// The texts given for the table's parameters in `text` (name, text): `fd:D`'s D as
+    /// typed, a file's `NAME=VALUE`s; none for a name that is not valid (its refusal is
+    /// [`TableSpec::parse`]'s) or sets nothing.
+    pub fn parameter_texts(text: &str) -> Vec<(String, String)> {
+        let s = text.trim();
+        match TableSpec::parse(s) {
+            Ok(TableSpec::Builtin(b)) => {
+                let param = b.family().params().first().map(|p| p.name().to_string());
+                match (param, s.split_once(':')) {
+                    (Some(name), Some((_, arg))) => vec![(name, arg.trim().to_string())],
+                    _ => Vec::new(),
+                }
+            }
+            Ok(TableSpec::File(_)) => s
+                .find(".toml:")
+                .map(|i| {
+                    s[i + 6..]
+                        .split(',')
+                        .filter_map(|part| part.split_once('='))
+                        .map(|(n, v)| (n.trim().to_string(), v.trim().to_string()))
+                        .collect()
+                })
+                .unwrap_or_default(),
+            Err(_) => Vec::new(),
+        }
+    }
+
     /// F_D with this D.
     pub fn fd(d: f64) -> TableSpec {
         TableSpec::Builtin(Builtin::fd(d))
@@ -334,6 +361,29 @@ mod tests {
             .unwrap_err()
             .contains("not a number"));
         assert_eq!(TableSpec::fd(0.1).to_string(), "fd:0.1");
+    }
+
+    /// The texts a run at any precision reads the table's parameters from: every digit
+    /// typed, none for a table without parameters set or a name that is refused.
+    #[test]
+    fn parameter_texts_are_the_digits_typed() {
+        let pairs = |t: &str| TableSpec::parameter_texts(t);
+        let one = |n: &str, v: &str| vec![(n.to_string(), v.to_string())];
+        assert_eq!(
+            pairs(" fd: 0.100000000000000000001 "),
+            one("D", "0.100000000000000000001")
+        );
+        assert_eq!(pairs("cubic"), Vec::new());
+        assert_eq!(pairs("sine"), Vec::new());
+        assert_eq!(pairs("fd:2"), Vec::new());
+        assert_eq!(
+            pairs("a.toml:w=0.25000000000000000001, h = 1e-3"),
+            vec![
+                ("w".to_string(), "0.25000000000000000001".to_string()),
+                ("h".to_string(), "1e-3".to_string())
+            ]
+        );
+        assert_eq!(pairs("a.toml"), Vec::new());
     }
 
     #[test]

@@ -583,3 +583,48 @@ fn lyapunov_solves_a_cycle_of_impacts_double_precision_cannot_settle() {
         assert!(same_digits(&a, &b) >= 29, "{name}: {a} vs {b}");
     }
 }
+
+/// The table's parameter is read as written too: F_D at D = 1 − 10⁻²¹ is another system
+/// than D = 1 (the double it rounds to), whose sticking cycle at α = 0.59 (about 45
+/// digits lost from the release to the stick) is not the 78-period one; the output
+/// names the table as typed, and --binary-params gives D = 1's cycle. A D typed just
+/// above 1, whose double is 1, is refused as written (one line, status 2).
+#[test]
+fn a_table_parameter_with_more_digits_than_a_double_is_read_as_written() {
+    let long = "fd:0.999999999999999999999";
+    let at = |table: &str, extra: &[&str]| {
+        let mut a = vec!["--table", table, "--alpha", "0.59", "--digits", "20"];
+        a.extend_from_slice(extra);
+        lyapunov_csv(&a)
+    };
+    let (one, typed, binary) = (
+        at("fd:1", &[]),
+        at(long, &[]),
+        at(long, &["--binary-params"]),
+    );
+    assert_eq!((one[5].as_str(), one[6].as_str()), ("found", "78"));
+    assert_eq!(typed[0], long, "the table used, as typed");
+    assert_eq!(typed[5], "found", "{typed:?}");
+    assert_ne!(typed[6], "78", "{typed:?}");
+    assert_eq!(binary[0], "fd:1", "the double's shortest decimal");
+    assert_eq!(
+        (binary[6].as_str(), binary[9].as_str()),
+        ("142", at("fd:1", &["--binary-params"])[9].as_str())
+    );
+    let out = bouncemap(&[
+        "lyapunov",
+        "--table",
+        "fd:1.000000000000000000001",
+        "--alpha",
+        "0.59",
+        "--digits",
+        "20",
+    ]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    assert!(
+        err.contains("D 1.000000000000000000001") && err.contains("[0, 1]"),
+        "{err}"
+    );
+}

@@ -206,7 +206,8 @@ pub struct PrecisionArgs {
     /// flag was read to, exactly, instead of as the decimal written.
     #[arg(long)]
     pub binary_params: bool,
-    /// The texts typed for α, r, t0, v0 and z0 (`orbit`, `lyapunov`), kept from the
+    /// The texts typed for α, r, t0, v0, z0 and the table's parameters (`orbit`,
+    /// `lyapunov`), kept from the
     /// command line after parsing ([`keep_written`]) so that at any precision each is
     /// read with all its digits.
     #[arg(skip)]
@@ -214,7 +215,8 @@ pub struct PrecisionArgs {
 }
 
 /// Keep in `cli` the texts typed for the parameters that a run at any precision reads
-/// as written (`--alpha`, `--r`, `--t0`, `--v0`, `--z0` of `orbit` and `lyapunov`),
+/// as written (`--alpha`, `--r`, `--t0`, `--v0`, `--z0` and `--table`'s parameters of
+/// `orbit` and `lyapunov`),
 /// from the parsed command line `matches`.
 pub fn keep_written(cli: &mut Cli, matches: &clap::ArgMatches) {
     let (name, precision) = match &mut cli.command {
@@ -238,13 +240,16 @@ pub fn keep_written(cli: &mut Cli, matches: &clap::ArgMatches) {
         t0: typed("t0"),
         v0: typed("v0"),
         z0: typed("z0"),
+        table: typed("table")
+            .map(|t| crate::config::table_spec::TableSpec::parameter_texts(&t))
+            .unwrap_or_default(),
     };
 }
 
 /// `--digits`' help: what it does.
 const DIGITS_HELP: &str = "Compute at any precision and print only what holds to N significant digits: the run is repeated at twice the precision and each value printed to the digits on which the two agree (more precision is taken, up to --max-digits, where they do not); the sine and every polynomial table";
 /// `--digits`' long help: how parameters are read.
-const DIGITS_MORE: &str = "Parameters are taken as written: --alpha 0.6 is three fifths, rounded once to the working precision, not the double nearest it (--alpha, --r, --t0, --v0 and --z0 of orbit and lyapunov with every digit typed; the others, D and the windows of sweep and plane, as the shortest decimal of their double: what was typed, unless it had more than 17 significant digits). --binary-params compares with the system of the doubles.";
+const DIGITS_MORE: &str = "Parameters are taken as written: --alpha 0.6 is three fifths, rounded once to the working precision, not the double nearest it (--alpha, --r, --t0, --v0, --z0 and the table's parameters of orbit and lyapunov with every digit typed, and refused if outside their range as written; the others, the parameters and windows of sweep, plane and basins, as the shortest decimal of their double: what was typed, unless it had more than 17 significant digits). --binary-params compares with the system of the doubles.";
 
 /// `--out`: where a command writes (`sweep`, `plane`, `basins`, `merge`).
 #[derive(Args, Debug, Clone, Default)]

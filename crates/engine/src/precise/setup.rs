@@ -5,7 +5,8 @@
 //!
 //! Parameters are taken as written: each double is read back as its shortest decimal
 //! (what was typed, unless it had more than 17 significant digits), or the text typed
-//! where the caller kept it ([`Written`]: every digit of it), and rounded once to the
+//! where the caller kept it ([`Written`]: every digit of it, for α, r, the start and the
+//! table's parameters), and rounded once to the
 //! working precision, so α = 0.6 is three fifths; or, asked for, as the double
 //! itself. A value of a job's grid (a sweep's or a plane's axis) is the decimal grid
 //! point lo + (hi − lo)·i/(N − 1) of the window's decimal ends, not the double the f64
@@ -48,6 +49,9 @@ pub struct Written {
     pub v0: Option<String>,
     /// See `t0`.
     pub z0: Option<String>,
+    /// The table's parameters (name, text) as the table's name gave them (`fd:D`,
+    /// `PATH.toml:w=...`).
+    pub table: Vec<(String, String)>,
 }
 
 /// One parameter at any precision: a double, a decimal text, or a point of a job's
@@ -208,7 +212,81 @@ impl PreciseSetup {
             .take()
             .map(|v| Value::written(v.double(), texts.v0.as_ref()));
         self.z0 = Value::written(self.z0.double(), texts.z0.as_ref());
+        for (name, text) in &texts.table {
+            if let Some(k) = self.family.param_index(name) {
+                self.params[k] = Value::written(self.params[k].double(), Some(text));
+            }
+        }
         self
+    }
+
+    /// Whether every parameter typed lies in its range as written, not only as the
+    /// double it was read to (a decimal just above a closed range's end, such as D =
+    /// 1.000000000000000000001, rounds to the end): the first that does not, named
+    /// with its valid range. With the doubles asked for, nothing to check.
+    pub fn check_written(&self) -> Result<(), String> {
+        if self.binary {
+            return Ok(());
+        }
+        // (name, value, low, high, low open, high open, range text)
+        type Range = (String, f64, f64, bool, bool, String);
+        let limit = |l: &crate::limits::Limit| -> Range {
+            (
+                l.name.to_string(),
+                l.lo,
+                l.hi,
+                l.lo_open,
+                l.hi_open,
+                l.text.to_string(),
+            )
+        };
+        let mut slots: Vec<(&Value, Range)> = vec![
+            (&self.alpha, limit(&limits::ALPHA)),
+            (&self.r, limit(&limits::R)),
+            (&self.t0, limit(&limits::PHASE)),
+            (&self.z0, limit(&limits::HEIGHT)),
+        ];
+        if let Some(v0) = &self.v0 {
+            slots.push((v0, limit(&limits::VELOCITY)));
+        }
+        for (p, v) in self.family.params().iter().zip(&self.params) {
+            let (lo, hi) = p.range();
+            slots.push((
+                v,
+                (p.name().to_string(), lo, hi, false, false, p.range_text()),
+            ));
+        }
+        for (v, (name, lo, hi, lo_open, hi_open, text)) in slots {
+            let Value::Text { text: typed, .. } = v else {
+                continue;
+            };
+            // Enough bits to tell a decimal of this many digits from a double.
+            let bits = 128 + 4 * typed.len();
+            let Some(x) = Big::from_decimal(typed, &bits) else {
+                continue;
+            };
+            let (lo, hi) = (Big::from_f64(lo, &bits), Big::from_f64(hi, &bits));
+            let below = if lo_open { x <= lo } else { x < lo };
+            let above = if hi_open { x >= hi } else { x > hi };
+            if below || above {
+                return Err(format!(
+                    "{name} {typed} is outside its range as written: valid {text} (the double it rounds to is inside, which --binary-params takes)"
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// The table's name with its parameters as this setup reads them (the decimals
+    /// typed, every digit; with the doubles asked for, their shortest decimals).
+    pub fn table_name(&self) -> String {
+        let texts: Vec<String> = (0..self.params.len())
+            .map(|k| match &self.params[k] {
+                Value::Text { text, .. } if !self.binary => text.clone(),
+                other => crate::error::fmt_value(other.double() + 0.0),
+            })
+            .collect();
+        self.family.member_name_texts(&texts)
     }
 
     /// The setup of `sys` with the ball of `start` (on the table or above it); None

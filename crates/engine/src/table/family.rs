@@ -353,18 +353,29 @@ impl Family {
     /// The family's name with each parameter's value, or its name where it is `free`:
     /// `name:v,...` for a built-in family, `name (p = v, ...)` for a file's.
     fn name_with(&self, values: &[f64], free: Option<usize>) -> String {
+        let texts: Vec<String> = values.iter().map(|&x| fmt_value(x + 0.0)).collect();
+        self.name_with_texts(&texts, free)
+    }
+
+    /// The name of the member whose parameters are the decimals `texts` (as a run at any
+    /// precision reads them, with more digits than a double holds).
+    pub fn member_name_texts(&self, texts: &[String]) -> String {
+        self.name_with_texts(texts, None)
+    }
+
+    fn name_with_texts(&self, texts: &[String], free: Option<usize>) -> String {
         if self.params.is_empty() {
             return self.name.clone();
         }
         let parts: Vec<String> = self
             .params
             .iter()
-            .zip(values)
+            .zip(texts)
             .enumerate()
-            .map(|(i, (p, &x))| match (Some(i) == free, self.builtin) {
+            .map(|(i, (p, x))| match (Some(i) == free, self.builtin) {
                 (true, _) => p.name.clone(),
-                (false, true) => fmt_value(x + 0.0),
-                (false, false) => format!("{} = {}", p.name, fmt_value(x + 0.0)),
+                (false, true) => x.clone(),
+                (false, false) => format!("{} = {x}", p.name),
             })
             .collect();
         if self.builtin {
