@@ -14,6 +14,7 @@ const SAME_CURVE: f64 = 5e-4;
 use super::trace::follow;
 use super::*;
 use crate::orbits::continuation::{branches, Kind, Options, Start, GRAZING_SPEED};
+use std::cell::RefCell;
 
 /// Follow every curve reachable from `seeds` in `plane`.
 pub fn curves(plane: &Plane, seeds: Seeds) -> Result<Curves, EngineError> {
@@ -34,6 +35,8 @@ pub fn curves_with_progress(
         unseeded: Vec::new(),
         seeding: Seeding::default(),
     };
+    // Where a curve's search ahead failed, for the same curve traced from other seeds.
+    let dead_ends: RefCell<Vec<DeadEnd>> = Default::default();
     // The (1, k) birth line, whole, from its closed form: traced, it breaks where the
     // pair is born on a breakpoint.
     if let Seeds::FromFixed { k, .. } = seeds {
@@ -56,7 +59,7 @@ pub fn curves_with_progress(
         }
         let done = seeded.len();
         seeded.push(p);
-        seed_at(plane, seeds, p, out, &mut |curves| {
+        seed_at(plane, seeds, p, out, &dead_ends, &mut |curves| {
             report(CurvesProgress {
                 seeds_done: done,
                 seeds: total,
@@ -96,7 +99,7 @@ pub fn curves_with_progress(
                     values += 1;
                 }
             }
-            seed_at_double_borders(plane, &mut out);
+            seed_at_double_borders(plane, &mut out, &dead_ends);
             dedupe(&mut out, SAME_CURVE * plane.scale());
             // The first grid itself is not yet evidence of anything.
             if level > first {
@@ -129,7 +132,7 @@ pub fn curves_with_progress(
 /// At a double border two border-collision curves of the cycle cross (one impact on
 /// each breakpoint): where only the one it was found on is known, the other is followed
 /// from there too (it may be too short for any seed value's continuation to meet).
-fn seed_at_double_borders(plane: &Plane, out: &mut Curves) {
+fn seed_at_double_borders(plane: &Plane, out: &mut Curves, dead_ends: &RefCell<Vec<DeadEnd>>) {
     let tol = SAME_CURVE * plane.scale();
     let mut i = 0;
     while i < out.codim2.len() {
@@ -168,7 +171,14 @@ fn seed_at_double_borders(plane: &Plane, out: &mut Curves) {
         };
         let kind = CurveKind::BorderCollision { impact, breakpoint };
         let index = out.curves.len();
-        match follow(plane, kind, &special, q.p, index) {
+        match follow(
+            plane,
+            kind,
+            &special,
+            q.p,
+            index,
+            &mut dead_ends.borrow_mut(),
+        ) {
             Ok((curve, codim2)) if curve.points.len() >= 2 => {
                 out.curves.push(curve);
                 out.codim2.extend(codim2);
@@ -188,6 +198,7 @@ fn seed_at(
     seeds: Seeds,
     p: f64,
     out: &mut Curves,
+    dead_ends: &RefCell<Vec<DeadEnd>>,
     report: &mut dyn FnMut(usize),
 ) -> Result<(), EngineError> {
     report(out.curves.len());
@@ -271,7 +282,7 @@ fn seed_at(
                 continue;
             }
             let index = out.curves.len();
-            match follow(plane, kind, s, p, index) {
+            match follow(plane, kind, s, p, index, &mut dead_ends.borrow_mut()) {
                 // A seed the tracer could not leave is no curve.
                 Ok((curve, _)) if curve.points.len() < 2 => skip(
                     &mut out.skipped,

@@ -580,6 +580,17 @@ pub struct Curves {
     pub seeding: Seeding,
 }
 
+/// A point of a curve of this kind and (n, k) where its steps failed and no point
+/// ahead was found (`Tracer::ahead`): the same curve traced again from another seed
+/// does not search there again.
+#[derive(Clone, Debug, PartialEq)]
+pub(super) struct DeadEnd {
+    pub(super) kind: CurveKind,
+    pub(super) n: usize,
+    pub(super) k: u32,
+    pub(super) at: [f64; 2],
+}
+
 /// How [`curves`] seeded: the values of the second parameter it seeded at, the finest
 /// dyadic grid of the window (2^level + 1 values), and whether the last two levels
 /// found no new curve (else the finest level allowed, [`MAX_SEED_LEVEL`], was reached

@@ -5,7 +5,7 @@
 
 use super::corrector::{collapsed, Tracer};
 use super::{
-    Codim2, Codim2Kind, Curve, CurveEnd, CurveKind, CurvePoint, Plane, BORDER_REACH,
+    Codim2, Codim2Kind, Curve, CurveEnd, CurveKind, CurvePoint, DeadEnd, Plane, BORDER_REACH,
     CONDITION_TOLERANCE, MAX_STEPS,
 };
 use crate::orbits::continuation::Special;
@@ -26,6 +26,9 @@ const CORNER_STEP: f64 = 1e-2;
 const STALL_STEP: f64 = 1e-3;
 /// ... and this many small steps in a row stall a curve ([`CurveEnd::Stalled`]).
 const STALL_STEPS: usize = 60;
+/// Times one direction of a curve may be taken up again past a point where its steps
+/// failed ([`Tracer::ahead`]).
+const MAX_RESCUES: usize = 4;
 
 fn tangent(grad: [f64; 2], along: [f64; 2]) -> [f64; 2] {
     let s = grad[0].hypot(grad[1]);
@@ -44,6 +47,7 @@ pub(super) fn follow(
     s: &Special,
     p: f64,
     index: usize,
+    dead_ends: &mut Vec<DeadEnd>,
 ) -> Result<(Curve, Vec<Codim2>), String> {
     let jumps = plane.jumps(p);
     // Launch the cycle from its impact farthest from every breakpoint: at a launch on a
@@ -78,12 +82,17 @@ pub(super) fn follow(
         )
         .map_err(|e| format!("the cycle could not be relaunched ({})", e.as_str()))?
     };
+    let k = s.point.k;
+    let mine = |d: &DeadEnd| d.kind == kind && d.n == n && d.k == k;
+    let known: Vec<[f64; 2]> = dead_ends.iter().filter(|d| mine(d)).map(|d| d.at).collect();
+    let before = known.len();
     let tr = Tracer {
         plane,
         kind,
         n,
-        k: s.point.k,
+        k,
         jumps,
+        dead_ends: std::cell::RefCell::new(known),
     };
     // The seed: solve G = 0 in α at fixed p.
     let (e0, grad0) = tr
@@ -99,6 +108,11 @@ pub(super) fn follow(
         let (pts, end) = tr.run(first.clone(), tau, index, &mut codim2, y0);
         halves.push((pts, end));
     }
+    dead_ends.extend(
+        tr.dead_ends.borrow()[before..]
+            .iter()
+            .map(|&at| DeadEnd { kind, n, k, at }),
+    );
     let (back, back_end) = halves.pop().expect("two directions");
     let (fwd, fwd_end) = halves.pop().expect("two directions");
     let closed = fwd_end == CurveEnd::Closed;
@@ -152,6 +166,7 @@ impl Tracer<'_> {
         // beyond it, and the short steps taken since.
         let mut corner: Option<usize> = None;
         let mut crawl = 0;
+        let mut rescues = 0;
         for _ in 0..MAX_STEPS {
             let y = [cur.alpha, cur.p];
             let pred = [y[0] + h * tau[0], y[1] + h * tau[1]];
@@ -308,6 +323,23 @@ impl Tracer<'_> {
                         if let Some(end) = self.end_at_codim2(&cur, codim2, index) {
                             return (out, end);
                         }
+                        // The step along the tangent failed at every length: the
+                        // tangent may be off (at a point where the cycle's branch folds
+                        // over the plane, the gradient is poorly defined). The curve
+                        // ahead is looked for in other directions before it is given up.
+                        if rescues < MAX_RESCUES && e == PassError::NoConvergence {
+                            let came = prev.as_ref().map(|p| [cur.alpha - p.alpha, cur.p - p.p]);
+                            if let Some((next, dir)) = self.ahead(&cur, tau, came, index, codim2) {
+                                rescues += 1;
+                                tau = dir;
+                                prev = None;
+                                cur = next;
+                                out.push(cur.clone());
+                                h = (16.0 * h_min).max(1e-6 * scale);
+                                small = 0;
+                                continue;
+                            }
+                        }
                         return (out, CurveEnd::from_error(e));
                     }
                 }
@@ -418,6 +450,58 @@ impl Tracer<'_> {
                 }
             }
         }
+        None
+    }
+
+    /// The curve's point ahead of `cur` where a step along the tangent `tau` failed at
+    /// every length: solved on lines across the directions within 75° of `tau`
+    /// ([`TURNS`]) at distances of 10⁻⁶, 10⁻⁵ and 10⁻⁴ of the plane, the same cycle
+    /// (the corrector's continuity test), ahead (of the tangent and of the last step
+    /// `came`) and not across a breakpoint; with the direction it lies in.
+    fn ahead(
+        &self,
+        cur: &CurvePoint,
+        tau: [f64; 2],
+        came: Option<[f64; 2]>,
+        index: usize,
+        codim2: &mut Vec<Codim2>,
+    ) -> Option<(CurvePoint, [f64; 2])> {
+        let y0 = [cur.alpha, cur.p];
+        let scale = self.plane.scale();
+        let dead = |y: &[f64; 2]| (y[0] - y0[0]).hypot(y[1] - y0[1]) <= 1e-9 * scale;
+        if self.dead_ends.borrow().iter().any(dead) {
+            return None;
+        }
+        for rho in [1e-6, 1e-5, 1e-4].map(|f| f * scale) {
+            for deg in TURNS.iter().filter(|d| d.abs() <= 75.0) {
+                let (s, c) = deg.to_radians().sin_cos();
+                let dir = [c * tau[0] - s * tau[1], s * tau[0] + c * tau[1]];
+                let y = [y0[0] + rho * dir[0], y0[1] + rho * dir[1]];
+                if !self.plane.inside(y) {
+                    continue;
+                }
+                let d = dir[0] * y0[0] + dir[1] * y0[1] + rho;
+                let Ok((e, _)) = self.correct(y, dir, d, &cur.cycle) else {
+                    continue;
+                };
+                let q = self.point(e);
+                let step = [q.alpha - y0[0], q.p - y0[1]];
+                let dist = step[0].hypot(step[1]);
+                // Ahead along the tangent and along the last step: a point back the
+                // way the curve came is the curve retraced, not its continuation.
+                let forward = step[0] * tau[0] + step[1] * tau[1] > 0.0
+                    && came.is_none_or(|c| step[0] * c[0] + step[1] * c[1] > 0.0);
+                if forward
+                    && dist <= 3.0 * rho
+                    && self.plane.inside([q.alpha, q.p])
+                    && !self.crosses_border(cur, &q, dir, index, codim2)
+                {
+                    let out = [step[0] / dist, step[1] / dist];
+                    return Some((q, out));
+                }
+            }
+        }
+        self.dead_ends.borrow_mut().push(y0);
         None
     }
 
