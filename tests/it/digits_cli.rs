@@ -628,3 +628,53 @@ fn a_table_parameter_with_more_digits_than_a_double_is_read_as_written() {
         "{err}"
     );
 }
+
+/// `lyapunov --digits` on the settled (1, 1) orbit of F_D (D = 0.1, α = 0.45, r = 0.8):
+/// the cycle Newton's method solves at any precision is the closed form's t* and v* = ½
+/// to the 40 digits printed, and its multipliers are the paper's A's: sum 1 + r² +
+/// (1 + r)² f''(t*) with f'' = α(6D t* − (2 + D)) on the first piece, product r².
+#[test]
+fn lyapunov_digits_on_the_one_one_cycle_is_the_closed_form() {
+    let row = lyapunov_csv(&[
+        "--table",
+        "fd:0.1",
+        "--alpha",
+        "0.45",
+        "--near-fixed-point",
+        "--digits",
+        "40",
+    ]);
+    let field = |name: &str| {
+        let i = LYAPUNOV_HEADER.split(',').position(|h| h == name).unwrap();
+        row[i].clone()
+    };
+    assert_eq!(
+        (field("verdict").as_str(), field("events").as_str()),
+        ("periodic", "1")
+    );
+    let (t, v) = closed_form();
+    let bits = bits_for_digits(80);
+    let big = |s: &str| Big::from_decimal(s, &bits).unwrap();
+    let digits = |a: &Big, b: &Big| bouncemap_engine::agreeing_digits(a, b, 80);
+    assert!(
+        digits(&big(&field("phase")), &t) >= 39,
+        "{} vs {t:?}",
+        field("phase")
+    );
+    assert!(digits(&big(&field("v")), &v) >= 39, "{}", field("v"));
+    let (alpha, d, r, one) = (big("0.45"), big("0.1"), big("0.8"), big("1"));
+    let ddf = alpha * (big("6") * d.clone() * t - (big("2") + d));
+    let tr =
+        one.clone() + r.clone() * r.clone() + (one.clone() + r.clone()) * (one + r.clone()) * ddf;
+    let (m1, m2) = (field("multiplier1"), field("multiplier2"));
+    let (sum, product) = if field("complex") == "true" {
+        // Real and imaginary parts.
+        let (re, im) = (big(&m1), big(&m2));
+        (big("2") * re.clone(), re.clone() * re + im.clone() * im)
+    } else {
+        let (a, b) = (big(&m1), big(&m2));
+        (a.clone() + b.clone(), a * b)
+    };
+    assert!(digits(&sum, &tr) >= 38, "{sum:?} vs {tr:?}");
+    assert!(digits(&product, &(r.clone() * r)) >= 38);
+}
