@@ -36,7 +36,7 @@ pub fn run(run: &BasinsRun) -> anyhow::Result<()> {
     let mut sink = Sink::open(job.out.as_deref()).map_err(InputError)?;
     let basins = compute(spec, &Executor::new(threads)?)?;
     let cycles = match run.digits {
-        Some(ask) => decide(spec, &basins, ask)?,
+        Some(ask) => decide(spec, &basins, ask, &run.written)?,
         None => Vec::new(),
     };
     write(run, &basins, &cycles, &mut sink).map_err(|e| sink.describe(e))?;
@@ -49,6 +49,7 @@ fn decide(
     spec: &BasinSpec,
     basins: &Basins,
     ask: DigitsAsk,
+    written: &bouncemap_engine::Written,
 ) -> anyhow::Result<Vec<Option<CycleVerdict>>> {
     let unresolved = basins
         .registry()
@@ -68,7 +69,7 @@ fn decide(
             ask.digits
         ),
     );
-    let verdicts = basins.decide_cycles(spec, ask, &mut |p| {
+    let verdicts = basins.decide_cycles(spec, ask, written, &mut |p| {
         report.update(p);
         std::ops::ControlFlow::Continue(())
     });

@@ -46,3 +46,40 @@ pub fn digits_refusal(table: &bouncemap_engine::Table) -> InputError {
         bouncemap_engine::PRECISE_MAX_DEGREE
     ))
 }
+
+/// The texts a job at any precision reads its parameters from: `kept` (α, r and the
+/// table's, as typed on the command line) with each of `settings` (a parameter's name
+/// and its text: a window `LO..HI`, or a value) as typed. Then refused, naming it, if
+/// any is outside its range as written though its double is inside (the setup's
+/// [`bouncemap_engine::PreciseSetup::check_written`]).
+pub fn job_written(
+    kept: &bouncemap_engine::Written,
+    settings: &[(&str, Option<&str>)],
+    setup: Option<bouncemap_engine::PreciseSetup>,
+) -> Result<bouncemap_engine::Written, InputError> {
+    let mut w = kept.clone();
+    for (name, text) in settings {
+        let Some(t) = text.map(str::trim) else {
+            continue;
+        };
+        match t.split_once("..") {
+            Some((a, b)) => {
+                // A window, not a value (the flag's text as kept).
+                if name.eq_ignore_ascii_case("alpha") {
+                    w.alpha = None;
+                } else if name.eq_ignore_ascii_case("r") {
+                    w.r = None;
+                }
+                w.windows
+                    .push((name.to_string(), a.trim().into(), b.trim().into()));
+            }
+            None if name.eq_ignore_ascii_case("alpha") => w.alpha = Some(t.into()),
+            None if name.eq_ignore_ascii_case("r") => w.r = Some(t.into()),
+            None => w.table.push((name.to_string(), t.into())),
+        }
+    }
+    if let Some(setup) = setup {
+        setup.as_written(&w).check_written().map_err(InputError)?;
+    }
+    Ok(w)
+}

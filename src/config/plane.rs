@@ -95,8 +95,30 @@ pub fn plane_spec(args: &PlaneArgs) -> Result<PlaneSpec, InputError> {
         shard(args.part.shard, |name| std::env::var(name).ok())?,
     )?;
     spec.digits = super::digits::digits_ask(&args.precision)?;
-    if spec.digits.is_some() {
+    if let Some(ask) = spec.digits {
         super::digits::digits_take(&spec.table)?;
+        // The parameters and the axes' windows as typed, every digit.
+        let axis = |s: &str| {
+            s.split_once(':')
+                .map(|(name, window)| (name.trim().to_string(), window.to_string()))
+        };
+        let axes: Vec<(String, String)> = [&args.spec.x, &args.spec.y]
+            .into_iter()
+            .filter_map(|s| axis(s))
+            .collect();
+        let settings: Vec<(&str, Option<&str>)> = axes
+            .iter()
+            .map(|(n, w)| (n.as_str(), Some(w.as_str())))
+            .collect();
+        let setup = bouncemap_engine::PreciseSetup::new(
+            &spec.table,
+            spec.alpha,
+            spec.r,
+            0.0,
+            None,
+            ask.binary,
+        );
+        spec.written = super::digits::job_written(&args.precision.written, &settings, setup)?;
     }
     Ok(spec)
 }

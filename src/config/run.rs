@@ -97,6 +97,8 @@ pub struct BasinsRun {
     /// `--digits`: the attractors double precision does not resolve decided at any
     /// precision.
     pub digits: Option<bouncemap_engine::DigitsAsk>,
+    /// With `digits`: the parameters as typed, read with every digit.
+    pub written: bouncemap_engine::Written,
 }
 
 /// The layout an output format writes: csv or json (a part file), None for any other
@@ -175,13 +177,24 @@ pub fn basins(args: &BasinsArgs) -> Result<BasinsRun, InputError> {
         BasinsFormat::Braille => None,
     };
     let digits = super::digits::digits_ask(&args.precision)?;
-    if digits.is_some() {
+    let mut written = bouncemap_engine::Written::default();
+    if let Some(ask) = digits {
         if layout == Some(Layout::Csv) {
             return Err(InputError(
                 "--digits: the cycles decided at any precision are in the json's attractors and under the braille picture: valid --format json or braille".into(),
             ));
         }
         super::digits::digits_take(spec.sys.table())?;
+        let sys = &spec.sys;
+        let setup = bouncemap_engine::PreciseSetup::new(
+            sys.table(),
+            sys.alpha(),
+            sys.r(),
+            0.0,
+            None,
+            ask.binary,
+        );
+        written = super::digits::job_written(&args.precision.written, &[], setup)?;
     }
     let job = Job {
         check: args.run.check.check,
@@ -191,7 +204,12 @@ pub fn basins(args: &BasinsArgs) -> Result<BasinsRun, InputError> {
         text: text(&args.run.text),
         resume: false,
     };
-    Ok(BasinsRun { spec, job, digits })
+    Ok(BasinsRun {
+        spec,
+        job,
+        digits,
+        written,
+    })
 }
 
 /// `attractors`, settled.

@@ -96,8 +96,27 @@ pub fn sweep_spec(args: &SweepArgs) -> Result<SweepSpec, InputError> {
         shard(args.part.shard, |name| std::env::var(name).ok())?,
     )?;
     spec.digits = super::digits::digits_ask(&args.precision)?;
-    if spec.digits.is_some() {
+    if let Some(ask) = spec.digits {
         super::digits::digits_take(&spec.table)?;
+        // The parameters and the window as typed, every digit.
+        let a = &args.spec;
+        let mut settings = vec![
+            ("alpha", a.alpha.as_deref()),
+            ("r", a.r.as_deref()),
+            ("D", a.d.as_deref()),
+        ];
+        if let Some((name, window)) = a.param.as_deref().and_then(|p| p.split_once(':')) {
+            settings.push((name.trim(), Some(window)));
+        }
+        let setup = bouncemap_engine::PreciseSetup::new(
+            &spec.table,
+            spec.alpha,
+            spec.r,
+            0.0,
+            None,
+            ask.binary,
+        );
+        spec.written = super::digits::job_written(&args.precision.written, &settings, setup)?;
     }
     Ok(spec)
 }

@@ -97,7 +97,7 @@ impl From<&PlaneSpec> for PlaneHeader {
                 tolerance: p.tolerance,
             }),
             lyapunov: s.lyapunov,
-            digits: s.digits.map(DigitsRecord::from),
+            digits: s.digits.map(|a| DigitsRecord::of(a, &s.written)),
         }
     }
 }

@@ -216,12 +216,15 @@ pub struct PrecisionArgs {
 
 /// Keep in `cli` the texts typed for the parameters that a run at any precision reads
 /// as written (`--alpha`, `--r`, `--t0`, `--v0`, `--z0` and `--table`'s parameters of
-/// `orbit` and `lyapunov`),
+/// `orbit`, `lyapunov`, `sweep`, `plane` and `basins`, those each has),
 /// from the parsed command line `matches`.
 pub fn keep_written(cli: &mut Cli, matches: &clap::ArgMatches) {
     let (name, precision) = match &mut cli.command {
         Some(Command::Orbit(a)) => ("orbit", &mut a.precision),
         Some(Command::Lyapunov(a)) => ("lyapunov", &mut a.precision),
+        Some(Command::Sweep(a)) => ("sweep", &mut a.precision),
+        Some(Command::Plane(a)) => ("plane", &mut a.precision),
+        Some(Command::Basins(a)) => ("basins", &mut a.precision),
         _ => return,
     };
     let Some(m) = matches.subcommand_matches(name) else {
@@ -234,6 +237,9 @@ pub fn keep_written(cli: &mut Cli, matches: &clap::ArgMatches) {
         }
         m.get_raw(id)?.next_back()?.to_str().map(String::from)
     };
+    // (An id a command does not have reads as nothing; a sweep's window and a plane's
+    // axes are taken from their own texts, `super::sweep`, `super::plane`.)
+    let typed = |id: &str| m.try_get_raw(id).ok().flatten().and_then(|_| typed(id));
     precision.written = bouncemap_engine::Written {
         alpha: typed("alpha"),
         r: typed("r"),
@@ -243,13 +249,14 @@ pub fn keep_written(cli: &mut Cli, matches: &clap::ArgMatches) {
         table: typed("table")
             .map(|t| crate::config::table_spec::TableSpec::parameter_texts(&t))
             .unwrap_or_default(),
+        windows: Vec::new(),
     };
 }
 
 /// `--digits`' help: what it does.
 const DIGITS_HELP: &str = "Compute at any precision and print only what holds to N significant digits: the run is repeated at twice the precision and each value printed to the digits on which the two agree (more precision is taken, up to --max-digits, where they do not); the sine and every polynomial table";
 /// `--digits`' long help: how parameters are read.
-const DIGITS_MORE: &str = "Parameters are taken as written: --alpha 0.6 is three fifths, rounded once to the working precision, not the double nearest it (--alpha, --r, --t0, --v0, --z0 and the table's parameters of orbit and lyapunov with every digit typed, and refused if outside their range as written; the others, the parameters and windows of sweep, plane and basins, as the shortest decimal of their double: what was typed, unless it had more than 17 significant digits). --binary-params compares with the system of the doubles.";
+const DIGITS_MORE: &str = "Parameters are taken as written: --alpha 0.6 is three fifths, rounded once to the working precision, not the double nearest it (--alpha, --r, --t0, --v0, --z0, the table's parameters and the windows of sweep and plane with every digit typed, and refused if outside their range as written; what was not typed, a default or a preset's value, as the shortest decimal of its double). --binary-params compares with the system of the doubles.";
 
 /// `--out`: where a command writes (`sweep`, `plane`, `basins`, `merge`).
 #[derive(Args, Debug, Clone, Default)]

@@ -428,13 +428,54 @@ impl SweepColumns {
 }
 
 /// `--digits`, as a sweep's header records it.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct DigitsRecord {
     pub digits: u32,
     pub max_digits: u32,
     /// `decimals` (as written) or `doubles` (`--binary-params`).
     pub parameters: Parameters,
+    /// The parameters and windows typed, as `NAME=TEXT` and `NAME=LO..HI` (absent where
+    /// none was): every digit of them is read, so two runs that typed them differently
+    /// are different runs even where their doubles agree.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub typed: Vec<String>,
+}
+
+impl DigitsRecord {
+    /// The record of `ask` with the texts `written` kept that say more than their
+    /// doubles (a text that is its double's shortest decimal is the setting the header
+    /// already has).
+    pub fn of(
+        ask: bouncemap_engine::DigitsAsk,
+        written: &bouncemap_engine::Written,
+    ) -> DigitsRecord {
+        let more = |t: &str| t.parse::<f64>().map_or(true, |x| format!("{x}") != t);
+        let mut typed: Vec<String> = Vec::new();
+        for (name, text) in [("alpha", &written.alpha), ("r", &written.r)] {
+            if let Some(t) = text.as_deref().filter(|t| more(t)) {
+                typed.push(format!("{name}={t}"));
+            }
+        }
+        typed.extend(
+            written
+                .table
+                .iter()
+                .filter(|(_, t)| more(t))
+                .map(|(n, t)| format!("{n}={t}")),
+        );
+        typed.extend(
+            written
+                .windows
+                .iter()
+                .filter(|(_, a, b)| more(a) || more(b))
+                .map(|(n, a, b)| format!("{n}={a}..{b}")),
+        );
+        DigitsRecord {
+            typed,
+            ..DigitsRecord::from(ask)
+        }
+    }
 }
 
 /// How the parameters are read at any precision.
@@ -456,6 +497,7 @@ impl From<bouncemap_engine::DigitsAsk> for DigitsRecord {
                 true => Parameters::Doubles,
                 false => Parameters::Decimals,
             },
+            typed: Vec::new(),
         }
     }
 }
@@ -565,7 +607,7 @@ impl From<&SweepSpec> for SweepHeader {
             lyapunov: spec.lyapunov,
             starts: spec.starts,
             w_max: spec.w_max,
-            digits: spec.digits.map(DigitsRecord::from),
+            digits: spec.digits.map(|a| DigitsRecord::of(a, &spec.written)),
         }
     }
 }

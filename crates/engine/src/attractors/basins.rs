@@ -243,13 +243,15 @@ impl Basins {
 
     /// With `ask`, each attractor's cycle decided at any precision where double
     /// precision does not resolve it (None elsewhere), by attractor id: the orbit of the
-    /// first grid point (in index order) that ended on it, run as
+    /// first grid point (in index order) that ended on it (the parameters as `written`
+    /// has them typed), run as
     /// [`crate::decide_sticking_cycle`] runs it, within the spec's transient.
     /// `progress` hears how far each run has got and may stop the work (then None).
     pub fn decide_cycles(
         &self,
         spec: &BasinSpec,
         ask: DigitsAsk,
+        written: &crate::precise::Written,
         progress: &mut dyn FnMut(DigitsProgress) -> ControlFlow<()>,
     ) -> Option<Vec<Option<CycleVerdict>>> {
         let attractors = self.registry.attractors();
@@ -263,7 +265,8 @@ impl Basins {
             let Some(k) = first else { continue };
             let (t0, w0) = spec.start(k);
             let setup = launch(&spec.sys, t0, w0)
-                .and_then(|st| PreciseSetup::of_state(&spec.sys, &st, ask.binary));
+                .and_then(|st| PreciseSetup::of_state(&spec.sys, &st, ask.binary))
+                .map(|s| s.as_written(written));
             let Some(setup) = setup else { continue };
             verdicts[id] = Some(decide_sticking_cycle(&setup, ask, periods, progress)?);
         }

@@ -128,6 +128,7 @@ impl PlaneCells {
         let (i, j) = (index % spec.x.n.max(1), index / spec.x.n.max(1));
         let (x, y) = spec.values(index);
         let setup = setup
+            .as_written(&spec.written)
             .on_grid(spec.x.param.slot(), (spec.x.lo, spec.x.hi, spec.x.n), i, x)
             .on_grid(spec.y.param.slot(), (spec.y.lo, spec.y.hi, spec.y.n), j, y);
         let verdict = decide_in_job(&setup, ask, spec.transient, tick)?;

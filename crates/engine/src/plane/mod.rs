@@ -116,6 +116,9 @@ pub struct PlaneSpec {
     /// Decide at any precision the sticking cycles whose length double precision cannot
     /// ([`Pixel::cycle`]); None: not asked.
     pub digits: Option<DigitsAsk>,
+    /// With `digits`: the parameters and the windows as typed, read with every digit
+    /// ([`crate::Written`]; empty: each double's shortest decimal).
+    pub written: crate::precise::Written,
 }
 
 impl PlaneSpec {
@@ -135,6 +138,7 @@ impl PlaneSpec {
             solver: Solver::Exact,
             shard: Shard::WHOLE,
             digits: None,
+            written: crate::precise::Written::default(),
         }
     }
 

@@ -9,8 +9,10 @@
 //! table's parameters), and rounded once to the
 //! working precision, so α = 0.6 is three fifths; or, asked for, as the double
 //! itself. A value of a job's grid (a sweep's or a plane's axis) is the decimal grid
-//! point lo + (hi − lo)·i/(N − 1) of the window's decimal ends, not the double the f64
-//! run used (0.5975, not 0.5974999999999999).
+//! point lo + (hi − lo)·i/(N − 1) of the window's ends as typed ([`Written::windows`];
+//! else their doubles' shortest decimals), not the double the f64 run used (0.5975, not
+//! 0.5974999999999999). [`PreciseSetup::check_written`] refuses a text outside its
+//! range whose double is inside.
 
 use super::digits::{sticking_cycle_to_digits, CycleVerdict, DigitsProgress, PATH_EVENTS};
 use super::{precise_takes, PreciseState, PreciseSystem};
@@ -52,6 +54,17 @@ pub struct Written {
     /// The table's parameters (name, text) as the table's name gave them (`fd:D`,
     /// `PATH.toml:w=...`).
     pub table: Vec<(String, String)>,
+    /// The windows of a job's axes (parameter name, low end, high end), as typed
+    /// (`--alpha 0.58..0.59`, `--x alpha:0.58..0.59`): a grid point is lo + (hi − lo)·i/
+    /// (N − 1) of these decimals.
+    pub windows: Vec<(String, String, String)>,
+}
+
+impl Written {
+    /// Whether nothing was kept.
+    pub fn is_empty(&self) -> bool {
+        *self == Written::default()
+    }
 }
 
 /// One parameter at any precision: a double, a decimal text, or a point of a job's
@@ -70,6 +83,8 @@ enum Value {
         i: usize,
         steps: usize,
         double: f64,
+        /// The ends as typed, where they were (every digit).
+        typed: Option<(String, String)>,
     },
 }
 
@@ -88,14 +103,24 @@ impl Value {
             }
             (
                 Value::Grid {
-                    lo, hi, i, steps, ..
+                    lo,
+                    hi,
+                    i,
+                    steps,
+                    typed,
+                    ..
                 },
                 false,
             ) => {
+                let text =
+                    |t: &str, x: f64| Big::from_decimal(t, &bits).unwrap_or_else(|| decimal(x));
+                let (lo, hi) = match typed {
+                    Some((a, b)) => (text(a, *lo), text(b, *hi)),
+                    None => (decimal(*lo), decimal(*hi)),
+                };
                 if *steps <= 1 || *i == 0 {
-                    return decimal(*lo);
+                    return lo;
                 }
-                let (lo, hi) = (decimal(*lo), decimal(*hi));
                 let n = Big::from_f64((steps - 1) as f64, &bits);
                 let i = Big::from_f64(*i as f64, &bits);
                 lo.clone() + (hi - lo) * i / n
@@ -147,6 +172,8 @@ pub struct PreciseSetup {
     z0: Value,
     binary: bool,
     sine: bool,
+    /// Windows as typed (see [`Written::windows`]), for [`PreciseSetup::on_grid`].
+    windows: Vec<(String, String, String)>,
 }
 
 impl PreciseSetup {
@@ -175,6 +202,7 @@ impl PreciseSetup {
             v0: v0.map(Value::Double),
             z0: Value::Double(0.0),
             binary,
+            windows: Vec::new(),
         })
     }
 
@@ -217,6 +245,7 @@ impl PreciseSetup {
                 self.params[k] = Value::written(self.params[k].double(), Some(text));
             }
         }
+        self.windows = texts.windows.clone();
         self
     }
 
@@ -228,7 +257,7 @@ impl PreciseSetup {
         if self.binary {
             return Ok(());
         }
-        // (name, value, low, high, low open, high open, range text)
+        // (name, low, high, low open, high open, range text)
         type Range = (String, f64, f64, bool, bool, String);
         let limit = |l: &crate::limits::Limit| -> Range {
             (
@@ -249,13 +278,30 @@ impl PreciseSetup {
         if let Some(v0) = &self.v0 {
             slots.push((v0, limit(&limits::VELOCITY)));
         }
+        let mut ranges: Vec<Range> = vec![limit(&limits::ALPHA), limit(&limits::R)];
         for (p, v) in self.family.params().iter().zip(&self.params) {
             let (lo, hi) = p.range();
-            slots.push((
-                v,
-                (p.name().to_string(), lo, hi, false, false, p.range_text()),
-            ));
+            let range = (p.name().to_string(), lo, hi, false, false, p.range_text());
+            slots.push((v, range.clone()));
+            ranges.push(range);
         }
+        // The ends of the windows typed, each against its parameter's range.
+        let ends: Vec<(Value, Range)> = self
+            .windows
+            .iter()
+            .flat_map(|(name, a, b)| {
+                let range = ranges
+                    .iter()
+                    .find(|r| r.0.eq_ignore_ascii_case(name))
+                    .cloned();
+                [a, b].into_iter().filter_map(move |t| {
+                    let double = t.trim().parse::<f64>().ok()?;
+                    let text = t.trim().to_string();
+                    Some((Value::Text { text, double }, range.clone()?))
+                })
+            })
+            .collect();
+        slots.extend(ends.iter().map(|(v, r)| (v, r.clone())));
         for (v, (name, lo, hi, lo_open, hi_open, text)) in slots {
             let Value::Text { text: typed, .. } = v else {
                 continue;
@@ -313,12 +359,25 @@ impl PreciseSetup {
         i: usize,
         double: f64,
     ) -> PreciseSetup {
+        let name = match slot {
+            Slot::Alpha => "alpha",
+            Slot::R => "r",
+            Slot::Table(name) => name,
+        };
+        // The window as typed, where its texts read back to these ends.
+        let reads = |t: &str, x: f64| t.trim().parse::<f64>() == Ok(x);
+        let typed = self
+            .windows
+            .iter()
+            .find(|(n, a, b)| n.eq_ignore_ascii_case(name) && reads(a, lo) && reads(b, hi))
+            .map(|(_, a, b)| (a.trim().to_string(), b.trim().to_string()));
         let v = Value::Grid {
             lo,
             hi,
             i,
             steps,
             double,
+            typed,
         };
         match slot {
             Slot::Alpha => self.alpha = v,
@@ -473,6 +532,7 @@ mod tests {
             i: 1,
             steps: 3,
             double: grid_value(0.595, 0.6, 3, 1),
+            typed: None,
         };
         assert_eq!(
             format!("{}", grid_value(0.595, 0.6, 3, 1)),
@@ -492,6 +552,7 @@ mod tests {
             i,
             steps: 3,
             double: grid_value(0.595, 0.6, 3, i),
+            typed: None,
         };
         assert_eq!(
             end(0).at(bits, false),
@@ -499,6 +560,44 @@ mod tests {
         );
         let six = Big::from_decimal("0.6", &bits).unwrap();
         assert!((end(2).at(bits, false) - six.clone()).abs() <= Big::epsilon(&bits) * six);
+    }
+
+    /// A window typed with more digits than a double holds is read as typed: the middle
+    /// of 0.1..0.30000000000000000001 in three steps is 0.200000000000000000005, where
+    /// the doubles' shortest decimals give 0.2; a window whose texts are not those of the
+    /// grid's ends is not taken; an end outside its range as written is refused.
+    #[test]
+    fn a_window_typed_is_read_with_every_digit() {
+        let bits = bits_for_digits(40);
+        let table = Table::fd(0.1).unwrap();
+        let typed = |hi: &str| Written {
+            windows: vec![("alpha".into(), "0.1".into(), hi.into())],
+            ..Written::default()
+        };
+        let setup = PreciseSetup::new(&table, 0.45, 0.8, 0.2, None, false)
+            .unwrap()
+            .as_written(&typed("0.30000000000000000001"));
+        assert_eq!(setup.check_written(), Ok(()));
+        let mid = setup.clone().on_grid(Slot::Alpha, (0.1, 0.3, 3), 1, 0.2);
+        let want = Big::from_decimal("0.200000000000000000005", &bits).unwrap();
+        let got = mid.alpha.at(bits, false);
+        assert!((got - want.clone()).abs() <= Big::epsilon(&bits) * want);
+        let other = setup.on_grid(Slot::Alpha, (0.1, 0.4, 3), 1, 0.25);
+        assert_eq!(
+            other.alpha.at(bits, false),
+            Big::from_decimal("0.25", &bits).unwrap()
+        );
+        let r = PreciseSetup::new(&table, 0.45, 0.8, 0.2, None, false)
+            .unwrap()
+            .as_written(&Written {
+                windows: vec![("r".into(), "0.5".into(), "0.99999999999999999999".into())],
+                ..Written::default()
+            });
+        assert_eq!(r.check_written(), Ok(()));
+        let over = PreciseSetup::new(&table, 0.45, 0.8, 0.2, None, false)
+            .unwrap()
+            .as_written(&typed("1000.0000000000000000001"));
+        assert!(over.check_written().unwrap_err().contains("(0, 1000]"));
     }
 
     /// A setup on a job's grid puts the value where the parameter is: α, r, or the

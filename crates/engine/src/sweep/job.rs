@@ -294,6 +294,7 @@ impl SweepJob {
             return Some(None);
         };
         let spec = &self.spec;
+        let setup = setup.as_written(&spec.written);
         let window = (spec.lo, spec.hi, spec.steps);
         let setup = setup.on_grid(spec.param.slot(), window, index, spec.value(index));
         // (None only where the job was stopped.)

@@ -210,6 +210,9 @@ pub struct SweepSpec {
     /// Decide at any precision the sticking cycles whose length double precision cannot
     /// ([`ValueResult::cycle`]); None: not asked.
     pub digits: Option<DigitsAsk>,
+    /// With `digits`: the parameters and the window as typed, read with every digit
+    /// ([`crate::Written`]; empty: each double's shortest decimal).
+    pub written: crate::precise::Written,
 }
 
 impl SweepSpec {
@@ -294,6 +297,7 @@ impl SweepSpec {
             starts: 1,
             w_max: None,
             digits: None,
+            written: crate::precise::Written::default(),
         }
     }
 
