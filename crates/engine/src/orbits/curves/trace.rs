@@ -30,6 +30,16 @@ const STALL_STEPS: usize = 60;
 /// failed ([`Tracer::ahead`]).
 const MAX_RESCUES: usize = 4;
 
+/// A point [`Tracer::around`] found: the point, the direction whose line it was solved
+/// on, its step from the centre, that step's length, and the line's distance.
+struct Tried<'a> {
+    q: &'a CurvePoint,
+    dir: [f64; 2],
+    step: [f64; 2],
+    dist: f64,
+    rho: f64,
+}
+
 fn tangent(grad: [f64; 2], along: [f64; 2]) -> [f64; 2] {
     let s = grad[0].hypot(grad[1]);
     let t = [-grad[1] / s, grad[0] / s];
@@ -429,24 +439,48 @@ impl Tracer<'_> {
             return None;
         }
         let came = [came[0] / len, came[1] / len];
+        self.around(y0, came, 180.0, &cur.cycle, &mut |t| {
+            side(t.q) != here && t.dist <= 10.0 * t.rho && self.plane.inside([t.q.alpha, t.q.p])
+        })
+    }
+
+    /// The first curve point, solved from `guess`'s cycle on the lines across the
+    /// directions [`TURNS`] within `max_turn` degrees of `base` at distances of 10⁻⁶,
+    /// 10⁻⁵ and 10⁻⁴ of the plane from `y0`, that `accept` takes; with the unit
+    /// direction from `y0` to it.
+    fn around(
+        &self,
+        y0: [f64; 2],
+        base: [f64; 2],
+        max_turn: f64,
+        guess: &CyclePoint,
+        accept: &mut dyn FnMut(Tried<'_>) -> bool,
+    ) -> Option<(CurvePoint, [f64; 2])> {
         let scale = self.plane.scale();
         for rho in [1e-6, 1e-5, 1e-4].map(|f| f * scale) {
-            for deg in TURNS {
+            for deg in TURNS.iter().filter(|d| d.abs() <= max_turn) {
                 let (s, c) = deg.to_radians().sin_cos();
-                let dir = [c * came[0] - s * came[1], s * came[0] + c * came[1]];
+                let dir = [c * base[0] - s * base[1], s * base[0] + c * base[1]];
                 let y = [y0[0] + rho * dir[0], y0[1] + rho * dir[1]];
                 if !self.plane.inside(y) {
                     continue;
                 }
                 let d = dir[0] * y0[0] + dir[1] * y0[1] + rho;
-                let Ok((e, _)) = self.correct(y, dir, d, &cur.cycle) else {
+                let Ok((e, _)) = self.correct(y, dir, d, guess) else {
                     continue;
                 };
                 let q = self.point(e);
-                let dist = (q.alpha - y0[0]).hypot(q.p - y0[1]);
-                if side(&q) != here && dist <= 10.0 * rho && self.plane.inside([q.alpha, q.p]) {
-                    let out = [(q.alpha - y0[0]) / dist, (q.p - y0[1]) / dist];
-                    return Some((q, out));
+                let step = [q.alpha - y0[0], q.p - y0[1]];
+                let dist = step[0].hypot(step[1]);
+                let tried = Tried {
+                    q: &q,
+                    dir,
+                    step,
+                    dist,
+                    rho,
+                };
+                if accept(tried) {
+                    return Some((q, [step[0] / dist, step[1] / dist]));
                 }
             }
         }
@@ -472,37 +506,21 @@ impl Tracer<'_> {
         if self.dead_ends.borrow().iter().any(dead) {
             return None;
         }
-        for rho in [1e-6, 1e-5, 1e-4].map(|f| f * scale) {
-            for deg in TURNS.iter().filter(|d| d.abs() <= 75.0) {
-                let (s, c) = deg.to_radians().sin_cos();
-                let dir = [c * tau[0] - s * tau[1], s * tau[0] + c * tau[1]];
-                let y = [y0[0] + rho * dir[0], y0[1] + rho * dir[1]];
-                if !self.plane.inside(y) {
-                    continue;
-                }
-                let d = dir[0] * y0[0] + dir[1] * y0[1] + rho;
-                let Ok((e, _)) = self.correct(y, dir, d, &cur.cycle) else {
-                    continue;
-                };
-                let q = self.point(e);
-                let step = [q.alpha - y0[0], q.p - y0[1]];
-                let dist = step[0].hypot(step[1]);
-                // Ahead along the tangent and along the last step: a point back the
-                // way the curve came is the curve retraced, not its continuation.
-                let forward = step[0] * tau[0] + step[1] * tau[1] > 0.0
-                    && came.is_none_or(|c| step[0] * c[0] + step[1] * c[1] > 0.0);
-                if forward
-                    && dist <= 3.0 * rho
-                    && self.plane.inside([q.alpha, q.p])
-                    && !self.crosses_border(cur, &q, dir, index, codim2)
-                {
-                    let out = [step[0] / dist, step[1] / dist];
-                    return Some((q, out));
-                }
-            }
+        let found = self.around(y0, tau, 75.0, &cur.cycle, &mut |t| {
+            // Ahead along the tangent and along the last step: a point back the way the
+            // curve came is the curve retraced, not its continuation.
+            let s = t.step;
+            let forward = s[0] * tau[0] + s[1] * tau[1] > 0.0
+                && came.is_none_or(|c| s[0] * c[0] + s[1] * c[1] > 0.0);
+            forward
+                && t.dist <= 3.0 * t.rho
+                && self.plane.inside([t.q.alpha, t.q.p])
+                && !self.crosses_border(cur, t.q, t.dir, index, codim2)
+        });
+        if found.is_none() {
+            self.dead_ends.borrow_mut().push(y0);
         }
-        self.dead_ends.borrow_mut().push(y0);
-        None
+        found
     }
 
     /// Where the curve stopped at a codimension-two point located on it (within a
