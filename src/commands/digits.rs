@@ -437,24 +437,7 @@ fn impact_cycle(
         Stability::Undecided => "undecided",
     };
     let (name, agreed, need) = match verdict {
-        ImpactCycleVerdict::Found(c) => (
-            "periodic",
-            Some(
-                [
-                    &c.phase,
-                    &c.v,
-                    &c.multipliers[0],
-                    &c.multipliers[1],
-                    &c.exponents[0],
-                    &c.exponents[1],
-                ]
-                .iter()
-                .map(|a| a.digits)
-                .min()
-                .unwrap_or(0),
-            ),
-            None,
-        ),
+        ImpactCycleVerdict::Found(c) => ("periodic", Some(c.digits()), None),
         ImpactCycleVerdict::Undecided { agreed, need, .. } => {
             ("periodic_undecided", Some(*agreed), Some(*need))
         }

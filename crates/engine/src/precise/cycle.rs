@@ -63,6 +63,26 @@ pub enum Multipliers<R> {
     },
 }
 
+impl<R> Multipliers<R> {
+    /// The two real multipliers, or the pair's real and imaginary parts; and whether
+    /// they are a complex pair.
+    fn parts(&self) -> ([&R; 2], bool) {
+        match self {
+            Multipliers::Real([a, b]) => ([a, b], false),
+            Multipliers::Complex { re, im } => ([re, im], true),
+        }
+    }
+}
+
+/// The larger of two values.
+fn larger<R: Real>(a: R, b: R) -> R {
+    if a > b {
+        a
+    } else {
+        b
+    }
+}
+
 /// An (n, k) cycle of impacts solved at one precision.
 #[derive(Clone, Debug, PartialEq)]
 pub struct CycleAt<R> {
@@ -204,14 +224,7 @@ pub fn solve_cycle<R: Real>(
         // Kept in [0, 1): a whole period more or less is the same launch.
         let whole = phase.floor();
         phase = phase - whole;
-        let size = {
-            let (x, y) = (dt.abs(), dv.abs() / (one.clone() + v.abs()));
-            if x > y {
-                x
-            } else {
-                y
-            }
-        };
+        let size = larger(dt.abs(), dv.abs() / (one.clone() + v.abs()));
         // Settled: the step is at the precision's rounding, or it stopped shrinking
         // quadratically once small (an ill-conditioned cycle's last digits are noise,
         // which the comparison of two precisions measures).
@@ -222,14 +235,7 @@ pub fn solve_cycle<R: Real>(
         if at_rounding || stalled {
             let (f, m, det, min_speed) = pass(sys, n, k, &phase, &v)?;
             progress(n as u64);
-            let residual = {
-                let (x, y) = (f[0].abs(), f[1].abs());
-                if x > y {
-                    x
-                } else {
-                    y
-                }
-            };
+            let residual = larger(f[0].abs(), f[1].abs());
             let (multipliers, exponents) = spectrum(&m, &det, n, &ctx);
             return Ok(CycleAt {
                 phase,
@@ -301,6 +307,25 @@ pub struct ImpactCycle {
     pub two_ln_r: Big,
     /// The digits of the two runs that agreed.
     pub precision: (u32, u32),
+}
+
+impl ImpactCycle {
+    /// The values printed: launch phase and velocity, both multipliers (or the pair's
+    /// parts) and both exponents.
+    pub fn values(&self) -> [&Agreed; 6] {
+        let (m, e) = (&self.multipliers, &self.exponents);
+        [&self.phase, &self.v, &m[0], &m[1], &e[0], &e[1]]
+    }
+
+    /// The fewest digits any of its values holds to.
+    pub fn digits(&self) -> u32 {
+        least(self.values())
+    }
+}
+
+/// The fewest digits of `values`.
+fn least(values: [&Agreed; 6]) -> u32 {
+    values.iter().map(|a| a.digits).min().unwrap_or(0)
 }
 
 /// What [`impact_cycle_to_digits`] decided.
@@ -380,41 +405,16 @@ pub fn impact_cycle_to_digits(
             value: b.clone(),
             digits: agreeing_digits(a, b, cap).min(digits),
         };
-        let (mult, complex) = match (&lo.multipliers, &hi.multipliers) {
-            (Multipliers::Real(a), Multipliers::Real(b)) => {
-                ([agree(&a[0], &b[0]), agree(&a[1], &b[1])], false)
-            }
-            (Multipliers::Complex { re: ar, im: ai }, Multipliers::Complex { re: br, im: bi }) => {
-                ([agree(ar, br), agree(ai, bi)], true)
-            }
+        let ((a, complex_lo), (b, complex)) = (lo.multipliers.parts(), hi.multipliers.parts());
+        let mult = if complex_lo == complex {
+            [agree(a[0], b[0]), agree(a[1], b[1])]
+        } else {
             // Real at one precision and complex at the other: a double multiplier
             // within the difference.
-            (_, Multipliers::Real(b)) => (
-                [
-                    Agreed {
-                        value: b[0].clone(),
-                        digits: 0,
-                    },
-                    Agreed {
-                        value: b[1].clone(),
-                        digits: 0,
-                    },
-                ],
-                false,
-            ),
-            (_, Multipliers::Complex { re, im }) => (
-                [
-                    Agreed {
-                        value: re.clone(),
-                        digits: 0,
-                    },
-                    Agreed {
-                        value: im.clone(),
-                        digits: 0,
-                    },
-                ],
-                true,
-            ),
+            b.map(|x| Agreed {
+                value: x.clone(),
+                digits: 0,
+            })
         };
         let exponents = [
             agree(&lo.exponents[0], &hi.exponents[0]),
@@ -422,11 +422,7 @@ pub fn impact_cycle_to_digits(
         ];
         let phase = agree(&lo.phase, &hi.phase);
         let v = agree(&lo.v, &hi.v);
-        let agreed = [&phase, &v, &mult[0], &mult[1], &exponents[0], &exponents[1]]
-            .iter()
-            .map(|a| a.digits)
-            .min()
-            .unwrap_or(0);
+        let agreed = least([&phase, &v, &mult[0], &mult[1], &exponents[0], &exponents[1]]);
         if agreed >= digits {
             let bits = hi.phase.context();
             let one = Big::from_f64(1.0, &bits);
