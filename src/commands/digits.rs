@@ -251,30 +251,23 @@ pub fn lyapunov(run: &LyapunovDigits) -> anyhow::Result<()> {
             return impact_cycle(run, &verdict, (n, k), &origin, out);
         }
     }
-    let mut report = Reporter::new(
-        "lyapunov",
+    let verdict = reported(
         CYCLE_EVENTS,
         &format!(
             "{}  alpha {}  r {}  sticking cycle to {} digits, within {CYCLE_EVENTS} events a run",
             spec.table, spec.written.0, spec.written.1, spec.digits
         ),
-    );
-    let verdict = sticking_cycle_to_digits(
-        &|bits| spec.make(bits),
-        spec.digits,
-        spec.max_digits,
-        CYCLE_EVENTS,
-        i64::try_from(run.transient).unwrap_or(i64::MAX),
-        &mut |p| {
-            report.update(p);
-            std::ops::ControlFlow::Continue(())
+        |progress| {
+            sticking_cycle_to_digits(
+                &|bits| spec.make(bits),
+                spec.digits,
+                spec.max_digits,
+                CYCLE_EVENTS,
+                i64::try_from(run.transient).unwrap_or(i64::MAX),
+                progress,
+            )
         },
-    );
-    report.finish();
-    // (Only a progress report that asks to stop ends it without a verdict.)
-    let Some(verdict) = verdict else {
-        anyhow::bail!("the run at any precision stopped without a verdict");
-    };
+    )?;
     let params = if spec.binary {
         "as doubles"
     } else {
@@ -387,26 +380,38 @@ fn solve_impact_cycle(
     let spec = &run.spec;
     // What one pair of precisions computes at most: Newton's passes at both.
     let bound = 2 * (bouncemap_engine::NEWTON_STEPS as u64 + 1) * n as u64;
-    let mut report = Reporter::new(
-        "lyapunov",
+    reported(
         bound,
         &format!(
             "{}  alpha {}  r {}  the ({n}, {k}) cycle of impacts to {} digits",
             spec.table, spec.written.0, spec.written.1, spec.digits
         ),
-    );
-    let verdict = impact_cycle_to_digits(
-        &|bits| spec.make(bits),
-        n,
-        k,
-        point,
-        spec.digits,
-        spec.max_digits,
-        &mut |p| {
-            report.update(p);
-            std::ops::ControlFlow::Continue(())
+        |progress| {
+            impact_cycle_to_digits(
+                &|bits| spec.make(bits),
+                n,
+                k,
+                point,
+                spec.digits,
+                spec.max_digits,
+                progress,
+            )
         },
-    );
+    )
+}
+
+/// `lyapunov --digits`' `work` run with its progress on stderr (`total` events at most,
+/// `spec` saying what it computes): its verdict.
+fn reported<T>(
+    total: u64,
+    spec: &str,
+    work: impl FnOnce(&mut dyn FnMut(DigitsProgress) -> std::ops::ControlFlow<()>) -> Option<T>,
+) -> anyhow::Result<T> {
+    let mut report = Reporter::new("lyapunov", total, spec);
+    let verdict = work(&mut |p| {
+        report.update(p);
+        std::ops::ControlFlow::Continue(())
+    });
     report.finish();
     // (Only a progress report that asks to stop ends it without a verdict.)
     verdict.ok_or_else(|| anyhow::anyhow!("the run at any precision stopped without a verdict"))
