@@ -50,12 +50,14 @@ pub fn digits_refusal(table: &bouncemap_engine::Table) -> InputError {
 /// The texts a job at any precision reads its parameters from: `kept` (α, r and the
 /// table's, as typed on the command line) with each of `settings` (a parameter's name
 /// and its text: a window `LO..HI`, or a value) as typed. Then refused, naming it, if
-/// any is outside its range as written though its double is inside (the setup's
+/// any is outside its range as written though its double is inside (the job's system,
+/// `table` at α and r, checked by
 /// [`bouncemap_engine::PreciseSetup::check_written`]).
 pub fn job_written(
     kept: &bouncemap_engine::Written,
     settings: &[(&str, Option<&str>)],
-    setup: Option<bouncemap_engine::PreciseSetup>,
+    (table, alpha, r): (&bouncemap_engine::Table, f64, f64),
+    ask: bouncemap_engine::DigitsAsk,
 ) -> Result<bouncemap_engine::Written, InputError> {
     let mut w = kept.clone();
     for (name, text) in settings {
@@ -78,6 +80,7 @@ pub fn job_written(
             None => w.table.push((name.to_string(), t.into())),
         }
     }
+    let setup = bouncemap_engine::PreciseSetup::new(table, alpha, r, 0.0, None, ask.binary);
     if let Some(setup) = setup {
         setup.as_written(&w).check_written().map_err(InputError)?;
     }

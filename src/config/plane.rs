@@ -98,27 +98,13 @@ pub fn plane_spec(args: &PlaneArgs) -> Result<PlaneSpec, InputError> {
     if let Some(ask) = spec.digits {
         super::digits::digits_take(&spec.table)?;
         // The parameters and the axes' windows as typed, every digit.
-        let axis = |s: &str| {
-            s.split_once(':')
-                .map(|(name, window)| (name.trim().to_string(), window.to_string()))
-        };
-        let axes: Vec<(String, String)> = [&args.spec.x, &args.spec.y]
+        let settings: Vec<(&str, Option<&str>)> = [&args.spec.x, &args.spec.y]
             .into_iter()
-            .filter_map(|s| axis(s))
+            .filter_map(|axis| axis.split_once(':'))
+            .map(|(name, window)| (name.trim(), Some(window)))
             .collect();
-        let settings: Vec<(&str, Option<&str>)> = axes
-            .iter()
-            .map(|(n, w)| (n.as_str(), Some(w.as_str())))
-            .collect();
-        let setup = bouncemap_engine::PreciseSetup::new(
-            &spec.table,
-            spec.alpha,
-            spec.r,
-            0.0,
-            None,
-            ask.binary,
-        );
-        spec.written = super::digits::job_written(&args.precision.written, &settings, setup)?;
+        let system = (&spec.table, spec.alpha, spec.r);
+        spec.written = super::digits::job_written(&args.precision.written, &settings, system, ask)?;
     }
     Ok(spec)
 }

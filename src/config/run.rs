@@ -186,15 +186,8 @@ pub fn basins(args: &BasinsArgs) -> Result<BasinsRun, InputError> {
         }
         super::digits::digits_take(spec.sys.table())?;
         let sys = &spec.sys;
-        let setup = bouncemap_engine::PreciseSetup::new(
-            sys.table(),
-            sys.alpha(),
-            sys.r(),
-            0.0,
-            None,
-            ask.binary,
-        );
-        written = super::digits::job_written(&args.precision.written, &[], setup)?;
+        let system = (sys.table(), sys.alpha(), sys.r());
+        written = super::digits::job_written(&args.precision.written, &[], system, ask)?;
     }
     let job = Job {
         check: args.run.check.check,

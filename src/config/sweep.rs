@@ -108,15 +108,8 @@ pub fn sweep_spec(args: &SweepArgs) -> Result<SweepSpec, InputError> {
         if let Some((name, window)) = a.param.as_deref().and_then(|p| p.split_once(':')) {
             settings.push((name.trim(), Some(window)));
         }
-        let setup = bouncemap_engine::PreciseSetup::new(
-            &spec.table,
-            spec.alpha,
-            spec.r,
-            0.0,
-            None,
-            ask.binary,
-        );
-        spec.written = super::digits::job_written(&args.precision.written, &settings, setup)?;
+        let system = (&spec.table, spec.alpha, spec.r);
+        spec.written = super::digits::job_written(&args.precision.written, &settings, system, ask)?;
     }
     Ok(spec)
 }

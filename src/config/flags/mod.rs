@@ -230,16 +230,16 @@ pub fn keep_written(cli: &mut Cli, matches: &clap::ArgMatches) {
     let Some(m) = matches.subcommand_matches(name) else {
         return;
     };
+    // Only what the command line gave (not a default), its last occurrence; an id the
+    // command does not have reads as nothing (a sweep's window and a plane's axes are
+    // taken from their own texts, `super::sweep`, `super::plane`).
     let typed = |id: &str| -> Option<String> {
-        // Only what the command line gave (not a default), its last occurrence.
+        let mut raw = m.try_get_raw(id).ok().flatten()?;
         if m.value_source(id) != Some(clap::parser::ValueSource::CommandLine) {
             return None;
         }
-        m.get_raw(id)?.next_back()?.to_str().map(String::from)
+        raw.next_back()?.to_str().map(String::from)
     };
-    // (An id a command does not have reads as nothing; a sweep's window and a plane's
-    // axes are taken from their own texts, `super::sweep`, `super::plane`.)
-    let typed = |id: &str| m.try_get_raw(id).ok().flatten().and_then(|_| typed(id));
     precision.written = bouncemap_engine::Written {
         alpha: typed("alpha"),
         r: typed("r"),
