@@ -620,13 +620,8 @@ fn a_table_parameter_with_more_digits_than_a_double_is_read_as_written() {
         "--digits",
         "20",
     ]);
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{err}");
-    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
-    assert!(
-        err.contains("D 1.000000000000000000001") && err.contains("[0, 1]"),
-        "{err}"
-    );
+    crate::reliability::refused(&out, "D 1.000000000000000000001");
+    assert!(String::from_utf8_lossy(&out.stderr).contains("[0, 1]"));
 }
 
 /// `lyapunov --digits` on the settled (1, 1) orbit of F_D (D = 0.1, α = 0.45, r = 0.8):
@@ -677,110 +672,4 @@ fn lyapunov_digits_on_the_one_one_cycle_is_the_closed_form() {
     };
     assert!(digits(&sum, &tr) >= 38, "{sum:?} vs {tr:?}");
     assert!(digits(&product, &(r.clone() * r)) >= 38);
-}
-
-/// `sweep`, `plane` and `basins` read their windows and parameters as typed too. On
-/// fd:1 a window 0.59..0.59000000000000000001 in two steps is one double, 0.59, but two
-/// systems at any precision: its first value's sticking cycle is 0.59's 78-period one,
-/// its second value's the one `lyapunov --digits` finds at α = 0.59000000000000000001,
-/// and a plane's two pixels on that window the same. `basins` on F_D at D =
-/// 0.999999999999999999999 decides the cycle `lyapunov --digits` finds for that D (a
-/// sticking cycle repeats from its release, whatever the start), not fd:1's.
-#[test]
-fn jobs_read_windows_and_parameters_as_typed() {
-    let long = "0.59000000000000000001";
-    let lyapunov_periods = |table: &str, alpha: &str| {
-        lyapunov_csv(&["--table", table, "--alpha", alpha, "--digits", "20"])[6].clone()
-    };
-    let typed = lyapunov_periods("fd:1", long);
-    assert_ne!(typed, "78");
-    let window = format!("0.59..{long}");
-    let out = bouncemap(&[
-        "sweep",
-        "--table",
-        "fd:1",
-        "--alpha",
-        &window,
-        "--r",
-        "0.8",
-        "--steps",
-        "2",
-        "--near-fixed-point",
-        "--keep",
-        "1",
-        "--digits",
-        "20",
-        "--format",
-        "csv",
-    ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let text = String::from_utf8(out.stdout).unwrap();
-    let mut lines = text.lines().filter(|l| !l.starts_with('#'));
-    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-    let col = header.iter().position(|h| *h == "digits_periods").unwrap();
-    let periods: Vec<String> = lines
-        .map(|l| l.split(',').nth(col).unwrap().to_string())
-        .collect();
-    assert_eq!(periods, ["78", typed.as_str()], "{text}");
-    assert!(
-        text.contains(&format!("alpha={window}")),
-        "the header names the window typed"
-    );
-
-    let out = bouncemap(&[
-        "plane",
-        "--table",
-        "fd:1",
-        "--x",
-        &format!("alpha:{window}"),
-        "--y",
-        "r:0.8..0.8",
-        "--size",
-        "2x1",
-        "--digits",
-        "20",
-        "--format",
-        "csv",
-    ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let text = String::from_utf8(out.stdout).unwrap();
-    let mut lines = text.lines().filter(|l| !l.starts_with('#'));
-    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-    let col = header.iter().position(|h| *h == "digits_periods").unwrap();
-    let pixels: Vec<String> = lines
-        .map(|l| l.split(',').nth(col).unwrap().to_string())
-        .collect();
-    assert_eq!(pixels, ["78", typed.as_str()], "{text}");
-
-    let d = "fd:0.999999999999999999999";
-    let want = lyapunov_periods(d, "0.59");
-    assert_ne!(want, "78");
-    let out = bouncemap(&[
-        "basins", "--table", d, "--alpha", "0.59", "--grid", "4x2", "--digits", "20", "--format",
-        "json",
-    ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let doc: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
-    let found: Vec<String> = doc["attractors"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .filter_map(|a| a["cycle"]["periods"].as_i64().map(|p| p.to_string()))
-        .collect();
-    assert!(
-        !found.is_empty() && found.iter().all(|p| *p == want),
-        "{found:?} vs {want}"
-    );
 }

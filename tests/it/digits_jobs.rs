@@ -17,15 +17,23 @@ fn bouncemap(args: &[&str]) -> Output {
 
 /// The csv rows of a command that succeeds (comment lines left out), header first.
 fn csv(args: &[&str]) -> Vec<Vec<String>> {
+    rows_of(&stdout_of(args))
+}
+
+/// The standard output of a command that succeeds.
+fn stdout_of(args: &[&str]) -> String {
     let out = bouncemap(args);
     assert!(
         out.status.success(),
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
-    String::from_utf8(out.stdout)
-        .unwrap()
-        .lines()
+    String::from_utf8(out.stdout).unwrap()
+}
+
+/// The csv rows of `text` (comment lines left out), header first.
+fn rows_of(text: &str) -> Vec<Vec<String>> {
+    text.lines()
         .filter(|l| !l.starts_with('#'))
         .map(|l| l.split(',').map(String::from).collect())
         .collect()
@@ -300,4 +308,88 @@ fn a_plane_decides_its_unresolved_pixels() {
         );
     }
     merges_into(&d, [&a, &b], &whole);
+}
+
+/// `sweep`, `plane` and `basins` read their windows and parameters as typed too. On
+/// fd:1 a window 0.59..0.59000000000000000001 in two steps is one double, 0.59, but two
+/// systems at any precision: its first value's sticking cycle is 0.59's 78-period one,
+/// its second value's the one `lyapunov --digits` finds at α = 0.59000000000000000001,
+/// and a plane's two pixels on that window the same. `basins` on F_D at D =
+/// 0.999999999999999999999 decides the cycle `lyapunov --digits` finds for that D (a
+/// sticking cycle repeats from its release, whatever the start), not fd:1's.
+#[test]
+fn jobs_read_windows_and_parameters_as_typed() {
+    let long = "0.59000000000000000001";
+    let lyapunov_periods = |table: &str, alpha: &str| {
+        let rows = csv(&[
+            "lyapunov", "--table", table, "--alpha", alpha, "--r", "0.8", "--digits", "20",
+            "--format", "csv",
+        ]);
+        cell(&rows, 1, "periods").to_string()
+    };
+    let typed = lyapunov_periods("fd:1", long);
+    assert_ne!(typed, "78");
+    let window = format!("0.59..{long}");
+    let text = stdout_of(&[
+        "sweep",
+        "--table",
+        "fd:1",
+        "--alpha",
+        &window,
+        "--r",
+        "0.8",
+        "--steps",
+        "2",
+        "--near-fixed-point",
+        "--keep",
+        "1",
+        "--digits",
+        "20",
+        "--format",
+        "csv",
+    ]);
+    let rows = rows_of(&text);
+    let periods = [1, 2].map(|i| cell(&rows, i, "digits_periods"));
+    assert_eq!(periods, ["78", typed.as_str()], "{text}");
+    assert!(
+        text.contains(&format!("alpha={window}")),
+        "the header names the window typed"
+    );
+
+    let rows = csv(&[
+        "plane",
+        "--table",
+        "fd:1",
+        "--x",
+        &format!("alpha:{window}"),
+        "--y",
+        "r:0.8..0.8",
+        "--size",
+        "2x1",
+        "--digits",
+        "20",
+        "--format",
+        "csv",
+    ]);
+    let pixels = [1, 2].map(|i| cell(&rows, i, "digits_periods"));
+    assert_eq!(pixels, ["78", typed.as_str()], "{rows:?}");
+
+    let d = "fd:0.999999999999999999999";
+    let want = lyapunov_periods(d, "0.59");
+    assert_ne!(want, "78");
+    let doc: serde_json::Value = serde_json::from_str(&stdout_of(&[
+        "basins", "--table", d, "--alpha", "0.59", "--grid", "4x2", "--digits", "20", "--format",
+        "json",
+    ]))
+    .unwrap();
+    let found: Vec<String> = doc["attractors"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter_map(|a| a["cycle"]["periods"].as_i64().map(|p| p.to_string()))
+        .collect();
+    assert!(
+        !found.is_empty() && found.iter().all(|p| *p == want),
+        "{found:?} vs {want}"
+    );
 }

@@ -19,7 +19,7 @@ fn dir(name: &str) -> PathBuf {
 }
 
 /// Exit 2 with one line of stderr containing `want`.
-fn refused(o: &Output, want: &str) {
+pub(crate) fn refused(o: &Output, want: &str) {
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2), "{err}");
     assert_eq!(err.trim_end().lines().count(), 1, "not one line: {err}");

@@ -316,13 +316,9 @@ fn the_sines_one_one_solutions_return_to_sixty_digits() {
     let bits = bits_for_digits(64);
     let n = |s: &str| Big::from_decimal(s, &bits).unwrap();
     let (alpha, r, one) = (n("0.025"), n("0.8"), n("1"));
-    let omega = n("2") * Big::pi(&bits);
-    let y = (one.clone() - r.clone())
-        / (n("2") * (one.clone() + r.clone()) * alpha.clone() * omega.clone());
-    let acos = Big::pi(&bits) / n("2") - y.asin();
-    let sys = PreciseSystem::sine(alpha, r.clone(), bits);
-    let w = r.clone() / (one.clone() + r);
-    for t in [acos.clone() / omega.clone(), one.clone() - acos / omega] {
+    let sys = PreciseSystem::sine(alpha.clone(), r.clone(), bits);
+    let w = r.clone() / (one + r.clone());
+    for t in sine_one_one(&alpha, &r) {
         let st = PreciseState::launch(&sys, 0, t.clone(), w.clone());
         let v0 = st.v.clone();
         let mut map = PreciseMap::new(sys.clone(), st);
@@ -332,6 +328,19 @@ fn the_sines_one_one_solutions_return_to_sixty_digits() {
         let dv = (e.v.clone() - v0).abs().to_f64();
         assert!(dt < 1e-55 && dv < 1e-55, "t* {t:?}: {dt:e} {dv:e}");
     }
+}
+
+/// The sine's two (1, 1) solutions t* = acos(y)/ω and 1 − acos(y)/ω, with ω = 2π and y =
+/// (1 − r)/(2(1 + r)αω) (αω cos ωt* = (1 − r)/(2(1 + r))), at the precision of α.
+pub fn sine_one_one(alpha: &Big, r: &Big) -> [Big; 2] {
+    let bits = alpha.context();
+    let n = |s: &str| Big::from_decimal(s, &bits).unwrap();
+    let one = n("1");
+    let omega = n("2") * Big::pi(&bits);
+    let y = (one.clone() - r.clone())
+        / (n("2") * (one.clone() + r.clone()) * alpha.clone() * omega.clone());
+    let acos = Big::pi(&bits) / n("2") - y.asin();
+    [acos.clone() / omega.clone(), one - acos / omega]
 }
 
 /// The quintic table of `assets/tables/quintic.toml` (two quintic Hermite pieces, C²),

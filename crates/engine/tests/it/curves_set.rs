@@ -3,7 +3,7 @@
 //! same curves whatever the seeds, and curves that go on where they go on, checked
 //! against closed forms, `fixed_points` and the one-parameter continuation.
 
-use super::curves::of;
+use super::curves::{lowest_in_flight, of};
 use bouncemap_engine::jobs::grid::SweepParam;
 use bouncemap_engine::orbits::continuation::{branches, Kind, Options, Special, Start};
 use bouncemap_engine::orbits::curves::{
@@ -443,15 +443,7 @@ fn curves_go_on_past_a_point_where_the_tangent_step_fails() {
     assert!(lo <= 0.2 + 1e-9 && hi >= 0.95 - 1e-9, "r {lo}..{hi}");
     assert_eq!(g.ends.map(|e| e.as_str()), ["window", "window"]);
     for q in g.points.iter().step_by(5) {
-        let sys = System::new(Table::sine(), q.alpha, q.p).unwrap();
-        let (ph, v, tau) = (q.cycle.phases[0], q.cycle.velocities[0], q.cycle.flights[0]);
-        let f0 = sys.f(ph);
-        let lowest = (1..200_000)
-            .map(|j| {
-                let s = tau * j as f64 / 200_000.0;
-                f0 + v * s - 0.5 * s * s - sys.f((ph + s).rem_euclid(1.0))
-            })
-            .fold(f64::INFINITY, f64::min);
+        let lowest = lowest_in_flight(&Table::sine(), q);
         assert!(lowest.abs() < 1e-9, "r = {}: lowest {lowest:e}", q.p);
     }
 }

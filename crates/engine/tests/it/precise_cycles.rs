@@ -3,6 +3,7 @@
 //! Jacobian, the determinant identity det M = r²ⁿ, central differences of the map at
 //! any precision (a second method for the monodromy), and the f64 cycle solver.
 
+use super::any_precision::sine_one_one;
 use bouncemap_engine::orbits::periodic::cycle;
 use bouncemap_engine::table::Family;
 use bouncemap_engine::{
@@ -54,15 +55,9 @@ fn newton_at_any_precision_finds_the_sines_one_one_solutions_and_their_multiplie
     let n = |s: &str| Big::from_decimal(s, &bits).unwrap();
     let (alpha, r, one) = (n("0.025"), n("0.8"), n("1"));
     let omega = n("2") * Big::pi(&bits);
-    let y = (one.clone() - r.clone())
-        / (n("2") * (one.clone() + r.clone()) * alpha.clone() * omega.clone());
-    let acos = Big::pi(&bits) / n("2") - y.asin();
     let sys = PreciseSystem::sine(alpha.clone(), r.clone(), bits);
     let mut kinds = Vec::new();
-    for t in [
-        acos.clone() / omega.clone(),
-        one.clone() - acos / omega.clone(),
-    ] {
+    for t in sine_one_one(&alpha, &r) {
         let guess = Big::from_f64(t.to_f64() + 1e-9, &bits);
         let c = solve_cycle(&sys, 1, 1, guess, n("0.5000000003"), &mut |_| {}).unwrap();
         assert!(
