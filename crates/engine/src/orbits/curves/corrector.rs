@@ -26,9 +26,9 @@ pub(super) struct Tracer<'a> {
     pub(super) n: usize,
     pub(super) k: u32,
     pub(super) jumps: Vec<f64>,
-    /// Points of this curve's kind and (n, k) where no point ahead was found, known
-    /// before this trace and found by it.
-    pub(super) dead_ends: std::cell::RefCell<Vec<[f64; 2]>>,
+    /// Where curves of this run found no point ahead (every kind and cycle: the
+    /// tracer looks for its own), shared by all its traces.
+    pub(super) dead_ends: &'a std::cell::RefCell<Vec<super::DeadEnd>>,
 }
 
 impl Tracer<'_> {

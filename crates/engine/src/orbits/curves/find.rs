@@ -171,14 +171,7 @@ fn seed_at_double_borders(plane: &Plane, out: &mut Curves, dead_ends: &RefCell<V
         };
         let kind = CurveKind::BorderCollision { impact, breakpoint };
         let index = out.curves.len();
-        match follow(
-            plane,
-            kind,
-            &special,
-            q.p,
-            index,
-            &mut dead_ends.borrow_mut(),
-        ) {
+        match follow(plane, kind, &special, q.p, index, dead_ends) {
             Ok((curve, codim2)) if curve.points.len() >= 2 => {
                 out.curves.push(curve);
                 out.codim2.extend(codim2);
@@ -282,7 +275,7 @@ fn seed_at(
                 continue;
             }
             let index = out.curves.len();
-            match follow(plane, kind, s, p, index, &mut dead_ends.borrow_mut()) {
+            match follow(plane, kind, s, p, index, dead_ends) {
                 // A seed the tracer could not leave is no curve.
                 Ok((curve, _)) if curve.points.len() < 2 => skip(
                     &mut out.skipped,

@@ -12,6 +12,7 @@ use crate::orbits::continuation::Special;
 use crate::orbits::periodic::{cycle, CyclePoint, PassError};
 use crate::orbits::roots::bracketed_root_nan;
 use crate::time::signed_distance;
+use std::cell::RefCell;
 
 /// The directions a curve may leave a double border in, in degrees from the way it
 /// came, nearest first: all round but straight back (the corner may be a cusp; the
@@ -57,7 +58,7 @@ pub(super) fn follow(
     s: &Special,
     p: f64,
     index: usize,
-    dead_ends: &mut Vec<DeadEnd>,
+    dead_ends: &RefCell<Vec<DeadEnd>>,
 ) -> Result<(Curve, Vec<Codim2>), String> {
     let jumps = plane.jumps(p);
     // Launch the cycle from its impact farthest from every breakpoint: at a launch on a
@@ -92,17 +93,13 @@ pub(super) fn follow(
         )
         .map_err(|e| format!("the cycle could not be relaunched ({})", e.as_str()))?
     };
-    let k = s.point.k;
-    let mine = |d: &DeadEnd| d.kind == kind && d.n == n && d.k == k;
-    let known: Vec<[f64; 2]> = dead_ends.iter().filter(|d| mine(d)).map(|d| d.at).collect();
-    let before = known.len();
     let tr = Tracer {
         plane,
         kind,
         n,
-        k,
+        k: s.point.k,
         jumps,
-        dead_ends: std::cell::RefCell::new(known),
+        dead_ends,
     };
     // The seed: solve G = 0 in α at fixed p.
     let (e0, grad0) = tr
@@ -118,11 +115,6 @@ pub(super) fn follow(
         let (pts, end) = tr.run(first.clone(), tau, index, &mut codim2, y0);
         halves.push((pts, end));
     }
-    dead_ends.extend(
-        tr.dead_ends.borrow()[before..]
-            .iter()
-            .map(|&at| DeadEnd { kind, n, k, at }),
-    );
     let (back, back_end) = halves.pop().expect("two directions");
     let (fwd, fwd_end) = halves.pop().expect("two directions");
     let closed = fwd_end == CurveEnd::Closed;
@@ -502,7 +494,10 @@ impl Tracer<'_> {
     ) -> Option<(CurvePoint, [f64; 2])> {
         let y0 = [cur.alpha, cur.p];
         let scale = self.plane.scale();
-        let dead = |y: &[f64; 2]| (y[0] - y0[0]).hypot(y[1] - y0[1]) <= 1e-9 * scale;
+        let dead = |d: &DeadEnd| {
+            (d.kind, d.n, d.k) == (self.kind, self.n, self.k)
+                && (d.at[0] - y0[0]).hypot(d.at[1] - y0[1]) <= 1e-9 * scale
+        };
         if self.dead_ends.borrow().iter().any(dead) {
             return None;
         }
@@ -518,7 +513,12 @@ impl Tracer<'_> {
                 && !self.crosses_border(cur, t.q, t.dir, index, codim2)
         });
         if found.is_none() {
-            self.dead_ends.borrow_mut().push(y0);
+            self.dead_ends.borrow_mut().push(DeadEnd {
+                kind: self.kind,
+                n: self.n,
+                k: self.k,
+                at: y0,
+            });
         }
         found
     }
