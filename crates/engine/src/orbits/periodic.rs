@@ -319,14 +319,20 @@ pub fn cycle(sys: &System, n: usize, k: u32, t0: f64, v0: f64) -> Result<CyclePo
 /// (right after an impact), shortest first: for each n whose n-th event returns within
 /// 0.05 of the launch in phase and in velocity (relative) after n impacts, the (n, k)
 /// cycle Newton's method finds from there, k the table periods those n took (a shorter
-/// cycle run several times is taken as the shorter one). Each cycle is listed once. For an orbit that did not settle
-/// (converging too slowly next to a bifurcation, where a multiplier is near the unit
-/// circle), these are the cycles it may be approaching.
+/// cycle run several times is taken as the shorter one). Each cycle is listed once.
+/// For an orbit that did not settle (converging too slowly next to a bifurcation, where
+/// a multiplier is near the unit circle), these are the cycles it may be approaching.
 pub fn cycles_near(sys: &System, t0: f64, v0: f64, max_events: usize) -> Vec<CyclePoint> {
     let mut out: Vec<CyclePoint> = Vec::new();
     let Ok(start) = State::launch(sys, 0, wrap_phase(t0), v0, 0.0) else {
         return out;
     };
+    // Two launches (phase, v) that are one, velocities to 1e-9 of 1 + |scale|.
+    let same = |(p, v): (f64, f64), (q, w): (f64, f64), scale: f64| {
+        crate::time::signed_distance(p, q).abs() < 1e-9
+            && (v - w).abs() < 1e-9 * (1.0 + scale.abs())
+    };
+    let launch = |c: &CyclePoint, i: usize| (c.phases[i], c.velocities[i]);
     let mut map = ImpactMap::new(sys.clone(), Solver::Exact, start);
     for n in 1..=max_events {
         let Ok(e) = map.step() else { break };
@@ -346,11 +352,7 @@ pub fn cycles_near(sys: &System, t0: f64, v0: f64, max_events: usize) -> Vec<Cyc
         };
         // Newton's method may have found a shorter cycle run several times: the
         // shortest whose launch returns after d of the n impacts is the cycle.
-        let same = |i: usize| {
-            crate::time::signed_distance(c.phases[i], c.phases[0]).abs() < 1e-9
-                && (c.velocities[i] - c.velocities[0]).abs() < 1e-9 * (1.0 + v0.abs())
-        };
-        if let Some(d) = (1..n).find(|d| n % d == 0 && same(*d)) {
+        if let Some(d) = (1..n).find(|d| n % d == 0 && same(launch(&c, *d), launch(&c, 0), v0)) {
             let kd = k as usize * d / n;
             if kd * n != k as usize * d || kd == 0 {
                 continue;
@@ -362,11 +364,7 @@ pub fn cycles_near(sys: &System, t0: f64, v0: f64, max_events: usize) -> Vec<Cyc
         }
         // A repeat of a shorter cycle: its launch is on one found already.
         let repeat = out.iter().any(|o| {
-            c.n % o.n == 0
-                && o.phases.iter().zip(&o.velocities).any(|(p, v)| {
-                    crate::time::signed_distance(*p, c.phases[0]).abs() < 1e-9
-                        && (v - c.velocities[0]).abs() < 1e-9 * (1.0 + v.abs())
-                })
+            c.n % o.n == 0 && (0..o.n).any(|i| same(launch(o, i), launch(&c, 0), o.velocities[i]))
         });
         if !repeat {
             out.push(c);

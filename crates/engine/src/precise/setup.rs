@@ -60,13 +60,6 @@ pub struct Written {
     pub windows: Vec<(String, String, String)>,
 }
 
-impl Written {
-    /// Whether nothing was kept.
-    pub fn is_empty(&self) -> bool {
-        *self == Written::default()
-    }
-}
-
 /// One parameter at any precision: a double, a decimal text, or a point of a job's
 /// grid.
 #[derive(Clone, Debug, PartialEq)]
@@ -278,20 +271,21 @@ impl PreciseSetup {
         if let Some(v0) = &self.v0 {
             slots.push((v0, limit(&limits::VELOCITY)));
         }
-        let mut ranges: Vec<Range> = vec![limit(&limits::ALPHA), limit(&limits::R)];
         for (p, v) in self.family.params().iter().zip(&self.params) {
             let (lo, hi) = p.range();
-            let range = (p.name().to_string(), lo, hi, false, false, p.range_text());
-            slots.push((v, range.clone()));
-            ranges.push(range);
+            slots.push((
+                v,
+                (p.name().to_string(), lo, hi, false, false, p.range_text()),
+            ));
         }
         // The ends of the windows typed, each against its parameter's range.
         let ends: Vec<(Value, Range)> = self
             .windows
             .iter()
             .flat_map(|(name, a, b)| {
-                let range = ranges
+                let range = slots
                     .iter()
+                    .map(|(_, r)| r)
                     .find(|r| r.0.eq_ignore_ascii_case(name))
                     .cloned();
                 [a, b].into_iter().filter_map(move |t| {
