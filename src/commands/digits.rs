@@ -98,7 +98,7 @@ fn write(out: &mut Sink, run: &DigitsRun, orbit: &DigitsOrbit, shown: usize) -> 
                 run.spec.table,
                 run.spec.written.0,
                 run.spec.written.1,
-                if run.spec.binary { "as doubles" } else { "as written" },
+                run.spec.read_as(),
                 run.spec.digits,
                 orbit.precision.0,
                 orbit.precision.1
@@ -138,7 +138,7 @@ fn write(out: &mut Sink, run: &DigitsRun, orbit: &DigitsOrbit, shown: usize) -> 
                 "r": run.spec.r,
                 "alpha_written": run.spec.written.0,
                 "r_written": run.spec.written.1,
-                "parameters": if run.spec.binary { "doubles" } else { "decimals" },
+                "parameters": run.spec.parameters(),
                 "digits": run.spec.digits,
                 "working_digits": [orbit.precision.0, orbit.precision.1],
                 "events": events.iter().enumerate().map(|(i, (e, d))| json!({
@@ -268,19 +268,10 @@ pub fn lyapunov(run: &LyapunovDigits) -> anyhow::Result<()> {
             )
         },
     )?;
-    let params = if spec.binary {
-        "as doubles"
-    } else {
-        "as written"
-    };
     let written = (|| -> anyhow::Result<()> {
         match run.format {
             Format::Text => {
-                writeln!(
-                    out,
-                    "table {}  alpha {}  r {}  parameters {params}  digits {}",
-                    spec.table, spec.written.0, spec.written.1, spec.digits
-                )?;
+                writeln!(out, "{}", heading(spec))?;
                 writeln!(
                     out,
                     "{}",
@@ -304,7 +295,7 @@ pub fn lyapunov(run: &LyapunovDigits) -> anyhow::Result<()> {
                     spec.table,
                     spec.written.0,
                     spec.written.1,
-                    if spec.binary { "doubles" } else { "decimals" },
+                    spec.parameters(),
                     spec.digits,
                     row.verdict,
                     cell(row.periods.map(|x| x.to_string())),
@@ -323,7 +314,7 @@ pub fn lyapunov(run: &LyapunovDigits) -> anyhow::Result<()> {
                     "r": spec.r,
                     "alpha_written": spec.written.0,
                     "r_written": spec.written.1,
-                    "parameters": if spec.binary { "doubles" } else { "decimals" },
+                    "parameters": spec.parameters(),
                     "digits": spec.digits,
                     "start": run.initial,
                     "verdict": row.verdict,
@@ -428,7 +419,7 @@ fn impact_cycle(
     mut out: Sink,
 ) -> anyhow::Result<()> {
     let spec = &run.spec;
-    let parameters = if spec.binary { "doubles" } else { "decimals" };
+    let parameters = spec.parameters();
     let text = |a: &Agreed| a.value.to_digits(a.digits.max(1) as usize);
     // Exponents per table period: per impact times n/k.
     let per_period = |a: &Agreed| Agreed {
@@ -436,10 +427,10 @@ fn impact_cycle(
             / Big::from_f64(f64::from(k), &a.value.context()),
         digits: a.digits,
     };
-    let stability = |c: &ImpactCycle| match c.stability {
-        Stability::Stable => "stable",
-        Stability::Unstable => "unstable",
-        Stability::Undecided => "undecided",
+    let stability = |c: &ImpactCycle| c.stability.as_str();
+    let found = match verdict {
+        ImpactCycleVerdict::Found(c) => Some(&**c),
+        _ => None,
     };
     let (name, agreed, need) = match verdict {
         ImpactCycleVerdict::Found(c) => ("periodic", Some(c.digits()), None),
@@ -452,21 +443,9 @@ fn impact_cycle(
     let written = (|| -> anyhow::Result<()> {
         match run.format {
             Format::Text => {
-                writeln!(
-                    out,
-                    "table {}  alpha {}  r {}  parameters {}  digits {}",
-                    spec.table,
-                    spec.written.0,
-                    spec.written.1,
-                    if spec.binary {
-                        "as doubles"
-                    } else {
-                        "as written"
-                    },
-                    spec.digits
-                )?;
+                writeln!(out, "{}", heading(spec))?;
                 writeln!(out, "{summary}")?;
-                if let ImpactCycleVerdict::Found(c) = verdict {
+                if let Some(c) = found {
                     writeln!(
                         out,
                         "launch: phase {}  v {}  (right after an impact)",
@@ -530,10 +509,6 @@ fn impact_cycle(
             Format::Csv => {
                 writeln!(out, "{LYAPUNOV_CSV}")?;
                 let cell = |x: Option<String>| x.unwrap_or_default();
-                let found = match verdict {
-                    ImpactCycleVerdict::Found(c) => Some(&**c),
-                    _ => None,
-                };
                 let f = |g: &dyn Fn(&ImpactCycle) -> String| cell(found.map(g));
                 writeln!(
                     out,
@@ -555,10 +530,6 @@ fn impact_cycle(
                 )?;
             }
             Format::Json => {
-                let found = match verdict {
-                    ImpactCycleVerdict::Found(c) => Some(&**c),
-                    _ => None,
-                };
                 let doc = json!({
                     "table": spec.table,
                     "alpha": spec.alpha,
@@ -624,4 +595,16 @@ fn impact_text(
             "{cycle}: lost at {digits} digits: {why}; no values at any precision"
         ),
     }
+}
+
+/// The first line of `lyapunov --digits`' text: the system and how it is read.
+fn heading(spec: &crate::config::run::PreciseSpec) -> String {
+    format!(
+        "table {}  alpha {}  r {}  parameters {}  digits {}",
+        spec.table,
+        spec.written.0,
+        spec.written.1,
+        spec.read_as(),
+        spec.digits
+    )
 }

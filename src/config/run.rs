@@ -524,6 +524,24 @@ impl PreciseSpec {
     pub fn make(&self, bits: usize) -> (PreciseSystem<Big>, PreciseState<Big>) {
         self.setup.make(bits)
     }
+
+    /// How the parameters are read, as csv and json name it: `doubles` or `decimals`.
+    pub fn parameters(&self) -> &'static str {
+        if self.binary {
+            "doubles"
+        } else {
+            "decimals"
+        }
+    }
+
+    /// How the parameters are read, as the text says it.
+    pub fn read_as(&self) -> &'static str {
+        if self.binary {
+            "as doubles"
+        } else {
+            "as written"
+        }
+    }
 }
 
 /// `orbit --digits`, settled.

@@ -273,6 +273,17 @@ pub enum Stability {
     Undecided,
 }
 
+impl Stability {
+    /// Its name in outputs: `stable`, `unstable` or `undecided`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Stability::Stable => "stable",
+            Stability::Unstable => "unstable",
+            Stability::Undecided => "undecided",
+        }
+    }
+}
+
 /// An (n, k) cycle of impacts to a number of digits ([`impact_cycle_to_digits`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct ImpactCycle {
