@@ -330,24 +330,11 @@ fn jobs_read_windows_and_parameters_as_typed() {
     let typed = lyapunov_periods("fd:1", long);
     assert_ne!(typed, "78");
     let window = format!("0.59..{long}");
-    let text = stdout_of(&[
-        "sweep",
-        "--table",
-        "fd:1",
-        "--alpha",
-        &window,
-        "--r",
-        "0.8",
-        "--steps",
-        "2",
-        "--near-fixed-point",
-        "--keep",
-        "1",
-        "--digits",
-        "20",
-        "--format",
-        "csv",
-    ]);
+    // The sweep of the tests above over the typed window.
+    let mut sweep = SWEEP.to_vec();
+    assert_eq!(sweep[3], "--alpha");
+    sweep[4] = &window;
+    let text = stdout_of(&sweep);
     let rows = rows_of(&text);
     let periods = [1, 2].map(|i| cell(&rows, i, "digits_periods"));
     assert_eq!(periods, ["78", typed.as_str()], "{text}");
