@@ -18,9 +18,11 @@
 //!   |F⁽⁵⁾| over the pieces: zero on pieces of degree ≤ 3), taken once the bound of the
 //!   terms left out is below the precision's unit roundoff; until then every impact is
 //!   computed.
-//! * **Release.** Where 1 + αF'' turns negative: a sign change of that polynomial on a
-//!   piece, or a breakpoint where it jumps; on the sine where sin 2πt rises through
-//!   1/(4π²α) (an arcsine at the working precision).
+//! * **Release** is not specialised: the walk over the pieces from the stick on and the
+//!   sine's arcsine are one generic code for both maps (`table::release`). Only
+//!   the search on one piece differs: the f64 map takes [`crate::poly`]'s closed-form
+//!   roots of 1 + αF'' with a rigorous sign test, this map the first sign change of that
+//!   polynomial by exact isolation at the working precision.
 //! * **The sine's flights** replace the f64 solver's compile-time polynomial pieces and
 //!   their error bounds: the gap is evaluated at the working precision (by its Taylor
 //!   series near the launch), and the flight advances by safe steps to the first zero of
@@ -48,7 +50,7 @@ pub use setup::{
 use crate::chatter::ChatterSeries;
 use crate::map::{EventKind, MAX_EVENT_PERIOD};
 use crate::real::Real;
-use crate::table::PieceIn;
+use crate::table::{release, PieceIn};
 use roots::{eval, first_root, first_sign_change};
 
 /// The largest degree of a table's pieces the map at any precision takes: every table's
@@ -559,19 +561,16 @@ impl<R: Real> PreciseMap<R> {
         }
     }
 
+    /// The release after a stick (`table::release`: the walk over the pieces
+    /// written once for both maps), or resting for good.
     fn release(&mut self) -> Result<PreciseEvent<R>, PreciseHalt> {
-        if self.sys.omega.is_some() {
-            return self.release_sine();
-        }
         let sys = &self.sys;
-        let st = self.state.clone();
+        let st = &self.state;
         let zero = sys.num(0.0);
         let one = sys.num(1.0);
-        let n = sys.pieces.len();
-        let j0 = sys.index(&st.phase);
         // 1 + αF'' on piece j as a polynomial in its variable: 1 + 2a2 + 6a3 s + 12a4 s²
         // + ….
-        let h = |j: usize| {
+        let excess = |j: usize| {
             let t = sys.taylor(j, &zero);
             let mut h: Vec<R> = (2..t.len())
                 .map(|k| sys.num((k * (k - 1)) as f64) * t[k].clone())
@@ -579,31 +578,38 @@ impl<R: Real> PreciseMap<R> {
             h[0] = one.clone() + h[0].clone();
             h
         };
-        let (mut m, mut j) = (0i64, j0);
-        let mut from = st.phase.clone() - sys.pieces[j0].start.clone();
-        // One period and the rest of the current piece cover every phase.
-        for _ in 0..=n {
-            let p = &sys.pieces[j];
-            let len = p.end.clone() - p.start.clone();
-            let hj = h(j);
-            let at_from = eval(&hj, &from);
-            let released = if at_from < zero && !(st.release_after && m == 0 && j == j0) {
-                Some(from.clone())
-            } else {
-                first_sign_change(&hj, &from, &len, &sys.ctx)
-            };
-            if let Some(sigma) = released {
-                let theta = sys.num(m as f64) + p.start.clone() + sigma;
-                return Ok(self.release_at(theta));
+        // The first phase on piece j from `from` (its start if None) after which the
+        // excess is negative.
+        let first_on = |j: usize, from: Option<&R>, strict: bool| match &sys.omega {
+            Some(w) => {
+                let from = from.cloned().unwrap_or_else(|| zero.clone());
+                release::sine_release_in(&sys.alpha, w, &from, strict, &sys.ctx)
             }
-            j += 1;
-            if j == n {
-                j = 0;
-                m += 1;
+            None => {
+                let p = &sys.pieces[j];
+                let from = from.map_or_else(|| zero.clone(), |f| f.clone() - p.start.clone());
+                let h = excess(j);
+                let sigma = if !strict && eval(&h, &from) < zero {
+                    Some(from)
+                } else {
+                    first_sign_change(&h, &from, &(p.end.clone() - p.start.clone()), &sys.ctx)
+                };
+                sigma.map(|s| p.start.clone() + s)
             }
-            from = zero.clone();
+        };
+        let count = sys.pieces.len().max(1);
+        let j0 = if sys.omega.is_some() {
+            0
+        } else {
+            sys.index(&st.phase)
+        };
+        match release::first_release(count, j0, &st.phase, st.release_after, first_on) {
+            Some((periods, at)) => {
+                let theta = sys.num(periods as f64) + at;
+                Ok(self.release_at(theta))
+            }
+            None => Err(PreciseHalt::Resting),
         }
-        Err(PreciseHalt::Resting)
     }
 }
 

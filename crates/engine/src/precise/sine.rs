@@ -123,29 +123,4 @@ impl<R: Real> PreciseMap<R> {
         let theta = st.phase.clone() + s.clone();
         Ok(self.land(theta, v0 - s))
     }
-
-    /// The release on the sine: the first phase after the stick where
-    /// 1 − αω² sin ωt turns negative, sin ωt rising through c = 1/(αω²): ωt = asin c
-    /// (mod 2π). Resting for good if c ≥ 1.
-    pub(super) fn release_sine(&mut self) -> Result<PreciseEvent<R>, PreciseHalt> {
-        let sys = &self.sys;
-        let st = self.state.clone();
-        let w = sys.omega.clone().expect("the sine");
-        let zero = sys.num(0.0);
-        let one = sys.num(1.0);
-        let c = one.clone() / (sys.alpha.clone() * w.clone() * w.clone());
-        if c >= one {
-            return Err(PreciseHalt::Resting);
-        }
-        let at = c.asin() / w.clone();
-        let h_now = one.clone() + sys.jet(&st.phase)[2].clone();
-        let theta = if h_now < zero && !st.release_after {
-            st.phase.clone()
-        } else if at > st.phase {
-            at
-        } else {
-            at + one.clone()
-        };
-        Ok(self.release_at(theta))
-    }
 }

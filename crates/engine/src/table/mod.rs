@@ -12,6 +12,7 @@
 //! never asks which shape it has, except the next-impact solvers, which have one exact
 //! solver per shape.
 
+pub(crate) mod release;
 mod segment;
 
 pub mod builtin;
@@ -409,18 +410,18 @@ impl Table {
         phase: f64,
         strictly_after: bool,
     ) -> Option<(i64, f64)> {
-        let n = self.segment_count();
         let j0 = self.segment_index(phase);
-        for step in 0..=n {
-            let j = (j0 + step) % n;
-            let per = period + ((j0 + step) / n) as i64;
-            let seg = self.segment(j);
-            let from = if step == 0 { phase } else { seg.start };
-            if let Some(at) = seg.release(alpha, from, step == 0 && strictly_after) {
-                return Some(crate::time::normalize(per, at));
-            }
-        }
-        None
+        release::first_release(
+            self.segment_count(),
+            j0,
+            &phase,
+            strictly_after,
+            |j, from, strict| {
+                let seg = self.segment(j);
+                seg.release(alpha, from.copied().unwrap_or(seg.start), strict)
+            },
+        )
+        .map(|(periods, at)| crate::time::normalize(period + periods, at))
     }
 }
 

@@ -199,19 +199,7 @@ impl<'a> Segment<'a> {
     pub fn release(&self, alpha: f64, from: f64, strictly_after: bool) -> Option<f64> {
         match self.formula {
             Formula::Sine => {
-                // 1 + αF'' = 1 − c sin 2πt̂ with c = 4π²α: negative on (θ, ½ − θ).
-                let c = 4.0 * PI * PI * alpha;
-                if c <= 1.0 {
-                    return None;
-                }
-                let theta = (1.0 / c).asin() / (2.0 * PI);
-                if !strictly_after && from > theta && from < 0.5 - theta {
-                    Some(from)
-                } else if from < theta {
-                    Some(theta)
-                } else {
-                    None
-                }
+                super::release::sine_release_in(&alpha, &(2.0 * PI), &from, strictly_after, &())
             }
             Formula::Poly(p) => {
                 let accel = p.d2.scale(alpha);
