@@ -155,6 +155,7 @@ pub fn run(run: &CurvesRun) -> anyhow::Result<()> {
                         "values": found.seeding.values,
                         "level": found.seeding.level,
                         "converged": found.seeding.converged,
+                        "quiet_grids": found.seeding.quiet,
                     }),
                     "unseeded": found.unseeded.iter().map(|(p, why)| json!({
                         y: p,
@@ -398,6 +399,10 @@ fn seeding_text(s: &bouncemap_engine::orbits::curves::Seeding, y: &str) -> Strin
         None => format!("seeded at the starting value of {y} only"),
         Some(l) if s.converged => format!(
             "seeded at {} values of {y} (grids of up to 2^{l} + 1); the last two finer grids found no new curve",
+            s.values
+        ),
+        Some(l) if s.quiet == 1 => format!(
+            "seeded at {} values of {y} (grids of up to 2^{l} + 1, the finest allowed); the finest found no new curve, but no second finer grid was left to confirm it",
             s.values
         ),
         Some(l) => format!(

@@ -83,6 +83,7 @@ pub fn curves_with_progress(
         values: 1,
         level: None,
         converged: true,
+        quiet: 0,
     };
     if grids.is_some() {
         let mut quiet = 0;
@@ -113,6 +114,7 @@ pub fn curves_with_progress(
                 values,
                 level: Some(level),
                 converged: quiet >= 2,
+                quiet,
             };
             if quiet >= 2 {
                 break;
@@ -152,7 +154,7 @@ fn seed_at_double_borders(plane: &Plane, out: &mut Curves, dead_ends: &RefCell<V
         if crossing || out.curves.len() >= MAX_CURVES {
             continue;
         }
-        // The point of the known curve nearest the double border, as the seed.
+        // The point of the known curve nearest the double border gives the cycle.
         let Some(q) = on.points.iter().min_by(|a, b| {
             (a.alpha - p.alpha)
                 .hypot(a.p - p.p)
@@ -160,28 +162,41 @@ fn seed_at_double_borders(plane: &Plane, out: &mut Curves, dead_ends: &RefCell<V
         }) else {
             continue;
         };
+        // The other curve is solved for α at a fixed value of the second parameter:
+        // that point's value, else values just off the double border on either side
+        // (at the border itself the impact lies on both breakpoints, and the condition
+        // is not smooth there; the curve may turn there in the second parameter, so
+        // that it exists on one side only).
+        let near = |d: f64| (p.p + d * plane.scale()).clamp(plane.window.0, plane.window.1);
+        let tries = [q.p, near(-1e-5), near(1e-5), near(-1e-4), near(1e-4)];
+        let kind = CurveKind::BorderCollision { impact, breakpoint };
         let special = Special {
             kind: Kind::BorderCollision,
-            alpha: q.alpha,
+            alpha: p.alpha,
             phase: breakpoint,
             impact,
             point: q.cycle.clone(),
             collision: None,
             last_step: None,
         };
-        let kind = CurveKind::BorderCollision { impact, breakpoint };
         let index = out.curves.len();
-        match follow(plane, kind, &special, q.p, index, dead_ends) {
-            Ok((curve, codim2)) if curve.points.len() >= 2 => {
-                out.curves.push(curve);
-                out.codim2.extend(codim2);
-            }
-            _ => {}
+        let found = tries.into_iter().find_map(|at| {
+            let alpha = if at == q.p { q.alpha } else { p.alpha };
+            let special = Special {
+                alpha,
+                ..special.clone()
+            };
+            follow(plane, kind, &special, at, index, dead_ends)
+                .ok()
+                .filter(|(curve, _)| curve.points.len() >= 2)
+        });
+        if let Some((curve, codim2)) = found {
+            out.curves.push(curve);
+            out.codim2.extend(codim2);
         }
     }
 }
 
-/// Note a special point not followed, once per point and reason.
 /// Seed at value `p` of the second parameter: the one-parameter continuation from
 /// `seeds`' start there, and every special point it finds followed as a curve (unless a
 /// curve already found passes through it). `report` hears how many curves there are
@@ -298,6 +313,7 @@ fn seed_at(
     Ok(())
 }
 
+/// Note a special point not followed, once per point and reason.
 fn skip(list: &mut Vec<Skipped>, s: &Special, reason: String) {
     let same = |k: &Skipped| {
         k.reason == reason

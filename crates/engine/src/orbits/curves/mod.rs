@@ -603,6 +603,9 @@ pub struct Seeding {
     pub level: Option<u32>,
     /// Two finer levels in a row found nothing new.
     pub converged: bool,
+    /// The finer levels at the end that found nothing new (0: the last found a curve,
+    /// or no level was finer than the first).
+    pub quiet: u32,
 }
 
 /// The finest seeding grid: 2^7 + 1 = 129 values of the second parameter.
