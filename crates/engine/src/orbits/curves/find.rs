@@ -275,7 +275,7 @@ fn seed_at(
             let same = |c: &Curve| {
                 c.n == s.point.n
                     && c.k == s.point.k
-                    && c.kind.as_str() == kind.as_str()
+                    && c.kind.same_condition(&kind)
                     && c.passes_near(s.alpha, p, tol)
             };
             if out.curves.iter().any(same) {

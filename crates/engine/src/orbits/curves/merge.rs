@@ -153,7 +153,7 @@ pub(super) fn dedupe(out: &mut Curves, tol: f64) {
                 || into[j].is_some()
                 || a.n != b.n
                 || a.k != b.k
-                || a.kind.as_str() != b.kind.as_str()
+                || !a.kind.same_condition(&b.kind)
                 || (b.points.len(), j) < (a.points.len(), i)
             {
                 continue;

@@ -258,6 +258,22 @@ impl CurveKind {
         }
     }
 
+    /// Whether two curves of these kinds (of one cycle) follow the same condition, so
+    /// that lying close together they are one curve: the same kind, and for border
+    /// collisions the same breakpoint (which impact is on it is counted from where
+    /// each curve happens to launch its cycle, so it is not compared), for grazings the
+    /// same flight (a landing, or one touching inside).
+    pub fn same_condition(&self, other: &CurveKind) -> bool {
+        match (self, other) {
+            (
+                CurveKind::BorderCollision { breakpoint: a, .. },
+                CurveKind::BorderCollision { breakpoint: b, .. },
+            ) => a == b,
+            (CurveKind::Grazing { landing: a }, CurveKind::Grazing { landing: b }) => a == b,
+            (a, b) => a.as_str() == b.as_str(),
+        }
+    }
+
     /// Short label (as in the one-parameter diagrams).
     pub fn label(&self) -> &'static str {
         match self {
@@ -635,3 +651,21 @@ pub struct CurvesProgress {
 
 /// At most this many curves.
 pub const MAX_CURVES: usize = 256;
+
+#[cfg(test)]
+mod tests {
+    use super::CurveKind;
+
+    #[test]
+    fn border_collisions_at_other_breakpoints_are_other_conditions() {
+        let bc = |impact, breakpoint| CurveKind::BorderCollision { impact, breakpoint };
+        // Which impact is on the breakpoint depends on where the cycle is launched.
+        assert!(bc(3, 0.5).same_condition(&bc(6, 0.5)));
+        // A collision with another breakpoint is another condition, however close.
+        assert!(!bc(3, 0.0).same_condition(&bc(3, 0.5)));
+        let graze = |landing| CurveKind::Grazing { landing };
+        assert!(!graze(true).same_condition(&graze(false)));
+        assert!(CurveKind::Fold.same_condition(&CurveKind::Fold));
+        assert!(!CurveKind::Fold.same_condition(&CurveKind::PeriodDoubling));
+    }
+}
