@@ -93,6 +93,26 @@ pub fn run(args: &FigureArgs) -> anyhow::Result<()> {
     };
     let basin_spec = match &args.name {
         FigureName::Basins(a) => {
+            let most = figure::manifold::OVERLAY_SADDLES;
+            if a.manifolds.len() > most {
+                return Err(InputError(format!(
+                    "--manifolds is given {} times; valid: up to {most} saddles drawn over the basins",
+                    a.manifolds.len()
+                ))
+                .into());
+            }
+            if let Some((i, _)) = a
+                .manifolds
+                .iter()
+                .enumerate()
+                .find(|(i, c)| a.manifolds[..*i].contains(c))
+            {
+                return Err(InputError(format!(
+                    "--manifolds: value {} names a saddle already named; valid: up to {most} different saddles",
+                    i + 1
+                ))
+                .into());
+            }
             let mut spec = config::basin_spec(&a.spec)?;
             if args.quick {
                 spec.nx = spec.nx.min(QUICK_GRID.0);
@@ -389,30 +409,28 @@ fn build(
         }
         FigureName::Basins(a) => {
             let spec = basin_spec.expect("the basins' grid was checked first");
-            // The saddle and its manifolds first: a refusal before the picture's work.
-            let overlay = match a.manifolds {
-                Some(choice) => {
-                    let saddle = super::manifolds::saddle(&spec.sys, choice.k, choice.guess)?;
-                    let ms = super::manifolds::grow(
-                        &spec.sys,
-                        &saddle,
-                        &[Kind::Unstable, Kind::Stable],
-                        a.manifold_length,
-                    )?;
-                    Some((saddle, ms))
-                }
-                None => None,
-            };
+            // The saddles and their manifolds first: a refusal before the picture's work.
+            let mut overlays = Vec::new();
+            for choice in &a.manifolds {
+                let saddle = super::manifolds::saddle(&spec.sys, choice.k, choice.guess)?;
+                let ms = super::manifolds::grow(
+                    &spec.sys,
+                    &saddle,
+                    &[Kind::Unstable, Kind::Stable],
+                    a.manifold_length,
+                )?;
+                overlays.push((saddle, ms));
+            }
             let basins = super::basins::compute(&spec, executor)?;
             let mut fig = figure::basins::basins_figure(&spec, &basins);
-            if let Some((saddle, ms)) = overlay {
-                let split = split_report(&spec, &ms);
+            for (which, (saddle, ms)) in overlays.iter().enumerate() {
+                let split = split_report(&spec, ms);
                 figure::manifold::overlay_on_basins(
                     &mut fig,
                     &spec.sys,
                     spec.w_max,
-                    &saddle,
-                    &ms,
+                    (which, saddle),
+                    ms,
                     split.as_ref(),
                 );
             }

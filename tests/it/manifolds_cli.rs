@@ -308,3 +308,98 @@ fn figure_basins_draws_the_manifolds_and_counts_the_pairs_across_the_stable_one(
         assert!(err.contains(want), "{value}: {err}");
     }
 }
+
+/// Several saddles over one basins picture: each saddle's manifolds in the legend under
+/// its (n, k), with the lengths `manifolds` grows for it, and its own sentence in the
+/// caption; more saddles than there are colours, or one named twice, are refused.
+#[test]
+fn figure_basins_draws_the_manifolds_of_several_saddles() {
+    let d = crate::scratch::dir("manifolds", "several");
+    let svg = d.join("b.svg");
+    let svg_s = svg.to_str().unwrap();
+    let base = [
+        "figure", "basins", "--table", "cubic", "--alpha", "0.47", "--grid", "60x30",
+    ];
+    let with = |extra: &[&str]| -> Vec<String> {
+        base.iter().chain(extra).map(|s| s.to_string()).collect()
+    };
+    let args = with(&[
+        "--manifolds",
+        "--manifolds",
+        "2",
+        "--manifold-length",
+        "1",
+        "--out",
+        svg_s,
+    ]);
+    ok(&args.iter().map(String::as_str).collect::<Vec<_>>());
+    let text = std::fs::read_to_string(&svg).unwrap();
+    let doc = roxmltree::Document::parse(&text).unwrap();
+    let words: String = doc
+        .descendants()
+        .filter(|n| n.is_text())
+        .filter_map(|n| n.text())
+        .collect::<Vec<_>>()
+        .join(" ");
+    for want in [
+        "saddle (1, 1)",
+        "saddle (1, 2)",
+        "Also the manifolds of the saddle (1, 2)",
+    ] {
+        assert!(words.contains(want), "{want} not in {words}");
+    }
+    // The second saddle's branches as `manifolds --k 2` grows them.
+    let m = json(&[
+        "manifolds",
+        "--table",
+        "cubic",
+        "--alpha",
+        "0.47",
+        "--k",
+        "2",
+        "--length",
+        "1",
+        "--format",
+        "json",
+    ]);
+    let mut seen = 0;
+    for man in m["manifolds"].as_array().unwrap() {
+        let kind = man["manifold"].as_str().unwrap();
+        for b in man["branches"].as_array().unwrap() {
+            let side = if b["branch"] == "+" { "+" } else { "\u{2212}" };
+            let want = format!(
+                "(1, 2) {kind} {side} manifold, length {:.3}",
+                b["length"].as_f64().unwrap()
+            );
+            assert!(words.contains(&want), "{want} not in {words}");
+            seen += 1;
+        }
+    }
+    assert_eq!(seen, 4, "two branches of each manifold");
+    for (extra, want) in [
+        (
+            &[
+                "--manifolds",
+                "1",
+                "--manifolds",
+                "2",
+                "--manifolds",
+                "3",
+                "--manifolds",
+                "4",
+            ][..],
+            "given 4 times; valid: up to 3",
+        ),
+        (
+            &["--manifolds", "2", "--manifolds", "2"][..],
+            "value 2 names a saddle already named",
+        ),
+    ] {
+        let mut args = with(extra);
+        args.extend(["--out".to_string(), svg_s.to_string()]);
+        let (code, _, err) = run(&args.iter().map(String::as_str).collect::<Vec<_>>());
+        assert_eq!(code, 2, "{err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+        assert!(err.contains(want), "{err}");
+    }
+}

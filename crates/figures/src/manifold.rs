@@ -77,7 +77,7 @@ pub fn manifold_layers(ms: &[Manifold]) -> (Vec<Layer>, Vec<(Swatch, String)>) {
 /// points cut into lines by `lines`; with a legend entry each, worded by `label`.
 fn branch_layers(
     ms: &[Manifold],
-    colour: fn(Kind) -> Color,
+    colour: impl Fn(Kind) -> Color,
     width: f64,
     lines: impl Fn(&[[f64; 2]]) -> Vec<Vec<[f64; 2]>>,
     label: impl Fn(&str, &Branch) -> String,
@@ -171,10 +171,32 @@ pub struct SplitReport {
 
 /// The colour of a manifold drawn over basins (whose colours are the attractors'):
 /// stable black, unstable yellow.
-fn overlay_colour(kind: Kind) -> Color {
-    match kind {
-        Kind::Unstable => Color(250, 215, 0),
-        Kind::Stable => Color::BLACK,
+/// A colour with its name for the caption.
+type Named = (Color, &'static str);
+
+/// How many saddles' manifolds [`overlay_on_basins`] tells apart by colour.
+pub const OVERLAY_SADDLES: usize = 3;
+
+/// The colours of the manifolds of the `which`-th saddle over the basins, (stable,
+/// unstable), with their names: apart from each other and from every colour of the
+/// basins' palette ([`crate::classes::PALETTE`]).
+const OVERLAY_COLOURS: [(Named, Named); OVERLAY_SADDLES] = [
+    ((Color::BLACK, "black"), (Color(250, 215, 0), "yellow")),
+    (
+        (Color(230, 0, 230), "magenta"),
+        (Color(0, 210, 220), "cyan"),
+    ),
+    (
+        (Color(70, 0, 110), "dark violet"),
+        (Color(110, 220, 0), "lime"),
+    ),
+];
+
+fn overlay_colour(which: usize) -> impl Fn(Kind) -> Color {
+    let ((stable, _), (unstable, _)) = OVERLAY_COLOURS[which % OVERLAY_SADDLES];
+    move |kind| match kind {
+        Kind::Unstable => unstable,
+        Kind::Stable => stable,
     }
 }
 
@@ -199,32 +221,43 @@ fn basin_pieces(points: &[[f64; 2]], sys: &System, w_max: f64) -> Vec<Vec<[f64; 
     out
 }
 
-/// Draw the manifolds `ms` of the saddle `cycle` over the basins figure `fig` of
-/// `sys` (w up to `w_max`), with the split counts `split` in the legend and caption.
+/// Draw the manifolds `ms` of the `which`-th saddle `cycle` (counted from 0) over the
+/// basins figure `fig` of `sys` (w up to `w_max`), in that saddle's colours, with the
+/// split counts `split` in the legend and caption. The first saddle's legend entries
+/// are the manifolds' names alone; a later saddle's carry its (n, k).
 pub fn overlay_on_basins(
     fig: &mut Figure,
     sys: &System,
     w_max: f64,
-    cycle: &CyclePoint,
+    (which, cycle): (usize, &CyclePoint),
     ms: &[Manifold],
     split: Option<&SplitReport>,
 ) {
     let Some(panel) = fig.panels.first_mut() else {
         return;
     };
+    let ((stable, stable_name), (_, unstable_name)) = OVERLAY_COLOURS[which % OVERLAY_SADDLES];
+    let tag = if which == 0 {
+        String::new()
+    } else {
+        format!("({}, {}) ", cycle.n, cycle.k)
+    };
     let (layers, mut entries) = branch_layers(
         ms,
-        overlay_colour,
+        overlay_colour(which),
         1.0,
         |points| basin_pieces(points, sys, w_max),
         |name, b| {
             format!(
-                "{name} manifold, length {:.3}, {}",
+                "{tag}{name} manifold, length {:.3}, {}",
                 b.length,
                 end_words(&b.end)
             )
         },
     );
+    let drawn = layers
+        .iter()
+        .any(|l| matches!(l, Layer::Lines { lines, .. } if !lines.is_empty()));
     panel.layers.extend(layers);
     let saddle: Vec<[f64; 2]> = cycle
         .phases
@@ -235,27 +268,52 @@ pub fn overlay_on_basins(
             [t, v - sys.df(t)]
         })
         .collect();
+    let shown = saddle.iter().any(|&[_, w]| (0.0..=w_max).contains(&w));
     panel.layers.push(Layer::Markers {
         name: "saddle".into(),
         points: saddle,
         marker: Marker::Disc,
-        color: Color::BLACK,
+        color: stable,
     });
     entries.push((
-        Swatch::marker(Color::BLACK, Marker::Disc),
+        Swatch::marker(stable, Marker::Disc),
         format!("saddle ({}, {})", cycle.n, cycle.k),
     ));
     if let Some(legend) = panel.beside.first_mut() {
+        // A later saddle's rows make the legend taller than the frame: the figure grows
+        // by their height (rows of 1.35 times the legend's type, in inches).
+        if which > 0 {
+            fig.size.1 += entries.len() as f64 * 1.35 * crate::svg::LEGEND_FONT / 72.0;
+        }
         legend.entries.extend(entries);
     }
-    let mut text = format!(
-        "Over the basins: the manifolds of the saddle ({}, {}), stable black, unstable yellow (+ branch solid, \u{2212} dashed), in the basins' coordinates ($t\u{302}$, $w$), every point computed by the exact map or its exact inverse.",
-        cycle.n, cycle.k
-    );
+    let mut text = if which == 0 {
+        format!(
+            "Over the basins: the manifolds of the saddle ({}, {}), stable {stable_name}, unstable {unstable_name} (+ branch solid, \u{2212} dashed), in the basins' coordinates ($t\u{302}$, $w$), every point computed by the exact map or its exact inverse.",
+            cycle.n, cycle.k
+        )
+    } else {
+        format!(
+            "Also the manifolds of the saddle ({}, {}), stable {stable_name}, unstable {unstable_name}.",
+            cycle.n, cycle.k
+        )
+    };
+    if !shown {
+        text.push_str(&format!(
+            " Its impacts lie outside the picture's range of w (0 to {}){}.",
+            bouncemap_engine::fmt_value(w_max),
+            if drawn {
+                ""
+            } else {
+                ", and so do its manifolds as far as they were grown"
+            }
+        ));
+    }
     if let Some(s) = split {
         text.push_str(&format!(
-            " Pairs of starts {} apart on either side of the stable manifold end on different attractors in {} of {} pairs ({:.1}%); pairs the same distance apart at {} places spread over the picture in {} ({:.1}%).",
+            " Pairs of starts {} apart on either side of {} stable manifold end on different attractors in {} of {} pairs ({:.1}%); pairs the same distance apart at {} places spread over the picture in {} ({:.1}%).",
             crate::format::significant(2.0 * s.across.offset, 3),
+            if which == 0 { "the" } else { "its" },
             s.across.split,
             s.across.pairs,
             100.0 * s.across.fraction(),

@@ -171,8 +171,9 @@ pub struct FigureBasinsArgs {
     /// often pairs of starts a grid cell apart across the stable manifold end on
     /// different attractors: K for the unstable (1, K) solution (--manifolds alone: K =
     /// 1), or N:K:T0:V0 for the (n, k) cycle Newton's method finds from that guess.
-    #[arg(long, num_args = 0..=1, default_missing_value = "1", value_parser = parse_saddle, value_name = "K|N:K:T0:V0")]
-    pub manifolds: Option<SaddleChoice>,
+    /// Repeat it for up to three saddles, each in its own colours.
+    #[arg(long, num_args = 0..=1, default_missing_value = "1", value_parser = parse_saddle, value_name = "K|N:K:T0:V0", action = clap::ArgAction::Append)]
+    pub manifolds: Vec<SaddleChoice>,
     #[arg(help = rules::MANIFOLD_LENGTH.help("Arc length of each manifold branch drawn"), long, default_value_t = rules::MANIFOLD_LENGTH.default, value_parser = rules::MANIFOLD_LENGTH.real(), value_name = "L")]
     pub manifold_length: f64,
 }
