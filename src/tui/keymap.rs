@@ -171,7 +171,7 @@ impl Action {
             Action::TableView => "the table: F, F′, F″ with breakpoints, t̂* and release phases",
             Action::TogglePlane => "the α × D plane (t: another axis) in place of the diagram",
             Action::PlaneCurves => "plane: two-parameter curves (PD, fold, BC, G) on/off",
-            Action::Manifolds => "phase and basins: the (1, k) saddle's manifolds on/off",
+            Action::Manifolds => "phase, basins: saddle manifolds (cursor's cycle or (1, k))",
             Action::Certify => "stability: prove the cycle under the cursor; the branches too",
             Action::ToggleGlobal => "attractors along α and their basins, in place of the diagram",
             Action::CyclePanels => "narrow screen: show the bottom panel left out",

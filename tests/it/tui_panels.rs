@@ -291,7 +291,7 @@ fn w_draws_the_saddles_manifolds_over_the_phase_plot() {
     assert!(fx.contains(&Effect::Start(Target::Manifolds)), "{fx:?}");
     // What the worker computes, delivered as it would.
     let sys = a.shared.system();
-    let m = lines(&sys, a.shared.params.k)
+    let m = lines(&sys, a.shared.params.k, None)
         .unwrap()
         .expect("a saddle at the default α");
     assert_eq!((m.n, m.k), (1, 1));
@@ -314,6 +314,108 @@ fn w_draws_the_saddles_manifolds_over_the_phase_plot() {
     assert!(!a.shared.show_manifolds && a.shared.manifolds.is_none());
     let off = screen(&mut a, 120, 40);
     assert!(!off.contains('▪') && !off.contains("▪·"), "{off}");
+}
+
+/// With a branch under the diagram's cursor, `W` grows the manifolds of that branch's
+/// cycle, solved again at the current α, whatever its (n, k): on F_0.1 past the (2, 2)
+/// border collision the doubled cycle is a saddle (real multipliers, one outside the
+/// unit circle), and its manifolds, not the (1, 1) one's, are drawn, its impacts marked
+/// ◇; where that cycle is no saddle the status line says so.
+#[test]
+fn w_grows_the_manifolds_of_the_cycle_under_the_cursor() {
+    use bouncemap::tui::components::manifold_overlay::lines;
+    use bouncemap::tui::components::{Msg, Target};
+    use bouncemap_engine::orbits::continuation::{branches, Options, Start};
+    let mut a = app(Marker::Braille);
+    fill(&mut a);
+    let before = a.shared.params.clone();
+    let r = a.shared.params.set_text(ParamId::Alpha, "0.6");
+    a.shared.after_change(ParamId::Alpha, r, &before);
+    let sys = a.shared.system();
+    // The (2, 2) branch from the one-parameter continuation, taken at an α beside 0.6.
+    let found = branches(
+        sys.table(),
+        sys.r(),
+        (0.45, 0.7),
+        Start::Fixed { k: 1 },
+        Options {
+            max_period: 2,
+            ..Options::default()
+        },
+    )
+    .unwrap();
+    let two = found.iter().find(|b| b.n == 2).expect("the (2, 2) branch");
+    let near = two
+        .points
+        .iter()
+        .filter(|p| (p.alpha - 0.6).abs() > 1e-3)
+        .min_by(|x, y| (x.alpha - 0.6).abs().total_cmp(&(y.alpha - 0.6).abs()))
+        .unwrap()
+        .clone();
+    a.shared.under_cursor = Some((0, near.clone()));
+    a.handle(Action::Manifolds);
+    assert!(a
+        .take_effects()
+        .contains(&bouncemap::tui::components::Effect::Start(
+            Target::Manifolds
+        )));
+    let s = screen(&mut a, 120, 40);
+    assert!(s.contains("the (2, 2) cycle under the cursor"), "{s}");
+    // The branch's point is not at the phase plot's α: the message says where it is
+    // solved, and how to take α to the cursor.
+    let said = &a.shared.message.as_ref().expect("a message").0;
+    assert!(
+        said.contains("solved at the phase plot's α = 0.6") && said.contains("Enter"),
+        "{said}"
+    );
+    let m = lines(&sys, 1, Some(&near)).unwrap().expect("a saddle");
+    assert_eq!((m.n, m.k), (2, 2));
+    assert!(m.from_cursor);
+    // Its impacts are a (2, 2) cycle at α = 0.6: the exact map, launched from each,
+    // comes back to it after two impacts and two table periods.
+    for &(t, v) in &m.saddle {
+        let st = State::launch(&sys, 0, t, v, 0.0).unwrap();
+        let mut map = ImpactMap::new(sys.clone(), Solver::Exact, st);
+        let mut impacts = 0;
+        let e = loop {
+            let e = map.step().unwrap();
+            if e.kind == EventKind::Impact {
+                impacts += 1;
+                if impacts == 2 {
+                    break e;
+                }
+            }
+        };
+        assert_eq!(e.period, 2, "({t}, {v})");
+        assert!(
+            (e.phase - t).abs() < 1e-9 && (e.v - v).abs() < 1e-9,
+            "({t}, {v}): {e:?}"
+        );
+    }
+    let again =
+        bouncemap_engine::orbits::periodic::cycle(&sys, 2, 2, near.t0, near.velocities[0]).unwrap();
+    // The saddle's multipliers: real, one outside and one inside, product r⁴ (det M).
+    let [x, y] = again.multipliers;
+    assert!(x.im == 0.0 && y.im == 0.0);
+    assert!((x.re * y.re - 0.8f64.powi(4)).abs() < 1e-9);
+    assert!(x.re.abs().max(y.re.abs()) > 1.0 && x.re.abs().min(y.re.abs()) < 1.0);
+    assert!(m.unstable.len() > 20 && m.stable.len() > 20);
+    a.panels.manifolds.gen = 7;
+    a.receive(Msg::Manifolds(7, Ok(Some(m))));
+    let s = screen(&mut a, 120, 40);
+    assert!(
+        s.contains("▪· (2, 2)") && s.contains("manifolds of the (2, 2) saddle"),
+        "{s}"
+    );
+    assert!(s.matches('◇').count() >= 2, "{s}");
+    // Before the border collision the (2, 2) cycle is stable: no saddle, said so.
+    let stable = two.points.iter().find(|p| p.stable).unwrap();
+    let at = System::new(sys.table().clone(), stable.alpha, sys.r()).unwrap();
+    let e = lines(&at, 1, Some(stable)).unwrap_err();
+    assert!(
+        e.contains("the (2, 2) cycle under the cursor") && e.contains("saddle"),
+        "{e}"
+    );
 }
 
 /// `V` switches proofs on: the work starts in the background; what it proves of the

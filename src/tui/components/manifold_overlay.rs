@@ -1,8 +1,10 @@
-//! The manifolds of the (1, k) saddle over the phase plot and the basins: both manifolds
-//! of the first unstable (1, k) solution with real multipliers at the current
-//! parameters (the saddle `bouncemap manifolds` grows by default, each branch
-//! [`LENGTH`] long), computed in the background when switched on and whenever the table,
-//! α, r or k changes while on (parked while the application is paused). The phase plot
+//! The manifolds of a saddle over the phase plot and the basins: both manifolds of the
+//! cycle of the continued branch under the diagram's cursor when there is one (solved
+//! again at the current parameters: any (n, k), if it is a saddle there), else of the
+//! first unstable (1, k) solution with real multipliers (the saddle `bouncemap
+//! manifolds` grows by default), each branch [`LENGTH`] long, computed in the background
+//! when switched on and whenever the table, α, r or k changes while on (parked while
+//! the application is paused). The phase plot
 //! draws them in (t̂, v), the basins in (t̂0, w0 = v − f'(t̂0)) ([`Shared::manifolds`]);
 //! draw-only otherwise: it has no panel of its own.
 
@@ -10,6 +12,7 @@ use super::{Component, Effect, Registered, Shared, Workers};
 use crate::tui::keymap::Action;
 use crate::tui::params::{ParamId, Touch};
 use bouncemap_engine::orbits::manifold::{first_saddle, manifold, Kind, ManifoldSpec};
+use bouncemap_engine::orbits::periodic::{cycle, CyclePoint};
 use bouncemap_engine::System;
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
@@ -23,24 +26,55 @@ pub struct ManifoldLines {
     /// The saddle's (n, k).
     pub n: usize,
     pub k: u32,
-    /// The saddle's impacts (marked ◇ by the orbit analysis as the unstable (1, k)
-    /// solution).
+    /// The saddle's impacts (marked ◇: the orbit analysis marks the unstable (1, k)
+    /// solution so; the overlay marks a saddle from under the cursor).
     pub saddle: Vec<(f64, f64)>,
+    /// The saddle is the cycle of the branch under the diagram's cursor.
+    pub from_cursor: bool,
     pub unstable: Vec<(f64, f64)>,
     pub stable: Vec<(f64, f64)>,
 }
 
-/// The manifolds of the (1, k) saddle of `sys` (None: no saddle there).
-pub fn lines(sys: &System, k: u32) -> Result<Option<ManifoldLines>, String> {
-    let Some(c) = first_saddle(sys, k).map_err(|e| e.to_string())? else {
-        return Ok(None);
+/// The manifolds of the saddle of `sys`: the cycle `under` the diagram's cursor, solved
+/// again by Newton's method at `sys` from its launch (an error if it is not found there
+/// or is no saddle there), else the (1, k) saddle (None: there is none).
+pub fn lines(
+    sys: &System,
+    k: u32,
+    under: Option<&CyclePoint>,
+) -> Result<Option<ManifoldLines>, String> {
+    let c = match under {
+        Some(p) => {
+            let at = bouncemap_engine::fmt_value(sys.alpha());
+            let c = cycle(sys, p.n, p.k, p.t0, p.velocities[0]).map_err(|e| {
+                format!(
+                    "the ({}, {}) cycle under the cursor is not found at α = {at} ({})",
+                    p.n,
+                    p.k,
+                    e.as_str()
+                )
+            })?;
+            c
+        }
+        None => match first_saddle(sys, k).map_err(|e| e.to_string())? {
+            Some(c) => c,
+            None => return Ok(None),
+        },
     };
     let spec = ManifoldSpec {
         length: LENGTH,
         ..ManifoldSpec::default()
     };
     let points = |kind: Kind| -> Result<Vec<(f64, f64)>, String> {
-        let m = manifold(sys, &c, kind, &spec).map_err(|e| e.to_string())?;
+        let m = manifold(sys, &c, kind, &spec).map_err(|e| match under {
+            Some(_) => format!(
+                "the ({}, {}) cycle under the cursor at α = {}: {e}",
+                c.n,
+                c.k,
+                bouncemap_engine::fmt_value(sys.alpha())
+            ),
+            None => e.to_string(),
+        })?;
         Ok(m.branches
             .iter()
             .flat_map(|b| b.points.iter().map(|p| (p[0].rem_euclid(1.0), p[1])))
@@ -49,6 +83,7 @@ pub fn lines(sys: &System, k: u32) -> Result<Option<ManifoldLines>, String> {
     Ok(Some(ManifoldLines {
         n: c.n,
         k: c.k,
+        from_cursor: under.is_some(),
         saddle: c
             .phases
             .iter()
@@ -78,9 +113,12 @@ pub fn draw(app: &Shared, buf: &mut Buffer, cell: impl Fn(f64, f64) -> Option<(u
     let (true, Some(Ok(Some(m)))) = (app.show_manifolds, &app.manifolds) else {
         return;
     };
+    // The orbit analysis marks the (1, k) saddle ◇ itself; another is marked here.
+    let saddle: &[(f64, f64)] = if m.from_cursor { &m.saddle } else { &[] };
     for (pts, glyph, style) in [
-        (&m.stable, "·", app.theme.focus()),
-        (&m.unstable, "▪", app.theme.mark()),
+        (&m.stable[..], "·", app.theme.focus()),
+        (&m.unstable[..], "▪", app.theme.mark()),
+        (saddle, "◇", app.theme.mark()),
     ] {
         for &(t, v) in pts {
             if let Some((x, y)) = cell(t, v) {
@@ -95,6 +133,9 @@ pub fn draw(app: &Shared, buf: &mut Buffer, cell: impl Fn(f64, f64) -> Option<(u
 pub struct ManifoldOverlay {
     pub gen: u64,
     pending: bool,
+    /// The cycle under the diagram's cursor when the overlay was switched on: its saddle
+    /// (None: the (1, k) saddle).
+    under: Option<CyclePoint>,
 }
 
 impl Component for ManifoldOverlay {
@@ -107,15 +148,32 @@ impl Component for ManifoldOverlay {
         shared.show_manifolds = !shared.show_manifolds;
         if shared.show_manifolds {
             shared.effect(Effect::Start(Self::TARGET));
+            // The cycle under the cursor now is the saddle while the overlay is on.
+            self.under = shared.under_cursor.as_ref().map(|(_, p)| p.clone());
+            let alpha = shared.system().alpha();
+            let which = match &shared.under_cursor {
+                Some((_, p)) if (p.alpha - alpha).abs() > 1e-12 * (1.0 + alpha.abs()) => format!(
+                    "the ({}, {}) cycle under the cursor, solved at the phase plot's α = {} (Enter first takes α to the cursor's {}; W twice for another cycle)",
+                    p.n,
+                    p.k,
+                    bouncemap_engine::fmt_value(alpha),
+                    bouncemap_engine::fmt_value(p.alpha)
+                ),
+                Some((_, p)) => format!(
+                    "the ({}, {}) cycle under the cursor (W twice for another)",
+                    p.n, p.k
+                ),
+                None => format!("the (1, {}) saddle", shared.params.k),
+            };
             shared.say(
                 format!(
-                    "manifolds of the (1, {}) saddle over the phase plot and the basins: ▪ unstable · stable (the saddle is its ◇); computing…",
-                    shared.params.k
+                    "manifolds of {which} over the phase plot and the basins: ▪ unstable · stable (the saddle is its ◇); computing…"
                 ),
                 false,
             );
         } else {
             shared.manifolds = None;
+            self.under = None;
             shared.say("manifolds off", false);
         }
         shared.dirty = true;
@@ -136,9 +194,10 @@ impl Component for ManifoldOverlay {
         }
         shared.manifolds = None;
         let (sys, k) = (shared.system(), shared.params.k);
+        let under = self.under.clone();
         let gen = workers.spawn(Self::ADDRESS, "manifolds", move |t| {
             if t.wait_if_paused() {
-                t.send(lines(&sys, k));
+                t.send(lines(&sys, k, under.as_ref()));
             }
         });
         self.gen = gen;

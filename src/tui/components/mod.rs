@@ -95,8 +95,8 @@ registry! {
     Stability   => stability:  Stability,    slot Some(Slot::Stability), new |_| Stability::default();
     /// The continued branches ([`Shared::branches`]), drawn by the diagram.
     Branches    => branches:   Branches,     slot None,                  new |_| Branches::default();
-    /// The (1, k) saddle's manifolds ([`Shared::manifolds`]), drawn by the phase plot and
-    /// the basins.
+    /// A saddle's manifolds ([`Shared::manifolds`]): the cycle under the diagram's cursor,
+    /// else the (1, k) one; drawn by the phase plot and the basins.
     Manifolds   => manifolds:  ManifoldOverlay, slot None,               new |_| ManifoldOverlay::default();
     /// Proofs of the cycle under the cursor and of the branches ([`Shared::proof`],
     /// [`Shared::branch_proofs`]), shown by the stability panel and the diagram.

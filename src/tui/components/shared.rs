@@ -82,7 +82,8 @@ pub struct Shared {
     /// does not have: its family's first parameter, else r).
     pub plane_y: Option<SweepParam>,
     pub branches: Option<Result<Skeleton, String>>,
-    /// Whether the phase plot and the basins draw the (1, k) saddle's manifolds, and
+    /// Whether the phase plot and the basins draw a saddle's manifolds (the cycle under
+    /// the diagram's cursor when switched on, else the (1, k) one), and
     /// the manifolds (None while they compute or when off; `Ok(None)`: no saddle).
     pub show_manifolds: bool,
     pub manifolds: Option<Result<Option<super::manifold_overlay::ManifoldLines>, String>>,
