@@ -192,14 +192,7 @@ fn figure_manifolds_draws_every_branch_and_the_saddle() {
         "--out",
         svg_s,
     ]);
-    let text = std::fs::read_to_string(&svg).unwrap();
-    let doc = roxmltree::Document::parse(&text).unwrap();
-    let words: String = doc
-        .descendants()
-        .filter(|n| n.is_text())
-        .filter_map(|n| n.text())
-        .collect::<Vec<_>>()
-        .join(" ");
+    let words = svg_words(&svg);
     // The legend: each branch's points and length as `manifolds` counts them.
     let m = json(&[
         "manifolds",
@@ -247,14 +240,7 @@ fn figure_basins_draws_the_manifolds_and_counts_the_pairs_across_the_stable_one(
         "--out",
         svg_s,
     ]);
-    let text = std::fs::read_to_string(&svg).unwrap();
-    let doc = roxmltree::Document::parse(&text).unwrap();
-    let words: String = doc
-        .descendants()
-        .filter(|n| n.is_text())
-        .filter_map(|n| n.text())
-        .collect::<Vec<_>>()
-        .join(" ");
+    let words = svg_words(&svg);
     for want in [
         "stable + manifold",
         "unstable − manifold",
@@ -333,14 +319,7 @@ fn figure_basins_draws_the_manifolds_of_several_saddles() {
         svg_s,
     ]);
     ok(&args.iter().map(String::as_str).collect::<Vec<_>>());
-    let text = std::fs::read_to_string(&svg).unwrap();
-    let doc = roxmltree::Document::parse(&text).unwrap();
-    let words: String = doc
-        .descendants()
-        .filter(|n| n.is_text())
-        .filter_map(|n| n.text())
-        .collect::<Vec<_>>()
-        .join(" ");
+    let words = svg_words(&svg);
     for want in [
         "saddle (1, 1)",
         "saddle (1, 2)",
@@ -402,4 +381,15 @@ fn figure_basins_draws_the_manifolds_of_several_saddles() {
         assert_eq!(err.trim_end().lines().count(), 1, "{err}");
         assert!(err.contains(want), "{err}");
     }
+}
+
+/// The words of an SVG figure: its text nodes, joined by spaces.
+fn svg_words(svg: &std::path::Path) -> String {
+    let text = std::fs::read_to_string(svg).unwrap();
+    let doc = roxmltree::Document::parse(&text).unwrap();
+    doc.descendants()
+        .filter(|n| n.is_text())
+        .filter_map(|n| n.text())
+        .collect::<Vec<_>>()
+        .join(" ")
 }
