@@ -241,28 +241,17 @@ fn figure_basins_draws_the_manifolds_and_counts_the_pairs_across_the_stable_one(
         svg_s,
     ]);
     let words = svg_words(&svg);
-    for want in [
-        "stable + manifold",
-        "unstable − manifold",
-        "saddle (1, 1)",
-        "end on different attractors in",
-    ] {
-        assert!(words.contains(want), "{want} not in {words}");
-    }
+    says(
+        &words,
+        &[
+            "stable + manifold",
+            "unstable − manifold",
+            "saddle (1, 1)",
+            "end on different attractors in",
+        ],
+    );
     // The stable manifold's branches, as `manifolds` grows them.
-    let m = json(&[
-        "manifolds",
-        "--table",
-        "cubic",
-        "--alpha",
-        "0.47",
-        "--length",
-        "1",
-        "--which",
-        "stable",
-        "--format",
-        "json",
-    ]);
+    let m = cubic_manifolds(&["--length", "1", "--which", "stable", "--format", "json"]);
     for b in m["manifolds"][0]["branches"].as_array().unwrap() {
         let side = if b["branch"] == "+" { "+" } else { "\u{2212}" };
         let want = format!(
@@ -320,27 +309,16 @@ fn figure_basins_draws_the_manifolds_of_several_saddles() {
     ]);
     ok(&args.iter().map(String::as_str).collect::<Vec<_>>());
     let words = svg_words(&svg);
-    for want in [
-        "saddle (1, 1)",
-        "saddle (1, 2)",
-        "Also the manifolds of the saddle (1, 2)",
-    ] {
-        assert!(words.contains(want), "{want} not in {words}");
-    }
+    says(
+        &words,
+        &[
+            "saddle (1, 1)",
+            "saddle (1, 2)",
+            "Also the manifolds of the saddle (1, 2)",
+        ],
+    );
     // The second saddle's branches as `manifolds --k 2` grows them.
-    let m = json(&[
-        "manifolds",
-        "--table",
-        "cubic",
-        "--alpha",
-        "0.47",
-        "--k",
-        "2",
-        "--length",
-        "1",
-        "--format",
-        "json",
-    ]);
+    let m = cubic_manifolds(&["--k", "2", "--length", "1", "--format", "json"]);
     let mut seen = 0;
     for man in m["manifolds"].as_array().unwrap() {
         let kind = man["manifold"].as_str().unwrap();
@@ -392,4 +370,18 @@ fn svg_words(svg: &std::path::Path) -> String {
         .filter_map(|n| n.text())
         .collect::<Vec<_>>()
         .join(" ")
+}
+
+/// Each of `wants` is among `words`.
+fn says(words: &str, wants: &[&str]) {
+    for want in wants {
+        assert!(words.contains(want), "{want} not in {words}");
+    }
+}
+
+/// `manifolds --table cubic --alpha 0.47` (the basins figures' system) with `extra`, as json.
+fn cubic_manifolds(extra: &[&str]) -> serde_json::Value {
+    let mut args = vec!["manifolds", "--table", "cubic", "--alpha", "0.47"];
+    args.extend_from_slice(extra);
+    json(&args)
 }
