@@ -421,7 +421,7 @@ impl Table {
                 seg.release(alpha, from.copied().unwrap_or(seg.start), strict)
             },
         )
-        .map(|(periods, at)| crate::time::normalize(period + periods, at))
+        .map(|(periods, at)| crate::time::normalize(period.saturating_add(periods), at))
     }
 }
 
