@@ -43,19 +43,16 @@ pub fn lines(
     k: u32,
     under: Option<&CyclePoint>,
 ) -> Result<Option<ManifoldLines>, String> {
+    let at = bouncemap_engine::fmt_value(sys.alpha());
     let c = match under {
-        Some(p) => {
-            let at = bouncemap_engine::fmt_value(sys.alpha());
-            let c = cycle(sys, p.n, p.k, p.t0, p.velocities[0]).map_err(|e| {
-                format!(
-                    "the ({}, {}) cycle under the cursor is not found at α = {at} ({})",
-                    p.n,
-                    p.k,
-                    e.as_str()
-                )
-            })?;
-            c
-        }
+        Some(p) => cycle(sys, p.n, p.k, p.t0, p.velocities[0]).map_err(|e| {
+            format!(
+                "the ({}, {}) cycle under the cursor is not found at α = {at} ({})",
+                p.n,
+                p.k,
+                e.as_str()
+            )
+        })?,
         None => match first_saddle(sys, k).map_err(|e| e.to_string())? {
             Some(c) => c,
             None => return Ok(None),
@@ -68,10 +65,8 @@ pub fn lines(
     let points = |kind: Kind| -> Result<Vec<(f64, f64)>, String> {
         let m = manifold(sys, &c, kind, &spec).map_err(|e| match under {
             Some(_) => format!(
-                "the ({}, {}) cycle under the cursor at α = {}: {e}",
-                c.n,
-                c.k,
-                bouncemap_engine::fmt_value(sys.alpha())
+                "the ({}, {}) cycle under the cursor at α = {at}: {e}",
+                c.n, c.k
             ),
             None => e.to_string(),
         })?;

@@ -162,29 +162,33 @@ fn seed_at_double_borders(plane: &Plane, out: &mut Curves, dead_ends: &RefCell<V
         }) else {
             continue;
         };
-        // The other curve is solved for α at a fixed value of the second parameter:
-        // that point's value, else values just off the double border on either side
-        // (at the border itself the impact lies on both breakpoints, and the condition
-        // is not smooth there; the curve may turn there in the second parameter, so
-        // that it exists on one side only).
-        let near = |d: f64| (p.p + d * plane.scale()).clamp(plane.window.0, plane.window.1);
-        let tries = [q.p, near(-1e-5), near(1e-5), near(-1e-4), near(1e-4)];
-        let kind = CurveKind::BorderCollision { impact, breakpoint };
-        let special = Special {
-            kind: Kind::BorderCollision,
-            alpha: p.alpha,
-            phase: breakpoint,
-            impact,
-            point: q.cycle.clone(),
-            collision: None,
-            last_step: None,
+        // The other curve is solved for α at a fixed value of the second parameter,
+        // from a guess of α: that point's, else values just off the double border on
+        // either side from the border's α (at the border itself the impact lies on both
+        // breakpoints, and the condition is not smooth there; the curve may turn there
+        // in the second parameter, so that it exists on one side only).
+        let near = |d: f64| {
+            let at = (p.p + d * plane.scale()).clamp(plane.window.0, plane.window.1);
+            (at, p.alpha)
         };
+        let tries = [
+            (q.p, q.alpha),
+            near(-1e-5),
+            near(1e-5),
+            near(-1e-4),
+            near(1e-4),
+        ];
+        let kind = CurveKind::BorderCollision { impact, breakpoint };
         let index = out.curves.len();
-        let found = tries.into_iter().find_map(|at| {
-            let alpha = if at == q.p { q.alpha } else { p.alpha };
+        let found = tries.into_iter().find_map(|(at, alpha)| {
             let special = Special {
+                kind: Kind::BorderCollision,
                 alpha,
-                ..special.clone()
+                phase: breakpoint,
+                impact,
+                point: q.cycle.clone(),
+                collision: None,
+                last_step: None,
             };
             follow(plane, kind, &special, at, index, dead_ends)
                 .ok()
