@@ -88,7 +88,7 @@ fn doubled_at_pd_border(out: &mut Curves, tol: f64) {
 }
 
 /// `a` extended by the part of `b` beyond one of its ends, where `b` runs along `a` for
-/// at least a fifth of its points and leaves it only at its own start or end, from a
+/// at least a fifth of its length and leaves it only at its own start or end, from a
 /// point near an end of `a` (None otherwise: two curves that cross, or touch).
 fn join(a: &Curve, b: &Curve, tol: f64) -> Option<Curve> {
     let covered: Vec<bool> = b
@@ -96,8 +96,18 @@ fn join(a: &Curve, b: &Curve, tol: f64) -> Option<Curve> {
         .iter()
         .map(|q| a.passes_near(q.alpha, q.p, tol))
         .collect();
-    let count = covered.iter().filter(|c| **c).count();
-    if count * 5 < b.points.len() || count == b.points.len() {
+    // Along for a fifth of its length, not of its points: steps crowd where a curve
+    // closes in on a border, and two curves ending near each other there are not one.
+    let seg = |w: &[CurvePoint]| (w[1].alpha - w[0].alpha).hypot(w[1].p - w[0].p);
+    let total: f64 = b.points.windows(2).map(seg).sum();
+    let along: f64 = b
+        .points
+        .windows(2)
+        .zip(covered.windows(2))
+        .filter(|(_, c)| c[0] && c[1])
+        .map(|(w, _)| seg(w))
+        .sum();
+    if along * 5.0 < total || covered.iter().all(|c| *c) {
         return None;
     }
     let first = covered.iter().position(|c| *c)?;

@@ -51,7 +51,16 @@ fn tangent(grad: [f64; 2], along: [f64; 2]) -> [f64; 2] {
     }
 }
 
-/// Follow one curve from the special point `s` found at second parameter `p`.
+/// The line a curve's first point is solved on, c·y = d, from the point `start`.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct SeedLine {
+    pub(super) start: [f64; 2],
+    pub(super) c: [f64; 2],
+    pub(super) d: f64,
+}
+
+/// Follow one curve from the special point `s` found at second parameter `p` (its
+/// first point solved for α at that p).
 pub(super) fn follow(
     plane: &Plane,
     kind: CurveKind,
@@ -60,6 +69,24 @@ pub(super) fn follow(
     index: usize,
     dead_ends: &RefCell<Vec<DeadEnd>>,
 ) -> Result<(Curve, Vec<Codim2>), String> {
+    let line = SeedLine {
+        start: [s.alpha, p],
+        c: [0.0, 1.0],
+        d: p,
+    };
+    follow_from(plane, kind, s, line, index, dead_ends)
+}
+
+/// Follow one curve from the cycle of `s`, its first point solved on `line`.
+pub(super) fn follow_from(
+    plane: &Plane,
+    kind: CurveKind,
+    s: &Special,
+    line: SeedLine,
+    index: usize,
+    dead_ends: &RefCell<Vec<DeadEnd>>,
+) -> Result<(Curve, Vec<Codim2>), String> {
+    let p = line.start[1];
     let jumps = plane.jumps(p);
     // Launch the cycle from its impact farthest from every breakpoint: at a launch on a
     // border the cycle's Jacobian jumps with f'' and Newton's method creeps.
@@ -83,7 +110,7 @@ pub(super) fn follow(
     let guess = if launch == 0 {
         s.point.clone()
     } else {
-        let sys = plane.system(s.alpha, p).map_err(|e| e.to_string())?;
+        let sys = plane.system(line.start[0], p).map_err(|e| e.to_string())?;
         cycle(
             &sys,
             n,
@@ -101,15 +128,16 @@ pub(super) fn follow(
         jumps,
         dead_ends,
     };
-    // The seed: solve G = 0 in α at fixed p.
+    // The seed: solve G = 0 on the line (in α at fixed p, for a seed of the
+    // continuation).
     let (e0, grad0) = tr
-        .correct([s.alpha, p], [0.0, 1.0], p, &guess)
+        .correct(line.start, line.c, line.d, &guess)
         .map_err(|e| format!("the seed could not be solved on the curve ({})", e.as_str()))?;
     let y0 = e0.y;
     let first = tr.point(e0);
     let mut halves: Vec<(Vec<CurvePoint>, CurveEnd)> = Vec::new();
     let mut codim2 = Vec::new();
-    let t0 = tangent(grad0, [0.0, 1.0]);
+    let t0 = tangent(grad0, line.c);
     for dir in [1.0, -1.0] {
         let tau = [dir * t0[0], dir * t0[1]];
         let (pts, end) = tr.run(first.clone(), tau, index, &mut codim2, y0);
@@ -138,7 +166,7 @@ pub(super) fn follow(
             k: tr.k,
             points,
             ends,
-            seed: [s.alpha, p],
+            seed: line.start,
         },
         codim2,
     ))
@@ -241,7 +269,7 @@ impl Tracer<'_> {
                         }
                     }
                     travelled += (next.alpha - cur.alpha).hypot(next.p - cur.p);
-                    tau = tangent(grad, tau);
+                    tau = along_step(grad, &cur, &next, tau);
                     prev = Some(std::mem::replace(&mut cur, next));
                     out.push(cur.clone());
                     // Back at the start going the way it left: a closed curve (coming
@@ -641,6 +669,26 @@ impl Tracer<'_> {
             }
         }
         false
+    }
+}
+
+/// The tangent at `next` from its gradient, pointing on the way the step from `cur`
+/// went; the step's own direction where the two are more than 60° apart. There the
+/// gradient is not the curve's: next to a double border the differences that make it
+/// may straddle the other impact's breakpoint (f'' jumps there), and the step has just
+/// turned the curve's corner.
+fn along_step(grad: [f64; 2], cur: &CurvePoint, next: &CurvePoint, tau: [f64; 2]) -> [f64; 2] {
+    let chord = [next.alpha - cur.alpha, next.p - cur.p];
+    let len = chord[0].hypot(chord[1]);
+    if !(len > 0.0 && len.is_finite()) {
+        return tangent(grad, tau);
+    }
+    let chord = [chord[0] / len, chord[1] / len];
+    let t = tangent(grad, chord);
+    if t[0] * chord[0] + t[1] * chord[1] >= 0.5 {
+        t
+    } else {
+        chord
     }
 }
 
