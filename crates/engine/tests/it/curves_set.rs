@@ -459,3 +459,89 @@ fn curves_go_on_past_a_point_where_the_tangent_step_fails() {
         assert!(lowest.abs() < 1e-9, "r = {}: lowest {lowest:e}", q.p);
     }
 }
+
+/// Up to period 8 the F_D plane over (α, D) is one set whatever the seeds (5 or 20
+/// values to begin with). Two things used to break that. The (8, 8) border collision
+/// at ½ that turns at the double border near (0.58247, 0.62801) (another impact
+/// meeting 0 there) went on beyond it only when a long step happened to jump the
+/// corner: the tangent taken just past it was the other arm's. And a period doubling
+/// of an (8, 8) cycle between two border-collision curves (D 0.757 to 0.779) was met
+/// only by a seed value that happened to cross it; it is now found from the
+/// border-collision curve it ends on, watched from both sides. Each period doubling
+/// found is one by a second method: the cycle's monodromy by central differences of the
+/// exact map has a multiplier −1 (1 + tr M + det M = 0).
+#[test]
+fn the_period_eight_plane_does_not_depend_on_the_seeds() {
+    let plane = Plane {
+        table: Table::fd(0.5).unwrap(),
+        r: 0.8,
+        alpha: (0.4, 0.7),
+        second: SweepParam::D,
+        window: (0.0, 1.0),
+    };
+    let run = |count| {
+        let seeds = Seeds::FromFixed {
+            k: 1,
+            max_period: 8,
+            at: 0.5,
+            count,
+        };
+        curves(&plane, seeds).unwrap()
+    };
+    let (a, b) = (run(5), run(20));
+    same_set(&a, &b, 20);
+    for set in [&a, &b] {
+        // The border collision through the corner: from the window's edge α = 0.7
+        // down past the corner.
+        let through = set.curves.iter().any(|c| {
+            c.n == 8
+                && matches!(c.kind, bouncemap_engine::orbits::curves::CurveKind::BorderCollision { breakpoint, .. } if breakpoint == 0.5)
+                && c.passes_near(0.7, 0.700476, 1e-4)
+                && c.passes_near(0.58247, 0.62801, 1e-4)
+        });
+        assert!(through, "the (8, 8) border collision through the corner");
+        let short = of(set, "period_doubling", 8).into_iter().any(|c| {
+            c.passes_near(0.592838, 0.778550, 1e-5) && c.passes_near(0.592242, 0.757299, 1e-5)
+        });
+        assert!(
+            short,
+            "the (8, 8) period doubling between D 0.757 and 0.779"
+        );
+        for c in set
+            .curves
+            .iter()
+            .filter(|c| c.kind.as_str() == "period_doubling")
+        {
+            let q = &c.points[c.points.len() / 2];
+            let test = pd_test_by_differences(&plane, q);
+            assert!(test.abs() < 1e-5, "({}, {}) at {q:?}: {test:e}", c.n, c.k);
+        }
+    }
+}
+
+/// 1 + tr M + det M of the curve point's cycle, M by central differences of the exact
+/// map stepped n times (relative to the size of M).
+fn pd_test_by_differences(plane: &Plane, q: &CurvePoint) -> f64 {
+    use bouncemap_engine::orbits::periodic::{map_for, pass};
+    let sys = plane.system(q.alpha, q.p).unwrap();
+    let mut map = map_for(&sys);
+    let (n, k) = (q.cycle.n, q.cycle.k);
+    let x = [q.cycle.t0, q.cycle.velocities[0]];
+    let h = 1e-7;
+    let mut m = [[0.0; 2]; 2];
+    for j in 0..2 {
+        let mut plus = x;
+        let mut minus = x;
+        plus[j] += h;
+        minus[j] -= h;
+        let fp = pass(&mut map, plus[0], plus[1], n, k).unwrap().residual;
+        let fm = pass(&mut map, minus[0], minus[1], n, k).unwrap().residual;
+        for i in 0..2 {
+            // F = (t_n − t0 − k, v_n − v0): ∂F/∂x = M − I.
+            m[i][j] = (fp[i] - fm[i]) / (2.0 * h) + if i == j { 1.0 } else { 0.0 };
+        }
+    }
+    let tr = m[0][0] + m[1][1];
+    let det = m[0][0] * m[1][1] - m[0][1] * m[1][0];
+    (1.0 + tr + det) / (1.0 + tr.abs() + det.abs())
+}

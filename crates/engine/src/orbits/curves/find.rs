@@ -1,10 +1,12 @@
 //! Finding the set of curves: the seeds (the starting value of the second parameter,
 //! then dyadic grids of its window refined until two finer grids find no new curve,
-//! and the other border collision through each double border), the one-parameter
+//! the other border collision through each double border, and the PD and fold curves
+//! ending on each border-collision curve from either side), the one-parameter
 //! continuation at each seed value and every special point it finds followed as a
 //! curve, unless a curve already found passes through it.
 
 use super::merge::{codim2_once, dedupe};
+use super::sides::seed_from_border_sides;
 
 /// Two curves of one kind and cycle within this share of the plane of each other are
 /// one: more than the chord error of the largest step (a tenth of a step of
@@ -86,6 +88,8 @@ pub fn curves_with_progress(
         quiet: 0,
     };
     if grids.is_some() {
+        // The border-collision curves already looked along for curves ending on them.
+        let mut scanned = Vec::new();
         let mut quiet = 0;
         let mut values = 1;
         for level in first..=MAX_SEED_LEVEL {
@@ -101,6 +105,8 @@ pub fn curves_with_progress(
                 }
             }
             seed_at_double_borders(plane, &mut out, &dead_ends);
+            dedupe(&mut out, SAME_CURVE * plane.scale());
+            seed_from_border_sides(plane, &mut out, &mut scanned, &dead_ends);
             dedupe(&mut out, SAME_CURVE * plane.scale());
             // The first grid itself is not yet evidence of anything.
             if level > first {

@@ -90,6 +90,8 @@
 //!   appears, the one-parameter continuation at each seed value, the other border
 //!   collision through each double border;
 //! * `merge.rs`: curves found twice made one, codimension-two points told once;
+//! * `sides.rs`: the PD and fold curves ending on a border-collision curve from either
+//!   side, watched for along it (one may be too short for any seed value to meet);
 //! * `trace.rs`: following one curve (the corrector at fixed parameters or on the
 //!   extended system, the test functions watched between points, the ends);
 //! * [`birth`]: the (1, k) birth line in closed form;
@@ -100,6 +102,7 @@ mod corrector;
 mod criticality;
 mod find;
 mod merge;
+mod sides;
 mod trace;
 
 pub use criticality::criticality;

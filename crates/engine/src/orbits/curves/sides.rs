@@ -1,0 +1,281 @@
+//! Curves that end on a border-collision curve, seen from both of its sides.
+//!
+//! Where an impact of a cycle crosses a breakpoint, f'' jumps, and so do the cycle's
+//! multipliers: the period doubling (or fold) of the cycle on one side of a
+//! border-collision curve ends on it at one point (a pd_border, fold_border), that of
+//! the cycle on the other side at another. A value of the second parameter seeds such
+//! a curve only where its one-parameter continuation crosses it, and a short curve
+//! between two borders may be crossed by no seed value. So along every
+//! border-collision curve found, the cycle is solved just off it on both sides, each
+//! side's PD and fold test functions are watched from point to point, and where one
+//! changes sign with no curve of its kind and cycle ending there, that curve is
+//! followed from a line parallel to the border-collision curve, just off it on that
+//! side.
+
+use super::corrector::Tracer;
+use super::trace::{follow_from, SeedLine};
+use super::*;
+use crate::orbits::continuation::Kind;
+use std::cell::RefCell;
+
+/// How far off the border-collision curve the cycle is solved on each side, in the
+/// plane's scale: far enough that the impact is on that side beyond rounding, close
+/// enough that the cycle is the curve's.
+const OFF: f64 = 1e-6;
+
+/// The distances off the border-collision curve, in the plane's scale, of the lines a
+/// curve found ending on it is solved on first, nearest first.
+const SEED_LINES: [f64; 3] = [1e-6, 1e-5, 1e-4];
+
+/// A test function's sign change along a border-collision curve is a root only where
+/// the test, next to where it changes sign, is below this share of its size at the two
+/// points that bracket it.
+const ROOT_SHARE: f64 = 1e-3;
+
+/// A curve ends at a point located on the border-collision curve when one of its ends
+/// is a border within this (in the plane's scale) of it: at a fold that point is only
+/// the nearest the cycle could be solved at fixed parameters (M − I is singular at the
+/// fold itself). A curve that passes the point without ending there is another (two
+/// fold curves may run within 10⁻⁴ of each other), and so is one the fold's corrector
+/// slid to along the seed line.
+const ENDS_WITHIN: f64 = 1e-3;
+
+/// A test function of a cycle: zero on the curves of one kind.
+type Test = fn(&CyclePoint) -> f64;
+
+/// The curves looked for, with their test functions.
+const TESTS: [(CurveKind, Test); 2] = [
+    (CurveKind::PeriodDoubling, CyclePoint::pd_test),
+    (CurveKind::Fold, CyclePoint::fold_test),
+];
+
+/// The cycle solved just off a border-collision curve, on one side.
+struct Off {
+    /// Where it was solved.
+    y: [f64; 2],
+    /// The unit normal of the border-collision curve pointing to this side.
+    normal: [f64; 2],
+    pt: CyclePoint,
+}
+
+/// For each border-collision curve of `out` not yet in `scanned` (by its seed and
+/// length: a curve a join extended is looked at again), the PD and fold curves ending on
+/// it from either side that no curve found yet ends at, followed.
+pub(super) fn seed_from_border_sides(
+    plane: &Plane,
+    out: &mut Curves,
+    scanned: &mut Vec<([f64; 2], usize)>,
+    dead_ends: &RefCell<Vec<DeadEnd>>,
+) {
+    let mut i = 0;
+    while i < out.curves.len() {
+        let c = &out.curves[i];
+        i += 1;
+        let CurveKind::BorderCollision { impact, breakpoint } = c.kind else {
+            continue;
+        };
+        let key = (c.seed, c.points.len());
+        if scanned.contains(&key) || c.points.len() < 2 {
+            continue;
+        }
+        scanned.push(key);
+        let (n, k) = (c.n, c.k);
+        let tracer = Tracer {
+            plane,
+            kind: c.kind,
+            n,
+            k,
+            jumps: plane.jumps(c.points[0].p),
+            dead_ends,
+        };
+        // Each point's cycle just off the curve, by the side its impact lies on.
+        let sides: Vec<[Option<Off>; 2]> = (0..c.points.len())
+            .map(|j| {
+                let mut found: [Option<Off>; 2] = [None, None];
+                let Some(normal) = normal(&c.points, j) else {
+                    return found;
+                };
+                let q = &c.points[j];
+                for sign in [1.0, -1.0] {
+                    let off = OFF * plane.scale() * sign;
+                    let y = [q.alpha + off * normal[0], q.p + off * normal[1]];
+                    if !plane.inside(y) {
+                        continue;
+                    }
+                    let Ok(e) = tracer.eval(y, &q.cycle) else {
+                        continue;
+                    };
+                    let side = usize::from(signed_distance(e.pt.phases[impact], breakpoint) > 0.0);
+                    found[side] = Some(Off {
+                        y,
+                        normal: [sign * normal[0], sign * normal[1]],
+                        pt: e.pt,
+                    });
+                }
+                found
+            })
+            .collect();
+        let mut seeds: Vec<(CurveKind, [f64; 2], Off)> = Vec::new();
+        for side in 0..2 {
+            for j in 0..sides.len().saturating_sub(1) {
+                let (Some(a), Some(b)) = (&sides[j][side], &sides[j + 1][side]) else {
+                    continue;
+                };
+                for (kind, test) in TESTS {
+                    let (ga, gb) = (test(&a.pt), test(&b.pt));
+                    if !(ga.is_finite() && gb.is_finite()) || (ga < 0.0) == (gb < 0.0) {
+                        continue;
+                    }
+                    let (p, q) = (&c.points[j], &c.points[j + 1]);
+                    if let Some((x, off)) = locate(
+                        &tracer,
+                        (p, q),
+                        side,
+                        a.normal,
+                        impact,
+                        breakpoint,
+                        test,
+                        (ga, gb),
+                    ) {
+                        seeds.push((kind, x, off));
+                    }
+                }
+            }
+        }
+        for (kind, x, off) in &seeds {
+            let (kind, x) = (*kind, *x);
+            let within = ENDS_WITHIN * plane.scale();
+            let known = out
+                .curves
+                .iter()
+                .any(|c| c.kind == kind && c.n == n && c.k == k && ends_near(c, x, within));
+            if known || out.curves.len() >= MAX_CURVES {
+                continue;
+            }
+            let special = Special {
+                kind: match kind {
+                    CurveKind::Fold => Kind::Fold,
+                    _ => Kind::PeriodDoubling,
+                },
+                alpha: off.y[0],
+                phase: off.pt.phases[0],
+                impact: 0,
+                point: off.pt.clone(),
+                collision: None,
+                last_step: None,
+            };
+            let index = out.curves.len();
+            // On a line parallel to the border-collision curve, on the cycle's side.
+            let found = SEED_LINES.iter().find_map(|&dist| {
+                let dist = dist * plane.scale();
+                let start = [x[0] + dist * off.normal[0], x[1] + dist * off.normal[1]];
+                if !plane.inside(start) {
+                    return None;
+                }
+                let d = off.normal[0] * start[0] + off.normal[1] * start[1];
+                let line = SeedLine {
+                    start,
+                    c: off.normal,
+                    d,
+                };
+                // The curve that ends there, not another the corrector slid to.
+                follow_from(plane, kind, &special, line, index, dead_ends)
+                    .ok()
+                    .filter(|(curve, _)| curve.points.len() >= 2 && ends_near(curve, x, within))
+            });
+            if let Some((curve, codim2)) = found {
+                out.curves.push(curve);
+                out.codim2.extend(codim2);
+            }
+        }
+    }
+}
+
+/// Where `test` of the cycle on side `side` vanishes on the border-collision curve
+/// between its points `p` and `q` (values `ga` and `gb` there): by bisection over the
+/// chord, each chord point taken onto the curve across the chord, the cycle solved
+/// just off it on that side (`normal` pointing there). Located, not interpolated
+/// between the points: the seed must not depend on where the curve's points happen to
+/// lie. None where the sign changes by a jump.
+#[allow(clippy::too_many_arguments)]
+fn locate(
+    tracer: &Tracer<'_>,
+    (p, q): (&CurvePoint, &CurvePoint),
+    side: usize,
+    normal: [f64; 2],
+    impact: usize,
+    breakpoint: f64,
+    test: Test,
+    (ga, gb): (f64, f64),
+) -> Option<([f64; 2], Off)> {
+    let plane = tracer.plane;
+    let chord = [q.alpha - p.alpha, q.p - p.p];
+    let len = chord[0].hypot(chord[1]);
+    if !(len > 0.0 && len.is_finite()) {
+        return None;
+    }
+    let u = [chord[0] / len, chord[1] / len];
+    let at = |s: f64| -> Option<([f64; 2], Off)> {
+        let c = [p.alpha + s * chord[0], p.p + s * chord[1]];
+        let guess = if s < 0.5 { &p.cycle } else { &q.cycle };
+        let (on, _) = tracer
+            .correct(c, u, u[0] * c[0] + u[1] * c[1], guess)
+            .ok()?;
+        let off = OFF * plane.scale();
+        let y = [on.y[0] + off * normal[0], on.y[1] + off * normal[1]];
+        if !plane.inside(y) {
+            return None;
+        }
+        let e = tracer.eval(y, &on.pt).ok()?;
+        let here = usize::from(signed_distance(e.pt.phases[impact], breakpoint) > 0.0);
+        (here == side).then_some((
+            on.y,
+            Off {
+                y,
+                normal,
+                pt: e.pt,
+            },
+        ))
+    };
+    // Bisection on the chord, `lo` keeping the test's sign at `p` and the cycle
+    // solved: where the test is continuous this closes in on its root; at a fold, where
+    // the cycle cannot be solved at fixed parameters (M − I is singular) and beyond
+    // it is the other cycle of the pair, on the edge of where it is solved, next to
+    // the fold, where the fold's corrector (on the extended system) starts from.
+    let (mut lo, mut hi) = (0.0f64, 1.0f64);
+    let mut found = None;
+    for _ in 0..60 {
+        let mid = 0.5 * (lo + hi);
+        match at(mid) {
+            Some(f) if (test(&f.1.pt) < 0.0) == (ga < 0.0) => {
+                lo = mid;
+                found = Some(f);
+            }
+            _ => hi = mid,
+        }
+        if hi - lo <= f64::EPSILON {
+            break;
+        }
+    }
+    // A sign change by a jump (the cycle solved off the curve changing to another one
+    // on the way, or its impacts' pieces changing) is no root.
+    found.filter(|f| test(&f.1.pt).abs() <= ROOT_SHARE * ga.abs().max(gb.abs()))
+}
+
+/// Whether `curve` ends at a border within `within` of `x`.
+fn ends_near(curve: &Curve, x: [f64; 2], within: f64) -> bool {
+    let ends = [curve.points.first(), curve.points.last()];
+    curve.ends.iter().zip(ends).any(|(end, q)| {
+        *end == CurveEnd::Border && q.is_some_and(|q| (q.alpha - x[0]).hypot(q.p - x[1]) <= within)
+    })
+}
+
+/// The unit normal of the curve through `points` at point `j` (of the chord between
+/// its neighbours); None where they coincide.
+fn normal(points: &[CurvePoint], j: usize) -> Option<[f64; 2]> {
+    let a = &points[j.saturating_sub(1)];
+    let b = &points[(j + 1).min(points.len() - 1)];
+    let t = [b.alpha - a.alpha, b.p - a.p];
+    let len = t[0].hypot(t[1]);
+    (len > 0.0 && len.is_finite()).then(|| [-t[1] / len, t[0] / len])
+}
