@@ -545,3 +545,79 @@ fn pd_test_by_differences(plane: &Plane, q: &CurvePoint) -> f64 {
     let det = m[0][0] * m[1][1] - m[0][1] * m[1][0];
     (1.0 + tr + det) / (1.0 + tr.abs() + det.abs())
 }
+
+/// A double border's other border-collision curve is followed unless a curve of that
+/// other impact already crosses there. Over (α, r) on F_0.5 the (8, 8) border
+/// collision at phase 0 of an unstable cycle, from the double border near (0.56999,
+/// 0.78842) down to r ≈ 0.5, was skipped with the default seeds: the same impact's
+/// curve on the far side of the corner passed the double border and was taken for the
+/// crossing one. It is found now, and at every tenth point the exact map stepped from
+/// the cycle's launch returns to it with that impact on the breakpoint. And the doubled
+/// cycle's twin impact on its own breakpoint (the (2, 2) collapsing onto the (1, 1) on
+/// the birth line) is no double border to seed from: no (2, 2) curve is the (1, 1)
+/// run twice.
+#[test]
+fn the_other_border_collision_through_a_double_border_is_followed() {
+    use bouncemap_engine::orbits::curves::CurveKind;
+    use bouncemap_engine::orbits::periodic::{map_for, pass};
+    let plane = Plane {
+        table: Table::fd(0.5).unwrap(),
+        r: 0.8,
+        alpha: (0.2, 0.8),
+        second: SweepParam::R,
+        window: (0.2, 0.95),
+    };
+    let seeds = Seeds::FromFixed {
+        k: 1,
+        max_period: 8,
+        at: 0.575,
+        count: 5,
+    };
+    let set = curves(&plane, seeds).unwrap();
+    let long: Vec<&Curve> = set
+        .curves
+        .iter()
+        .filter(|c| {
+            c.n == 8
+                && matches!(c.kind, CurveKind::BorderCollision { breakpoint, .. } if breakpoint == 0.0)
+                && c.passes_near(0.56999, 0.78842, 1e-4)
+                && c.points.iter().any(|q| q.p < 0.55)
+        })
+        .collect();
+    assert_eq!(
+        long.len(),
+        1,
+        "the (8, 8) border collision down to r < 0.55"
+    );
+    let c = long[0];
+    let CurveKind::BorderCollision { impact, .. } = c.kind else {
+        unreachable!()
+    };
+    // Every tenth point, stepped by the exact map from its launch: the cycle returns,
+    // and the impact lies on the breakpoint (pass's phases start at impact 1).
+    for q in c.points.iter().step_by(10) {
+        let sys = plane.system(q.alpha, q.p).unwrap();
+        let mut map = map_for(&sys);
+        let p = pass(&mut map, q.cycle.t0, q.cycle.velocities[0], 8, 8).unwrap();
+        let ret = p.residual[0].abs().max(p.residual[1].abs());
+        let ph = p.phases[(impact + 7) % 8];
+        let on = ph.min(1.0 - ph);
+        assert!(
+            ret < 1e-10 && on < 1e-9,
+            "r = {}: return {ret:e}, impact at {on:e}",
+            q.p
+        );
+    }
+    for c in set.curves.iter().filter(|c| c.n == 2) {
+        let twice = c.points.iter().all(|q| {
+            q.cycle
+                .half_return
+                .is_some_and(|[dt, dv]| dt.abs().max(dv.abs()) < 1e-7)
+        });
+        assert!(
+            !twice,
+            "a {} curve of the (1, 1) run twice",
+            c.kind.as_str()
+        );
+    }
+}

@@ -150,22 +150,26 @@ fn seed_at_double_borders(plane: &Plane, out: &mut Curves, dead_ends: &RefCell<V
             continue;
         };
         let on = &out.curves[p.curve];
+        // The twin impact of a doubled cycle on its own breakpoint: the cycle collapses
+        // there onto the one of half its period, and the "other" curve is that cycle
+        // run twice.
+        let twin = matches!(on.kind, CurveKind::BorderCollision { impact: own, breakpoint: b }
+            if b == breakpoint && on.n.is_multiple_of(2) && (impact + on.n / 2) % on.n == own);
+        if twin {
+            continue;
+        }
         let crossing = out.curves.iter().enumerate().any(|(j, c)| {
             j != p.curve
                 && c.n == on.n
                 && c.k == on.k
-                && matches!(c.kind, CurveKind::BorderCollision { .. })
                 && c.passes_near(p.alpha, p.p, tol)
+                && is_other_border(c, on, &p)
         });
         if crossing || out.curves.len() >= MAX_CURVES {
             continue;
         }
         // The point of the known curve nearest the double border gives the cycle.
-        let Some(q) = on.points.iter().min_by(|a, b| {
-            (a.alpha - p.alpha)
-                .hypot(a.p - p.p)
-                .total_cmp(&(b.alpha - p.alpha).hypot(b.p - p.p))
-        }) else {
+        let Some(q) = nearest(on, &p) else {
             continue;
         };
         // The other curve is solved for α at a fixed value of the second parameter,
@@ -205,6 +209,36 @@ fn seed_at_double_borders(plane: &Plane, out: &mut Curves, dead_ends: &RefCell<V
             out.codim2.extend(codim2);
         }
     }
+}
+
+/// Whether `c` is the border collision of the other impact of the double border `p`
+/// found on the curve `on` (the impact `p` names, counted in `on`'s cycle), not `on`'s
+/// own condition going on through the corner: at the points of the two curves nearest
+/// `p`, the impact on `c`'s breakpoint is that one of `on`'s cycle, matched by phase and
+/// launch velocity (both impacts may sit on the same breakpoint, so the phase alone
+/// cannot tell them apart).
+fn is_other_border(c: &Curve, on: &Curve, p: &Codim2) -> bool {
+    let (CurveKind::BorderCollision { impact, .. }, Some((other, _))) = (c.kind, p.impact) else {
+        return false;
+    };
+    let (Some(q), Some(r)) = (nearest(c, p), nearest(on, p)) else {
+        return false;
+    };
+    let (phase, v) = (q.cycle.phases[impact], q.cycle.velocities[impact]);
+    let apart = |i: usize| {
+        signed_distance(r.cycle.phases[i], phase).abs()
+            + (r.cycle.velocities[i] - v).abs() / (1.0 + v.abs())
+    };
+    (0..r.cycle.n).min_by(|&a, &b| apart(a).total_cmp(&apart(b))) == Some(other)
+}
+
+/// The point of `curve` nearest the codimension-two point `p`.
+fn nearest<'a>(curve: &'a Curve, p: &Codim2) -> Option<&'a CurvePoint> {
+    curve.points.iter().min_by(|a, b| {
+        (a.alpha - p.alpha)
+            .hypot(a.p - p.p)
+            .total_cmp(&(b.alpha - p.alpha).hypot(b.p - p.p))
+    })
 }
 
 /// Seed at value `p` of the second parameter: the one-parameter continuation from
