@@ -12,6 +12,29 @@ use bouncemap_engine::orbits::curves::{
 use bouncemap_engine::table::Table;
 use bouncemap_engine::System;
 
+/// The F_D plane at r = 0.8 over α 0.4..0.7 and D 0..1, started from F_0.5.
+fn fd_over_d() -> Plane {
+    Plane {
+        table: Table::fd(0.5).unwrap(),
+        r: 0.8,
+        alpha: (0.4, 0.7),
+        second: SweepParam::D,
+        window: (0.0, 1.0),
+    }
+}
+
+/// The curves of `plane` from the (1, 1) branches up to `max_period`, started at `at`
+/// and seeded on grids from `count` values.
+fn from_fixed(plane: &Plane, max_period: usize, at: f64, count: usize) -> Curves {
+    let seeds = Seeds::FromFixed {
+        k: 1,
+        max_period,
+        at,
+        count,
+    };
+    curves(plane, seeds).unwrap()
+}
+
 /// The (1, 1) birth line is one whole curve, on the closed form α = (1 − r)/(1 + r) /
 /// (2 max F') at every point (F_D's max F' = ½ at t̂ = 0 for every D; the sine's 2π),
 /// and the pair is really born there: just above it `fixed_points` finds two (1, 1)
@@ -42,13 +65,7 @@ fn the_birth_line_is_one_curve_on_its_closed_form() {
         ),
     ];
     for (plane, max_slope) in cases {
-        let seeds = Seeds::FromFixed {
-            k: 1,
-            max_period: 1,
-            at: 0.5 * (plane.window.0 + plane.window.1),
-            count: 5,
-        };
-        let c = curves(&plane, seeds).unwrap();
+        let c = from_fixed(&plane, 1, 0.5 * (plane.window.0 + plane.window.1), 5);
         let births = of(&c, "birth", 1);
         assert_eq!(births.len(), 1, "one birth line");
         let b = births[0];
@@ -105,13 +122,7 @@ fn codimension_two_points_and_refusals_are_told_once() {
         second: SweepParam::R,
         window: (0.2, 0.95),
     };
-    let seeds = Seeds::FromFixed {
-        k: 1,
-        max_period: 2,
-        at: 0.8,
-        count: 20,
-    };
-    let c = curves(&plane, seeds).unwrap();
+    let c = from_fixed(&plane, 2, 0.8, 20);
     for (i, a) in c.codim2.iter().enumerate() {
         for b in &c.codim2[i + 1..] {
             assert!(
@@ -153,16 +164,7 @@ fn codimension_two_points_and_refusals_are_told_once() {
         second: SweepParam::R,
         window: (0.2, 0.95),
     };
-    let s = curves(
-        &sine,
-        Seeds::FromFixed {
-            k: 1,
-            max_period: 2,
-            at: 0.575,
-            count: 5,
-        },
-    )
-    .unwrap();
+    let s = from_fixed(&sine, 2, 0.575, 5);
     for (i, a) in s.skipped.iter().enumerate() {
         for b in &s.skipped[i + 1..] {
             assert!(
@@ -181,22 +183,8 @@ fn codimension_two_points_and_refusals_are_told_once() {
 /// α where the one-parameter continuation finds it at D = 0.70 and 0.72.
 #[test]
 fn the_curves_do_not_depend_on_the_seeds_and_go_on_where_they_go_on() {
-    let plane = Plane {
-        table: Table::fd(0.5).unwrap(),
-        r: 0.8,
-        alpha: (0.4, 0.7),
-        second: SweepParam::D,
-        window: (0.0, 1.0),
-    };
-    let run = |count| {
-        let seeds = Seeds::FromFixed {
-            k: 1,
-            max_period: 4,
-            at: 0.5,
-            count,
-        };
-        curves(&plane, seeds).unwrap()
-    };
+    let plane = fd_over_d();
+    let run = |count| from_fixed(&plane, 4, 0.5, count);
     // 17 used to lose the (4, 4) border collision at phase 0: it is met only through
     // its double border, and the nearest point of the curve there lay beyond the turn.
     let a = run(5);
@@ -319,22 +307,8 @@ fn same_set(a: &Curves, b: &Curves, count: usize) {
 /// whichever side it was seeded on.
 #[test]
 fn border_collision_curves_go_on_next_to_a_birth_and_through_a_corner() {
-    let plane = Plane {
-        table: Table::fd(0.5).unwrap(),
-        r: 0.8,
-        alpha: (0.4, 0.7),
-        second: SweepParam::D,
-        window: (0.0, 1.0),
-    };
-    let run = |max_period, count| {
-        let seeds = Seeds::FromFixed {
-            k: 1,
-            max_period,
-            at: 0.5,
-            count,
-        };
-        curves(&plane, seeds).unwrap()
-    };
+    let plane = fd_over_d();
+    let run = |max_period, count| from_fixed(&plane, max_period, 0.5, count);
     let eight = run(8, 5);
     for d in [0.519, 0.521, 0.523] {
         let bc = continuation_borders(d, (0.45, 0.57), 8, 0.0);
@@ -436,13 +410,7 @@ fn curves_go_on_past_a_point_where_the_tangent_step_fails() {
         second: SweepParam::R,
         window: (0.2, 0.95),
     };
-    let seeds = Seeds::FromFixed {
-        k: 1,
-        max_period: 8,
-        at: 0.8,
-        count: 5,
-    };
-    let c = curves(&plane, seeds).unwrap();
+    let c = from_fixed(&plane, 8, 0.8, 5);
     let graze: Vec<&Curve> = of(&c, "grazing", 1);
     assert_eq!(graze.len(), 1, "one (1, 1) grazing curve");
     let g = graze[0];
@@ -472,22 +440,8 @@ fn curves_go_on_past_a_point_where_the_tangent_step_fails() {
 /// exact map has a multiplier −1 (1 + tr M + det M = 0).
 #[test]
 fn the_period_eight_plane_does_not_depend_on_the_seeds() {
-    let plane = Plane {
-        table: Table::fd(0.5).unwrap(),
-        r: 0.8,
-        alpha: (0.4, 0.7),
-        second: SweepParam::D,
-        window: (0.0, 1.0),
-    };
-    let run = |count| {
-        let seeds = Seeds::FromFixed {
-            k: 1,
-            max_period: 8,
-            at: 0.5,
-            count,
-        };
-        curves(&plane, seeds).unwrap()
-    };
+    let plane = fd_over_d();
+    let run = |count| from_fixed(&plane, 8, 0.5, count);
     let (a, b) = (run(5), run(20));
     same_set(&a, &b, 20);
     for set in [&a, &b] {
@@ -567,13 +521,7 @@ fn the_other_border_collision_through_a_double_border_is_followed() {
         second: SweepParam::R,
         window: (0.2, 0.95),
     };
-    let seeds = Seeds::FromFixed {
-        k: 1,
-        max_period: 8,
-        at: 0.575,
-        count: 5,
-    };
-    let set = curves(&plane, seeds).unwrap();
+    let set = from_fixed(&plane, 8, 0.575, 5);
     let long: Vec<&Curve> = set
         .curves
         .iter()
