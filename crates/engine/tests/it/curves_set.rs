@@ -569,3 +569,39 @@ fn the_other_border_collision_through_a_double_border_is_followed() {
         );
     }
 }
+
+/// A step that crosses a double border turns the corner on the way: the curve beyond
+/// runs from the corner, so its tangent is checked against the direction from the
+/// corner, not from where the step began (that chord cuts the corner, and the other
+/// arm's tangent, which the gradient may give there, passed the check). In the window
+/// α 0.45..0.62 with `--seeds 20` the (8, 8) border collision at ½ crossed the corner
+/// near (0.58247, 0.62801) in one step of 4.8·10⁻⁴ and then ended `no_convergence`
+/// 1.6·10⁻⁴ past it; it goes on to the window's edge. (Its polyline cuts the corner
+/// by that long step, 1.2·10⁻⁴ from it.)
+#[test]
+fn a_step_across_a_corner_goes_on_from_the_corner() {
+    use bouncemap_engine::orbits::curves::CurveKind;
+    let plane = Plane {
+        alpha: (0.45, 0.62),
+        ..fd_over_d()
+    };
+    let set = from_fixed(&plane, 8, 0.5, 20);
+    let arm: Vec<&Curve> = set
+        .curves
+        .iter()
+        .filter(|c| {
+            c.n == 8
+                && matches!(c.kind, CurveKind::BorderCollision { breakpoint, .. } if breakpoint == 0.5)
+                && c.passes_near(0.58247, 0.62801, 2e-4)
+        })
+        .collect();
+    assert_eq!(
+        arm.len(),
+        1,
+        "one (8, 8) border collision through the corner"
+    );
+    let mut ends: Vec<&str> = arm[0].ends.iter().map(|e| e.as_str()).collect();
+    ends.sort();
+    assert_eq!(ends, ["collapse", "window"]);
+    assert!(arm[0].points.iter().any(|q| q.alpha == 0.62));
+}

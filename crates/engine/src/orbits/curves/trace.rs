@@ -222,6 +222,7 @@ impl Tracer<'_> {
                 &cur,
                 (start[0] - y[0]).hypot(start[1] - y[1]),
             );
+            let known = codim2.len();
             let step = self.correct(start, c, d, &guess).and_then(|(e, grad)| {
                 // A point outside the window is not this curve's to report, nor one
                 // the corrector found far from the predicted point (on another part
@@ -269,7 +270,13 @@ impl Tracer<'_> {
                         }
                     }
                     travelled += (next.alpha - cur.alpha).hypot(next.p - cur.p);
-                    tau = along_step(grad, &cur, &next, tau);
+                    // A step across a double border turned the corner on the way: the
+                    // curve beyond runs from the corner, not from where the step began.
+                    let from = codim2[known..]
+                        .iter()
+                        .rfind(|q| q.curve == index && q.kind == Codim2Kind::DoubleBorder)
+                        .map_or([cur.alpha, cur.p], |q| [q.alpha, q.p]);
+                    tau = along_step(grad, from, &next, tau);
                     prev = Some(std::mem::replace(&mut cur, next));
                     out.push(cur.clone());
                     // Back at the start going the way it left: a closed curve (coming
@@ -672,13 +679,13 @@ impl Tracer<'_> {
     }
 }
 
-/// The tangent at `next` from its gradient, pointing on the way the step from `cur`
-/// went; the step's own direction where the two are more than 60° apart. There the
-/// gradient is not the curve's: next to a double border the differences that make it
-/// may straddle the other impact's breakpoint (f'' jumps there), and the step has just
-/// turned the curve's corner.
-fn along_step(grad: [f64; 2], cur: &CurvePoint, next: &CurvePoint, tau: [f64; 2]) -> [f64; 2] {
-    let chord = [next.alpha - cur.alpha, next.p - cur.p];
+/// The tangent at `next` from its gradient, pointing on the way from `from` (where the
+/// step began, or the corner it turned) to `next`; that direction itself where the two
+/// are more than 60° apart. There the gradient is not the curve's: next to a double
+/// border the differences that make it may straddle the other impact's breakpoint (f''
+/// jumps there), and the step has just turned the curve's corner.
+fn along_step(grad: [f64; 2], from: [f64; 2], next: &CurvePoint, tau: [f64; 2]) -> [f64; 2] {
+    let chord = [next.alpha - from[0], next.p - from[1]];
     let len = chord[0].hypot(chord[1]);
     if !(len > 0.0 && len.is_finite()) {
         return tangent(grad, tau);
