@@ -153,9 +153,7 @@ fn seed_at_double_borders(plane: &Plane, out: &mut Curves, dead_ends: &RefCell<V
         // The twin impact of a doubled cycle on its own breakpoint: the cycle collapses
         // there onto the one of half its period, and the "other" curve is that cycle
         // run twice.
-        let twin = matches!(on.kind, CurveKind::BorderCollision { impact: own, breakpoint: b }
-            if b == breakpoint && on.n.is_multiple_of(2) && (impact + on.n / 2) % on.n == own);
-        if twin {
+        if on.kind.twin(on.n, (impact, breakpoint)) {
             continue;
         }
         let crossing = out.curves.iter().enumerate().any(|(j, c)| {

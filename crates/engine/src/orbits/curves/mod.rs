@@ -277,6 +277,15 @@ impl CurveKind {
         }
     }
 
+    /// Whether impact `other` at the breakpoint `at` (of a cycle of `n` impacts) is
+    /// this border collision's twin: in a doubled cycle, the impact half a cycle on, on
+    /// the same breakpoint. The two meet there only where the cycle collapses onto the
+    /// one of half its period, which is no double border.
+    pub fn twin(&self, n: usize, (other, at): (usize, f64)) -> bool {
+        matches!(*self, CurveKind::BorderCollision { impact, breakpoint }
+            if breakpoint == at && n.is_multiple_of(2) && (other + n / 2) % n == impact)
+    }
+
     /// Short label (as in the one-parameter diagrams).
     pub fn label(&self) -> &'static str {
         match self {

@@ -97,20 +97,16 @@ pub(super) fn seed_from_border_sides(
                 };
                 let q = &c.points[j];
                 for sign in [1.0, -1.0] {
-                    let off = OFF * plane.scale() * sign;
-                    let y = [q.alpha + off * normal[0], q.p + off * normal[1]];
-                    if !plane.inside(y) {
-                        continue;
+                    let normal = [sign * normal[0], sign * normal[1]];
+                    if let Some((side, off)) = off_curve(
+                        &tracer,
+                        [q.alpha, q.p],
+                        &q.cycle,
+                        normal,
+                        (impact, breakpoint),
+                    ) {
+                        found[side] = Some(off);
                     }
-                    let Ok(e) = tracer.eval(y, &q.cycle) else {
-                        continue;
-                    };
-                    let side = usize::from(signed_distance(e.pt.phases[impact], breakpoint) > 0.0);
-                    found[side] = Some(Off {
-                        y,
-                        normal: [sign * normal[0], sign * normal[1]],
-                        pt: e.pt,
-                    });
                 }
                 found
             })
@@ -132,8 +128,7 @@ pub(super) fn seed_from_border_sides(
                         (p, q),
                         side,
                         a.normal,
-                        impact,
-                        breakpoint,
+                        (impact, breakpoint),
                         test,
                         (ga, gb),
                     ) {
@@ -142,9 +137,8 @@ pub(super) fn seed_from_border_sides(
                 }
             }
         }
-        for (kind, x, off) in &seeds {
-            let (kind, x) = (*kind, *x);
-            let within = ENDS_WITHIN * plane.scale();
+        let within = ENDS_WITHIN * plane.scale();
+        for (kind, x, off) in seeds {
             let known = out
                 .curves
                 .iter()
@@ -160,7 +154,7 @@ pub(super) fn seed_from_border_sides(
                 alpha: off.y[0],
                 phase: off.pt.phases[0],
                 impact: 0,
-                point: off.pt.clone(),
+                point: off.pt,
                 collision: None,
                 last_step: None,
             };
@@ -197,18 +191,15 @@ pub(super) fn seed_from_border_sides(
 /// just off it on that side (`normal` pointing there). Located, not interpolated
 /// between the points: the seed must not depend on where the curve's points happen to
 /// lie. None where the sign changes by a jump.
-#[allow(clippy::too_many_arguments)]
 fn locate(
     tracer: &Tracer<'_>,
     (p, q): (&CurvePoint, &CurvePoint),
     side: usize,
     normal: [f64; 2],
-    impact: usize,
-    breakpoint: f64,
+    border: (usize, f64),
     test: Test,
     (ga, gb): (f64, f64),
 ) -> Option<([f64; 2], Off)> {
-    let plane = tracer.plane;
     let chord = [q.alpha - p.alpha, q.p - p.p];
     let len = chord[0].hypot(chord[1]);
     if !(len > 0.0 && len.is_finite()) {
@@ -221,21 +212,8 @@ fn locate(
         let (on, _) = tracer
             .correct(c, u, u[0] * c[0] + u[1] * c[1], guess)
             .ok()?;
-        let off = OFF * plane.scale();
-        let y = [on.y[0] + off * normal[0], on.y[1] + off * normal[1]];
-        if !plane.inside(y) {
-            return None;
-        }
-        let e = tracer.eval(y, &on.pt).ok()?;
-        let here = usize::from(signed_distance(e.pt.phases[impact], breakpoint) > 0.0);
-        (here == side).then_some((
-            on.y,
-            Off {
-                y,
-                normal,
-                pt: e.pt,
-            },
-        ))
+        let (here, off) = off_curve(tracer, on.y, &on.pt, normal, border)?;
+        (here == side).then_some((on.y, off))
     };
     // Bisection on the chord, `lo` keeping the test's sign at `p` and the cycle
     // solved: where the test is continuous this closes in on its root; at a fold, where
@@ -260,6 +238,33 @@ fn locate(
     // A sign change by a jump (the cycle solved off the curve changing to another one
     // on the way, or its impacts' pieces changing) is no root.
     found.filter(|f| test(&f.1.pt).abs() <= ROOT_SHARE * ga.abs().max(gb.abs()))
+}
+
+/// The cycle solved [`OFF`] off the border-collision curve at its point `on` (cycle
+/// `guess`), along `normal`, with the side of the breakpoint its impact lies on
+/// (`border`: the curve's impact and breakpoint; 1 past the breakpoint).
+fn off_curve(
+    tracer: &Tracer<'_>,
+    on: [f64; 2],
+    guess: &CyclePoint,
+    normal: [f64; 2],
+    (impact, breakpoint): (usize, f64),
+) -> Option<(usize, Off)> {
+    let off = OFF * tracer.plane.scale();
+    let y = [on[0] + off * normal[0], on[1] + off * normal[1]];
+    if !tracer.plane.inside(y) {
+        return None;
+    }
+    let e = tracer.eval(y, guess).ok()?;
+    let side = usize::from(signed_distance(e.pt.phases[impact], breakpoint) > 0.0);
+    Some((
+        side,
+        Off {
+            y,
+            normal,
+            pt: e.pt,
+        },
+    ))
 }
 
 /// Whether `curve` ends at a border within `within` of `x`.

@@ -447,14 +447,14 @@ impl Tracer<'_> {
         cur: &CurvePoint,
         corner: Option<&Codim2>,
     ) -> Option<(CurvePoint, [f64; 2])> {
-        let CurveKind::BorderCollision { impact, breakpoint } = self.kind else {
+        if !matches!(self.kind, CurveKind::BorderCollision { .. }) {
             return None;
-        };
+        }
         let corner = corner.filter(|c| c.kind == Codim2Kind::DoubleBorder)?;
         let (j, bp) = corner.impact?;
         // The twin impact of a doubled cycle on the same breakpoint: the cycle
         // collapses there onto the one of half its period, which is no corner.
-        if bp == breakpoint && self.n.is_multiple_of(2) && (j + self.n / 2) % self.n == impact {
+        if self.kind.twin(self.n, (j, bp)) {
             return None;
         }
         let side = |q: &CurvePoint| signed_distance(q.cycle.phases[j], bp) < 0.0;
