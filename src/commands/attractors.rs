@@ -20,11 +20,12 @@ use crate::output::records::{
 use crate::output::sink::Sink;
 use crate::output::text::shortest;
 use bouncemap_engine::attractors::crisis::{
-    crises, CrisisSpec, Located, EMBEDDED, MAX_SADDLE_EVENTS,
+    crises, CrisisSpec, Located, Tangency, EMBEDDED, MAX_SADDLE_EVENTS, TANGENCY_CANDIDATES,
 };
 use bouncemap_engine::attractors::global::{
     Cause, ChangeKind, Continuation, GlobalSpec, Join, MATCH_DISTANCE,
 };
+use bouncemap_engine::attractors::tangency::UNSTABLE_LENGTH;
 use bouncemap_engine::jobs::{Control, Executor, Progress as JobProgress};
 use bouncemap_engine::EventKind;
 use bouncemap_figures::global::alpha_decimals;
@@ -129,6 +130,36 @@ pub fn locate_crises(cont: &Continuation) -> Vec<Located> {
     )
 }
 
+/// How a crisis saddle was chosen by a tangency, in one line.
+fn tangency_text(t: &Tangency, hi: f64) -> String {
+    let e = &t.embedded;
+    let also = if t.also.is_empty() {
+        String::new()
+    } else {
+        let names: Vec<String> = t.also.iter().map(|(n, k)| format!("({n}, {k})")).collect();
+        format!(" (and, in the same bracket, that of {})", names.join(", "))
+    };
+    format!(
+        "    the unstable manifold of the saddle ({}, {}) in the attractor (t̂ = {:.6}, v = {:.6}; each branch {} long) is {} from the saddle's stable manifold at the lower end and first crosses it at α in [{:.10}, {:.10}]{also}, {:.1e} above the crisis' upper end (an upper bound: longer manifolds reach folds nearer the crisis); {}",
+        e.n,
+        e.k,
+        e.phases[0].rem_euclid(1.0),
+        e.velocities[0],
+        shortest(UNSTABLE_LENGTH),
+        t.apart.map_or("over 0.02".to_string(), |d| format!("{d:.1e}")),
+        t.between.0,
+        t.between.1,
+        t.between.1 - hi,
+        match t.in_closure {
+            0 => format!("it crosses none of the {} saddles tried at the lower end", t.tried),
+            c => format!(
+                "of the {} saddles tried, {c} have stable manifolds it crosses already at the lower end (in the attractor's closure, not on its boundary)",
+                t.tried
+            ),
+        }
+    )
+}
+
 /// The crises section of the text report.
 fn crisis_text(cont: &Continuation, ls: &[Located], alpha: &dyn Fn(f64) -> String) -> Vec<String> {
     let spec = CrisisSpec::default();
@@ -138,7 +169,7 @@ fn crisis_text(cont: &Continuation, ls: &[Located], alpha: &dyn Fn(f64) -> Strin
         return out;
     }
     out.push(format!(
-        "crises (each located by bisection in α to {}: at the lower end orbits from {} points of the attractor all stay within {} of it for {} events, at the upper end one leaves; the saddle is, of the saddle cycles the leaving orbits pass, the nearest the attractor outside it):",
+        "crises (each located by bisection in α to {}: at the lower end orbits from {} points of the attractor all stay within {} of it for {} events, at the upper end one leaves; the saddle is, of the saddle cycles the leaving orbits pass outside the attractor, the one whose stable manifold the unstable manifold of a saddle embedded in it first crosses as α rises, of the {TANGENCY_CANDIDATES} nearest it, else the nearest):",
         shortest(spec.tolerance),
         spec.runs,
         shortest(spec.radius),
@@ -177,7 +208,7 @@ fn crisis_text(cont: &Continuation, ls: &[Located], alpha: &dyn Fn(f64) -> Strin
                     Some(s) => {
                         let [m0, m1] = s.cycle.multipliers;
                         out.push(format!(
-                            "    through the saddle ({}, {}) at t̂ = {:.6}, v = {:.6} (multipliers {} and {}): the leaving orbits pass within {:.1e} of it; of {} saddle cycles they pass, the nearest the attractor outside it; at the lower end it lies {:.1e} outside the attractor's sampled points",
+                            "    through the saddle ({}, {}) at t̂ = {:.6}, v = {:.6} (multipliers {} and {}): the leaving orbits pass within {:.1e} of it; of {} saddle cycles they pass, {}; at the lower end it lies {:.1e} outside the attractor's sampled points",
                             s.cycle.n,
                             s.cycle.k,
                             s.cycle.phases[0].rem_euclid(1.0),
@@ -186,8 +217,16 @@ fn crisis_text(cont: &Continuation, ls: &[Located], alpha: &dyn Fn(f64) -> Strin
                             crate::output::text::significant(m1.re, 6),
                             s.passes,
                             x.considered,
+                            if s.tangency.is_some() {
+                                "the one the attractor's unstable manifold reaches first"
+                            } else {
+                                "the nearest the attractor outside it"
+                            },
                             s.outside_by
                         ));
+                        if let Some(t) = &s.tangency {
+                            out.push(tangency_text(t, x.hi));
+                        }
                         if !s.to_stable_manifold.is_empty() {
                             let d: Vec<String> = s
                                 .to_stable_manifold

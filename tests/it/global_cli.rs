@@ -340,39 +340,43 @@ fn attractors_crises_locate_the_sines_crisis_and_name_a_saddle_cycle_of_the_map(
     // where the continuation's last value was a long transient already).
     let between = c["between"].as_array().unwrap();
     assert!(hi <= between[1].as_f64().unwrap(), "{c}");
-    // The saddle is a cycle of the exact map: `orbit` from its point returns after n
-    // events, k periods on.
-    let s = &c["saddle"];
-    let (n, k) = (s["n"].as_u64().unwrap(), s["k"].as_u64().unwrap());
-    let (t0, v0) = (
-        s["phases"][0].as_f64().unwrap(),
-        s["velocities"][0].as_f64().unwrap(),
-    );
-    let csv = crate::cli::ok(&[
-        "orbit",
-        "--table",
-        "sine",
-        "--alpha",
-        &hi.to_string(),
-        "--t0",
-        &t0.to_string(),
-        "--v0",
-        &v0.to_string(),
-        "--bounces",
-        &n.to_string(),
-        "--format",
-        "csv",
-    ]);
-    let last = csv.lines().last().unwrap();
-    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
-    let col = |name: &str| {
-        let i = header.iter().position(|h| *h == name).unwrap();
-        last.split(',').nth(i).unwrap().parse::<f64>().unwrap()
+    // A cycle of the output ({n, k, phases, velocities}) is a cycle of the exact map at
+    // α: `orbit` from its point returns after n events, k periods on.
+    let is_cycle = |x: &serde_json::Value, alpha: f64| {
+        let (n, k) = (x["n"].as_u64().unwrap(), x["k"].as_u64().unwrap());
+        let (t0, v0) = (
+            x["phases"][0].as_f64().unwrap(),
+            x["velocities"][0].as_f64().unwrap(),
+        );
+        let csv = crate::cli::ok(&[
+            "orbit",
+            "--table",
+            "sine",
+            "--alpha",
+            &alpha.to_string(),
+            "--t0",
+            &t0.to_string(),
+            "--v0",
+            &v0.to_string(),
+            "--bounces",
+            &n.to_string(),
+            "--format",
+            "csv",
+        ]);
+        let last = csv.lines().last().unwrap();
+        let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+        let col = |name: &str| {
+            let i = header.iter().position(|h| *h == name).unwrap();
+            last.split(',').nth(i).unwrap().parse::<f64>().unwrap()
+        };
+        // Back at its launch k periods on (the start is at period 0).
+        let back = col("period") + col("phase") - t0;
+        assert!((back - k as f64).abs() < 1e-9, "{last}");
+        assert!((col("v") - v0).abs() < 1e-9, "{last}");
     };
-    // Back at its launch k periods on (the start is at period 0).
-    let back = col("period") + col("phase") - t0;
-    assert!((back - k as f64).abs() < 1e-9, "{last}");
-    assert!((col("v") - v0).abs() < 1e-9, "{last}");
+    // The saddle is one at the upper end.
+    let s = &c["saddle"];
+    is_cycle(s, hi);
     // Outside the attractor, and a saddle: one multiplier out, one in; the attractor
     // nears its stable manifold as α nears the crisis, closer than to the saddle.
     let outside = s["outside_by"].as_f64().unwrap();
@@ -393,6 +397,22 @@ fn attractors_crises_locate_the_sines_crisis_and_name_a_saddle_cycle_of_the_map(
         .map(|z| z[0].as_f64().unwrap().abs())
         .collect();
     assert!((m[0] > 1.0) != (m[1] > 1.0), "{m:?}");
+    // Chosen by a tangency: the embedded saddle's unstable manifold is apart from the
+    // saddle's stable manifold at the lower end, no farther than the attractor's sample
+    // (the manifold lies in the attractor), and first crosses it above the bracket.
+    let t = &s["tangency"];
+    let apart = t["apart"].as_f64().expect("apart");
+    assert!(apart > 0.0 && apart <= touch[1].1 * 1.01, "{t}");
+    let cross = [
+        t["between"][0].as_f64().unwrap(),
+        t["between"][1].as_f64().unwrap(),
+    ];
+    assert!(
+        cross[0] >= hi && cross[1] > cross[0] && cross[1] - hi < 1e-5,
+        "{t}"
+    );
+    // The embedded saddle is one at the lower end.
+    is_cycle(&t["embedded"], lo);
     // Without --crises there is no such field; with --shard it is refused.
     let plain = crate::cli::json(&[
         "attractors",

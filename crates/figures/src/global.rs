@@ -292,7 +292,7 @@ pub fn mark_crises(fig: &mut Figure, ls: &[Located]) {
         }
     }
     fig.caption.push(format!(
-        "Dashed: {}, each located by bisection in $\u{3b1}$ (orbits from points of the attractor stay below, leave above) and named by the saddle cycle the leaving orbits pass that lies nearest the attractor.",
+        "Dashed: {}, each located by bisection in $\u{3b1}$ (orbits from points of the attractor stay below, leave above) and named by the saddle cycle the leaving orbits pass whose stable manifold the unstable manifold of a saddle in the attractor first crosses as $\u{3b1}$ rises (where none is crossed, the one nearest the attractor).",
         if found.len() == 1 { "the crisis where a chaotic attractor is destroyed" } else { "the crises where chaotic attractors are destroyed" }
     ));
 }

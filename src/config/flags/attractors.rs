@@ -85,8 +85,8 @@ pub struct AttractorsArgs {
     pub resume: bool,
     /// Locate each crisis: where a chaotic attractor is destroyed with no local
     /// bifurcation, bisect α to 1e-6 (orbits on it stay 2·10⁶ events below, leave
-    /// above) and name the saddle the leaving orbits pass (text and json; not with
-    /// --shard).
+    /// above) and name the saddle the leaving orbits pass whose stable manifold the
+    /// attractor's unstable manifold first crosses (text and json; not with --shard).
     #[arg(long)]
     pub crises: bool,
     #[command(flatten)]

@@ -323,6 +323,35 @@ pub struct CrisisSaddleRecord {
     /// The least distance from the attractor's sample to the saddle's stable manifold:
     /// [[α, distance], …], lower α first.
     pub to_stable_manifold: Vec<[f64; 2]>,
+    /// How it was chosen: null where it is the nearest the attractor outside it, else
+    /// the first crossing of its stable manifold by the attractor's unstable manifold.
+    pub tangency: Option<TangencyRecord>,
+}
+
+/// The tangency a crisis saddle was chosen by (json).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct TangencyRecord {
+    /// The saddle embedded in the attractor whose unstable manifold is grown: (n, k),
+    /// impact phases and launch velocities at the lower end.
+    pub embedded: EmbeddedRecord,
+    /// The α bracket of the first crossing: apart below, crossed above.
+    pub between: [f64; 2],
+    /// The distance between the two manifolds at the crisis' lower end (null: over 0.02).
+    pub apart: Option<f64>,
+    /// Other saddles crossed first in the same bracket, [n, k] each.
+    pub also: Vec<(usize, u32)>,
+    /// Saddles tried, and of them those already crossed at the lower end.
+    pub tried: usize,
+    pub in_closure: usize,
+}
+
+/// A cycle named by its (n, k) and points (json).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct EmbeddedRecord {
+    pub n: usize,
+    pub k: u32,
+    pub phases: Vec<f64>,
+    pub velocities: Vec<f64>,
 }
 
 impl CrisisRecord {
@@ -350,6 +379,24 @@ impl CrisisRecord {
                     passes: s.passes,
                     outside_by: s.outside_by,
                     to_stable_manifold: s.to_stable_manifold.iter().map(|&(a, d)| [a, d]).collect(),
+                    tangency: s.tangency.as_ref().map(|t| TangencyRecord {
+                        embedded: EmbeddedRecord {
+                            n: t.embedded.n,
+                            k: t.embedded.k,
+                            phases: t
+                                .embedded
+                                .phases
+                                .iter()
+                                .map(|p| p.rem_euclid(1.0))
+                                .collect(),
+                            velocities: t.embedded.velocities.clone(),
+                        },
+                        between: [t.between.0, t.between.1],
+                        apart: t.apart,
+                        also: t.also.clone(),
+                        tried: t.tried,
+                        in_closure: t.in_closure,
+                    }),
                 }),
             },
             Err(e) => CrisisRecord {

@@ -39,8 +39,10 @@
 //! [`crises`] does this for every crisis a continuation along α records.
 
 use crate::attractors::global::{Cause, ChangeKind, Continuation};
+use crate::attractors::tangency::{first_crossing, to_points, TOUCH_LENGTH, UNSTABLE_LENGTH};
 use crate::impact::Solver;
 use crate::map::{EventKind, ImpactMap, State};
+use crate::orbits::manifold::Kind;
 use crate::orbits::periodic::{cycle, CyclePoint};
 use crate::system::System;
 use crate::time::phase_distance;
@@ -92,61 +94,49 @@ pub struct CrisisSaddle {
     /// points there.
     pub outside_by: f64,
     /// The least distance from the attractor's sample to the saddle's stable manifold
-    /// (its piece through each point of the cycle, each branch [`TOUCH_LENGTH`] long): (α, distance) where the attractor was first
-    /// sampled below the bracket (or one continuation step below it), then at its lower
-    /// end.
+    /// (its piece through each point of the cycle, each branch [`TOUCH_LENGTH`] long):
+    /// (α, distance) where the attractor was first sampled below the bracket (or one
+    /// continuation step below it), then at its lower end; a value is left out where
+    /// the distance exceeds 0.02.
     /// At the crisis the attractor touches the stable manifold, so the distance falls
     /// towards 0 as α nears it.
     pub to_stable_manifold: Vec<(f64, f64)>,
+    /// Where the attractor's unstable manifold first crosses this saddle's stable
+    /// manifold as α rises (the saddle is then the one chosen so); None where no saddle
+    /// embedded in the attractor or no crossing was found, and the saddle is the one
+    /// nearest the attractor.
+    pub tangency: Option<Tangency>,
 }
 
-/// Arc length of each branch of the stable manifold the attractor's distance is
-/// measured to.
-pub const TOUCH_LENGTH: f64 = 1.0;
-
-/// The least distance from `sample` (points (t̂, v)) to the stable manifold of the
-/// saddle cycle `c` of `sys`: the piece through each of its points, [`TOUCH_LENGTH`]
-/// per branch; None if no piece can be grown.
-fn distance_to_stable_manifold(sys: &System, c: &CyclePoint, sample: &[(f64, f64)]) -> Option<f64> {
-    use crate::orbits::manifold::{manifold, segment_distance, Kind, ManifoldSpec};
-    let spec = ManifoldSpec {
-        length: TOUCH_LENGTH,
-        ..ManifoldSpec::default()
-    };
-    let mut best = f64::INFINITY;
-    let mut grown = false;
-    for i in 0..c.n {
-        // The cycle from its i-th launch: the piece of the manifold through it.
-        let Ok(ci) = cycle(sys, c.n, c.k, c.phases[i], c.velocities[i]) else {
-            continue;
-        };
-        let Ok(m) = manifold(sys, &ci, Kind::Stable, &spec) else {
-            continue;
-        };
-        grown = true;
-        for b in &m.branches {
-            for w in b.points.windows(2) {
-                // A segment in phase: both ends moved by the same whole period.
-                let shift = w[0][0].floor();
-                let (a, z) = ([w[0][0] - shift, w[0][1]], [w[1][0] - shift, w[1][1]]);
-                let mid = [0.5 * (a[0] + z[0]), 0.5 * (a[1] + z[1])];
-                let half = 0.5 * (z[0] - a[0]).hypot(z[1] - a[1]);
-                for &(t, v) in sample {
-                    // The sample point's copies one period either side, for segments
-                    // across the wrap; far ones skipped by the segment's half length.
-                    for p in [t - 1.0, t, t + 1.0] {
-                        let reach = best + half;
-                        if (p - mid[0]).powi(2) + (v - mid[1]).powi(2) > reach * reach {
-                            continue;
-                        }
-                        best = best.min(segment_distance([p, v], a, z));
-                    }
-                }
-            }
-        }
-    }
-    grown.then_some(best)
+/// The tangency a saddle was chosen by: the unstable manifold of a saddle embedded in
+/// the attractor ([`UNSTABLE_LENGTH`] per branch) against the stable manifolds of the
+/// [`TANGENCY_CANDIDATES`] saddles nearest the attractor ([`TOUCH_LENGTH`] per branch),
+/// both through every point of their cycles.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Tangency {
+    /// The embedded saddle, at the lower end.
+    pub embedded: CyclePoint,
+    /// The first crossing of any candidate's stable manifold: apart at `.0`, crossed
+    /// at `.1` (bisected to [`TANGENCY_TOLERANCE`]).
+    pub between: (f64, f64),
+    /// The distance between the two manifolds at the lower end of the crisis (None:
+    /// beyond 0.02).
+    pub apart: Option<f64>,
+    /// Other candidates crossed first in the same bracket, (n, k) each.
+    pub also: Vec<(usize, u32)>,
+    /// Candidates tried.
+    pub tried: usize,
+    /// Of them, those whose stable manifold the unstable manifold crosses already at
+    /// the lower end: in the attractor's closure, not on its boundary.
+    pub in_closure: usize,
 }
+
+/// Saddles nearest the attractor whose stable manifolds are tried for a tangency.
+pub const TANGENCY_CANDIDATES: usize = 4;
+/// Width of the bracket of the first crossing.
+pub const TANGENCY_TOLERANCE: f64 = 1e-8;
+/// The first crossing is looked for up to this many crisis-bracket widths above it.
+pub const TANGENCY_REACH: f64 = 128.0;
 
 /// A located crisis.
 #[derive(Clone, Debug, PartialEq)]
@@ -466,25 +456,72 @@ fn locate_above(
     }
     let at_lo = at(sys, lo);
     let considered = candidates.len();
-    let saddle = candidates
+    // Each at lo, with its distance from the attractor's sample there.
+    let mut placed: Vec<(CyclePoint, f64, CyclePoint, f64)> = candidates
         .into_iter()
         .filter_map(|(c, passes)| {
-            let outside_by = to_cycle(&continued(&at_lo, &c)?, sample.iter().copied());
-            (outside_by >= EMBEDDED).then_some(CrisisSaddle {
-                cycle: c,
-                passes,
-                outside_by,
-                to_stable_manifold: Vec::new(),
-            })
+            let cl = continued(&at_lo, &c)?;
+            let outside_by = to_cycle(&cl, sample.iter().copied());
+            Some((c, passes, cl, outside_by))
         })
-        .min_by(|a, b| a.outside_by.total_cmp(&b.outside_by));
+        .collect();
+    placed.sort_by(|a, b| a.3.total_cmp(&b.3));
+    let split = placed.partition_point(|p| p.3 < EMBEDDED);
+    let (embedded, boundary) = placed.split_at(split);
+    let tangency = embedded
+        .iter()
+        .min_by_key(|e| e.2.n)
+        .filter(|_| !boundary.is_empty())
+        .and_then(|e| {
+            let tried = &boundary[..boundary.len().min(TANGENCY_CANDIDATES)];
+            let cands: Vec<CyclePoint> = tried.iter().map(|b| b.2.clone()).collect();
+            let x = first_crossing(
+                &|a| at(sys, a),
+                &e.2,
+                UNSTABLE_LENGTH,
+                &cands,
+                (lo, hi),
+                TANGENCY_REACH * (hi - lo),
+                TANGENCY_TOLERANCE,
+            )?;
+            // Of those crossed first, the shortest cycle, then the nearest.
+            let chosen = *x.first.iter().min_by_key(|&&i| tried[i].2.n)?;
+            let t = Tangency {
+                embedded: e.2.clone(),
+                between: x.between,
+                apart: x.apart[chosen],
+                also: x
+                    .first
+                    .iter()
+                    .filter(|&&i| i != chosen)
+                    .map(|&i| (tried[i].2.n, tried[i].2.k))
+                    .collect(),
+                tried: tried.len(),
+                in_closure: x.in_closure.len(),
+            };
+            Some((chosen, t))
+        });
+    let saddle = match tangency {
+        Some((i, t)) => Some((i, Some(t))),
+        None => (!boundary.is_empty()).then_some((0, None)),
+    }
+    .map(|(i, tangency)| {
+        let (c, passes, _, outside_by) = boundary[i].clone();
+        CrisisSaddle {
+            cycle: c,
+            passes,
+            outside_by,
+            to_stable_manifold: Vec::new(),
+            tangency,
+        }
+    });
     // How close the attractor comes to the saddle's stable manifold, at lo and one
     // continuation step below.
     let saddle = saddle.map(|mut s| {
         let at_alpha = |alpha: f64, sample: &[(f64, f64)]| {
             let sys_a = at(sys, alpha);
             let cl = continued(&sys_a, &s.cycle)?;
-            distance_to_stable_manifold(&sys_a, &cl, sample).map(|d| (alpha, d))
+            to_points(&sys_a, &cl, Kind::Stable, TOUCH_LENGTH, sample).map(|d| (alpha, d))
         };
         let mut touches = Vec::new();
         if lo > sampled_at {
@@ -696,6 +733,34 @@ mod tests {
             touch[1].1 < touch[0].1 && touch[1].1 < s.outside_by,
             "{s:?}"
         );
+        // Chosen by a tangency: the unstable manifold of a saddle embedded in the
+        // attractor (within EMBEDDED of its sample) keeps off the chosen saddle's stable
+        // manifold at the lower end, as far as the sample does, and first crosses it
+        // above the bracket: finite manifolds bound the crisis from above.
+        let t = s.tangency.as_ref().expect("a tangency");
+        let [e0, e1] = t.embedded.multipliers;
+        assert!(
+            e0.im == 0.0 && (e0.re.abs() > 1.0) != (e1.re.abs() > 1.0),
+            "{t:?}"
+        );
+        let apart = t.apart.expect("apart at the lower end");
+        assert!(apart > 0.0 && apart <= touch[1].1 * 1.01, "{t:?} {touch:?}");
+        assert!(t.between.0 >= c.hi && t.between.1 - t.between.0 <= 2.0 * TANGENCY_TOLERANCE);
+        assert!(t.between.1 - c.hi < 1e-5, "{t:?}");
+        // Shorter manifolds reach fewer folds: the bound they give is higher.
+        let e = continued(&at(&sys, c.lo), &t.embedded).unwrap();
+        let named = continued(&at(&sys, c.lo), &s.cycle).unwrap();
+        let short = first_crossing(
+            &|a| at(&sys, a),
+            &e,
+            UNSTABLE_LENGTH / 3.0,
+            &[named],
+            (c.lo, c.hi),
+            TANGENCY_REACH * (c.hi - c.lo),
+            TANGENCY_TOLERANCE,
+        )
+        .expect("a crossing with shorter manifolds");
+        assert!(short.between.0 >= t.between.0, "{short:?} {t:?}");
         // A second method: orbits from the paper's start (not the sampled states), with
         // sticking as the sign of leaving (the attractor has none): below the bracket
         // none in 2·10⁶ events, above it one within them.

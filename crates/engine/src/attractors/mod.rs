@@ -32,6 +32,7 @@ pub mod lyapunov;
 pub mod sampled;
 pub mod separation;
 pub mod statistics;
+pub mod tangency;
 
 use crate::impact::Solver;
 use crate::limits;
