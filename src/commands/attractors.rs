@@ -231,7 +231,13 @@ fn crisis_text(cont: &Continuation, ls: &[Located], alpha: &dyn Fn(f64) -> Strin
                             let d: Vec<String> = s
                                 .to_stable_manifold
                                 .iter()
-                                .map(|&(a, d)| format!("{d:.1e} at α {}", shortest(a)))
+                                .map(|&(a, d)| {
+                                    // α to the bracket's digits (the grid's values carry
+                                    // rounding past them).
+                                    let a = format!("{a:.digits$}");
+                                    let a = a.trim_end_matches('0').trim_end_matches('.');
+                                    format!("{d:.1e} at α {a}")
+                                })
                                 .collect();
                             out.push(format!(
                                 "    the attractor's sampled points come within {} of the saddle's stable manifold",
