@@ -24,17 +24,20 @@
 //!   leave. The output says how many events each start stayed.
 //! * **The saddle.** The path of a leaving orbit, from its last event in the
 //!   neighbourhood on, shadows the saddle it leaves through, a saddle cycle at `hi`
-//!   (real multipliers, one outside and one inside the unit circle). Every event of the path seeds Newton's method for cycles of up to
-//!   [`MAX_SADDLE_EVENTS`] events (k the periods the path itself takes); of the saddles
-//!   found, those within [`EMBEDDED`] of the attractor's sample at `lo` lie on the
-//!   attractor and are left out; of the others, the one nearest the attractor names the
-//!   crisis. At the crisis the attractor touches the saddle's stable manifold, so the
-//!   saddle is in its closure: just below it the saddle lies next to the attractor, and
-//!   an orbit through the hole the crisis opens follows the stable manifold to it and
-//!   leaves along its unstable manifold. Both distances are reported: from the
-//!   attractor's sample at `lo`, and the leaving orbits' closest pass. The choice is
-//!   evidence, not proof: the basin boundary holds many saddles, and a sample only
-//!   approaches the attractor's tips.
+//!   (real multipliers, one outside and one inside the unit circle). Every event of the
+//!   path seeds Newton's method for cycles of up to [`MAX_SADDLE_EVENTS`] events (k the
+//!   periods the path itself takes). Of the saddles found, those within [`EMBEDDED`] of
+//!   the attractor's sample at `lo` lie on the attractor (its cascade's cycles). Which
+//!   of the others names the crisis is decided by the tangency a boundary crisis is
+//!   ([`crate::attractors::tangency`]): the unstable manifold of the shortest embedded
+//!   saddle against the stable manifolds of the [`TANGENCY_CANDIDATES`] saddles nearest
+//!   the attractor; those it crosses already at `lo` are in the attractor's closure, and
+//!   of the rest the one it first crosses as α rises names the crisis. Where no saddle
+//!   is embedded or none is crossed, the nearest the attractor does. Reported besides:
+//!   the saddle's distance from the attractor's sample at `lo`, the leaving orbits'
+//!   closest pass, and the sample's distance from its stable manifold. The choice is
+//!   evidence, not proof: the basin boundary holds many saddles, whose stable manifolds
+//!   lie close together, and finite manifolds reach only their first folds.
 //!
 //! [`crises`] does this for every crisis a continuation along α records.
 
