@@ -234,8 +234,7 @@ fn crisis_text(cont: &Continuation, ls: &[Located], alpha: &dyn Fn(f64) -> Strin
                                 .map(|&(a, d)| {
                                     // α to the bracket's digits (the grid's values carry
                                     // rounding past them).
-                                    let a = format!("{a:.digits$}");
-                                    let a = a.trim_end_matches('0').trim_end_matches('.');
+                                    let a = crate::output::text::decimals(a, digits);
                                     format!("{d:.1e} at α {a}")
                                 })
                                 .collect();
@@ -387,11 +386,7 @@ fn text(cont: &Continuation, joins: &[Join], crises: Option<&[Located]>) -> Vec<
     let spec = cont.spec();
     let steps = cont.steps();
     let decimals = alpha_decimals(spec);
-    let shortest = |x: f64| {
-        let s = format!("{x:.decimals$}");
-        let s = s.trim_end_matches('0');
-        s.strip_suffix('.').unwrap_or(s).to_string()
-    };
+    let shortest = |x: f64| crate::output::text::decimals(x, decimals);
     let mut out = vec![format!("attractors along alpha: {}", title(spec))];
     if !joins.is_empty() {
         out.push(format!(

@@ -20,6 +20,16 @@ pub fn shortest(x: f64) -> String {
     bouncemap_engine::fmt_value(x)
 }
 
+/// `x` to `decimals` decimals, trailing zeros (and a bare point) trimmed.
+pub fn decimals(x: f64, decimals: usize) -> String {
+    let s = format!("{x:.decimals$}");
+    if decimals == 0 {
+        return s;
+    }
+    let s = s.trim_end_matches('0');
+    s.strip_suffix('.').unwrap_or(s).to_string()
+}
+
 /// An enclosure as `mid ± radius` (the interval [mid − radius, mid + radius] contains
 /// it): the middle to the digits its width leaves, the radius rounded up to two digits;
 /// a thin interval as its one value.

@@ -627,11 +627,10 @@ pub fn fmt_num(x: f64) -> String {
     if a >= 1e7 || (a != 0.0 && a < 1e-4) {
         return shortest(x);
     }
-    let s = format!("{x:.6}");
-    let s = s.trim_end_matches('0').trim_end_matches('.');
+    let s = crate::output::text::decimals(x, 6);
     if s == "-0" {
         "0".into()
     } else {
-        s.to_string()
+        s
     }
 }

@@ -42,7 +42,9 @@
 //! [`crises`] does this for every crisis a continuation along α records.
 
 use crate::attractors::global::{Cause, ChangeKind, Continuation};
-use crate::attractors::tangency::{first_crossing, to_points, TOUCH_LENGTH, UNSTABLE_LENGTH};
+use crate::attractors::tangency::{
+    continued, first_crossing, to_points, TOUCH_LENGTH, UNSTABLE_LENGTH,
+};
 use crate::impact::Solver;
 use crate::map::{EventKind, ImpactMap, State};
 use crate::orbits::manifold::Kind;
@@ -672,11 +674,6 @@ fn to_cycle(c: &CyclePoint, points: impl IntoIterator<Item = (f64, f64)>) -> f64
                 .map(move |(&ct, &cv)| phase_distance(t, ct.rem_euclid(1.0)).hypot(v - cv))
         })
         .fold(f64::INFINITY, f64::min)
-}
-
-/// The cycle `c` continued by Newton's method to the α of `sys`, from its launch.
-fn continued(sys: &System, c: &CyclePoint) -> Option<CyclePoint> {
-    cycle(sys, c.n, c.k, c.phases[c.n - 1], c.velocities[c.n - 1]).ok()
 }
 
 /// The cycle `c` as its shortest period: if its events repeat after m < n events (and

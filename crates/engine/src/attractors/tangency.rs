@@ -32,22 +32,16 @@ const REACH: f64 = 0.02;
 /// A segment in (t̂, v).
 type Segment = ([f64; 2], [f64; 2]);
 
-/// The segments of one manifold of the cycle `c`, through each of the points `at` of
-/// it (indices), each branch `length` long; None where no piece can be grown.
-pub(crate) fn segments(
-    sys: &System,
-    c: &CyclePoint,
-    at: &[usize],
-    kind: Kind,
-    length: f64,
-) -> Option<Vec<Segment>> {
+/// The segments of one manifold of the cycle `c`, through each of its points, each
+/// branch `length` long; None where no piece can be grown.
+fn segments(sys: &System, c: &CyclePoint, kind: Kind, length: f64) -> Option<Vec<Segment>> {
     let spec = ManifoldSpec {
         length,
         ..ManifoldSpec::default()
     };
-    let pieces: Vec<Vec<Segment>> = at
-        .par_iter()
-        .filter_map(|&i| {
+    let pieces: Vec<Vec<Segment>> = (0..c.n)
+        .into_par_iter()
+        .filter_map(|i| {
             // The cycle from its i-th launch: the piece through that point.
             let ci = cycle(sys, c.n, c.k, c.phases[i], c.velocities[i]).ok()?;
             let m = manifold(sys, &ci, kind, &spec).ok()?;
@@ -151,8 +145,7 @@ pub(crate) fn to_points(
     length: f64,
     points: &[(f64, f64)],
 ) -> Option<f64> {
-    let all: Vec<usize> = (0..c.n).collect();
-    let m = Binned::new(&segments(sys, c, &all, kind, length)?);
+    let m = Binned::new(&segments(sys, c, kind, length)?);
     let points: Vec<Segment> = points.iter().map(|&(t, v)| ([t, v], [t, v])).collect();
     m.distance(&points)
 }
@@ -173,9 +166,9 @@ pub struct Crossing {
     pub in_closure: Vec<usize>,
 }
 
-/// The cycle `c` at the α of `sys`, by Newton's method from its first point.
-fn moved(sys: &System, c: &CyclePoint) -> Option<CyclePoint> {
-    cycle(sys, c.n, c.k, c.phases[0], c.velocities[0]).ok()
+/// The cycle `c` continued by Newton's method to the α of `sys`, from its launch.
+pub(crate) fn continued(sys: &System, c: &CyclePoint) -> Option<CyclePoint> {
+    cycle(sys, c.n, c.k, c.phases[c.n - 1], c.velocities[c.n - 1]).ok()
 }
 
 /// What the unstable manifold does with a candidate's stable manifold at one α.
@@ -197,15 +190,13 @@ fn crossed(
     length: f64,
     candidates: &[CyclePoint],
 ) -> Option<Vec<Seen>> {
-    let e = moved(sys, embedded)?;
-    let all: Vec<usize> = (0..e.n).collect();
-    let wu = Binned::new(&segments(sys, &e, &all, Kind::Unstable, length)?);
+    let e = continued(sys, embedded)?;
+    let wu = Binned::new(&segments(sys, &e, Kind::Unstable, length)?);
     let seen = |c: &CyclePoint| {
-        let Some(at) = moved(sys, c) else {
+        let Some(at) = continued(sys, c) else {
             return Seen::Lost;
         };
-        let all: Vec<usize> = (0..at.n).collect();
-        match segments(sys, &at, &all, Kind::Stable, TOUCH_LENGTH) {
+        match segments(sys, &at, Kind::Stable, TOUCH_LENGTH) {
             None => Seen::Lost,
             Some(ws) => match wu.distance(&ws) {
                 Some(0.0) => Seen::Crossed,
