@@ -5,7 +5,8 @@
 # a minute and Fig. 4 about five (values that never settle run the whole transient);
 # the (α, D) plane after them, about 8 s with its curves, the curves figure about 5 s,
 # the attractors along α about 5 s, the manifolds over the basins about 1 s and the
-# crisis of the sine's two-band attractor about 20 s.
+# crises of the sine's two-band attractor (its jump in size and its destruction) about
+# 90 s.
 set -eu
 cd "$(dirname "$0")/../.."
 cargo build --release --locked

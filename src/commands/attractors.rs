@@ -20,11 +20,13 @@ use crate::output::records::{
 use crate::output::sink::Sink;
 use crate::output::text::shortest;
 use bouncemap_engine::attractors::crisis::{
-    crises, CrisisSpec, Located, Tangency, EMBEDDED, MAX_SADDLE_EVENTS, TANGENCY_CANDIDATES,
+    crises, CrisisSpec, Located, Sighting, Tangency, EMBEDDED, MAX_SADDLE_EVENTS,
+    TANGENCY_CANDIDATES,
 };
 use bouncemap_engine::attractors::global::{
-    Cause, ChangeKind, Continuation, GlobalSpec, Join, MATCH_DISTANCE,
+    ChangeKind, Continuation, GlobalSpec, Join, MATCH_DISTANCE,
 };
+use bouncemap_engine::attractors::jumps::JUMP_RATIO;
 use bouncemap_engine::attractors::tangency::UNSTABLE_LENGTH;
 use bouncemap_engine::jobs::{Control, Executor, Progress as JobProgress};
 use bouncemap_engine::EventKind;
@@ -102,29 +104,23 @@ pub fn run(run: &AttractorsRun) -> anyhow::Result<()> {
 /// Locate every crisis of `cont` (the engine's [`crises`]), saying on stderr which.
 pub fn locate_crises(cont: &Continuation) -> Vec<Located> {
     let steps = cont.steps();
-    let changes = cont.changes();
     let spec = CrisisSpec::default();
-    let mut n = 0;
+    eprintln!("bouncemap: measuring the size of every chaotic attractor, for jumps");
     crises(
         cont,
         &spec,
-        &mut |i, total| {
-            n = total;
-            let c = changes
-                .iter()
-                .filter(|c| {
-                    matches!(c.what, ChangeKind::Death { .. }) && c.cause == Some(Cause::Crisis)
-                })
-                .nth(i);
-            if let Some(c) = c {
-                eprintln!(
-                    "bouncemap: locating crisis {} of {n}: attractor {} between alpha {} and {}",
-                    i + 1,
-                    c.track + 1,
-                    shortest(steps[c.step - 1].alpha),
-                    shortest(steps[c.step].alpha)
-                );
-            }
+        &mut |i, n, track, step, sighting| {
+            eprintln!(
+                "bouncemap: locating crisis {} of {n}: attractor {} {} between alpha {} and {}",
+                i + 1,
+                track + 1,
+                match sighting {
+                    Sighting::Destroyed { .. } => "gone",
+                    Sighting::Jump(_) => "jumps in size",
+                },
+                shortest(steps[step - 1].alpha),
+                shortest(steps[step].alpha)
+            );
         },
         &mut |_| false,
     )
@@ -140,7 +136,7 @@ fn tangency_text(t: &Tangency, hi: f64) -> String {
         format!(" (and, in the same bracket, that of {})", names.join(", "))
     };
     format!(
-        "    the unstable manifold of the saddle ({}, {}) in the attractor (t̂ = {:.6}, v = {:.6}; each branch {} long) is {} from the saddle's stable manifold at the lower end and first crosses it at α in [{:.10}, {:.10}]{also}, {:.1e} above the crisis' upper end (an upper bound: longer manifolds reach folds nearer the crisis); {}",
+        "    the unstable manifold of the saddle ({}, {}) in the attractor (t̂ = {:.6}, v = {:.6}; each branch {} long) is {} from the saddle's stable manifold at the lower end and first crosses it at α in [{:.10}, {:.10}]{also}, {}; {}",
         e.n,
         e.k,
         e.phases[0].rem_euclid(1.0),
@@ -149,9 +145,17 @@ fn tangency_text(t: &Tangency, hi: f64) -> String {
         t.apart.map_or("over 0.02".to_string(), |d| format!("{d:.1e}")),
         t.between.0,
         t.between.1,
-        t.between.1 - hi,
+        if t.between.1 > hi {
+            format!("{:.1e} above the crisis' upper end (an upper bound: longer manifolds reach folds nearer the crisis)", t.between.1 - hi)
+        } else {
+            "within the crisis' bracket".to_string()
+        },
         match t.in_closure {
             0 => format!("it crosses none of the {} saddles tried at the lower end", t.tried),
+            1 => format!(
+                "of the {} saddles tried, 1 has a stable manifold it crosses already at the lower end (in the attractor's closure, not on its boundary)",
+                t.tried
+            ),
             c => format!(
                 "of the {} saddles tried, {c} have stable manifolds it crosses already at the lower end (in the attractor's closure, not on its boundary)",
                 t.tried
@@ -165,27 +169,38 @@ fn crisis_text(cont: &Continuation, ls: &[Located], alpha: &dyn Fn(f64) -> Strin
     let spec = CrisisSpec::default();
     let mut out = vec![String::new()];
     if ls.is_empty() {
-        out.push("crises: none (no chaotic attractor is gone without a local bifurcation)".into());
+        out.push("crises: none (no chaotic attractor is gone without a local bifurcation, and none jumps in size)".into());
         return out;
     }
     out.push(format!(
-        "crises (each located by bisection in α to {}: at the lower end orbits from {} points of the attractor all stay within {} of it for {} events, at the upper end one leaves; the saddle is, of the saddle cycles the leaving orbits pass outside the attractor, the one whose stable manifold the unstable manifold of a saddle embedded in it first crosses as α rises, of the {TANGENCY_CANDIDATES} nearest it, else the nearest):",
+        "crises (each located by bisection in α to {}: at the lower end orbits from {} points of the attractor all stay within {} of it for {} events, at the upper end one leaves; the saddle is, of the saddle cycles the leaving orbits pass outside the attractor, the one whose stable manifold the unstable manifold of a saddle embedded in it first crosses as α rises, of the {TANGENCY_CANDIDATES} nearest it, else the nearest; a jump in size is one of the range of launch velocities of {} events by over {} times its drift between neighbouring values, located with the attractor's neighbourhood a third of the jump):",
         shortest(spec.tolerance),
         spec.runs,
         shortest(spec.radius),
-        spec.events
+        spec.events,
+        spec.sample,
+        shortest(JUMP_RATIO),
     ));
     let steps = cont.steps();
     for l in ls {
-        let c = &cont.changes()[l.change];
-        let (a, b) = (steps[c.step - 1].alpha, steps[c.step].alpha);
+        let (a, b) = (steps[l.step - 1].alpha, steps[l.step].alpha);
         let n = l.track + 1;
-        match &l.result {
-            Err(e) => out.push(format!(
-                "  attractor {n} (gone between α {} and {}): not located: {e}",
+        let seen = match &l.sighting {
+            Sighting::Destroyed { .. } => format!("gone between α {} and {}", alpha(a), alpha(b)),
+            Sighting::Jump(j) => format!(
+                "its launch velocities span [{:.6}, {:.6}] at α {} and [{:.6}, {:.6}] at α {}: grown by {:.1e}, {:.1} times its drift between neighbouring values",
+                j.before.0,
+                j.before.1,
                 alpha(a),
-                alpha(b)
-            )),
+                j.after.0,
+                j.after.1,
+                alpha(b),
+                j.grows_by,
+                j.grows_by / j.drift
+            ),
+        };
+        match &l.result {
+            Err(e) => out.push(format!("  attractor {n} ({seen}): not located: {e}")),
             Ok(x) => {
                 let digits = (-(x.hi - x.lo).max(1e-16).log10()).ceil() as usize + 1;
                 let left: Vec<String> = x
@@ -193,17 +208,27 @@ fn crisis_text(cont: &Continuation, ls: &[Located], alpha: &dyn Fn(f64) -> Strin
                     .iter()
                     .map(|e| e.map_or("never".to_string(), |k| k.to_string()))
                     .collect();
-                out.push(format!(
-                    "  attractor {n}: destroyed at α in [{:.digits$}, {:.digits$}] (width {:.1e}); at the upper end its orbits leave after {} events ({} first)",
-                    x.lo,
-                    x.hi,
-                    x.hi - x.lo,
-                    left.join(", "),
-                    match x.left_by {
-                        EventKind::Stick => "sticking",
-                        _ => "an impact outside",
-                    }
-                ));
+                let first = match x.left_by {
+                    EventKind::Stick => "sticking",
+                    _ => "an impact outside",
+                };
+                out.push(match &l.sighting {
+                    Sighting::Destroyed { .. } => format!(
+                        "  attractor {n}: destroyed at α in [{:.digits$}, {:.digits$}] (width {:.1e}); at the upper end its orbits leave after {} events ({first} first)",
+                        x.lo,
+                        x.hi,
+                        x.hi - x.lo,
+                        left.join(", "),
+                    ),
+                    Sighting::Jump(_) => format!(
+                        "  attractor {n}: jumps in size at α in [{:.digits$}, {:.digits$}] (width {:.1e}), an interior crisis: it goes on, larger ({seen}); at the upper end its orbits leave its neighbourhood at the lower end (cells of {:.1e}) after {} events ({first} first)",
+                        x.lo,
+                        x.hi,
+                        x.hi - x.lo,
+                        x.radius,
+                        left.join(", "),
+                    ),
+                });
                 match &x.saddle {
                     Some(s) => {
                         let [m0, m1] = s.cycle.multipliers;

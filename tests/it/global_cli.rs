@@ -311,25 +311,132 @@ fn many_one_start_attractors_are_called_likely_transients() {
     assert!(!cubic.contains("likely transients"), "{cubic}");
 }
 
-#[test]
-fn attractors_crises_locate_the_sines_crisis_and_name_a_saddle_cycle_of_the_map() {
-    // The sine's two-band chaotic attractor after its (1, 1) cascade is destroyed near
-    // α = 0.03179 (guide: saddles, manifolds and crises).
+/// `attractors --crises` on the sine (r = 0.8) over `alpha` in `steps` values, json:
+/// its crises.
+fn sine_crises(alpha: &str, steps: &str, grid: &str) -> Vec<serde_json::Value> {
     let d = crate::cli::json(&[
         "attractors",
         "--table",
         "sine",
         "--alpha",
-        "0.03177..0.03181",
+        alpha,
         "--steps",
-        "5",
+        steps,
         "--grid",
-        "20x20",
+        grid,
         "--crises",
         "--format",
         "json",
     ]);
-    let crises = d["crises"].as_array().expect("crises with --crises");
+    d["crises"]
+        .as_array()
+        .expect("crises with --crises")
+        .clone()
+}
+
+/// `orbit` of the sine (r = 0.8) at α from (t0, v0), `bounces` events, as csv.
+fn sine_orbit(alpha: f64, t0: f64, v0: f64, bounces: u64) -> String {
+    crate::cli::ok(&[
+        "orbit",
+        "--table",
+        "sine",
+        "--alpha",
+        &alpha.to_string(),
+        "--t0",
+        &t0.to_string(),
+        "--v0",
+        &v0.to_string(),
+        "--bounces",
+        &bounces.to_string(),
+        "--format",
+        "csv",
+    ])
+}
+
+/// A cycle of the output ({n, k, phases, velocities}) is a cycle of the exact map of
+/// the sine at α: `orbit` from its point returns after n events, k periods on.
+fn is_cycle(x: &serde_json::Value, alpha: f64) {
+    let (n, k) = (x["n"].as_u64().unwrap(), x["k"].as_u64().unwrap());
+    let (t0, v0) = (
+        x["phases"][0].as_f64().unwrap(),
+        x["velocities"][0].as_f64().unwrap(),
+    );
+    let csv = sine_orbit(alpha, t0, v0, n);
+    let last = csv.lines().last().unwrap();
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    let col = |name: &str| {
+        let i = header.iter().position(|h| *h == name).unwrap();
+        last.split(',').nth(i).unwrap().parse::<f64>().unwrap()
+    };
+    // Back at its launch k periods on (the start is at period 0).
+    let back = col("period") + col("phase") - t0;
+    assert!((back - k as f64).abs() < 1e-9, "{last}");
+    assert!((col("v") - v0).abs() < 1e-9, "{last}");
+}
+
+/// One saddle: one multiplier outside the unit circle, one inside.
+fn is_saddle(x: &serde_json::Value) {
+    let m: Vec<f64> = x["multipliers"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|z| z[0].as_f64().unwrap().abs())
+        .collect();
+    assert!((m[0] > 1.0) != (m[1] > 1.0), "{m:?}");
+}
+
+#[test]
+fn attractors_crises_locate_the_sines_jump_in_size_as_an_interior_crisis() {
+    // After the sine's (1, 1) cascade (r = 0.8) the chaotic attractor grows abruptly
+    // between α = 0.03175 and 0.03176: its launch velocities reach 2·10⁻³ lower, and
+    // it goes on (guide: saddles, manifolds and crises).
+    let crises = sine_crises("0.03174..0.03177", "4", "12x12");
+    let c = crises
+        .iter()
+        .find(|c| c["seen"] == "jump")
+        .expect("a jump in size");
+    assert_eq!(c["located"], true, "{c}");
+    let (lo, hi) = (c["lo"].as_f64().unwrap(), c["hi"].as_f64().unwrap());
+    assert!(hi - lo <= 1e-6 && lo >= 0.03175 && hi <= 0.03176, "{c}");
+    let before = c["jump"]["before"][0].as_f64().unwrap();
+    // A second method: the orbit from the paper's start, 2·10⁵ impacts after 2·10⁴,
+    // stays above the old attractor's lowest velocity (less its drift) 2·10⁻⁶ below
+    // the bracket, and reaches 10⁻³ below it 2·10⁻⁶ above.
+    let lowest = |alpha: f64| {
+        let csv = sine_orbit(alpha, 0.25, 0.5, 220_000);
+        let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+        let (i, v) = (
+            header.iter().position(|h| *h == "index").unwrap(),
+            header.iter().position(|h| *h == "v").unwrap(),
+        );
+        csv.lines()
+            .skip(1)
+            .filter(|l| !l.starts_with('#'))
+            .map(|l| l.split(',').collect::<Vec<_>>())
+            .filter(|f| f[i].parse::<u64>().unwrap() >= 20_000)
+            .map(|f| f[v].parse::<f64>().unwrap())
+            .fold(f64::INFINITY, f64::min)
+    };
+    assert!(lowest(lo - 2e-6) > before - 3e-4, "{c}");
+    assert!(lowest(hi + 2e-6) < before - 1e-3, "{c}");
+    // Named by a saddle of the map at the upper end, outside the attractor; the
+    // tangency of the embedded saddle's unstable manifold with its stable manifold lies
+    // within 10⁻⁷ of the bracket (an upper bound on the crisis).
+    let s = &c["saddle"];
+    is_cycle(s, hi);
+    is_saddle(s);
+    assert!(s["outside_by"].as_f64().unwrap() >= 1e-3, "{s}");
+    let t = &s["tangency"];
+    let cross = t["between"][1].as_f64().unwrap();
+    assert!(cross >= lo && cross - hi < 1e-7, "{t}");
+    is_cycle(&t["embedded"], lo);
+}
+
+#[test]
+fn attractors_crises_locate_the_sines_crisis_and_name_a_saddle_cycle_of_the_map() {
+    // The sine's two-band chaotic attractor after its (1, 1) cascade is destroyed near
+    // α = 0.03179 (guide: saddles, manifolds and crises).
+    let crises = sine_crises("0.03177..0.03181", "5", "20x20");
     let c = crises
         .iter()
         .find(|c| c["located"] == true)
@@ -340,40 +447,6 @@ fn attractors_crises_locate_the_sines_crisis_and_name_a_saddle_cycle_of_the_map(
     // where the continuation's last value was a long transient already).
     let between = c["between"].as_array().unwrap();
     assert!(hi <= between[1].as_f64().unwrap(), "{c}");
-    // A cycle of the output ({n, k, phases, velocities}) is a cycle of the exact map at
-    // α: `orbit` from its point returns after n events, k periods on.
-    let is_cycle = |x: &serde_json::Value, alpha: f64| {
-        let (n, k) = (x["n"].as_u64().unwrap(), x["k"].as_u64().unwrap());
-        let (t0, v0) = (
-            x["phases"][0].as_f64().unwrap(),
-            x["velocities"][0].as_f64().unwrap(),
-        );
-        let csv = crate::cli::ok(&[
-            "orbit",
-            "--table",
-            "sine",
-            "--alpha",
-            &alpha.to_string(),
-            "--t0",
-            &t0.to_string(),
-            "--v0",
-            &v0.to_string(),
-            "--bounces",
-            &n.to_string(),
-            "--format",
-            "csv",
-        ]);
-        let last = csv.lines().last().unwrap();
-        let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
-        let col = |name: &str| {
-            let i = header.iter().position(|h| *h == name).unwrap();
-            last.split(',').nth(i).unwrap().parse::<f64>().unwrap()
-        };
-        // Back at its launch k periods on (the start is at period 0).
-        let back = col("period") + col("phase") - t0;
-        assert!((back - k as f64).abs() < 1e-9, "{last}");
-        assert!((col("v") - v0).abs() < 1e-9, "{last}");
-    };
     // The saddle is one at the upper end.
     let s = &c["saddle"];
     is_cycle(s, hi);
@@ -390,13 +463,7 @@ fn attractors_crises_locate_the_sines_crisis_and_name_a_saddle_cycle_of_the_map(
     assert_eq!(touch.len(), 2, "{s}");
     assert!(touch[0].0 < touch[1].0 && touch[1].0 == lo, "{s}");
     assert!(touch[1].1 < touch[0].1 && touch[1].1 < outside, "{s}");
-    let m: Vec<f64> = s["multipliers"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|z| z[0].as_f64().unwrap().abs())
-        .collect();
-    assert!((m[0] > 1.0) != (m[1] > 1.0), "{m:?}");
+    is_saddle(s);
     // Chosen by a tangency: the embedded saddle's unstable manifold is apart from the
     // saddle's stable manifold at the lower end, no farther than the attractor's sample
     // (the manifold lies in the attractor), and first crosses it above the bracket.

@@ -13,7 +13,7 @@ use crate::labels::table_title;
 use crate::model::{
     Axis, Color, Corner, Dash, Figure, Layer, Legend, Marker, Panel, Swatch, COLUMN,
 };
-use bouncemap_engine::attractors::crisis::{Crisis, Located};
+use bouncemap_engine::attractors::crisis::{Crisis, Located, Sighting};
 use bouncemap_engine::attractors::global::{Cause, ChangeKind, Continuation, GlobalSpec, Member};
 use bouncemap_engine::fmt_value as shortest;
 
@@ -252,9 +252,10 @@ pub fn attractors_figure(cont: &Continuation) -> Figure {
     }
 }
 
-/// Mark the located crises `ls` on an attractors figure `fig`: a dashed
-/// vertical line in both panels at each crisis (the middle of its bracket), a legend
-/// entry naming the attractor, the bracket and the saddle, and a sentence of caption.
+/// Mark the located crises `ls` on an attractors figure `fig`: a vertical line in both
+/// panels at each crisis (the middle of its bracket), dashed where an attractor is
+/// destroyed and dotted where it jumps in size, a legend entry naming the attractor,
+/// the bracket and the saddle, and a sentence of caption.
 pub fn mark_crises(fig: &mut Figure, ls: &[Located]) {
     let found: Vec<(&Located, &Crisis)> = ls
         .iter()
@@ -263,6 +264,8 @@ pub fn mark_crises(fig: &mut Figure, ls: &[Located]) {
     if found.is_empty() {
         return;
     }
+    let jump = |l: &Located| matches!(l.sighting, Sighting::Jump(_));
+    let dash = |l: &Located| if jump(l) { Dash::Dotted } else { Dash::Dashed };
     for (k, panel) in fig.panels.iter_mut().enumerate() {
         let (lo, hi) = (panel.y.lo, panel.y.hi);
         for (l, c) in &found {
@@ -271,7 +274,7 @@ pub fn mark_crises(fig: &mut Figure, ls: &[Located]) {
                 name: format!("crisis of attractor {}", l.track + 1),
                 lines: vec![vec![[a, lo], [a, hi]]],
                 color: Color::BLACK,
-                dash: Dash::Dashed,
+                dash: dash(l),
                 width: 0.8,
             });
         }
@@ -283,18 +286,47 @@ pub fn mark_crises(fig: &mut Figure, ls: &[Located]) {
                         .as_ref()
                         .map(|s| format!(", saddle ({}, {})", s.cycle.n, s.cycle.k))
                         .unwrap_or_default();
+                    let what = if jump(l) { "jump" } else { "crisis" };
                     legend.entries.push((
-                        Swatch::line(Color::BLACK, Dash::Dashed),
-                        format!("crisis of {}: {}{saddle}", l.track + 1, crisis_alpha(c)),
+                        Swatch::line(Color::BLACK, dash(l)),
+                        format!("{what} of {}: {}{saddle}", l.track + 1, crisis_alpha(c)),
                     ));
                 }
             }
         }
     }
+    let destroyed = found.iter().filter(|(l, _)| !jump(l)).count();
+    let kinds = [
+        (
+            destroyed,
+            "dashed",
+            "the crisis where a chaotic attractor is destroyed",
+            "the crises where chaotic attractors are destroyed",
+        ),
+        (
+            found.len() - destroyed,
+            "dotted",
+            "an interior crisis, where a chaotic attractor jumps in size and goes on",
+            "interior crises, where chaotic attractors jump in size and go on",
+        ),
+    ];
+    let what: Vec<String> = kinds
+        .iter()
+        .filter(|k| k.0 > 0)
+        .map(|&(n, line, one, many)| format!("{line}, {}", if n == 1 { one } else { many }))
+        .collect();
     fig.caption.push(format!(
-        "Dashed: {}, each located by bisection in $\u{3b1}$ (orbits from points of the attractor stay below, leave above) and named by the saddle cycle the leaving orbits pass whose stable manifold the unstable manifold of a saddle in the attractor first crosses as $\u{3b1}$ rises (where none is crossed, the one nearest the attractor).",
-        if found.len() == 1 { "the crisis where a chaotic attractor is destroyed" } else { "the crises where chaotic attractors are destroyed" }
+        "{}; each located by bisection in $\u{3b1}$ (orbits from points of the attractor stay near it below, leave its neighbourhood above) and named by the saddle cycle the leaving orbits pass whose stable manifold the unstable manifold of a saddle in the attractor first crosses as $\u{3b1}$ rises (where none is crossed, the one nearest the attractor).",
+        capitalised(&what.join("; "))
     ));
+}
+
+/// `s` with its first letter a capital.
+fn capitalised(s: &str) -> String {
+    let mut c = s.chars();
+    c.next()
+        .map(|f| f.to_uppercase().chain(c).collect())
+        .unwrap_or_default()
 }
 
 /// A crisis's bracket for a legend: its middle, ± half its width.

@@ -84,9 +84,11 @@ pub struct AttractorsArgs {
     #[arg(long)]
     pub resume: bool,
     /// Locate each crisis: where a chaotic attractor is destroyed with no local
-    /// bifurcation, bisect α to 1e-6 (orbits on it stay 2·10⁶ events below, leave
-    /// above) and name the saddle the leaving orbits pass whose stable manifold the
-    /// attractor's unstable manifold first crosses (text and json; not with --shard).
+    /// bifurcation, or jumps in size (its range of velocities grows by over 4 times its
+    /// drift between neighbouring values: an interior crisis), bisect α to 1e-6 (orbits
+    /// on it stay near it 2·10⁶ events below, leave above) and name the saddle the
+    /// leaving orbits pass whose stable manifold the attractor's unstable manifold
+    /// first crosses (text and json; not with --shard).
     #[arg(long)]
     pub crises: bool,
     #[command(flatten)]

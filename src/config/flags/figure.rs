@@ -219,8 +219,9 @@ pub fn parse_saddle(s: &str) -> Result<SaddleChoice, String> {
 pub struct FigureAttractorsArgs {
     #[command(flatten)]
     pub spec: AttractorsSpecArgs,
-    /// Locate each crisis (as `attractors --crises`) and mark it: a dashed line at its α,
-    /// named by its saddle in the legend.
+    /// Locate each crisis (as `attractors --crises`) and mark it: a line at its α,
+    /// dashed where an attractor is destroyed, dotted where it jumps in size, named by
+    /// its saddle in the legend.
     #[arg(long)]
     pub crises: bool,
 }

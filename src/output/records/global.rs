@@ -2,7 +2,7 @@
 //! document), and the words for a member and a change that the text report uses too.
 
 use super::*;
-use bouncemap_engine::attractors::crisis::Located;
+use bouncemap_engine::attractors::crisis::{Located, Sighting};
 use bouncemap_engine::attractors::global::{Cause, Change, ChangeKind, Continuation, Join, Step};
 
 pub use bouncemap_figures::global::{cause_text, describe_member};
@@ -288,10 +288,18 @@ pub struct AttractorsDoc<'a> {
 /// A crisis located (json).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct CrisisRecord {
-    /// The attractor destroyed.
+    /// The attractor destroyed, or jumping in size.
     pub attractor: usize,
+    /// What the continuation saw: `destroyed` (gone with no local bifurcation, a
+    /// boundary crisis) or `jump` (grown abruptly, going on: an interior crisis).
+    pub seen: &'static str,
+    /// For a jump: its ranges of launch velocities at the two values.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub jump: Option<JumpRecord>,
     /// The two α values of the continuation it happens between.
     pub between: [f64; 2],
+    /// The side of the cells of the attractor's neighbourhood it was located with.
+    pub radius: Option<f64>,
     /// Whether it was located; if not, why.
     pub located: bool,
     pub reason: Option<String>,
@@ -304,6 +312,16 @@ pub struct CrisisRecord {
     /// The kind of a leaving orbit's first event outside: impact or stick.
     pub left_by: Option<&'static str>,
     pub saddle: Option<CrisisSaddleRecord>,
+}
+
+/// A jump in size (json): the attractor's range of launch velocities [min, max] at
+/// the two values, how far it grew and its drift between neighbouring values.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct JumpRecord {
+    pub before: [f64; 2],
+    pub after: [f64; 2],
+    pub grows_by: f64,
+    pub drift: f64,
 }
 
 /// The saddle of a crisis (json).
@@ -356,12 +374,23 @@ pub struct EmbeddedRecord {
 
 impl CrisisRecord {
     pub fn of(cont: &Continuation, l: &Located) -> CrisisRecord {
-        let c = &cont.changes()[l.change];
         let steps = cont.steps();
-        let between = [steps[c.step - 1].alpha, steps[c.step].alpha];
+        let between = [steps[l.step - 1].alpha, steps[l.step].alpha];
+        let jump = match &l.sighting {
+            Sighting::Jump(j) => Some(JumpRecord {
+                before: [j.before.0, j.before.1],
+                after: [j.after.0, j.after.1],
+                grows_by: j.grows_by,
+                drift: j.drift,
+            }),
+            Sighting::Destroyed { .. } => None,
+        };
         match &l.result {
             Ok(x) => CrisisRecord {
                 attractor: l.track + 1,
+                seen: l.sighting.name(),
+                jump,
+                radius: Some(x.radius),
                 between,
                 located: true,
                 reason: None,
@@ -401,6 +430,9 @@ impl CrisisRecord {
             },
             Err(e) => CrisisRecord {
                 attractor: l.track + 1,
+                seen: l.sighting.name(),
+                jump,
+                radius: None,
                 between,
                 located: false,
                 reason: Some(e.to_string()),

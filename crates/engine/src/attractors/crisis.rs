@@ -1,5 +1,5 @@
-//! Where a chaotic attractor is destroyed, and through which saddle: a boundary crisis
-//! located by bisection in α and named by its saddle.
+//! Where a chaotic attractor is destroyed or jumps in size, and through which saddle: a
+//! boundary or interior crisis located by bisection in α and named by its saddle.
 //!
 //! At a boundary crisis an attractor touches the stable manifold of a saddle on its
 //! basin boundary; past it, orbits on the attractor's remnant wander for a while, come
@@ -39,9 +39,14 @@
 //!   evidence, not proof: the basin boundary holds many saddles, whose stable manifolds
 //!   lie close together, and finite manifolds reach only their first folds.
 //!
-//! [`crises`] does this for every crisis a continuation along α records.
+//! [`crises`] does this for every crisis a continuation along α records, and for every
+//! chaotic attractor that jumps in size there ([`jumps`](super::jumps)): an interior
+//! crisis, where the attractor goes on, larger. Its neighbourhood is then made of
+//! cells a third of the jump ([`jump_radius`]), so that the orbits that reach the new
+//! part leave it; the rest is the same.
 
 use crate::attractors::global::{Cause, ChangeKind, Continuation};
+use crate::attractors::jumps::{jumps, sizes, Jump};
 use crate::attractors::tangency::{
     continued, first_crossing, to_points, TOUCH_LENGTH, UNSTABLE_LENGTH,
 };
@@ -152,6 +157,8 @@ pub struct Crisis {
     pub hi: f64,
     /// Events every start stayed at `lo`.
     pub stayed: u64,
+    /// The side of the cells of the attractor's neighbourhood ([`CrisisSpec::radius`]).
+    pub radius: f64,
     /// At `hi`: after how many events each start left (None: stayed).
     pub left_after: Vec<Option<u64>>,
     /// What a leaving orbit did next: the kind of its first event outside (a stick, or
@@ -544,6 +551,7 @@ fn locate_above(
         lo,
         hi,
         stayed: spec.events,
+        radius: spec.radius,
         left_after,
         left_by,
         saddle,
@@ -552,59 +560,119 @@ fn locate_above(
     })
 }
 
+/// What the continuation saw that may be a crisis.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Sighting {
+    /// A chaotic attractor gone between two values with no local bifurcation
+    /// ([`Cause::Crisis`]): destroyed, a boundary crisis. Its place in
+    /// [`Continuation::changes`].
+    Destroyed {
+        /// The change.
+        change: usize,
+    },
+    /// A chaotic attractor that jumps in size ([`jumps`](super::jumps)), going on: an
+    /// interior (or merging) crisis.
+    Jump(Jump),
+}
+
+impl Sighting {
+    /// Its name in every output: destroyed, jump.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Sighting::Destroyed { .. } => "destroyed",
+            Sighting::Jump(_) => "jump",
+        }
+    }
+}
+
 /// A crisis of a continuation, located (or why not).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Located {
-    /// Its place in [`Continuation::changes`].
-    pub change: usize,
-    /// The track of the attractor destroyed.
+    /// The track of the attractor.
     pub track: usize,
+    /// The first α value past it: its place in [`Continuation::steps`].
+    pub step: usize,
+    /// What was seen.
+    pub sighting: Sighting,
     /// The crisis.
     pub result: Result<Crisis, NoCrisis>,
 }
 
+/// The side of the neighbourhood's cells for a jump of `grows_by`: a third of it (an
+/// event outside the old attractor's cells and their neighbours is then in the new
+/// part), at most the spec's, and at least [`MIN_JUMP_RADIUS`].
+pub fn jump_radius(grows_by: f64, spec: &CrisisSpec) -> f64 {
+    (grows_by / 3.0).clamp(MIN_JUMP_RADIUS, spec.radius.max(MIN_JUMP_RADIUS))
+}
+
+/// The smallest cells an attractor's neighbourhood is made of for a jump: smaller ones
+/// are not covered by the sample (its gaps would count as leaving).
+pub const MIN_JUMP_RADIUS: f64 = 5e-4;
+
 /// Locate every crisis `cont` records: each chaotic attractor gone between two α values
 /// with no local bifurcation ([`Cause::Crisis`]), from its point at the last value it
-/// is seen at. `starting(i, n)` is told before the i-th of n.
+/// is seen at; and each chaotic attractor that jumps in size ([`jumps`](super::jumps)),
+/// from its point at the value below the jump, with the neighbourhood's cells matched
+/// to the jump ([`jump_radius`]). In order of α. `starting(i, n, track, step,
+/// sighting)` is told before the i-th of n.
 pub fn crises(
     cont: &Continuation,
     spec: &CrisisSpec,
-    starting: &mut dyn FnMut(usize, usize),
+    starting: &mut dyn FnMut(usize, usize, usize, usize, &Sighting),
     cancelled: &mut dyn FnMut(u64) -> bool,
 ) -> Vec<Located> {
     let steps = cont.steps();
-    let todo: Vec<(usize, usize, usize)> = cont
+    let mut todo: Vec<(usize, usize, Sighting)> = cont
         .changes()
         .iter()
         .enumerate()
         .filter(|(_, c)| {
             matches!(c.what, ChangeKind::Death { .. }) && c.cause == Some(Cause::Crisis)
         })
-        .map(|(i, c)| (i, c.track, c.step))
+        .map(|(i, c)| (c.track, c.step, Sighting::Destroyed { change: i }))
         .collect();
+    let sizes = sizes(cont, spec.warmup, spec.sample, cancelled);
+    todo.extend(
+        jumps(&sizes)
+            .into_iter()
+            .map(|j| (j.track, j.step, Sighting::Jump(j))),
+    );
+    todo.sort_by_key(|t| t.1);
     let sys = &cont.spec().sys;
     let mut out: Vec<Located> = Vec::new();
-    for (j, &(change, track, step)) in todo.iter().enumerate() {
-        starting(j, todo.len());
+    for (j, (track, step, sighting)) in todo.iter().enumerate() {
+        let (track, step) = (*track, *step);
+        starting(j, todo.len(), track, step, sighting);
         let (lo, hi) = (steps[step - 1].alpha, steps[step].alpha);
         let point = steps[step - 1]
             .members
             .iter()
             .find(|m| m.track == track)
             .and_then(|m| m.point);
-        // The nearest crisis located below this one.
-        let floor = out
-            .iter()
-            .filter_map(|l| l.result.as_ref().ok().map(|c| (c.hi, l.track)))
-            .filter(|&(h, _)| h <= lo)
-            .max_by(|a, b| a.0.total_cmp(&b.0));
-        let result = match point {
-            Some(p) => locate_above(sys, p, lo, hi, floor, spec, cancelled),
-            None => Err(NoCrisis::BadStart),
+        let result = match (point, sighting) {
+            (None, _) => Err(NoCrisis::BadStart),
+            (Some(p), Sighting::Destroyed { .. }) => {
+                // The nearest attractor destroyed below this one.
+                let floor = out
+                    .iter()
+                    .filter(|l| matches!(l.sighting, Sighting::Destroyed { .. }))
+                    .filter_map(|l| l.result.as_ref().ok().map(|c| (c.hi, l.track)))
+                    .filter(|&(h, _)| h <= lo)
+                    .max_by(|a, b| a.0.total_cmp(&b.0));
+                locate_above(sys, p, lo, hi, floor, spec, cancelled)
+            }
+            (Some(p), Sighting::Jump(jump)) => {
+                let matched = CrisisSpec {
+                    radius: jump_radius(jump.grows_by, spec),
+                    ..*spec
+                };
+                locate_above(sys, p, lo, hi, None, &matched, cancelled)
+            }
         };
         out.push(Located {
-            change,
             track,
+            step,
+            sighting: sighting.clone(),
             result,
         });
     }

@@ -27,6 +27,7 @@
 pub mod basins;
 pub mod crisis;
 pub mod global;
+pub mod jumps;
 pub mod known;
 pub mod lyapunov;
 pub mod sampled;
