@@ -640,25 +640,26 @@ fn the_quick_plane_figure_is_at_most_100_by_50_pixels_and_2e4_periods() {
 #[test]
 fn the_attractors_figure_stacks_fractions_to_one_and_doubles_at_alpha_pd() {
     let d = dir("attractors");
-    let (out, data) = (d.join("a.png"), d.join("a.json"));
-    ok(&bouncemap(&[
-        "figure",
-        "attractors",
-        "--table",
-        "cubic",
-        "--r",
-        "0.8",
-        "--alpha",
-        "0.475..0.495",
-        "--steps",
-        "5",
-        "--grid",
-        "20x20",
-        "--out",
-        s(&out),
-        "--data",
-        s(&data),
-    ]));
+    let (out, data, svg) = (d.join("a.png"), d.join("a.json"), d.join("a.svg"));
+    let draw = |more: &[&str]| {
+        let mut args = vec![
+            "figure",
+            "attractors",
+            "--table",
+            "cubic",
+            "--r",
+            "0.8",
+            "--alpha",
+            "0.475..0.495",
+            "--steps",
+            "5",
+            "--grid",
+            "20x20",
+        ];
+        args.extend_from_slice(more);
+        ok(&bouncemap(&args));
+    };
+    draw(&["--out", s(&out), "--data", s(&data)]);
     let fig = json(&data);
     let areas: Vec<&serde_json::Value> = fig["panels"][1]["series"]
         .as_array()
@@ -696,5 +697,13 @@ fn the_attractors_figure_stacks_fractions_to_one_and_doubles_at_alpha_pd() {
     assert_eq!((at(0.475), at(0.48)), (1, 1));
     assert_eq!((at(0.49), at(0.495)), (2, 2));
     assert!(std::fs::metadata(&out).unwrap().len() > 1000);
+    // The legend names it by what it is first and last: the (1, 1) cycle, then past
+    // α_PD the (2, 2) (the SVG keeps its text as text).
+    draw(&["--out", s(&svg)]);
+    let text = std::fs::read_to_string(&svg).unwrap();
+    assert!(
+        text.contains("periodic (1, 1) \u{2192} periodic (2, 2), 0.4750\u{2013}0.4950"),
+        "{text}"
+    );
     std::fs::remove_dir_all(&d).unwrap();
 }

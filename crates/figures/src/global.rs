@@ -81,6 +81,7 @@ pub fn attractors_figure(cont: &Continuation) -> Figure {
     let tracks = cont.tracks();
     let mut largest = vec![0.0f64; tracks.len()];
     let mut first_kind: Vec<Option<String>> = vec![None; tracks.len()];
+    let mut last_kind: Vec<Option<String>> = vec![None; tracks.len()];
     // A cycle's few events as discs; the many cells of an unsettled orbit as dots.
     let mut points: Vec<Vec<[f64; 2]>> = vec![Vec::new(); tracks.len()];
     let mut cells: Vec<Vec<[f64; 2]>> = vec![Vec::new(); tracks.len()];
@@ -92,6 +93,7 @@ pub fn attractors_figure(cont: &Continuation) -> Figure {
             to[m.track].extend(m.points.iter().map(|p| [s.alpha, p.0]));
             largest[m.track] = largest[m.track].max(m.fraction);
             first_kind[m.track].get_or_insert_with(|| describe_member(m));
+            last_kind[m.track] = Some(describe_member(m));
             colours[m.track] = colour(m.track, m);
         }
     }
@@ -215,7 +217,11 @@ pub fn attractors_figure(cont: &Continuation) -> Figure {
                 format!(
                     "{}: {}, {}\u{2013}{}, \u{2264}{:.0}%",
                     t + 1,
-                    first_kind[t].clone().unwrap_or_default(),
+                    // What it is first, and last where that differs.
+                    match (&first_kind[t], &last_kind[t]) {
+                        (Some(a), Some(b)) if a != b => format!("{a} \u{2192} {b}"),
+                        (a, _) => a.clone().unwrap_or_default(),
+                    },
                     alpha(steps[tr.first].alpha),
                     alpha(steps[tr.last].alpha),
                     100.0 * largest[t]
