@@ -42,13 +42,6 @@ static OUTPUTS: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
 /// Whether this run's results go to standard output.
 static STDOUT_IS_OUTPUT: AtomicBool = AtomicBool::new(false);
 
-fn register(p: &Path) {
-    TEMPORARIES
-        .lock()
-        .unwrap_or_else(|e| e.into_inner())
-        .push(p.to_path_buf());
-}
-
 fn unregister(p: &Path) {
     TEMPORARIES
         .lock()
@@ -113,11 +106,10 @@ pub fn clean_up_on_signals() -> io::Result<()> {
         .name("signals".into())
         .spawn(move || {
             if let Some(sig) = signals.forever().next() {
-                for p in TEMPORARIES
-                    .lock()
-                    .unwrap_or_else(|e| e.into_inner())
-                    .drain(..)
-                {
+                // The lock is held until the process ends, so no temporary is created
+                // after these are removed.
+                let mut temporaries = TEMPORARIES.lock().unwrap_or_else(|e| e.into_inner());
+                for p in temporaries.drain(..) {
                     let _ = std::fs::remove_file(p);
                 }
                 if [SIGTERM, SIGINT, SIGHUP].contains(&sig) {
@@ -223,13 +215,19 @@ impl AtomicFile {
         let mut attempt = 0u32;
         loop {
             let temp = dir.join(format!(".{name}.{}-{attempt}.tmp", std::process::id()));
-            match std::fs::OpenOptions::new()
+            // Created and registered under the lock the signal handler takes first: a
+            // signal between the two would otherwise leave the file behind.
+            let mut temporaries = TEMPORARIES.lock().unwrap_or_else(|e| e.into_inner());
+            let created = std::fs::OpenOptions::new()
                 .write(true)
                 .create_new(true)
-                .open(&temp)
-            {
+                .open(&temp);
+            if created.is_ok() {
+                temporaries.push(temp.clone());
+            }
+            drop(temporaries);
+            match created {
                 Ok(f) => {
-                    register(&temp);
                     // A file replaced keeps its permissions; a new one gets the umask's.
                     if let Ok(meta) = std::fs::metadata(&target) {
                         let _ = f.set_permissions(meta.permissions());
