@@ -20,13 +20,13 @@ use crate::output::records::{
 use crate::output::sink::Sink;
 use crate::output::text::shortest;
 use bouncemap_engine::attractors::crisis::{
-    crises, CrisisSpec, Located, Sighting, Tangency, EMBEDDED, MAX_SADDLE_EVENTS,
-    TANGENCY_CANDIDATES,
+    crises, CrisisSpec, Located, Sighting, Tangency, EMBEDDED, TANGENCY_CANDIDATES,
 };
 use bouncemap_engine::attractors::global::{
     ChangeKind, Continuation, GlobalSpec, Join, MATCH_DISTANCE,
 };
 use bouncemap_engine::attractors::jumps::JUMP_RATIO;
+use bouncemap_engine::attractors::saddles::MAX_SADDLE_EVENTS;
 use bouncemap_engine::attractors::tangency::UNSTABLE_LENGTH;
 use bouncemap_engine::jobs::{Control, Executor, Progress as JobProgress};
 use bouncemap_engine::EventKind;

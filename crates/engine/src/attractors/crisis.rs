@@ -24,9 +24,8 @@
 //!   leave. The output says how many events each start stayed.
 //! * **The saddle.** The path of a leaving orbit, from its last event in the
 //!   neighbourhood on, shadows the saddle it leaves through, a saddle cycle at `hi`
-//!   (real multipliers, one outside and one inside the unit circle). Every event of the
-//!   path seeds Newton's method for cycles of up to [`MAX_SADDLE_EVENTS`] events (k the
-//!   periods the path itself takes). Of the saddles found, those within [`EMBEDDED`] of
+//!   (real multipliers, one outside and one inside the unit circle): the saddles the
+//!   path passes ([`saddles`](super::saddles)). Of the saddles found, those within [`EMBEDDED`] of
 //!   the attractor's sample at `lo` lie on the attractor (its cascade's cycles). Which
 //!   of the others names the crisis is decided by the tangency a boundary crisis is
 //!   ([`crate::attractors::tangency`]): the unstable manifold of the shortest embedded
@@ -47,19 +46,17 @@
 
 use crate::attractors::global::{Cause, ChangeKind, Continuation};
 use crate::attractors::jumps::{jumps, sizes, Jump};
+use crate::attractors::saddles::{saddles_on, same_cycle, to_cycle};
 use crate::attractors::tangency::{
     continued, first_crossing, to_points, TOUCH_LENGTH, UNSTABLE_LENGTH,
 };
 use crate::impact::Solver;
 use crate::map::{EventKind, ImpactMap, State};
 use crate::orbits::manifold::Kind;
-use crate::orbits::periodic::{cycle, CyclePoint};
+use crate::orbits::periodic::CyclePoint;
 use crate::system::System;
-use crate::time::phase_distance;
 use std::collections::HashSet;
 
-/// The longest saddle cycle looked for on a leaving orbit's path, in events.
-pub const MAX_SADDLE_EVENTS: usize = 8;
 /// Events of a leaving orbit's path kept after its last event in the neighbourhood.
 const PATH_EVENTS: usize = 64;
 
@@ -683,87 +680,6 @@ pub fn crises(
 /// on the attractor (embedded in it, as the cycles of its cascade are), not on its
 /// basin boundary.
 pub const EMBEDDED: f64 = 1e-3;
-
-/// Whether two cycles are the same cycle (same (n, k), a common point).
-fn same_cycle(a: &CyclePoint, b: &CyclePoint) -> bool {
-    a.n == b.n
-        && a.k == b.k
-        && a.phases.iter().zip(&a.velocities).any(|(&t, &v)| {
-            phase_distance(t.rem_euclid(1.0), b.phases[0].rem_euclid(1.0)) < 1e-7
-                && (v - b.velocities[0]).abs() < 1e-7
-        })
-}
-
-/// The saddles a leaving orbit's path passes, each with the closest the path comes to
-/// one of its points. Every event of the path seeds Newton's method for (n, k) cycles,
-/// n ≤ [`MAX_SADDLE_EVENTS`], k the periods the path itself takes for n events from
-/// there; saddles (real multipliers, one outside and one inside the unit circle) are
-/// kept, each at its shortest period.
-fn saddles_on(sys: &System, path: &[(i64, f64, f64)]) -> Vec<(CyclePoint, f64)> {
-    let mut found: Vec<CyclePoint> = Vec::new();
-    for i in 0..path.len() {
-        for n in 1..=MAX_SADDLE_EVENTS.min(path.len() - 1 - i) {
-            let (a, b) = (path[i], path[i + n]);
-            let k = ((b.0 - a.0) as f64 + (b.1 - a.1)).round();
-            if !(1.0..=64.0).contains(&k) {
-                continue;
-            }
-            let Ok(c) = cycle(sys, n, k as u32, a.1, a.2) else {
-                continue;
-            };
-            let [x, y] = c.multipliers;
-            if !(x.im == 0.0 && y.im == 0.0 && (x.re.abs() > 1.0) != (y.re.abs() > 1.0)) {
-                continue;
-            }
-            let c = shortest(sys, c);
-            if !found.iter().any(|f| same_cycle(f, &c)) {
-                found.push(c);
-            }
-        }
-    }
-    found
-        .into_iter()
-        .map(|c| {
-            let passes = to_cycle(&c, path.iter().map(|&(_, t, v)| (t, v)));
-            (c, passes)
-        })
-        .collect()
-}
-
-/// The least distance (in (t̂, v), phases around the circle) from `points` to the
-/// points of the cycle `c`.
-fn to_cycle(c: &CyclePoint, points: impl IntoIterator<Item = (f64, f64)>) -> f64 {
-    points
-        .into_iter()
-        .flat_map(|(t, v)| {
-            c.phases
-                .iter()
-                .zip(&c.velocities)
-                .map(move |(&ct, &cv)| phase_distance(t, ct.rem_euclid(1.0)).hypot(v - cv))
-        })
-        .fold(f64::INFINITY, f64::min)
-}
-
-/// The cycle `c` as its shortest period: if its events repeat after m < n events (and
-/// k·m/n periods), the (m, k·m/n) cycle through its first point.
-fn shortest(sys: &System, c: CyclePoint) -> CyclePoint {
-    for m in 1..c.n {
-        if !c.n.is_multiple_of(m) || !(c.k as usize * m).is_multiple_of(c.n) {
-            continue;
-        }
-        let repeats = (0..c.n - m).all(|i| {
-            phase_distance(c.phases[i], c.phases[i + m]) < 1e-8
-                && (c.velocities[i] - c.velocities[i + m]).abs() < 1e-8
-        });
-        if repeats {
-            let km = (c.k as usize * m / c.n) as u32;
-            if let Ok(s) = cycle(sys, m, km, c.phases[m - 1], c.velocities[m - 1]) {
-                return s;
-            }
-        }
-    }
-    c
-}
 
 #[cfg(test)]
 mod tests {

@@ -30,6 +30,7 @@ pub mod global;
 pub mod jumps;
 pub mod known;
 pub mod lyapunov;
+pub mod saddles;
 pub mod sampled;
 pub mod separation;
 pub mod statistics;
