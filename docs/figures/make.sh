@@ -3,7 +3,7 @@
 # the paper's fidelity (Fig. 3 and 4: 1000 values per diagram, T = 5·10⁶, last 100
 # events). Builds the release binary first. On an idle 2-core machine Fig. 3 takes about
 # a minute and Fig. 4 about five (values that never settle run the whole transient);
-# the (α, D) plane after them, about 8 s with its curves, the curves figure about 5 s,
+# the (α, D) plane after them, about 15 s with its curves, the curves figure about 20 s,
 # the attractors along α about 5 s, the manifolds over the basins about 1 s and the
 # crises of the sine's two-band attractor (its jump in size and its destruction) about
 # 90 s.

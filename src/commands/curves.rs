@@ -151,6 +151,7 @@ pub fn run(run: &CurvesRun) -> anyhow::Result<()> {
                         "breakpoint": p.impact.map(|x| x.1),
                         "meets": p.meets,
                     })).collect::<Vec<_>>(),
+                    "search_alpha": plane.search_alpha(),
                     "seeding": json!({
                         "values": found.seeding.values,
                         "level": found.seeding.level,
@@ -314,6 +315,13 @@ fn text(out: &mut impl Write, plane: &Plane, seeds: &Seeds, found: &Curves) -> i
         found.codim2.len()
     )?;
     writeln!(out, "{}", seeding_text(&found.seeding, y))?;
+    let (lo, hi) = plane.search_alpha();
+    writeln!(
+        out,
+        "followed over alpha {}..{} (the window and half its width on either side: a curve may come in only from beyond its edge), then cut to the window",
+        crate::output::text::decimals(lo, 9),
+        crate::output::text::decimals(hi, 9)
+    )?;
     for (i, c) in found.curves.iter().enumerate() {
         let (a0, a1) = c
             .points

@@ -83,7 +83,7 @@ pub struct CurvesArgs {
 pub struct CurvesSpecArgs {
     #[arg(long, help = super::table_help("[:NAME=VALUE,...]; with a D axis, fd (the family) or fd:D, D the value the curves are started from (a file's parameter alike: the value it is given, else the window's middle)"), default_value = rules::DEFAULT_TABLE, value_name = "TABLE")]
     pub table: String,
-    /// The horizontal axis: alpha:LO..HI.
+    /// The horizontal axis: alpha:LO..HI (the curves are followed over it and half its width on either side, then cut to it).
     #[arg(long, value_name = "alpha:LO..HI")]
     pub x: String,
     /// The vertical axis, the second parameter: r:LO..HI, or NAME:LO..HI with NAME a parameter of the table's family (F_D's D, a table file's).

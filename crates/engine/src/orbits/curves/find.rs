@@ -5,6 +5,7 @@
 //! continuation at each seed value and every special point it finds followed as a
 //! curve, unless a curve already found passes through it.
 
+use super::clip;
 use super::merge::{codim2_once, dedupe};
 use super::sides::seed_from_border_sides;
 
@@ -134,6 +135,7 @@ pub fn curves_with_progress(
     });
     dedupe(&mut out, SAME_CURVE * plane.scale());
     codim2_once(&mut out, 1e-6 * plane.scale());
+    clip::to_window(plane, &mut out, 1e-6 * plane.scale());
     Ok(out)
 }
 
@@ -257,15 +259,19 @@ fn seed_at(
         SweepParam::R => (plane.table.clone(), p),
         other => (other.table(&plane.table, p)?, plane.r),
     };
-    let (start, max_period) = match seeds {
-        Seeds::FromFixed { k, max_period, .. } => (Start::Fixed { k }, max_period),
-        Seeds::Point { n, k, t0, v0, .. } => (Start::Point { n, k, t0, v0 }, n),
+    // The branches over the search range; a cycle's guess is one at the window's LO,
+    // so its branch is continued over the window (its curves are still followed beyond).
+    let (start, max_period, range) = match seeds {
+        Seeds::FromFixed { k, max_period, .. } => {
+            (Start::Fixed { k }, max_period, plane.search_alpha())
+        }
+        Seeds::Point { n, k, t0, v0, .. } => (Start::Point { n, k, t0, v0 }, n, plane.alpha),
     };
     let opts = Options {
         max_period,
         ..Options::default()
     };
-    let found = match branches(&table, r, plane.alpha, start, opts) {
+    let found = match branches(&table, r, range, start, opts) {
         Ok(found) => found,
         Err(e) => {
             out.unseeded.push((p, e.to_string()));

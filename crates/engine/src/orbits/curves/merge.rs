@@ -25,7 +25,15 @@ pub(super) fn codim2_once(out: &mut Curves, tol: f64) {
             None => kept.push(p),
         }
     }
-    for p in &mut kept {
+    out.codim2 = kept;
+    list_meets(out, tol);
+}
+
+/// Every codimension-two point's list of the curves through it: its own first, then
+/// every other curve passing within a hundred times `tol` (the tolerance it is told
+/// once to).
+pub(super) fn list_meets(out: &mut Curves, tol: f64) {
+    for p in &mut out.codim2 {
         let mut meets = vec![p.curve];
         for (i, c) in out.curves.iter().enumerate() {
             if i != p.curve && c.passes_near(p.alpha, p.p, 100.0 * tol) {
@@ -34,7 +42,6 @@ pub(super) fn codim2_once(out: &mut Curves, tol: f64) {
         }
         p.meets = meets;
     }
-    out.codim2 = kept;
 }
 
 /// Where a PD curve of an (n, k) cycle reaches a breakpoint, the doubled (2n, 2k)

@@ -49,8 +49,9 @@
 //! A border-collision curve reaching a double border goes on through it: the point
 //! beyond, where the other impact has crossed into the next piece, is solved on small
 //! circles round the corner, and the curve must get under way from there, or it ends at
-//! the corner. Where a step would leave the window, the point on the window's
-//! edge is solved instead and the curve ends there.
+//! the corner. Where a step would leave the search range (the α window widened on
+//! either side), the point on its edge is solved instead and the curve ends there; the
+//! set is then cut to the window, each cut end solved on the window's edge.
 //!
 //! Between accepted points the test functions of the codimension-two points are watched
 //! for a sign change and the crossing is located by a bracketed root in the arclength:
@@ -92,12 +93,15 @@
 //! * `merge.rs`: curves found twice made one, codimension-two points told once;
 //! * `sides.rs`: the PD and fold curves ending on a border-collision curve from either
 //!   side, watched for along it (one may be too short for any seed value to meet);
+//! * `clip.rs`: the set, seeded and followed over the α window widened by
+//!   [`SEARCH_MARGIN`] on either side ([`Plane::search_alpha`]), cut to the window;
 //! * `trace.rs`: following one curve (the corrector at fixed parameters or on the
 //!   extended system, the test functions watched between points, the ends);
 //! * [`birth`]: the (1, k) birth line in closed form;
 //! * `criticality.rs`: the flip's normal-form coefficient ([`criticality()`]).
 
 pub mod birth;
+mod clip;
 mod corrector;
 mod criticality;
 mod find;
@@ -124,6 +128,11 @@ pub const CONDITION_TOLERANCE: f64 = 1e-9;
 pub const BORDER_REACH: f64 = 1e-5;
 /// Steps per direction of one curve.
 pub const MAX_STEPS: usize = 2000;
+/// Curves are followed over the α window widened by this share of its width on each
+/// side, and cut to the window after: a curve may reach the window only through a
+/// codimension-two point beyond its edge, or from a branch the continuation meets only
+/// there, and a window inside another must show what the wider one shows in it.
+pub const SEARCH_MARGIN: f64 = 0.5;
 
 /// The plane the curves live in: α on one axis, r or D on the other.
 #[derive(Clone, Debug, PartialEq)]
@@ -210,11 +219,22 @@ impl Plane {
         out
     }
 
+    /// Whether y lies in the range the curves are followed over (the search range).
     fn inside(&self, y: [f64; 2]) -> bool {
-        y[0] >= self.alpha.0
-            && y[0] <= self.alpha.1
-            && y[1] >= self.window.0
-            && y[1] <= self.window.1
+        let alpha = self.search_alpha();
+        y[0] >= alpha.0 && y[0] <= alpha.1 && y[1] >= self.window.0 && y[1] <= self.window.1
+    }
+
+    /// The α range curves are followed over and seeded in: the α window widened by
+    /// [`SEARCH_MARGIN`] of its width on each side (not below half its lower end, nor
+    /// beyond α's range); what is found is then cut to the window.
+    pub fn search_alpha(&self) -> (f64, f64) {
+        let (lo, hi) = self.alpha;
+        let w = SEARCH_MARGIN * (hi - lo);
+        (
+            (lo - w).max(0.5 * lo),
+            (hi + w).min(crate::limits::ALPHA.hi),
+        )
     }
 
     fn scale(&self) -> f64 {

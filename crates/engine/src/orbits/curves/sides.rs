@@ -40,6 +40,16 @@ const ROOT_SHARE: f64 = 1e-3;
 /// slid to along the seed line.
 const ENDS_WITHIN: f64 = 1e-3;
 
+/// Bisection steps of [`reach`]: to 2⁻⁴⁰ of the chord. Where the cycle stops at a
+/// fold, its fold test falls as the square root of the distance to it, so it is then
+/// about 10⁻⁶ of its size a chord away: below [`ROOT_SHARE`].
+const REACH_STEPS: usize = 40;
+
+/// The cycle off the border-collision curve at a share of a chord between two of its
+/// points (from a guess, and whether to guess from the nearest point solved): where it
+/// was solved on the curve, that cycle, and the one on the curve.
+type OnChord<'a> = dyn Fn(f64, &CyclePoint, bool) -> Option<([f64; 2], Off, CyclePoint)> + 'a;
+
 /// A test function of a cycle: zero on the curves of one kind.
 type Test = fn(&CyclePoint) -> f64;
 
@@ -114,15 +124,47 @@ pub(super) fn seed_from_border_sides(
         let mut seeds: Vec<(CurveKind, [f64; 2], Off)> = Vec::new();
         for side in 0..2 {
             for j in 0..sides.len().saturating_sub(1) {
-                let (Some(a), Some(b)) = (&sides[j][side], &sides[j + 1][side]) else {
-                    continue;
+                let (p, q) = (&c.points[j], &c.points[j + 1]);
+                // Where the cycle on this side is solved at one of the two points only
+                // (it ends between them, at a fold or where it leaves its pieces), the
+                // test is watched up to where it still is.
+                // Only where it is solved at two points in a row on one side and at
+                // none of the next two (or the curve's end) on the other: not where
+                // Newton's method misses it at a point here and there (a strongly
+                // unstable cycle), at the cost of a bisection each.
+                let solved = |i: Option<usize>| {
+                    i.and_then(|i| sides.get(i))
+                        .is_some_and(|s| s[side].is_some())
+                };
+                let (before, after) = (solved(j.checked_sub(1)), solved(Some(j + 2)));
+                let reached;
+                let (a, b, (p, q)) = match (&sides[j][side], &sides[j + 1][side]) {
+                    (Some(a), Some(b)) => (a, b, (p, q)),
+                    (Some(_), None) if !before || after => continue,
+                    (None, Some(_)) if before || !after => continue,
+                    (Some(a), None) => {
+                        let border = (impact, breakpoint);
+                        let Some(r) = reach(&tracer, (p, q), side, a.normal, border) else {
+                            continue;
+                        };
+                        reached = r;
+                        (a, &reached.1, (p, &reached.0))
+                    }
+                    (None, Some(b)) => {
+                        let border = (impact, breakpoint);
+                        let Some(r) = reach(&tracer, (q, p), side, b.normal, border) else {
+                            continue;
+                        };
+                        reached = r;
+                        (b, &reached.1, (q, &reached.0))
+                    }
+                    (None, None) => continue,
                 };
                 for (kind, test) in TESTS {
                     let (ga, gb) = (test(&a.pt), test(&b.pt));
                     if !(ga.is_finite() && gb.is_finite()) || (ga < 0.0) == (gb < 0.0) {
                         continue;
                     }
-                    let (p, q) = (&c.points[j], &c.points[j + 1]);
                     if let Some((x, off)) = locate(
                         &tracer,
                         (p, q),
@@ -206,28 +248,54 @@ fn locate(
         return None;
     }
     let u = [chord[0] / len, chord[1] / len];
-    let at = |s: f64| -> Option<([f64; 2], Off)> {
+    // The cycle on the curve guessed, first, from the nearest point solved on `p`'s
+    // side of the root so far (at first `p`'s own), else from `q`; if that finds no
+    // root, from the nearer of `p` and `q` (Newton's method may land on the other
+    // cycle of a pair either way).
+    let at = |s: f64, near: &CyclePoint, nearest: bool| -> Option<([f64; 2], Off, CyclePoint)> {
         let c = [p.alpha + s * chord[0], p.p + s * chord[1]];
-        let guess = if s < 0.5 { &p.cycle } else { &q.cycle };
-        let (on, _) = tracer
-            .correct(c, u, u[0] * c[0] + u[1] * c[1], guess)
-            .ok()?;
+        let guesses = if nearest {
+            [near, &q.cycle]
+        } else if s < 0.5 {
+            [&p.cycle, &p.cycle]
+        } else {
+            [&q.cycle, &q.cycle]
+        };
+        let (on, _) = guesses
+            .into_iter()
+            .find_map(|guess| tracer.correct(c, u, u[0] * c[0] + u[1] * c[1], guess).ok())?;
         let (here, off) = off_curve(tracer, on.y, &on.pt, normal, border)?;
-        (here == side).then_some((on.y, off))
+        (here == side).then_some((on.y, off, on.pt))
     };
+    [true, false]
+        .into_iter()
+        .find_map(|nearest| bisect(&at, nearest, &p.cycle, test, (ga, gb)))
+}
+
+/// The bisection of [`locate`] over the chord (`at` the cycle off the curve at a share
+/// of it, guessed as `nearest` says).
+fn bisect(
+    at: &OnChord<'_>,
+    nearest: bool,
+    start: &CyclePoint,
+    test: Test,
+    (ga, gb): (f64, f64),
+) -> Option<([f64; 2], Off)> {
     // Bisection on the chord, `lo` keeping the test's sign at `p` and the cycle
     // solved: where the test is continuous this closes in on its root; at a fold, where
     // the cycle cannot be solved at fixed parameters (M − I is singular) and beyond
     // it is the other cycle of the pair, on the edge of where it is solved, next to
     // the fold, where the fold's corrector (on the extended system) starts from.
     let (mut lo, mut hi) = (0.0f64, 1.0f64);
-    let mut found = None;
+    let mut found: Option<([f64; 2], Off)> = None;
+    let mut near = start.clone();
     for _ in 0..60 {
         let mid = 0.5 * (lo + hi);
-        match at(mid) {
-            Some(f) if (test(&f.1.pt) < 0.0) == (ga < 0.0) => {
+        match at(mid, &near, nearest) {
+            Some((y, off, on)) if (test(&off.pt) < 0.0) == (ga < 0.0) => {
                 lo = mid;
-                found = Some(f);
+                found = Some((y, off));
+                near = on;
             }
             _ => hi = mid,
         }
@@ -238,6 +306,47 @@ fn locate(
     // A sign change by a jump (the cycle solved off the curve changing to another one
     // on the way, or its impacts' pieces changing) is no root.
     found.filter(|f| test(&f.1.pt).abs() <= ROOT_SHARE * ga.abs().max(gb.abs()))
+}
+
+/// Where the cycle on side `side` is solved off the border-collision curve at its point
+/// `from` but not at the next point `to`: the point of the curve between them nearest
+/// `to` where it still is (by bisection over the chord, each chord point taken onto the
+/// curve across it), with that cycle.
+fn reach(
+    tracer: &Tracer<'_>,
+    (from, to): (&CurvePoint, &CurvePoint),
+    side: usize,
+    normal: [f64; 2],
+    border: (usize, f64),
+) -> Option<(CurvePoint, Off)> {
+    let chord = [to.alpha - from.alpha, to.p - from.p];
+    let len = chord[0].hypot(chord[1]);
+    if !(len > 0.0 && len.is_finite()) {
+        return None;
+    }
+    let u = [chord[0] / len, chord[1] / len];
+    let at = |s: f64, guess: &CyclePoint| -> Option<(CurvePoint, Off)> {
+        let c = [from.alpha + s * chord[0], from.p + s * chord[1]];
+        let (on, _) = tracer
+            .correct(c, u, u[0] * c[0] + u[1] * c[1], guess)
+            .ok()?;
+        let (here, off) = off_curve(tracer, on.y, &on.pt, normal, border)?;
+        (here == side).then(|| (tracer.point(on), off))
+    };
+    let (mut lo, mut hi) = (0.0f64, 1.0f64);
+    let mut found: Option<(CurvePoint, Off)> = None;
+    for _ in 0..REACH_STEPS {
+        let mid = 0.5 * (lo + hi);
+        let guess = found.as_ref().map_or(&from.cycle, |f| &f.0.cycle);
+        match at(mid, guess) {
+            Some(f) => {
+                lo = mid;
+                found = Some(f);
+            }
+            None => hi = mid,
+        }
+    }
+    found
 }
 
 /// The cycle solved [`OFF`] off the border-collision curve at its point `on` (cycle

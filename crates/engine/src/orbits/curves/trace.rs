@@ -574,7 +574,7 @@ impl Tracer<'_> {
 
     /// The window edge crossed going from `y` (inside) to `pred` (outside).
     fn edge(&self, y: [f64; 2], pred: [f64; 2]) -> (usize, f64) {
-        let w = [self.plane.alpha, self.plane.window];
+        let w = [self.plane.search_alpha(), self.plane.window];
         let mut best = (0, w[0].0, f64::INFINITY);
         for axis in 0..2 {
             for bound in [w[axis].0, w[axis].1] {
@@ -701,7 +701,7 @@ fn along_step(grad: [f64; 2], from: [f64; 2], next: &CurvePoint, tau: [f64; 2]) 
 
 /// `cur`'s cycle moved on by `h` along the curve as it moved from `prev` (its launch
 /// time and velocity extrapolated linearly; `cur`'s own without a previous point).
-fn secant(prev: Option<&CurvePoint>, cur: &CurvePoint, h: f64) -> CyclePoint {
+pub(super) fn secant(prev: Option<&CurvePoint>, cur: &CurvePoint, h: f64) -> CyclePoint {
     let mut guess = cur.cycle.clone();
     let Some(prev) = prev else { return guess };
     let last = (cur.alpha - prev.alpha).hypot(cur.p - prev.p);
@@ -736,17 +736,18 @@ fn near_birth(pt: &CyclePoint) -> bool {
         .is_some_and(|[dt, dv]| dt.abs().max(dv.abs()) <= 1e-2)
 }
 
-/// Whether y lies on the window's boundary (to 1e-9 of its size).
+/// Whether y lies on the boundary of the search range (to 1e-9 of the window's size).
 fn on_edge(plane: &Plane, y: [f64; 2]) -> bool {
     let tol = 1e-9 * plane.scale();
-    let w = [plane.alpha, plane.window];
+    let w = [plane.search_alpha(), plane.window];
     (0..2).any(|i| (y[i] - w[i].0).abs() <= tol || (y[i] - w[i].1).abs() <= tol)
 }
 
 fn near_edge(plane: &Plane, y: [f64; 2]) -> bool {
     let tol = 1e-9 * plane.scale();
-    y[0] >= plane.alpha.0 - tol
-        && y[0] <= plane.alpha.1 + tol
+    let alpha = plane.search_alpha();
+    y[0] >= alpha.0 - tol
+        && y[0] <= alpha.1 + tol
         && y[1] >= plane.window.0 - tol
         && y[1] <= plane.window.1 + tol
 }
