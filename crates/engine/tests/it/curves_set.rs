@@ -516,6 +516,13 @@ fn on_its_border(plane: &Plane, c: &Curve, q: &CurvePoint) -> (f64, f64) {
 /// 1 + tr M + det M of the curve point's cycle, M by central differences of the exact
 /// map stepped n times (relative to the size of M).
 fn pd_test_by_differences(plane: &Plane, q: &CurvePoint) -> f64 {
+    let (tr, det) = monodromy_by_differences(plane, q);
+    (1.0 + tr + det) / (1.0 + tr.abs() + det.abs())
+}
+
+/// The trace and determinant of the monodromy M of the curve point's cycle, by central
+/// differences of the exact map stepped n times.
+fn monodromy_by_differences(plane: &Plane, q: &CurvePoint) -> (f64, f64) {
     use bouncemap_engine::orbits::periodic::{map_for, pass};
     let sys = plane.system(q.alpha, q.p).unwrap();
     let mut map = map_for(&sys);
@@ -535,9 +542,53 @@ fn pd_test_by_differences(plane: &Plane, q: &CurvePoint) -> f64 {
             m[i][j] = (fp[i] - fm[i]) / (2.0 * h) + if i == j { 1.0 } else { 0.0 };
         }
     }
-    let tr = m[0][0] + m[1][1];
-    let det = m[0][0] * m[1][1] - m[0][1] * m[1][0];
-    (1.0 + tr + det) / (1.0 + tr.abs() + det.abs())
+    (m[0][0] + m[1][1], m[0][0] * m[1][1] - m[0][1] * m[1][0])
+}
+
+/// Fold curves that end on a border collision are found along it: the cycle just off
+/// the border-collision curve, on one side, stops at the fold, and its fold test is
+/// watched up to where it stops. Over (α, r) on F_1 up to period 8 none was found
+/// before; now a (4, 4) and an (8, 8) fold curve are, each ending on a border
+/// collision. At each one's middle point the monodromy by central differences of the
+/// exact map has a multiplier +1 (1 − tr M + det M = 0, relative to the size of M), and
+/// its determinant is r²ⁿ, the map's Jacobian identity.
+#[test]
+fn folds_ending_on_a_border_collision_have_a_multiplier_one() {
+    let plane = Plane {
+        table: Table::fd(1.0).unwrap(),
+        r: 0.8,
+        alpha: (0.2, 0.8),
+        second: SweepParam::R,
+        window: (0.2, 0.95),
+    };
+    let set = from_fixed(&plane, 8, 0.575, 5);
+    let folds: Vec<&Curve> = set
+        .curves
+        .iter()
+        .filter(|c| c.kind.as_str() == "fold")
+        .collect();
+    for n in [4, 8] {
+        assert!(folds.iter().any(|c| c.n == n), "a ({n}, {n}) fold curve");
+    }
+    for c in folds {
+        assert!(
+            c.ends.iter().any(|e| e.as_str() == "border_collision"),
+            "{:?}",
+            c.ends
+        );
+        let q = &c.points[c.points.len() / 2];
+        let (tr, det) = monodromy_by_differences(&plane, q);
+        let fold = (1.0 - tr + det) / (1.0 + tr.abs() + det.abs());
+        let r2n = q.p.powi(2 * c.n as i32);
+        assert!(
+            fold.abs() < 1e-5 && (det - r2n).abs() < 1e-5 * (1.0 + tr.abs()),
+            "({}, {}) at ({}, {}): 1 - tr + det = {fold:e}, det {det:e} against r^2n {r2n:e}",
+            c.n,
+            c.k,
+            q.alpha,
+            q.p
+        );
+    }
 }
 
 /// A double border's other border-collision curve is followed unless a curve of that
