@@ -23,6 +23,17 @@ fn fd_over_d() -> Plane {
     }
 }
 
+/// The F_D plane over α 0.2..0.8 and r 0.2..0.95 at this D.
+fn fd_over_r(d: f64) -> Plane {
+    Plane {
+        table: Table::fd(d).unwrap(),
+        r: 0.8,
+        alpha: (0.2, 0.8),
+        second: SweepParam::R,
+        window: (0.2, 0.95),
+    }
+}
+
 /// The curves of `plane` from the (1, 1) branches up to `max_period`, started at `at`
 /// and seeded on grids from `count` values.
 fn from_fixed(plane: &Plane, max_period: usize, at: f64, count: usize) -> Curves {
@@ -554,13 +565,7 @@ fn monodromy_by_differences(plane: &Plane, q: &CurvePoint) -> (f64, f64) {
 /// its determinant is r²ⁿ, the map's Jacobian identity.
 #[test]
 fn folds_ending_on_a_border_collision_have_a_multiplier_one() {
-    let plane = Plane {
-        table: Table::fd(1.0).unwrap(),
-        r: 0.8,
-        alpha: (0.2, 0.8),
-        second: SweepParam::R,
-        window: (0.2, 0.95),
-    };
+    let plane = fd_over_r(1.0);
     let set = from_fixed(&plane, 8, 0.575, 5);
     let folds: Vec<&Curve> = set
         .curves
@@ -604,13 +609,7 @@ fn folds_ending_on_a_border_collision_have_a_multiplier_one() {
 #[test]
 fn the_other_border_collision_through_a_double_border_is_followed() {
     use bouncemap_engine::orbits::curves::CurveKind;
-    let plane = Plane {
-        table: Table::fd(0.5).unwrap(),
-        r: 0.8,
-        alpha: (0.2, 0.8),
-        second: SweepParam::R,
-        window: (0.2, 0.95),
-    };
+    let plane = fd_over_r(0.5);
     let set = from_fixed(&plane, 8, 0.575, 5);
     let long: Vec<&Curve> = set
         .curves

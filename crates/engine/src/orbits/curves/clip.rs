@@ -6,7 +6,7 @@
 
 use super::corrector::Tracer;
 use super::merge::list_meets;
-use super::trace::secant;
+use super::trace::{crossing, secant};
 use super::*;
 use std::cell::RefCell;
 
@@ -70,11 +70,7 @@ pub(super) fn to_window(plane: &Plane, out: &mut Curves, tol: f64) {
 
 /// Whether y lies in `plane`'s window, to 1e-9 of its size.
 fn within(plane: &Plane, y: [f64; 2]) -> bool {
-    let tol = 1e-9 * plane.scale();
-    y[0] >= plane.alpha.0 - tol
-        && y[0] <= plane.alpha.1 + tol
-        && y[1] >= plane.window.0 - tol
-        && y[1] <= plane.window.1 + tol
+    plane.spans(plane.alpha, y, 1e-9 * plane.scale())
 }
 
 /// The distance from (α, p) to the nearest point of `c`.
@@ -168,19 +164,7 @@ fn on_edge(
     let y = [inside.alpha, inside.p];
     let d = [outside.alpha - y[0], outside.p - y[1]];
     let w = [plane.alpha, plane.window];
-    let mut best: Option<(usize, f64, f64)> = None;
-    for axis in 0..2 {
-        for bound in [w[axis].0, w[axis].1] {
-            if d[axis] == 0.0 {
-                continue;
-            }
-            let t = (bound - y[axis]) / d[axis];
-            if (0.0..=1.0).contains(&t) && best.is_none_or(|b| t < b.2) {
-                best = Some((axis, bound, t));
-            }
-        }
-    }
-    let (axis, bound, t) = best?;
+    let (axis, bound, t) = crossing(w, y, [outside.alpha, outside.p])?;
     let start = [y[0] + t * d[0], y[1] + t * d[1]];
     let mut c = [0.0; 2];
     c[axis] = 1.0;

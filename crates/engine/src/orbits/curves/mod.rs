@@ -221,8 +221,15 @@ impl Plane {
 
     /// Whether y lies in the range the curves are followed over (the search range).
     fn inside(&self, y: [f64; 2]) -> bool {
-        let alpha = self.search_alpha();
-        y[0] >= alpha.0 && y[0] <= alpha.1 && y[1] >= self.window.0 && y[1] <= self.window.1
+        self.spans(self.search_alpha(), y, 0.0)
+    }
+
+    /// Whether y lies in the α range `alpha` and the second parameter's window, to `tol`.
+    fn spans(&self, alpha: (f64, f64), y: [f64; 2], tol: f64) -> bool {
+        y[0] >= alpha.0 - tol
+            && y[0] <= alpha.1 + tol
+            && y[1] >= self.window.0 - tol
+            && y[1] <= self.window.1 + tol
     }
 
     /// The α range curves are followed over and seeded in: the α window widened by

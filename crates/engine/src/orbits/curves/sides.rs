@@ -12,7 +12,7 @@
 //! followed from a line parallel to the border-collision curve, just off it on that
 //! side.
 
-use super::corrector::Tracer;
+use super::corrector::{Eval, Tracer};
 use super::trace::{follow_from, SeedLine};
 use super::*;
 use crate::orbits::continuation::Kind;
@@ -140,25 +140,20 @@ pub(super) fn seed_from_border_sides(
                 let reached;
                 let (a, b, (p, q)) = match (&sides[j][side], &sides[j + 1][side]) {
                     (Some(a), Some(b)) => (a, b, (p, q)),
-                    (Some(_), None) if !before || after => continue,
-                    (None, Some(_)) if before || !after => continue,
-                    (Some(a), None) => {
+                    pair => {
+                        // Solved at `from` only: watched from there towards `to`.
+                        let (a, from, to) = match pair {
+                            (Some(a), None) if before && !after => (a, p, q),
+                            (None, Some(b)) if after && !before => (b, q, p),
+                            _ => continue,
+                        };
                         let border = (impact, breakpoint);
-                        let Some(r) = reach(&tracer, (p, q), side, a.normal, border) else {
+                        let Some(r) = reach(&tracer, (from, to), side, a.normal, border) else {
                             continue;
                         };
                         reached = r;
-                        (a, &reached.1, (p, &reached.0))
+                        (a, &reached.1, (from, &reached.0))
                     }
-                    (None, Some(b)) => {
-                        let border = (impact, breakpoint);
-                        let Some(r) = reach(&tracer, (q, p), side, b.normal, border) else {
-                            continue;
-                        };
-                        reached = r;
-                        (b, &reached.1, (q, &reached.0))
-                    }
-                    (None, None) => continue,
                 };
                 for (kind, test) in TESTS {
                     let (ga, gb) = (test(&a.pt), test(&b.pt));
@@ -242,30 +237,22 @@ fn locate(
     test: Test,
     (ga, gb): (f64, f64),
 ) -> Option<([f64; 2], Off)> {
-    let chord = [q.alpha - p.alpha, q.p - p.p];
-    let len = chord[0].hypot(chord[1]);
-    if !(len > 0.0 && len.is_finite()) {
-        return None;
-    }
-    let u = [chord[0] / len, chord[1] / len];
+    let chord = Chord::new(tracer, (p, q), side, normal, border)?;
     // The cycle on the curve guessed, first, from the nearest point solved on `p`'s
     // side of the root so far (at first `p`'s own), else from `q`; if that finds no
     // root, from the nearer of `p` and `q` (Newton's method may land on the other
     // cycle of a pair either way).
     let at = |s: f64, near: &CyclePoint, nearest: bool| -> Option<([f64; 2], Off, CyclePoint)> {
-        let c = [p.alpha + s * chord[0], p.p + s * chord[1]];
-        let guesses = if nearest {
-            [near, &q.cycle]
+        let first = if nearest {
+            near
         } else if s < 0.5 {
-            [&p.cycle, &p.cycle]
+            &p.cycle
         } else {
-            [&q.cycle, &q.cycle]
+            &q.cycle
         };
-        let (on, _) = guesses
-            .into_iter()
-            .find_map(|guess| tracer.correct(c, u, u[0] * c[0] + u[1] * c[1], guess).ok())?;
-        let (here, off) = off_curve(tracer, on.y, &on.pt, normal, border)?;
-        (here == side).then_some((on.y, off, on.pt))
+        let then = nearest.then_some(&q.cycle);
+        let (on, off) = chord.across(s, std::iter::once(first).chain(then))?;
+        Some((on.y, off, on.pt))
     };
     [true, false]
         .into_iter()
@@ -319,19 +306,10 @@ fn reach(
     normal: [f64; 2],
     border: (usize, f64),
 ) -> Option<(CurvePoint, Off)> {
-    let chord = [to.alpha - from.alpha, to.p - from.p];
-    let len = chord[0].hypot(chord[1]);
-    if !(len > 0.0 && len.is_finite()) {
-        return None;
-    }
-    let u = [chord[0] / len, chord[1] / len];
+    let chord = Chord::new(tracer, (from, to), side, normal, border)?;
     let at = |s: f64, guess: &CyclePoint| -> Option<(CurvePoint, Off)> {
-        let c = [from.alpha + s * chord[0], from.p + s * chord[1]];
-        let (on, _) = tracer
-            .correct(c, u, u[0] * c[0] + u[1] * c[1], guess)
-            .ok()?;
-        let (here, off) = off_curve(tracer, on.y, &on.pt, normal, border)?;
-        (here == side).then(|| (tracer.point(on), off))
+        let (on, off) = chord.across(s, [guess])?;
+        Some((tracer.point(on), off))
     };
     let (mut lo, mut hi) = (0.0f64, 1.0f64);
     let mut found: Option<(CurvePoint, Off)> = None;
@@ -347,6 +325,63 @@ fn reach(
         }
     }
     found
+}
+
+/// The chord between two points of a border-collision curve, and the cycle on one side
+/// of the curve across it.
+struct Chord<'t, 'p> {
+    tracer: &'t Tracer<'p>,
+    from: [f64; 2],
+    chord: [f64; 2],
+    /// The chord's unit direction.
+    u: [f64; 2],
+    side: usize,
+    /// The curve's normal pointing to `side`.
+    normal: [f64; 2],
+    /// The curve's impact and breakpoint.
+    border: (usize, f64),
+}
+
+impl<'t, 'p> Chord<'t, 'p> {
+    /// The chord from `from` to `to` (None where they coincide).
+    fn new(
+        tracer: &'t Tracer<'p>,
+        (from, to): (&CurvePoint, &CurvePoint),
+        side: usize,
+        normal: [f64; 2],
+        border: (usize, f64),
+    ) -> Option<Self> {
+        let chord = [to.alpha - from.alpha, to.p - from.p];
+        let len = chord[0].hypot(chord[1]);
+        (len > 0.0 && len.is_finite()).then(|| Chord {
+            tracer,
+            from: [from.alpha, from.p],
+            chord,
+            u: [chord[0] / len, chord[1] / len],
+            side,
+            normal,
+            border,
+        })
+    }
+
+    /// The chord's point at share `s` taken onto the curve across the chord (its cycle
+    /// from the first of `guesses` that gives it), and the cycle solved just off the
+    /// curve there, where that lies on this side.
+    fn across<'g>(
+        &self,
+        s: f64,
+        guesses: impl IntoIterator<Item = &'g CyclePoint>,
+    ) -> Option<(Eval, Off)> {
+        let (from, chord, u) = (self.from, self.chord, self.u);
+        let c = [from[0] + s * chord[0], from[1] + s * chord[1]];
+        let (on, _) = guesses.into_iter().find_map(|guess| {
+            self.tracer
+                .correct(c, u, u[0] * c[0] + u[1] * c[1], guess)
+                .ok()
+        })?;
+        let (here, off) = off_curve(self.tracer, on.y, &on.pt, self.normal, self.border)?;
+        (here == self.side).then_some((on, off))
+    }
 }
 
 /// The cycle solved [`OFF`] off the border-collision curve at its point `on` (cycle

@@ -572,23 +572,10 @@ impl Tracer<'_> {
             })
     }
 
-    /// The window edge crossed going from `y` (inside) to `pred` (outside).
+    /// The edge of the search range crossed going from `y` (inside) to `pred` (outside).
     fn edge(&self, y: [f64; 2], pred: [f64; 2]) -> (usize, f64) {
         let w = [self.plane.search_alpha(), self.plane.window];
-        let mut best = (0, w[0].0, f64::INFINITY);
-        for axis in 0..2 {
-            for bound in [w[axis].0, w[axis].1] {
-                let d = pred[axis] - y[axis];
-                if d == 0.0 {
-                    continue;
-                }
-                let t = (bound - y[axis]) / d;
-                if (0.0..=1.0).contains(&t) && t < best.2 {
-                    best = (axis, bound, t);
-                }
-            }
-        }
-        (best.0, best.1)
+        crossing(w, y, pred).map_or((0, w[0].0), |(axis, bound, _)| (axis, bound))
     }
 
     /// Watch the test functions between `a` and `b` (consecutive points): locate each
@@ -736,6 +723,29 @@ fn near_birth(pt: &CyclePoint) -> bool {
         .is_some_and(|[dt, dv]| dt.abs().max(dv.abs()) <= 1e-2)
 }
 
+/// The first edge of the window `w` (α range, second parameter's range) the segment
+/// from `y` to `pred` crosses: its axis, its value and the share of the segment there.
+pub(super) fn crossing(
+    w: [(f64, f64); 2],
+    y: [f64; 2],
+    pred: [f64; 2],
+) -> Option<(usize, f64, f64)> {
+    let mut best: Option<(usize, f64, f64)> = None;
+    for axis in 0..2 {
+        for bound in [w[axis].0, w[axis].1] {
+            let d = pred[axis] - y[axis];
+            if d == 0.0 {
+                continue;
+            }
+            let t = (bound - y[axis]) / d;
+            if (0.0..=1.0).contains(&t) && best.is_none_or(|b| t < b.2) {
+                best = Some((axis, bound, t));
+            }
+        }
+    }
+    best
+}
+
 /// Whether y lies on the boundary of the search range (to 1e-9 of the window's size).
 fn on_edge(plane: &Plane, y: [f64; 2]) -> bool {
     let tol = 1e-9 * plane.scale();
@@ -743,11 +753,7 @@ fn on_edge(plane: &Plane, y: [f64; 2]) -> bool {
     (0..2).any(|i| (y[i] - w[i].0).abs() <= tol || (y[i] - w[i].1).abs() <= tol)
 }
 
+/// Whether y lies in the search range (to 1e-9 of the window's size).
 fn near_edge(plane: &Plane, y: [f64; 2]) -> bool {
-    let tol = 1e-9 * plane.scale();
-    let alpha = plane.search_alpha();
-    y[0] >= alpha.0 - tol
-        && y[0] <= alpha.1 + tol
-        && y[1] >= plane.window.0 - tol
-        && y[1] <= plane.window.1 + tol
+    plane.spans(plane.search_alpha(), y, 1e-9 * plane.scale())
 }
