@@ -44,6 +44,7 @@ pub fn run(run: &CurvesRun) -> anyhow::Result<()> {
                     "alpha",
                     y,
                     "condition",
+                    "condition_floor",
                     "criticality",
                     "criticality_error",
                     "flip",
@@ -73,6 +74,7 @@ pub fn run(run: &CurvesRun) -> anyhow::Result<()> {
                             num(q.alpha),
                             num(q.p),
                             num(q.condition),
+                            q.floor.map_or(String::new(), num),
                             cc,
                             ce,
                             flip,
@@ -96,6 +98,7 @@ pub fn run(run: &CurvesRun) -> anyhow::Result<()> {
                         num(p.alpha),
                         num(p.p),
                         num(p.condition),
+                        String::new(),
                         String::new(),
                         String::new(),
                         String::new(),
@@ -134,6 +137,7 @@ pub fn run(run: &CurvesRun) -> anyhow::Result<()> {
                                 "alpha": q.alpha,
                                 y: q.p,
                                 "condition": q.condition,
+                                "condition_floor": q.floor,
                                 "criticality": q.criticality.map(|c| c.c).filter(|c| c.is_finite()),
                                 "criticality_error": q.criticality.map(|c| c.error).filter(|c| c.is_finite()),
                                 "flip": q.criticality.map(|c| c.as_str()),
@@ -310,9 +314,10 @@ fn text(out: &mut impl Write, plane: &Plane, seeds: &Seeds, found: &Curves) -> i
     )?;
     writeln!(
         out,
-        "{} curves, {} codimension-two points; every point's condition holds to 1e-9 (its value is in --format csv/json)",
+        "{} curves, {} codimension-two points; every point's condition holds to 1e-9{} (its value is in --format csv/json)",
         found.curves.len(),
-        found.codim2.len()
+        found.codim2.len(),
+        floor_text(found)
     )?;
     writeln!(out, "{}", seeding_text(&found.seeding, y))?;
     let (lo, hi) = plane.search_alpha();
@@ -399,6 +404,23 @@ fn text(out: &mut impl Write, plane: &Plane, seeds: &Seeds, found: &Curves) -> i
         )?;
     }
     Ok(())
+}
+
+/// The points held to their condition's rounding floor instead of 1e-9 (where the
+/// condition is steeper), in words; empty where there are none.
+fn floor_text(found: &Curves) -> String {
+    let (count, largest) = found
+        .curves
+        .iter()
+        .flat_map(|c| &c.points)
+        .filter_map(|q| q.floor)
+        .fold((0, 0.0f64), |(n, m), f| (n + 1, m.max(f)));
+    if count == 0 {
+        return String::new();
+    }
+    format!(
+        ", or, at {count} points where it is too steep for that, to its rounding floor (its change when the parameters move by 1e-14 of themselves, at most {largest:.1e}; column condition_floor): those points lie within 1e-14 of where it vanishes"
+    )
 }
 
 /// How the seeds were placed, in words.

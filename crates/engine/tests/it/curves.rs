@@ -155,16 +155,24 @@ fn one_parameter(q: &CurvePoint, d: f64, half: f64) -> Vec<Special> {
         ..Options::default()
     };
     // Windows of that half-width and ten and a hundred times narrower: a branch may
-    // end at a border collision next to the point in the widest.
-    [half, half / 10.0, half / 100.0]
-        .into_iter()
-        .flat_map(|h| {
-            let window = (q.alpha - h, q.alpha + h);
-            branches(&table, 0.8, window, start, opts).unwrap_or_default()
-        })
-        .filter(|b| b.n == q.cycle.n)
-        .flat_map(|b| b.specials.into_iter().chain([b.begin, b.end]))
-        .collect()
+    // end at a border collision next to the point in the widest. And one from just
+    // below the point: a cycle whose multiplier runs fast in α (from −0.85 to −1 over
+    // 10⁻⁵) may end less than a hundredth of `half` below it, where the continuation,
+    // guessed at the window's lower end, finds no cycle.
+    [
+        (half, half),
+        (half / 10.0, half / 10.0),
+        (half / 100.0, half / 100.0),
+        (half / 1000.0, half / 10.0),
+    ]
+    .into_iter()
+    .flat_map(|(below, above)| {
+        let window = (q.alpha - below, q.alpha + above);
+        branches(&table, 0.8, window, start, opts).unwrap_or_default()
+    })
+    .filter(|b| b.n == q.cycle.n)
+    .flat_map(|b| b.specials.into_iter().chain([b.begin, b.end]))
+    .collect()
 }
 
 /// At ten points of each PD curve of the (2, 2), (4, 4) and (8, 8) cycles, the

@@ -556,6 +556,88 @@ fn monodromy_by_differences(plane: &Plane, q: &CurvePoint) -> (f64, f64) {
     (m[0][0] + m[1][1], m[0][0] * m[1][1] - m[0][1] * m[1][0])
 }
 
+/// F_1 over (α, r) up to period 8, seeded from r = 0.575 on grids from five values.
+fn fd1_over_r_to_eight() -> &'static (Plane, Curves) {
+    static P: std::sync::OnceLock<(Plane, Curves)> = std::sync::OnceLock::new();
+    P.get_or_init(|| {
+        let plane = fd_over_r(1.0);
+        let set = from_fixed(&plane, 8, 0.575, 5);
+        (plane, set)
+    })
+}
+
+/// Over (α, r) on F_1 the (8, 8) period doubling from (0.5235, 0.6741) runs where its
+/// cycle's monodromy has entries of 10³ and more, the PD test 1 + tr M + det M their
+/// small difference, so steep (10⁷ per unit of α at α 0.69, and growing) that rounding
+/// α alone moves it past 1e-9: the curve used to end `no_convergence` at α 0.6902. It
+/// goes on now, every point holding its condition to 1e-9 or, where it is that steep,
+/// to its rounding floor. Each point held to its floor is bracketed by a second
+/// evaluation: the cycle re-solved 10⁻¹² either side of it in α (Newton's method on the
+/// exact map's passes, written here, keeping the iterate that returns best, to 1e-11)
+/// has PD tests 1 + tr M + r²ⁿ of opposite signs, each beyond the floor.
+#[test]
+fn a_period_doubling_too_steep_for_the_tolerance_goes_on_held_to_its_rounding_floor() {
+    use bouncemap_engine::orbits::curves::CONDITION_TOLERANCE;
+    use bouncemap_engine::orbits::periodic::{map_for, pass};
+    let (plane, set) = fd1_over_r_to_eight();
+    // The PD test of the (8, 8) cycle near the launch x at (α, r).
+    let pd_test = |alpha: f64, r: f64, mut x: [f64; 2]| {
+        let sys = plane.system(alpha, r).unwrap();
+        let mut map = map_for(&sys);
+        let mut best = (f64::INFINITY, f64::NAN);
+        for _ in 0..30 {
+            let p = pass(&mut map, x[0], x[1], 8, 8).unwrap();
+            let (f, m) = (p.residual, p.monodromy);
+            let error = f[0].abs().max(f[1].abs());
+            if error < best.0 {
+                best = (error, 1.0 + m[0][0] + m[1][1] + r.powi(16));
+            }
+            // (M − I) dx = F.
+            let a = [[m[0][0] - 1.0, m[0][1]], [m[1][0], m[1][1] - 1.0]];
+            let det = a[0][0] * a[1][1] - a[0][1] * a[1][0];
+            x[0] -= (f[0] * a[1][1] - f[1] * a[0][1]) / det;
+            x[1] -= (a[0][0] * f[1] - a[1][0] * f[0]) / det;
+        }
+        assert!(best.0 < 1e-11, "({alpha}, {r}): returns to {:e}", best.0);
+        best.1
+    };
+    let pd = set
+        .curves
+        .iter()
+        .find(|c| {
+            c.kind.as_str() == "period_doubling"
+                && c.n == 8
+                && c.points
+                    .iter()
+                    .any(|q| (q.alpha - 0.523503).hypot(q.p - 0.674094) < 1e-3)
+        })
+        .expect("the (8, 8) period doubling from (0.5235, 0.6741)");
+    let reach = pd.points.iter().map(|q| q.alpha).fold(0.0, f64::max);
+    assert!(reach > 0.72, "it ends at alpha {reach}: {:?}", pd.ends);
+    let mut floored = 0;
+    for q in &pd.points {
+        let Some(floor) = q.floor else {
+            assert!(q.condition.abs() <= CONDITION_TOLERANCE, "{q:?}");
+            continue;
+        };
+        floored += 1;
+        assert!(
+            floor > CONDITION_TOLERANCE && q.condition.abs() <= floor,
+            "{q:?}"
+        );
+        let delta = 1e-12 * (1.0 + q.alpha);
+        let g = |a: f64| pd_test(a, q.p, [q.cycle.t0, q.cycle.velocities[0]]);
+        let (below, above) = (g(q.alpha - delta), g(q.alpha + delta));
+        assert!(
+            (below < 0.0) != (above < 0.0) && below.abs().min(above.abs()) > floor,
+            "({}, {}): G {below:e} and {above:e} either side, floor {floor:e}",
+            q.alpha,
+            q.p
+        );
+    }
+    assert!(floored >= 10, "{floored} points held to their floor");
+}
+
 /// Fold curves that end on a border collision are found along it: the cycle just off
 /// the border-collision curve, on one side, stops at the fold, and its fold test is
 /// watched up to where it stops. Over (α, r) on F_1 up to period 8 none was found
@@ -565,8 +647,8 @@ fn monodromy_by_differences(plane: &Plane, q: &CurvePoint) -> (f64, f64) {
 /// its determinant is r²ⁿ, the map's Jacobian identity.
 #[test]
 fn folds_ending_on_a_border_collision_have_a_multiplier_one() {
-    let plane = fd_over_r(1.0);
-    let set = from_fixed(&plane, 8, 0.575, 5);
+    let (plane, set) = fd1_over_r_to_eight();
+    let plane = &plane;
     let folds: Vec<&Curve> = set
         .curves
         .iter()
@@ -582,7 +664,7 @@ fn folds_ending_on_a_border_collision_have_a_multiplier_one() {
             c.ends
         );
         let q = &c.points[c.points.len() / 2];
-        let (tr, det) = monodromy_by_differences(&plane, q);
+        let (tr, det) = monodromy_by_differences(plane, q);
         let fold = (1.0 - tr + det) / (1.0 + tr.abs() + det.abs());
         let r2n = q.p.powi(2 * c.n as i32);
         assert!(
@@ -697,7 +779,10 @@ fn a_step_across_a_corner_goes_on_from_the_corner() {
 /// collision it ends on is solved on one side of it only from D ≈ 0.64 up, so no two
 /// neighbouring points bracketed its end. Curves are now followed over the window
 /// widened by half its width on each side and cut to it, and the cycle off a border
-/// collision is watched up to where it stops being solved. Where a curve is cut, its
+/// collision is watched up to where it stops being solved, and where a test changes sign
+/// between two of its points with no root, between points closer together (the wide
+/// window missed an (8, 8) fold near (0.587, 0.669) the narrow one found). No curve of
+/// either set ends but at the window, a border or a collapse. Where a curve is cut, its
 /// end is solved on the edge: it holds its condition there, and at every border
 /// collision's tenth point and ends the exact map stepped from the launch returns to the
 /// cycle with the impact on the breakpoint.
@@ -747,6 +832,34 @@ fn a_window_inside_another_shows_what_the_wider_one_shows_in_it() {
         fd8(&b) >= 1,
         "the (8, 8) border collision near (0.619, 0.46)"
     );
+    // No curve of either stops where it goes on: each end is the window, a border or a
+    // collapse (a curve seeded next to a double border located on another curve ends
+    // there too, and a step landing on a corner to rounding still passes it).
+    for set in [&a, &b] {
+        for c in &set.curves {
+            for end in c.ends {
+                assert!(
+                    matches!(end.as_str(), "window" | "border_collision" | "collapse"),
+                    "{} of ({}, {}) from ({}, {}): {:?}",
+                    c.kind.as_str(),
+                    c.n,
+                    c.k,
+                    c.points[0].alpha,
+                    c.points[0].p,
+                    c.ends
+                );
+            }
+        }
+    }
+    // The (2, 2) border collision at phase 0 passes its double border with the one at
+    // ½ (α 0.6111, D 0.7273) on the way from D = 0 to the wide window's edge α = 0.7.
+    let whole = a.curves.iter().any(|c| {
+        c.n == 2
+            && matches!(c.kind, CurveKind::BorderCollision { breakpoint, .. } if breakpoint == 0.0)
+            && c.points.iter().any(|q| q.p < 1e-9)
+            && c.points.iter().any(|q| q.alpha > 0.7 - 1e-9)
+    });
+    assert!(whole, "the (2, 2) border collision at phase 0, whole");
     for c in &b.curves {
         assert!(
             c.points.iter().all(|q| (0.45..=0.62).contains(&q.alpha)),

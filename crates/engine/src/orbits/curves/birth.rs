@@ -106,6 +106,7 @@ pub(super) fn birth_curves(plane: &Plane, k: u32) -> Vec<Curve> {
                     p,
                     cycle,
                     condition: alpha * max_slope(&table).0 - slope_at_birth(r, k),
+                    floor: None,
                     criticality: None,
                 })
                 .ok_or(CurveEnd::Inadmissible),

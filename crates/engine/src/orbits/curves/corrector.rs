@@ -11,6 +11,15 @@ use crate::orbits::periodic::{self, cycle, map_for, pass, CyclePoint, PassError}
 use crate::system::System;
 use crate::time::signed_distance;
 
+/// A Newton step over this share of the one before no longer converges: the iterates
+/// wander in the condition's rounding noise.
+const STAGNATION: f64 = 0.5;
+
+/// The relative change of the solved variables a condition's rounding floor is taken
+/// at: the cycle is solved to about 1e-14, and the point's coordinates are known to a
+/// few units in the last place beyond that.
+const ROUNDING: f64 = 1e-14;
+
 /// The cycle and the condition at a point of the plane.
 #[derive(Clone, Debug)]
 pub(super) struct Eval {
@@ -18,6 +27,9 @@ pub(super) struct Eval {
     pub(super) sys: System,
     pub(super) pt: CyclePoint,
     pub(super) g: f64,
+    /// G's rounding floor there, where G does not hold to [`CONDITION_TOLERANCE`]
+    /// ([`CurvePoint::floor`]).
+    pub(super) floor: Option<f64>,
 }
 
 pub(super) struct Tracer<'a> {
@@ -48,7 +60,13 @@ impl Tracer<'_> {
         if !g.is_finite() {
             return Err(PassError::NoConvergence);
         }
-        Ok(Eval { y, sys, pt, g })
+        Ok(Eval {
+            y,
+            sys,
+            pt,
+            g,
+            floor: None,
+        })
     }
 
     /// ∇G by central differences, the cycle re-solved at each.
@@ -141,6 +159,7 @@ impl Tracer<'_> {
         guess: &CyclePoint,
     ) -> Result<(Eval, [f64; 2]), PassError> {
         let mut e = self.eval(y, guess)?;
+        let mut last = f64::INFINITY;
         for _ in 0..20 {
             let grad = self.gradient(&e)?;
             let a = [grad, c];
@@ -167,11 +186,22 @@ impl Tracer<'_> {
             // already hold to it (at a border the gradient has a kink, and Newton's
             // method creeps the last digits). The cycle is solved to about 1e-14, so G
             // is known to about 1e-13: the point is taken to 1e-12.
+            // Where G is known only to more than that (a cycle whose monodromy has
+            // large entries: its trace, of order one, is their small difference),
+            // Newton's steps stop shrinking at G's noise: the point is taken there
+            // once G holds to a tenth of the tolerance.
             let tiny = 1e-12 * (1.0 + e.y[0].abs().max(e.y[1].abs()));
             let held = e.g.abs() < 1e-12 && (c[0] * e.y[0] + c[1] * e.y[1] - d).abs() < tiny;
-            if lambda * size < tiny || held {
+            let noise = lambda * size > STAGNATION * last
+                && self.holds(10.0 * e.g, || self.floor_fixed(&e));
+            last = lambda * size;
+            if lambda * size < tiny || held || noise {
                 if e.g.abs() > CONDITION_TOLERANCE {
-                    return Err(PassError::NoConvergence);
+                    let floor = self.floor_fixed(&e);
+                    if e.g.abs() > floor {
+                        return Err(PassError::NoConvergence);
+                    }
+                    e.floor = Some(floor);
                 }
                 let grad = self.gradient(&e)?;
                 return Ok((e, grad));
@@ -289,6 +319,7 @@ impl Tracer<'_> {
             }
             Ok::<_, PassError>(j)
         };
+        let mut last = f64::INFINITY;
         for _ in 0..30 {
             let (f, p) = self.fold_system(x)?;
             let j = jacobian(x, f, &p)?;
@@ -302,11 +333,25 @@ impl Tracer<'_> {
             for i in 0..4 {
                 x[i] -= step[i];
             }
-            if size < 1e-12 * (1.0 + x[3].abs()) {
+            // As in [`Self::correct_fixed`]: steps that stop shrinking at the
+            // condition's noise, the cycle closed and the condition held to a tenth of
+            // what it must, are converged too.
+            let noise = size > STAGNATION * last
+                && f[0].abs().max(f[1].abs()) <= 1e-12 * (1.0 + x[3].abs())
+                && self.holds(10.0 * f[2], || self.floor_extended(x));
+            last = size;
+            if size < 1e-12 * (1.0 + x[3].abs()) || noise {
                 let (f, p) = self.fold_system(x)?;
-                if f[2].abs() > CONDITION_TOLERANCE {
-                    return Err(PassError::NoConvergence);
-                }
+                let floor = if f[2].abs() > CONDITION_TOLERANCE {
+                    let floor = self.floor_extended(x);
+                    if f[2].abs() > floor {
+                        return Err(PassError::NoConvergence);
+                    }
+                    Some(floor)
+                } else {
+                    None
+                };
+                let j = jacobian(x, f, &p)?;
                 let sys = self
                     .plane
                     .system(x[0], x[1])
@@ -315,7 +360,6 @@ impl Tracer<'_> {
                 // The curve's tangent in (α, p): the null vector of the extended
                 // system's Jacobian, normalised on (α, p); returned as the gradient it is
                 // orthogonal to.
-                let j = jacobian(x, f, &p)?;
                 let a = [j[0], j[1], j[2], [1.0, 0.0, 0.0, 0.0]];
                 let a2 = [j[0], j[1], j[2], [0.0, 1.0, 0.0, 0.0]];
                 let t = solve(a, [0.0, 0.0, 0.0, 1.0])
@@ -327,11 +371,50 @@ impl Tracer<'_> {
                     sys,
                     pt,
                     g: f[2],
+                    floor,
                 };
                 return Ok((e, [t[1], -t[0]]));
             }
         }
         Err(PassError::NoConvergence)
+    }
+
+    /// Whether |G| holds: to [`CONDITION_TOLERANCE`], or, where it does not, to its
+    /// rounding `floor` (computed only then).
+    fn holds(&self, g: f64, floor: impl FnOnce() -> f64) -> bool {
+        g.abs() <= CONDITION_TOLERANCE || g.abs() <= floor()
+    }
+
+    /// G's rounding floor at the point `e` of the corrector at fixed parameters: the
+    /// sum over α and p of how much G changes (the cycle re-solved) when that one
+    /// moves by [`ROUNDING`] of itself (plus one). Zero where a cycle there is not
+    /// found.
+    fn floor_fixed(&self, e: &Eval) -> f64 {
+        (0..2)
+            .map(|i| {
+                let mut y = e.y;
+                y[i] += ROUNDING * (1.0 + y[i].abs());
+                self.eval(y, &e.pt).map_or(f64::NAN, |q| (q.g - e.g).abs())
+            })
+            .sum::<f64>()
+            .max(0.0)
+    }
+
+    /// The same for the extended system at x = (α, p, t₀, v₀): G from a pass of the
+    /// map, each of the four moved in turn.
+    fn floor_extended(&self, x: [f64; 4]) -> f64 {
+        let Ok((f, _)) = self.fold_system(x) else {
+            return 0.0;
+        };
+        (0..4)
+            .map(|i| {
+                let mut xs = x;
+                xs[i] += ROUNDING * (1.0 + xs[i].abs());
+                self.fold_system(xs)
+                    .map_or(f64::NAN, |(fs, _)| (fs[2] - f[2]).abs())
+            })
+            .sum::<f64>()
+            .max(0.0)
     }
 
     /// Distances of every impact to every breakpoint, except the curve's own.
@@ -362,6 +445,7 @@ impl Tracer<'_> {
             p: e.y[1],
             cycle: e.pt,
             condition: e.g,
+            floor: e.floor,
             criticality,
         }
     }

@@ -27,6 +27,36 @@ pub(super) fn codim2_once(out: &mut Curves, tol: f64) {
     }
     out.codim2 = kept;
     list_meets(out, tol);
+    ends_at_codim2(out, 10.0 * tol);
+}
+
+/// A curve that stopped, for want of a next point, within `tol` of a
+/// codimension-two point through it ends there: at a border (a collapse, for a
+/// collapse). Its tracer may not have known the point: a curve seeded next to a double
+/// border located on another curve, whose one side the corner bounds.
+fn ends_at_codim2(out: &mut Curves, tol: f64) {
+    for (i, c) in out.curves.iter_mut().enumerate() {
+        for (e, q) in [(0, c.points.first()), (1, c.points.last())] {
+            let Some(q) = q else { continue };
+            if !matches!(
+                c.ends[e],
+                CurveEnd::NoConvergence | CurveEnd::Stalled | CurveEnd::TurnedBack
+            ) {
+                continue;
+            }
+            let at = out.codim2.iter().find(|p| {
+                p.kind != Codim2Kind::DegenerateFlip
+                    && p.meets.contains(&i)
+                    && (p.alpha - q.alpha).hypot(p.p - q.p) <= tol
+            });
+            if let Some(p) = at {
+                c.ends[e] = match p.kind {
+                    Codim2Kind::Collapse => CurveEnd::Collapse,
+                    _ => CurveEnd::Border,
+                };
+            }
+        }
+    }
 }
 
 /// Every codimension-two point's list of the curves through it: its own first, then

@@ -36,8 +36,9 @@
 //! previous point, so the curve G(α, p) = 0 is a curve in the plane. It is followed by
 //! pseudo-arclength continuation: a predictor along the tangent (orthogonal to ∇G, by
 //! central differences of G with the cycle re-solved) and Newton's method on
-//! (G = 0, τ·(y − y₀) = h). Every accepted point has |G| below [`CONDITION_TOLERANCE`]
-//! (its value is kept as the evidence). A step the corrector cannot take, or one whose
+//! (G = 0, τ·(y − y₀) = h). Every accepted point has |G| below [`CONDITION_TOLERANCE`],
+//! or, where G is so steep that the numbers cannot resolve that, below its rounding
+//! floor ([`CurvePoint::floor`]); both values are kept as the evidence. A step the corrector cannot take, or one whose
 //! cycle jumped (an impact phase or velocity moving far more than the step), is halved;
 //! below the smallest step the curve ends with the reason the cycle gives (grazing, a
 //! stick, no convergence). A corrected point must be the guessed cycle moved on: not
@@ -384,8 +385,16 @@ pub struct CurvePoint {
     pub p: f64,
     /// The cycle there.
     pub cycle: CyclePoint,
-    /// The condition's value there (the evidence: |G| ≤ [`CONDITION_TOLERANCE`]).
+    /// The condition's value there (the evidence: |G| ≤ [`CONDITION_TOLERANCE`], or
+    /// ≤ `floor` where that is larger).
     pub condition: f64,
+    /// Where |G| exceeds [`CONDITION_TOLERANCE`]: its rounding floor there, how much G
+    /// changes when α, p (and for the extended system t₀, v₀) each move by 1e-14 of
+    /// themselves (plus one), summed. Where G is that steep (a cycle whose monodromy
+    /// has large entries, its trace their small difference), |G| is held to the floor
+    /// instead: the point then lies within 1e-14 of itself of where G vanishes, as
+    /// close as the numbers resolve. None where |G| holds to the tolerance.
+    pub floor: Option<f64>,
     /// On a PD curve: the flip's criticality.
     pub criticality: Option<Criticality>,
 }

@@ -40,6 +40,9 @@ const ROOT_SHARE: f64 = 1e-3;
 /// slid to along the seed line.
 const ENDS_WITHIN: f64 = 1e-3;
 
+/// The pieces [`split`] cuts a chord in where a test's sign change has no root.
+const SPLIT: usize = 8;
+
 /// Bisection steps of [`reach`]: to 2⁻⁴⁰ of the chord. Where the cycle stops at a
 /// fold, its fold test falls as the square root of the distance to it, so it is then
 /// about 10⁻⁶ of its size a chord away: below [`ROOT_SHARE`].
@@ -160,16 +163,19 @@ pub(super) fn seed_from_border_sides(
                     if !(ga.is_finite() && gb.is_finite()) || (ga < 0.0) == (gb < 0.0) {
                         continue;
                     }
-                    if let Some((x, off)) = locate(
-                        &tracer,
-                        (p, q),
-                        side,
-                        a.normal,
-                        (impact, breakpoint),
-                        test,
-                        (ga, gb),
-                    ) {
-                        seeds.push((kind, x, off));
+                    let border = (impact, breakpoint);
+                    match locate(&tracer, (p, q), side, a.normal, border, test, (ga, gb)) {
+                        Some((x, off)) => seeds.push((kind, x, off)),
+                        // No root where the sign changed (a jump, the cycle off the
+                        // curve changing on the way): several roots and jumps may lie
+                        // between two points far apart, each sought between closer ones.
+                        None => {
+                            let roots =
+                                split(&tracer, (p, q), side, a.normal, border, test, (ga, gb));
+                            for (x, off) in roots {
+                                seeds.push((kind, x, off));
+                            }
+                        }
                     }
                 }
             }
@@ -257,6 +263,43 @@ fn locate(
     [true, false]
         .into_iter()
         .find_map(|nearest| bisect(&at, nearest, &p.cycle, test, (ga, gb)))
+}
+
+/// Where a test of the cycle on side `side` changes sign between the points `p` and `q`
+/// of the border-collision curve (values `ga`, `gb`) but [`locate`] finds no root
+/// there: the chord cut in [`SPLIT`] pieces, each inner end taken onto the curve (its
+/// cycle off it solved on that side), and a root located in every piece the test
+/// changes sign over (the last one solved to `q` included: past a fold the cycle there
+/// is the other of the pair).
+fn split(
+    tracer: &Tracer<'_>,
+    (p, q): (&CurvePoint, &CurvePoint),
+    side: usize,
+    normal: [f64; 2],
+    border: (usize, f64),
+    test: Test,
+    (ga, gb): (f64, f64),
+) -> Vec<([f64; 2], Off)> {
+    let Some(chord) = Chord::new(tracer, (p, q), side, normal, border) else {
+        return Vec::new();
+    };
+    // The pieces' ends solved on this side, with the test there.
+    let mut ends: Vec<(CurvePoint, f64)> = vec![(p.clone(), ga)];
+    for i in 1..SPLIT {
+        let s = i as f64 / SPLIT as f64;
+        let guess = &ends[ends.len() - 1].0.cycle;
+        if let Some((on, off)) = chord.across(s, [guess, &p.cycle, &q.cycle]) {
+            ends.push((tracer.point(on), test(&off.pt)));
+        }
+    }
+    ends.push((q.clone(), gb));
+    ends.windows(2)
+        .filter(|w| w[0].1.is_finite() && w[1].1.is_finite() && (w[0].1 < 0.0) != (w[1].1 < 0.0))
+        .filter_map(|w| {
+            let (a, b) = (&w[0], &w[1]);
+            locate(tracer, (&a.0, &b.0), side, normal, border, test, (a.1, b.1))
+        })
+        .collect()
 }
 
 /// The bisection of [`locate`] over the chord (`at` the cycle off the curve at a share

@@ -197,6 +197,36 @@ impl Tracer<'_> {
         let mut corner: Option<usize> = None;
         let mut crawl = 0;
         let mut rescues = 0;
+        // Corners passed, each once (a curve that came back to one it passed would
+        // otherwise pass it to and fro).
+        let mut passed: Vec<[f64; 2]> = Vec::new();
+        // Go on beyond the corner (a double border) `at`, if the curve goes on there
+        // ([`Self::past_corner`]) and did not pass it already.
+        macro_rules! beyond_corner {
+            ($at:expr) => {{
+                let at: Option<&Codim2> = $at;
+                let fresh = at.filter(|c| {
+                    !passed
+                        .iter()
+                        .any(|q| (q[0] - c.alpha).hypot(q[1] - c.p) <= 1e-9 * scale)
+                });
+                if let Some(c) = fresh {
+                    let y = [c.alpha, c.p];
+                    if let Some((next, dir)) = self.past_corner(prev.as_ref(), &cur, tau, Some(c)) {
+                        passed.push(y);
+                        tau = dir;
+                        prev = None;
+                        corner = Some(out.len());
+                        crawl = 0;
+                        cur = next;
+                        out.push(cur.clone());
+                        h = (16.0 * h_min).max(1e-6 * scale);
+                        small = 0;
+                        continue;
+                    }
+                }
+            }};
+        }
         for _ in 0..MAX_STEPS {
             let y = [cur.alpha, cur.p];
             let pred = [y[0] + h * tau[0], y[1] + h * tau[1]];
@@ -259,12 +289,17 @@ impl Tracer<'_> {
                         if back < 0.0 {
                             // Turning back where it meets a border or collapses is
                             // ending there.
+                            // (A border collision goes on through a double border, as
+                            // below: its last point may lie on the corner to rounding.)
                             if self.border_end(prev.as_ref(), &cur, index, codim2) {
+                                beyond_corner!(codim2.last());
                                 return (out, CurveEnd::Border);
                             }
                             if collapsing(&cur.cycle) {
                                 return (out, CurveEnd::Collapse);
                             }
+                            // At a double border located between the last points.
+                            beyond_corner!(self.corner_at(&cur, codim2, index));
                             let end = self.end_at_codim2(&cur, codim2, index);
                             return (out, end.unwrap_or(CurveEnd::TurnedBack));
                         }
@@ -316,12 +351,17 @@ impl Tracer<'_> {
                     if small >= STALL_STEPS {
                         // Crawling toward the point where a doubled cycle is born from
                         // its parent (its halves close together) is ending there.
-                        let end = if near_birth(&cur.cycle) {
-                            CurveEnd::Collapse
-                        } else {
-                            CurveEnd::Stalled
-                        };
-                        return (out, end);
+                        if near_birth(&cur.cycle) {
+                            return (out, CurveEnd::Collapse);
+                        }
+                        // Crawling toward a border another impact is closing in on
+                        // (f'' jumps there, and the slope of G with it) is reaching
+                        // it: a border collision goes on through the corner.
+                        if self.border_end(prev.as_ref(), &cur, index, codim2) {
+                            beyond_corner!(codim2.last());
+                            return (out, CurveEnd::Border);
+                        }
+                        return (out, CurveEnd::Stalled);
                     }
                     h = (h * 1.5).min(h_max);
                 }
@@ -335,17 +375,7 @@ impl Tracer<'_> {
                             // A border collision goes on through a double border:
                             // beyond the corner the other impact falls in the next
                             // piece, and the curve turns there.
-                            if let Some((next, dir)) = self.past_corner(&cur, codim2.last()) {
-                                tau = dir;
-                                prev = None;
-                                corner = Some(out.len());
-                                crawl = 0;
-                                cur = next;
-                                out.push(cur.clone());
-                                h = (16.0 * h_min).max(1e-6 * scale);
-                                small = 0;
-                                continue;
-                            }
+                            beyond_corner!(codim2.last());
                             return (out, CurveEnd::Border);
                         }
                         // Stopped on the window's edge itself: it left the window.
@@ -357,6 +387,7 @@ impl Tracer<'_> {
                         if near_birth(&cur.cycle) {
                             return (out, CurveEnd::Collapse);
                         }
+                        beyond_corner!(self.corner_at(&cur, codim2, index));
                         if let Some(end) = self.end_at_codim2(&cur, codim2, index) {
                             return (out, end);
                         }
@@ -439,12 +470,18 @@ impl Tracer<'_> {
     /// reaching another breakpoint): its point beyond, where that impact has crossed
     /// into the next piece, solved on circles of growing radius around the corner in
     /// the directions [`TURNS`] (the corner turns the curve, f'' jumping for the other
-    /// impact), with the direction it leaves in.
+    /// impact), with the direction it leaves in. The way the curve came is from `cur`
+    /// to the corner, or the tangent `tau` where `cur` lies too close to the corner
+    /// for that difference to give a direction; the side the curve came from is that of
+    /// `cur` or `prev`, whichever lies farther from the border (`cur` may lie on it to
+    /// rounding).
     /// None for the other kinds (their condition is another function beyond) and where
     /// the cycle does not go on beyond the corner.
     fn past_corner(
         &self,
+        prev: Option<&CurvePoint>,
         cur: &CurvePoint,
+        tau: [f64; 2],
         corner: Option<&Codim2>,
     ) -> Option<(CurvePoint, [f64; 2])> {
         if !matches!(self.kind, CurveKind::BorderCollision { .. }) {
@@ -458,14 +495,19 @@ impl Tracer<'_> {
             return None;
         }
         let side = |q: &CurvePoint| signed_distance(q.cycle.phases[j], bp) < 0.0;
-        let here = side(cur);
+        let distance = |q: &CurvePoint| signed_distance(q.cycle.phases[j], bp).abs();
+        let here = side(prev.filter(|p| distance(p) > distance(cur)).unwrap_or(cur));
         let y0 = [corner.alpha, corner.p];
         let came = [y0[0] - cur.alpha, y0[1] - cur.p];
         let len = came[0].hypot(came[1]);
-        if len.is_nan() || len <= 0.0 {
+        if len.is_nan() {
             return None;
         }
-        let came = [came[0] / len, came[1] / len];
+        let came = if len > 1e-9 * self.plane.scale() {
+            [came[0] / len, came[1] / len]
+        } else {
+            tau
+        };
         self.around(y0, came, 180.0, &cur.cycle, &mut |t| {
             side(t.q) != here && t.dist <= 10.0 * t.rho && self.plane.inside([t.q.alpha, t.q.p])
         })
@@ -556,6 +598,22 @@ impl Tracer<'_> {
             });
         }
         found
+    }
+
+    /// The double border located on this curve where it stopped (within a
+    /// hundred-thousandth of the plane), if any.
+    fn corner_at<'c>(
+        &self,
+        cur: &CurvePoint,
+        codim2: &'c [Codim2],
+        index: usize,
+    ) -> Option<&'c Codim2> {
+        let tol = 1e-5 * self.plane.scale();
+        codim2.iter().rfind(|p| {
+            p.curve == index
+                && p.kind == Codim2Kind::DoubleBorder
+                && (p.alpha - cur.alpha).hypot(p.p - cur.p) <= tol
+        })
     }
 
     /// Where the curve stopped at a codimension-two point located on it (within a
