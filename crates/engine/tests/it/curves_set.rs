@@ -1,9 +1,10 @@
 //! The set of two-parameter curves (round two): the (1, k) birth line whole on its
 //! closed form, each codimension-two point once and named for what happens there, the
-//! same curves whatever the seeds, and curves that go on where they go on, checked
-//! against closed forms, `fixed_points` and the one-parameter continuation.
+//! same curves whatever the seeds and in a window inside another, checked against
+//! closed forms, `fixed_points`, the one-parameter continuation and the exact map. The
+//! planes and checks here serve [`super::curves_reach`] too.
 
-use super::curves::{lowest_in_flight, of};
+use super::curves::of;
 use bouncemap_engine::jobs::grid::SweepParam;
 use bouncemap_engine::orbits::continuation::{branches, Kind, Options, Special, Start};
 use bouncemap_engine::orbits::curves::{
@@ -13,7 +14,7 @@ use bouncemap_engine::table::Table;
 use bouncemap_engine::System;
 
 /// The F_D plane at r = 0.8 over α 0.4..0.7 and D 0..1, started from F_0.5.
-fn fd_over_d() -> Plane {
+pub(crate) fn fd_over_d() -> Plane {
     Plane {
         table: Table::fd(0.5).unwrap(),
         r: 0.8,
@@ -24,7 +25,7 @@ fn fd_over_d() -> Plane {
 }
 
 /// The F_D plane over α 0.2..0.8 and r 0.2..0.95 at this D.
-fn fd_over_r(d: f64) -> Plane {
+pub(crate) fn fd_over_r(d: f64) -> Plane {
     Plane {
         table: Table::fd(d).unwrap(),
         r: 0.8,
@@ -36,7 +37,7 @@ fn fd_over_r(d: f64) -> Plane {
 
 /// The curves of `plane` from the (1, 1) branches up to `max_period`, started at `at`
 /// and seeded on grids from `count` values.
-fn from_fixed(plane: &Plane, max_period: usize, at: f64, count: usize) -> Curves {
+pub(crate) fn from_fixed(plane: &Plane, max_period: usize, at: f64, count: usize) -> Curves {
     let seeds = Seeds::FromFixed {
         k: 1,
         max_period,
@@ -309,82 +310,15 @@ fn same_set(a: &Curves, b: &Curves, count: usize) {
     }
 }
 
-/// The (8, 8) border collision at phase 0 over F_D's D is one curve where the (8, 8)
-/// is born 10⁻⁴ in α from it (it used to stop on both sides of D ≈ 0.52, the cycle
-/// falling onto the (4, 4) run twice): it passes through the α where the one-parameter
-/// continuation finds it at D = 0.519 … 0.523. And the (4, 4) border collision at
-/// phase 0 goes on through its double border at D ≈ 0.687 (where another impact meets
-/// the breakpoint ½, and the curve turns) down to D = 0, ending where its cycle is born,
-/// whichever side it was seeded on.
-#[test]
-fn border_collision_curves_go_on_next_to_a_birth_and_through_a_corner() {
-    let plane = fd_over_d();
-    let run = |max_period, count| from_fixed(&plane, max_period, 0.5, count);
-    let eight = run(8, 5);
-    for d in [0.519, 0.521, 0.523] {
-        let bc = continuation_borders(d, (0.45, 0.57), 8, 0.0);
-        assert!(
-            !bc.is_empty(),
-            "D = {d}: the continuation's (8, 8) border collision"
-        );
-        for s in bc {
-            let on: Vec<&Curve> = eight
-                .curves
-                .iter()
-                .filter(|c| {
-                    c.n == 8
-                        && c.kind.as_str() == "border_collision"
-                        && c.passes_near(s.alpha, d, 1e-5)
-                })
-                .collect();
-            assert_eq!(on.len(), 1, "D = {d}: one curve through α {}", s.alpha);
-            // Whole: from the birth of its cycle to a double border, not a stalled end.
-            for end in on[0].ends {
-                assert!(
-                    matches!(end.as_str(), "collapse" | "border_collision"),
-                    "D = {d}: {:?}",
-                    on[0].ends
-                );
-            }
-        }
-    }
-    for count in [5, 17, 20] {
-        let four = run(4, count);
-        let bc: Vec<&Curve> = four
-            .curves
-            .iter()
-            .filter(|c| {
-                c.n == 4
-                    && matches!(c.kind, bouncemap_engine::orbits::curves::CurveKind::BorderCollision { breakpoint, .. } if breakpoint == 0.0)
-            })
-            .collect();
-        assert_eq!(
-            bc.len(),
-            1,
-            "seeds {count}: one (4, 4) border collision at 0"
-        );
-        let c = bc[0];
-        let ds: Vec<f64> = c.points.iter().map(|q| q.p).collect();
-        let (lo, hi) = ds
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
-                (a.min(x), b.max(x))
-            });
-        assert!(lo == 0.0 && hi > 0.687, "seeds {count}: D {lo}..{hi}");
-        let mut ends: Vec<&str> = c.ends.iter().map(|e| e.as_str()).collect();
-        ends.sort();
-        assert_eq!(ends, ["collapse", "window"], "seeds {count}");
-        // Every point holds: the impact on the breakpoint and the cycle returning.
-        for q in &c.points {
-            assert!(q.condition.abs() <= 1e-9, "{q:?}");
-        }
-    }
-}
-
 /// The border collisions at the breakpoint `phase` of the (n, n) branches the
 /// one-parameter continuation from the (1, 1) solution finds on F_D at r = 0.8 over
 /// the α window (passed, begun or ended there).
-fn continuation_borders(d: f64, alpha: (f64, f64), n: usize, phase: f64) -> Vec<Special> {
+pub(crate) fn continuation_borders(
+    d: f64,
+    alpha: (f64, f64),
+    n: usize,
+    phase: f64,
+) -> Vec<Special> {
     let found = branches(
         &Table::fd(d).unwrap(),
         0.8,
@@ -403,40 +337,6 @@ fn continuation_borders(d: f64, alpha: (f64, f64), n: usize, phase: f64) -> Vec<
         .filter(|s| s.kind == Kind::BorderCollision && (s.phase - phase).abs() < 1e-12)
         .cloned()
         .collect()
-}
-
-/// Where a step along the tangent fails at every length, the tracer looks for the
-/// curve ahead (of the tangent and of its last step) in other directions before it
-/// ends the curve `no_convergence`. The sine's (1, 1) interior grazing curve over
-/// (α 0.01..0.1, r 0.2..0.95), found up to period 8, was two pieces ending so, with a
-/// gap between r = 0.2245 and 0.2469; it is one curve from window to window, and at
-/// every fifth point the flight's lowest interior height, on a dense grid of the flight
-/// (a second method), is zero to 1e-9.
-#[test]
-fn curves_go_on_past_a_point_where_the_tangent_step_fails() {
-    let plane = Plane {
-        table: Table::sine(),
-        r: 0.8,
-        alpha: (0.01, 0.1),
-        second: SweepParam::R,
-        window: (0.2, 0.95),
-    };
-    let c = from_fixed(&plane, 8, 0.8, 5);
-    let graze: Vec<&Curve> = of(&c, "grazing", 1);
-    assert_eq!(graze.len(), 1, "one (1, 1) grazing curve");
-    let g = graze[0];
-    let (lo, hi) = g
-        .points
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), q| {
-            (a.min(q.p), b.max(q.p))
-        });
-    assert!(lo <= 0.2 + 1e-9 && hi >= 0.95 - 1e-9, "r {lo}..{hi}");
-    assert_eq!(g.ends.map(|e| e.as_str()), ["window", "window"]);
-    for q in g.points.iter().step_by(5) {
-        let lowest = lowest_in_flight(&Table::sine(), q);
-        assert!(lowest.abs() < 1e-9, "r = {}: lowest {lowest:e}", q.p);
-    }
 }
 
 /// Up to period 8 the F_D plane over (α, D) is one set whatever the seeds (5 or 20
@@ -509,7 +409,7 @@ fn the_period_eight_plane_does_not_depend_on_the_seeds() {
 /// The cycle of the border-collision curve `c`'s point `q` stepped by the exact map from
 /// its launch: how far it misses returning, and how far the curve's impact lies from
 /// its breakpoint (pass's phases start at impact 1).
-fn on_its_border(plane: &Plane, c: &Curve, q: &CurvePoint) -> (f64, f64) {
+pub(crate) fn on_its_border(plane: &Plane, c: &Curve, q: &CurvePoint) -> (f64, f64) {
     use bouncemap_engine::orbits::curves::CurveKind;
     use bouncemap_engine::orbits::periodic::{map_for, pass};
     let CurveKind::BorderCollision { impact, breakpoint } = c.kind else {
@@ -533,7 +433,7 @@ fn pd_test_by_differences(plane: &Plane, q: &CurvePoint) -> f64 {
 
 /// The trace and determinant of the monodromy M of the curve point's cycle, by central
 /// differences of the exact map stepped n times.
-fn monodromy_by_differences(plane: &Plane, q: &CurvePoint) -> (f64, f64) {
+pub(crate) fn monodromy_by_differences(plane: &Plane, q: &CurvePoint) -> (f64, f64) {
     use bouncemap_engine::orbits::periodic::{map_for, pass};
     let sys = plane.system(q.alpha, q.p).unwrap();
     let mut map = map_for(&sys);
@@ -554,219 +454,6 @@ fn monodromy_by_differences(plane: &Plane, q: &CurvePoint) -> (f64, f64) {
         }
     }
     (m[0][0] + m[1][1], m[0][0] * m[1][1] - m[0][1] * m[1][0])
-}
-
-/// F_1 over (α, r) up to period 8, seeded from r = 0.575 on grids from five values.
-fn fd1_over_r_to_eight() -> &'static (Plane, Curves) {
-    static P: std::sync::OnceLock<(Plane, Curves)> = std::sync::OnceLock::new();
-    P.get_or_init(|| {
-        let plane = fd_over_r(1.0);
-        let set = from_fixed(&plane, 8, 0.575, 5);
-        (plane, set)
-    })
-}
-
-/// Over (α, r) on F_1 the (8, 8) period doubling from (0.5235, 0.6741) runs where its
-/// cycle's monodromy has entries of 10³ and more, the PD test 1 + tr M + det M their
-/// small difference, so steep (10⁷ per unit of α at α 0.69, and growing) that rounding
-/// α alone moves it past 1e-9: the curve used to end `no_convergence` at α 0.6902. It
-/// goes on now, every point holding its condition to 1e-9 or, where it is that steep,
-/// to its rounding floor. Each point held to its floor is bracketed by a second
-/// evaluation: the cycle re-solved 10⁻¹² either side of it in α (Newton's method on the
-/// exact map's passes, written here, keeping the iterate that returns best, to 1e-11)
-/// has PD tests 1 + tr M + r²ⁿ of opposite signs, each beyond the floor.
-#[test]
-fn a_period_doubling_too_steep_for_the_tolerance_goes_on_held_to_its_rounding_floor() {
-    use bouncemap_engine::orbits::curves::CONDITION_TOLERANCE;
-    use bouncemap_engine::orbits::periodic::{map_for, pass};
-    let (plane, set) = fd1_over_r_to_eight();
-    // The PD test of the (8, 8) cycle near the launch x at (α, r).
-    let pd_test = |alpha: f64, r: f64, mut x: [f64; 2]| {
-        let sys = plane.system(alpha, r).unwrap();
-        let mut map = map_for(&sys);
-        let mut best = (f64::INFINITY, f64::NAN);
-        for _ in 0..30 {
-            let p = pass(&mut map, x[0], x[1], 8, 8).unwrap();
-            let (f, m) = (p.residual, p.monodromy);
-            let error = f[0].abs().max(f[1].abs());
-            if error < best.0 {
-                best = (error, 1.0 + m[0][0] + m[1][1] + r.powi(16));
-            }
-            // (M − I) dx = F.
-            let a = [[m[0][0] - 1.0, m[0][1]], [m[1][0], m[1][1] - 1.0]];
-            let det = a[0][0] * a[1][1] - a[0][1] * a[1][0];
-            x[0] -= (f[0] * a[1][1] - f[1] * a[0][1]) / det;
-            x[1] -= (a[0][0] * f[1] - a[1][0] * f[0]) / det;
-        }
-        assert!(best.0 < 1e-11, "({alpha}, {r}): returns to {:e}", best.0);
-        best.1
-    };
-    let pd = set
-        .curves
-        .iter()
-        .find(|c| {
-            c.kind.as_str() == "period_doubling"
-                && c.n == 8
-                && c.points
-                    .iter()
-                    .any(|q| (q.alpha - 0.523503).hypot(q.p - 0.674094) < 1e-3)
-        })
-        .expect("the (8, 8) period doubling from (0.5235, 0.6741)");
-    let reach = pd.points.iter().map(|q| q.alpha).fold(0.0, f64::max);
-    assert!(reach > 0.72, "it ends at alpha {reach}: {:?}", pd.ends);
-    let mut floored = 0;
-    for q in &pd.points {
-        let Some(floor) = q.floor else {
-            assert!(q.condition.abs() <= CONDITION_TOLERANCE, "{q:?}");
-            continue;
-        };
-        floored += 1;
-        assert!(
-            floor > CONDITION_TOLERANCE && q.condition.abs() <= floor,
-            "{q:?}"
-        );
-        let delta = 1e-12 * (1.0 + q.alpha);
-        let g = |a: f64| pd_test(a, q.p, [q.cycle.t0, q.cycle.velocities[0]]);
-        let (below, above) = (g(q.alpha - delta), g(q.alpha + delta));
-        assert!(
-            (below < 0.0) != (above < 0.0) && below.abs().min(above.abs()) > floor,
-            "({}, {}): G {below:e} and {above:e} either side, floor {floor:e}",
-            q.alpha,
-            q.p
-        );
-    }
-    assert!(floored >= 10, "{floored} points held to their floor");
-}
-
-/// Fold curves that end on a border collision are found along it: the cycle just off
-/// the border-collision curve, on one side, stops at the fold, and its fold test is
-/// watched up to where it stops. Over (α, r) on F_1 up to period 8 none was found
-/// before; now a (4, 4) and an (8, 8) fold curve are, each ending on a border
-/// collision. At each one's middle point the monodromy by central differences of the
-/// exact map has a multiplier +1 (1 − tr M + det M = 0, relative to the size of M), and
-/// its determinant is r²ⁿ, the map's Jacobian identity.
-#[test]
-fn folds_ending_on_a_border_collision_have_a_multiplier_one() {
-    let (plane, set) = fd1_over_r_to_eight();
-    let plane = &plane;
-    let folds: Vec<&Curve> = set
-        .curves
-        .iter()
-        .filter(|c| c.kind.as_str() == "fold")
-        .collect();
-    for n in [4, 8] {
-        assert!(folds.iter().any(|c| c.n == n), "a ({n}, {n}) fold curve");
-    }
-    for c in folds {
-        assert!(
-            c.ends.iter().any(|e| e.as_str() == "border_collision"),
-            "{:?}",
-            c.ends
-        );
-        let q = &c.points[c.points.len() / 2];
-        let (tr, det) = monodromy_by_differences(plane, q);
-        let fold = (1.0 - tr + det) / (1.0 + tr.abs() + det.abs());
-        let r2n = q.p.powi(2 * c.n as i32);
-        assert!(
-            fold.abs() < 1e-5 && (det - r2n).abs() < 1e-5 * (1.0 + tr.abs()),
-            "({}, {}) at ({}, {}): 1 - tr + det = {fold:e}, det {det:e} against r^2n {r2n:e}",
-            c.n,
-            c.k,
-            q.alpha,
-            q.p
-        );
-    }
-}
-
-/// A double border's other border-collision curve is followed unless a curve of that
-/// other impact already crosses there. Over (α, r) on F_0.5 the (8, 8) border
-/// collision at phase 0 of an unstable cycle, from the double border near (0.56999,
-/// 0.78842) down to r ≈ 0.5, was skipped with the default seeds: the same impact's
-/// curve on the far side of the corner passed the double border and was taken for the
-/// crossing one. It is found now, and at every tenth point the exact map stepped from
-/// the cycle's launch returns to it with that impact on the breakpoint. And the doubled
-/// cycle's twin impact on its own breakpoint (the (2, 2) collapsing onto the (1, 1) on
-/// the birth line) is no double border to seed from: no (2, 2) curve is the (1, 1)
-/// run twice.
-#[test]
-fn the_other_border_collision_through_a_double_border_is_followed() {
-    use bouncemap_engine::orbits::curves::CurveKind;
-    let plane = fd_over_r(0.5);
-    let set = from_fixed(&plane, 8, 0.575, 5);
-    let long: Vec<&Curve> = set
-        .curves
-        .iter()
-        .filter(|c| {
-            c.n == 8
-                && matches!(c.kind, CurveKind::BorderCollision { breakpoint, .. } if breakpoint == 0.0)
-                && c.passes_near(0.56999, 0.78842, 1e-4)
-                && c.points.iter().any(|q| q.p < 0.55)
-        })
-        .collect();
-    assert_eq!(
-        long.len(),
-        1,
-        "the (8, 8) border collision down to r < 0.55"
-    );
-    let c = long[0];
-    // Every tenth point, stepped by the exact map from its launch: the cycle returns,
-    // and the impact lies on the breakpoint.
-    for q in c.points.iter().step_by(10) {
-        let (ret, on) = on_its_border(&plane, c, q);
-        assert!(
-            ret < 1e-10 && on < 1e-9,
-            "r = {}: return {ret:e}, impact at {on:e}",
-            q.p
-        );
-    }
-    for c in set.curves.iter().filter(|c| c.n == 2) {
-        let twice = c.points.iter().all(|q| {
-            q.cycle
-                .half_return
-                .is_some_and(|[dt, dv]| dt.abs().max(dv.abs()) < 1e-7)
-        });
-        assert!(
-            !twice,
-            "a {} curve of the (1, 1) run twice",
-            c.kind.as_str()
-        );
-    }
-}
-
-/// A step that crosses a double border turns the corner on the way: the curve beyond
-/// runs from the corner, so its tangent is checked against the direction from the
-/// corner, not from where the step began (that chord cuts the corner, and the other
-/// arm's tangent, which the gradient may give there, passed the check). In the window
-/// α 0.45..0.62 with `--seeds 20` the (8, 8) border collision at ½ crossed the corner
-/// near (0.58247, 0.62801) in one step of 4.8·10⁻⁴ and then ended `no_convergence`
-/// 1.6·10⁻⁴ past it; it goes on to the window's edge. (Its polyline cuts the corner
-/// by that long step, 1.2·10⁻⁴ from it.)
-#[test]
-fn a_step_across_a_corner_goes_on_from_the_corner() {
-    use bouncemap_engine::orbits::curves::CurveKind;
-    let plane = Plane {
-        alpha: (0.45, 0.62),
-        ..fd_over_d()
-    };
-    let set = from_fixed(&plane, 8, 0.5, 20);
-    let arm: Vec<&Curve> = set
-        .curves
-        .iter()
-        .filter(|c| {
-            c.n == 8
-                && matches!(c.kind, CurveKind::BorderCollision { breakpoint, .. } if breakpoint == 0.5)
-                && c.passes_near(0.58247, 0.62801, 2e-4)
-        })
-        .collect();
-    assert_eq!(
-        arm.len(),
-        1,
-        "one (8, 8) border collision through the corner"
-    );
-    let mut ends: Vec<&str> = arm[0].ends.iter().map(|e| e.as_str()).collect();
-    ends.sort();
-    assert_eq!(ends, ["collapse", "window"]);
-    assert!(arm[0].points.iter().any(|q| q.alpha == 0.62));
 }
 
 /// A window inside another shows the curves the wider one shows inside it. Over α

@@ -44,16 +44,13 @@ fn ends_at_codim2(out: &mut Curves, tol: f64) {
             ) {
                 continue;
             }
-            let at = out.codim2.iter().find(|p| {
-                p.kind != Codim2Kind::DegenerateFlip
-                    && p.meets.contains(&i)
-                    && (p.alpha - q.alpha).hypot(p.p - q.p) <= tol
-            });
-            if let Some(p) = at {
-                c.ends[e] = match p.kind {
-                    Codim2Kind::Collapse => CurveEnd::Collapse,
-                    _ => CurveEnd::Border,
-                };
+            let end = out
+                .codim2
+                .iter()
+                .filter(|p| p.meets.contains(&i) && (p.alpha - q.alpha).hypot(p.p - q.p) <= tol)
+                .find_map(|p| p.kind.end());
+            if let Some(end) = end {
+                c.ends[e] = end;
             }
         }
     }

@@ -108,6 +108,7 @@ mod criticality;
 mod find;
 mod merge;
 mod sides;
+mod stops;
 mod trace;
 
 pub use criticality::criticality;
@@ -479,6 +480,16 @@ pub enum Codim2Kind {
 }
 
 impl Codim2Kind {
+    /// The end a curve makes where it stops at such a point: a collapse there, a
+    /// border at the others; none at a degenerate flip (the curve goes on through it).
+    pub fn end(self) -> Option<CurveEnd> {
+        match self {
+            Codim2Kind::Collapse => Some(CurveEnd::Collapse),
+            Codim2Kind::DegenerateFlip => None,
+            _ => Some(CurveEnd::Border),
+        }
+    }
+
     /// Name in every output format.
     pub fn as_str(self) -> &'static str {
         match self {

@@ -140,6 +140,13 @@ pub(super) fn seed_from_border_sides(
                         .is_some_and(|s| s[side].is_some())
                 };
                 let (before, after) = (solved(j.checked_sub(1)), solved(Some(j + 2)));
+                // This side as seen from the cycle `a` off the curve.
+                let look = |a: &Off| OneSide {
+                    tracer: &tracer,
+                    side,
+                    normal: a.normal,
+                    border: (impact, breakpoint),
+                };
                 let reached;
                 let (a, b, (p, q)) = match (&sides[j][side], &sides[j + 1][side]) {
                     (Some(a), Some(b)) => (a, b, (p, q)),
@@ -150,8 +157,7 @@ pub(super) fn seed_from_border_sides(
                             (None, Some(b)) if after && !before => (b, q, p),
                             _ => continue,
                         };
-                        let border = (impact, breakpoint);
-                        let Some(r) = reach(&tracer, (from, to), side, a.normal, border) else {
+                        let Some(r) = reach(look(a), (from, to)) else {
                             continue;
                         };
                         reached = r;
@@ -163,16 +169,13 @@ pub(super) fn seed_from_border_sides(
                     if !(ga.is_finite() && gb.is_finite()) || (ga < 0.0) == (gb < 0.0) {
                         continue;
                     }
-                    let border = (impact, breakpoint);
-                    match locate(&tracer, (p, q), side, a.normal, border, test, (ga, gb)) {
+                    match locate(look(a), (p, q), test, (ga, gb)) {
                         Some((x, off)) => seeds.push((kind, x, off)),
                         // No root where the sign changed (a jump, the cycle off the
                         // curve changing on the way): several roots and jumps may lie
                         // between two points far apart, each sought between closer ones.
                         None => {
-                            let roots =
-                                split(&tracer, (p, q), side, a.normal, border, test, (ga, gb));
-                            for (x, off) in roots {
+                            for (x, off) in split(look(a), (p, q), test, (ga, gb)) {
                                 seeds.push((kind, x, off));
                             }
                         }
@@ -228,22 +231,19 @@ pub(super) fn seed_from_border_sides(
     }
 }
 
-/// Where `test` of the cycle on side `side` vanishes on the border-collision curve
+/// Where `test` of the cycle on the side `look` vanishes on the border-collision curve
 /// between its points `p` and `q` (values `ga` and `gb` there): by bisection over the
 /// chord, each chord point taken onto the curve across the chord, the cycle solved
-/// just off it on that side (`normal` pointing there). Located, not interpolated
+/// just off it on that side (its normal pointing there). Located, not interpolated
 /// between the points: the seed must not depend on where the curve's points happen to
 /// lie. None where the sign changes by a jump.
 fn locate(
-    tracer: &Tracer<'_>,
+    look: OneSide<'_, '_>,
     (p, q): (&CurvePoint, &CurvePoint),
-    side: usize,
-    normal: [f64; 2],
-    border: (usize, f64),
     test: Test,
     (ga, gb): (f64, f64),
 ) -> Option<([f64; 2], Off)> {
-    let chord = Chord::new(tracer, (p, q), side, normal, border)?;
+    let chord = Chord::new(look, (p, q))?;
     // The cycle on the curve guessed, first, from the nearest point solved on `p`'s
     // side of the root so far (at first `p`'s own), else from `q`; if that finds no
     // root, from the nearer of `p` and `q` (Newton's method may land on the other
@@ -265,22 +265,19 @@ fn locate(
         .find_map(|nearest| bisect(&at, nearest, &p.cycle, test, (ga, gb)))
 }
 
-/// Where a test of the cycle on side `side` changes sign between the points `p` and `q`
+/// Where a test of the cycle on the side `look` changes sign between the points `p` and `q`
 /// of the border-collision curve (values `ga`, `gb`) but [`locate`] finds no root
 /// there: the chord cut in [`SPLIT`] pieces, each inner end taken onto the curve (its
 /// cycle off it solved on that side), and a root located in every piece the test
 /// changes sign over (the last one solved to `q` included: past a fold the cycle there
 /// is the other of the pair).
 fn split(
-    tracer: &Tracer<'_>,
+    look: OneSide<'_, '_>,
     (p, q): (&CurvePoint, &CurvePoint),
-    side: usize,
-    normal: [f64; 2],
-    border: (usize, f64),
     test: Test,
     (ga, gb): (f64, f64),
 ) -> Vec<([f64; 2], Off)> {
-    let Some(chord) = Chord::new(tracer, (p, q), side, normal, border) else {
+    let Some(chord) = Chord::new(look, (p, q)) else {
         return Vec::new();
     };
     // The pieces' ends solved on this side, with the test there.
@@ -289,7 +286,7 @@ fn split(
         let s = i as f64 / SPLIT as f64;
         let guess = &ends[ends.len() - 1].0.cycle;
         if let Some((on, off)) = chord.across(s, [guess, &p.cycle, &q.cycle]) {
-            ends.push((tracer.point(on), test(&off.pt)));
+            ends.push((look.tracer.point(on), test(&off.pt)));
         }
     }
     ends.push((q.clone(), gb));
@@ -297,7 +294,7 @@ fn split(
         .filter(|w| w[0].1.is_finite() && w[1].1.is_finite() && (w[0].1 < 0.0) != (w[1].1 < 0.0))
         .filter_map(|w| {
             let (a, b) = (&w[0], &w[1]);
-            locate(tracer, (&a.0, &b.0), side, normal, border, test, (a.1, b.1))
+            locate(look, (&a.0, &b.0), test, (a.1, b.1))
         })
         .collect()
 }
@@ -338,21 +335,18 @@ fn bisect(
     found.filter(|f| test(&f.1.pt).abs() <= ROOT_SHARE * ga.abs().max(gb.abs()))
 }
 
-/// Where the cycle on side `side` is solved off the border-collision curve at its point
+/// Where the cycle on the side `look` is solved off the border-collision curve at its point
 /// `from` but not at the next point `to`: the point of the curve between them nearest
 /// `to` where it still is (by bisection over the chord, each chord point taken onto the
 /// curve across it), with that cycle.
 fn reach(
-    tracer: &Tracer<'_>,
+    look: OneSide<'_, '_>,
     (from, to): (&CurvePoint, &CurvePoint),
-    side: usize,
-    normal: [f64; 2],
-    border: (usize, f64),
 ) -> Option<(CurvePoint, Off)> {
-    let chord = Chord::new(tracer, (from, to), side, normal, border)?;
+    let chord = Chord::new(look, (from, to))?;
     let at = |s: f64, guess: &CyclePoint| -> Option<(CurvePoint, Off)> {
         let (on, off) = chord.across(s, [guess])?;
-        Some((tracer.point(on), off))
+        Some((look.tracer.point(on), off))
     };
     let (mut lo, mut hi) = (0.0f64, 1.0f64);
     let mut found: Option<(CurvePoint, Off)> = None;
@@ -370,40 +364,38 @@ fn reach(
     found
 }
 
-/// The chord between two points of a border-collision curve, and the cycle on one side
-/// of the curve across it.
-struct Chord<'t, 'p> {
+/// One side of a border-collision curve, as the searches along a stretch of it see it.
+#[derive(Clone, Copy)]
+struct OneSide<'t, 'p> {
+    /// The border-collision curve's tracer.
     tracer: &'t Tracer<'p>,
-    from: [f64; 2],
-    chord: [f64; 2],
-    /// The chord's unit direction.
-    u: [f64; 2],
     side: usize,
-    /// The curve's normal pointing to `side`.
+    /// The curve's normal pointing to `side` (at the stretch's first point).
     normal: [f64; 2],
     /// The curve's impact and breakpoint.
     border: (usize, f64),
 }
 
+/// The chord between two points of a border-collision curve, and the cycle on one side
+/// of the curve across it.
+struct Chord<'t, 'p> {
+    look: OneSide<'t, 'p>,
+    from: [f64; 2],
+    chord: [f64; 2],
+    /// The chord's unit direction.
+    u: [f64; 2],
+}
+
 impl<'t, 'p> Chord<'t, 'p> {
     /// The chord from `from` to `to` (None where they coincide).
-    fn new(
-        tracer: &'t Tracer<'p>,
-        (from, to): (&CurvePoint, &CurvePoint),
-        side: usize,
-        normal: [f64; 2],
-        border: (usize, f64),
-    ) -> Option<Self> {
+    fn new(look: OneSide<'t, 'p>, (from, to): (&CurvePoint, &CurvePoint)) -> Option<Self> {
         let chord = [to.alpha - from.alpha, to.p - from.p];
         let len = chord[0].hypot(chord[1]);
         (len > 0.0 && len.is_finite()).then(|| Chord {
-            tracer,
+            look,
             from: [from.alpha, from.p],
             chord,
             u: [chord[0] / len, chord[1] / len],
-            side,
-            normal,
-            border,
         })
     }
 
@@ -415,15 +407,15 @@ impl<'t, 'p> Chord<'t, 'p> {
         s: f64,
         guesses: impl IntoIterator<Item = &'g CyclePoint>,
     ) -> Option<(Eval, Off)> {
-        let (from, chord, u) = (self.from, self.chord, self.u);
+        let (from, chord, u, look) = (self.from, self.chord, self.u, self.look);
         let c = [from[0] + s * chord[0], from[1] + s * chord[1]];
         let (on, _) = guesses.into_iter().find_map(|guess| {
-            self.tracer
+            look.tracer
                 .correct(c, u, u[0] * c[0] + u[1] * c[1], guess)
                 .ok()
         })?;
-        let (here, off) = off_curve(self.tracer, on.y, &on.pt, self.normal, self.border)?;
-        (here == self.side).then_some((on, off))
+        let (here, off) = off_curve(look.tracer, on.y, &on.pt, look.normal, look.border)?;
+        (here == look.side).then_some((on, off))
     }
 }
 
