@@ -11,7 +11,7 @@ use crate::output::records::csv_writer;
 use crate::output::sink::Sink;
 use crate::output::Format;
 use bouncemap_engine::orbits::curves::{
-    curves_with_progress, Codim2, Curve, CurveKind, Curves, Plane, Seeds,
+    curves_with_progress, Codim2, Codim2Kind, Curve, CurveKind, Curves, Plane, Seeds,
 };
 use serde_json::json;
 use std::io::{self, Write};
@@ -467,9 +467,14 @@ fn text_codim2(out: &mut impl Write, found: &Curves, p: &Codim2, y: &str) -> io:
         .impact
         .map_or(String::new(), |(i, b)| format!("  impact {i} at phase {b}"));
     let evidence = match p.kind {
-        bouncemap_engine::orbits::curves::Codim2Kind::DegenerateFlip => {
+        Codim2Kind::DegenerateFlip => {
             format!("[c = {:.1e} there]", p.second_condition)
         }
+        Codim2Kind::Cusp => format!(
+            "[condition {:.1e}; the tangent's share in the plane {:.1e}]",
+            p.condition,
+            p.second_condition.abs()
+        ),
         _ => format!(
             "[condition {:.1e}; last point {:.1e} from the breakpoint]",
             p.condition,

@@ -119,7 +119,7 @@ fn curves_go_on_past_a_point_where_the_tangent_step_fails() {
 }
 
 /// F_1 over (α, r) up to period 8, seeded from r = 0.575 on grids from five values.
-fn fd1_over_r_to_eight() -> &'static (Plane, Curves) {
+pub(crate) fn fd1_over_r_to_eight() -> &'static (Plane, Curves) {
     static P: std::sync::OnceLock<(Plane, Curves)> = std::sync::OnceLock::new();
     P.get_or_init(|| {
         let plane = fd_over_r(1.0);

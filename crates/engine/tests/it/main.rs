@@ -4,6 +4,7 @@ mod any_precision;
 mod attractors;
 mod continuation;
 mod curves;
+mod curves_cusp;
 mod curves_reach;
 mod curves_set;
 mod engine_properties;

@@ -258,21 +258,15 @@ impl Tracer<'_> {
         Ok(([p.residual[0], p.residual[1], g], p))
     }
 
-    /// Newton's method on the extended system (the cycle's equations and the
-    /// condition, in α, p, t₀, v₀) with c·(α, p) = d. At a fold the cycle cannot be
-    /// solved at fixed parameters (M − I is singular), so a fold curve is always solved
-    /// with them; the other kinds come here where the cycle at fixed parameters cannot
-    /// be solved (a curve passing where its cycle's branch folds over the parameters).
-    /// The map's own derivatives give the cycle equations' columns in α, t₀ and v₀;
-    /// forward differences give the p column and the condition's row.
-    pub(super) fn correct_fold(
+    /// The extended system's Jacobian at x (f and p its value and pass there): the
+    /// map's own derivatives give the cycle equations' columns in α, t₀ and v₀; forward
+    /// differences give the p column and the condition's row.
+    pub(super) fn extended_jacobian(
         &self,
-        y: [f64; 2],
-        c: [f64; 2],
-        d: f64,
-        guess: &CyclePoint,
-    ) -> Result<(Eval, [f64; 2]), PassError> {
-        let mut x = [y[0], y[1], guess.t0, guess.velocities[0]];
+        x: [f64; 4],
+        f: [f64; 3],
+        p: &periodic::Pass,
+    ) -> Result<[[f64; 4]; 3], PassError> {
         // On a border collision the point's impact lies on the breakpoint, where f''
         // jumps and the map's derivatives jump with it: the map's own derivatives are
         // those of the piece the impact's phase falls in (G ≥ 0: the one after the
@@ -280,51 +274,77 @@ impl Tracer<'_> {
         // Jacobian, mixed from two pieces, has the wrong null vector (both pieces
         // agree along the border, so either one's gives the curve's tangent).
         let border = matches!(self.kind, CurveKind::BorderCollision { .. });
-        let jacobian = |x: [f64; 4], f: [f64; 3], p: &periodic::Pass| {
-            let m = p.monodromy;
-            let mut j = [
-                [p.alpha_column[0], 0.0, m[0][0] - 1.0, m[0][1]],
-                [p.alpha_column[1], 0.0, m[1][0], m[1][1] - 1.0],
-                [0.0; 4],
-            ];
-            // The p column on the side of the point's own piece (a border collision).
-            let mut side_column = None;
-            if border {
-                let h = 1e-7 * (1.0 + x[1].abs());
-                let side = |g: f64| g >= 0.0;
-                for s in [1.0, -1.0] {
-                    let mut xs = x;
-                    xs[1] += s * h;
-                    match self.fold_system(xs) {
-                        Ok((fs, _)) if side(fs[2]) == side(f[2]) => {
-                            side_column =
-                                Some([(fs[0] - f[0]) / (s * h), (fs[1] - f[1]) / (s * h)]);
-                            break;
-                        }
-                        _ => {}
+        let m = p.monodromy;
+        let mut j = [
+            [p.alpha_column[0], 0.0, m[0][0] - 1.0, m[0][1]],
+            [p.alpha_column[1], 0.0, m[1][0], m[1][1] - 1.0],
+            [0.0; 4],
+        ];
+        // The p column on the side of the point's own piece (a border collision).
+        let mut side_column = None;
+        if border {
+            let h = 1e-7 * (1.0 + x[1].abs());
+            let side = |g: f64| g >= 0.0;
+            for s in [1.0, -1.0] {
+                let mut xs = x;
+                xs[1] += s * h;
+                match self.fold_system(xs) {
+                    Ok((fs, _)) if side(fs[2]) == side(f[2]) => {
+                        side_column = Some([(fs[0] - f[0]) / (s * h), (fs[1] - f[1]) / (s * h)]);
+                        break;
                     }
+                    _ => {}
                 }
             }
-            for col in 0..4 {
-                let h = 1e-7 * (1.0 + x[col].abs());
-                let mut xp = x;
-                xp[col] += h;
-                let (fp, _) = self.fold_system(xp)?;
-                j[2][col] = (fp[2] - f[2]) / h;
-                if col == 1 {
-                    let [a, b] = side_column.unwrap_or([(fp[0] - f[0]) / h, (fp[1] - f[1]) / h]);
-                    j[0][1] = a;
-                    j[1][1] = b;
-                }
+        }
+        for col in 0..4 {
+            let h = 1e-7 * (1.0 + x[col].abs());
+            let mut xp = x;
+            xp[col] += h;
+            let (fp, _) = self.fold_system(xp)?;
+            j[2][col] = (fp[2] - f[2]) / h;
+            if col == 1 {
+                let [a, b] = side_column.unwrap_or([(fp[0] - f[0]) / h, (fp[1] - f[1]) / h]);
+                j[0][1] = a;
+                j[1][1] = b;
             }
-            Ok::<_, PassError>(j)
-        };
+        }
+        Ok(j)
+    }
+
+    /// Newton's method on the extended system (the cycle's equations and the
+    /// condition, in α, p, t₀, v₀) with c·(α, p) = d. At a fold the cycle cannot be
+    /// solved at fixed parameters (M − I is singular), so a fold curve is always solved
+    /// with them; the other kinds come here where the cycle at fixed parameters cannot
+    /// be solved (a curve passing where its cycle's branch folds over the parameters).
+    pub(super) fn correct_fold(
+        &self,
+        y: [f64; 2],
+        c: [f64; 2],
+        d: f64,
+        guess: &CyclePoint,
+    ) -> Result<(Eval, [f64; 2]), PassError> {
+        let x = [y[0], y[1], guess.t0, guess.velocities[0]];
+        self.extended(x, [c[0], c[1], 0.0, 0.0], d)
+            .map(|(e, grad, _)| (e, grad))
+    }
+
+    /// Newton's method on the extended system with row·x = d, from x = (α, p, t₀, v₀):
+    /// the point, the gradient its tangent in (α, p) is orthogonal to, and the curve's
+    /// tangent in all four (the Jacobian's null vector, [`null_vector`]).
+    pub(super) fn extended(
+        &self,
+        mut x: [f64; 4],
+        row: [f64; 4],
+        d: f64,
+    ) -> Result<(Eval, [f64; 2], [f64; 4]), PassError> {
+        let dot = |a: [f64; 4], b: [f64; 4]| a.iter().zip(&b).map(|(u, v)| u * v).sum::<f64>();
         let mut last = f64::INFINITY;
         for _ in 0..30 {
             let (f, p) = self.fold_system(x)?;
-            let j = jacobian(x, f, &p)?;
-            let a = [j[0], j[1], j[2], [c[0], c[1], 0.0, 0.0]];
-            let b = [f[0], f[1], f[2], c[0] * x[0] + c[1] * x[1] - d];
+            let j = self.extended_jacobian(x, f, &p)?;
+            let a = [j[0], j[1], j[2], row];
+            let b = [f[0], f[1], f[2], dot(row, x) - d];
             let step = solve(a, b).ok_or(PassError::NoConvergence)?;
             let size = step.iter().fold(0.0f64, |m, v| m.max(v.abs()));
             if !size.is_finite() || size > 0.5 {
@@ -351,7 +371,7 @@ impl Tracer<'_> {
                 } else {
                     None
                 };
-                let j = jacobian(x, f, &p)?;
+                let j = self.extended_jacobian(x, f, &p)?;
                 let sys = self
                     .plane
                     .system(x[0], x[1])
@@ -365,7 +385,15 @@ impl Tracer<'_> {
                 let t = solve(a, [0.0, 0.0, 0.0, 1.0])
                     .filter(|t| t.iter().all(|v| v.is_finite()))
                     .or_else(|| solve(a2, [0.0, 0.0, 0.0, 1.0]))
-                    .ok_or(PassError::NoConvergence)?;
+                    .unwrap_or([f64::NAN; 4]);
+                let full = null_vector(j);
+                let t = if t.iter().all(|v| v.is_finite()) {
+                    t
+                } else if full.iter().all(|v| v.is_finite()) && (full[0], full[1]) != (0.0, 0.0) {
+                    full
+                } else {
+                    return Err(PassError::NoConvergence);
+                };
                 let e = Eval {
                     y: [x[0], x[1]],
                     sys,
@@ -373,7 +401,7 @@ impl Tracer<'_> {
                     g: f[2],
                     floor,
                 };
-                return Ok((e, [t[1], -t[0]]));
+                return Ok((e, [t[1], -t[0]], full));
             }
         }
         Err(PassError::NoConvergence)
@@ -464,4 +492,24 @@ fn moved(pt: &CyclePoint, guess: &CyclePoint) -> f64 {
     signed_distance(pt.phases[0], guess.phases[0])
         .abs()
         .max((pt.velocities[0] - guess.velocities[0]).abs() / (1.0 + guess.velocities[0].abs()))
+}
+
+/// The null vector of a 3 × 4 matrix of rank three, of unit length: its components are
+/// the signed 3 × 3 minors (the four-dimensional cross product of its rows). NaN where
+/// the rank is lower.
+pub(super) fn null_vector(j: [[f64; 4]; 3]) -> [f64; 4] {
+    let minor = |skip: usize| {
+        let c: Vec<usize> = (0..4).filter(|&i| i != skip).collect();
+        let m = |r: usize, k: usize| j[r][c[k]];
+        m(0, 0) * (m(1, 1) * m(2, 2) - m(1, 2) * m(2, 1))
+            - m(0, 1) * (m(1, 0) * m(2, 2) - m(1, 2) * m(2, 0))
+            + m(0, 2) * (m(1, 0) * m(2, 1) - m(1, 1) * m(2, 0))
+    };
+    let v = [minor(0), -minor(1), minor(2), -minor(3)];
+    let len = v.iter().map(|a| a * a).sum::<f64>().sqrt();
+    if len > 0.0 && len.is_finite() {
+        v.map(|a| a / len)
+    } else {
+        [f64::NAN; 4]
+    }
 }

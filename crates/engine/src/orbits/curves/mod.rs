@@ -105,6 +105,7 @@ pub mod birth;
 mod clip;
 mod corrector;
 mod criticality;
+mod cusp;
 mod find;
 mod merge;
 mod sides;
@@ -477,6 +478,10 @@ pub enum Codim2Kind {
     /// halves meet there): where a doubled cycle is born by border collision, not two
     /// independent border collisions.
     Collapse,
+    /// A fold curve turns back on itself in the plane, tangentially: two fold curves
+    /// meet, and three cycles coalesce (the pair of one fold and the pair of the other
+    /// share their middle cycle).
+    Cusp,
 }
 
 impl Codim2Kind {
@@ -485,7 +490,7 @@ impl Codim2Kind {
     pub fn end(self) -> Option<CurveEnd> {
         match self {
             Codim2Kind::Collapse => Some(CurveEnd::Collapse),
-            Codim2Kind::DegenerateFlip => None,
+            Codim2Kind::DegenerateFlip | Codim2Kind::Cusp => None,
             _ => Some(CurveEnd::Border),
         }
     }
@@ -499,6 +504,7 @@ impl Codim2Kind {
             Codim2Kind::DegenerateFlip => "degenerate_flip",
             Codim2Kind::GrazingBorder => "grazing_border",
             Codim2Kind::Collapse => "collapse",
+            Codim2Kind::Cusp => "cusp",
         }
     }
 
@@ -511,6 +517,7 @@ impl Codim2Kind {
             Codim2Kind::DegenerateFlip => "degenerate flip (criticality changes sign)",
             Codim2Kind::GrazingBorder => "grazing at a breakpoint",
             Codim2Kind::Collapse => "the cycle collapses onto half its period on a breakpoint",
+            Codim2Kind::Cusp => "cusp (two folds meet, three cycles coalesce)",
         }
     }
 }

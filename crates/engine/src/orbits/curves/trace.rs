@@ -180,6 +180,7 @@ impl Tracer<'_> {
         let mut corner: Option<usize> = None;
         let mut crawl = 0;
         let mut rescues = 0;
+        let mut cusps = 0;
         // Corners passed, each once (a curve that came back to one it passed would
         // otherwise pass it to and fro).
         let mut passed: Vec<[f64; 2]> = Vec::new();
@@ -213,6 +214,21 @@ impl Tracer<'_> {
                         corner = Some(out.len());
                         crawl = 0;
                         resume_from!(next, dir);
+                    }
+                }
+            }};
+        }
+        // Go on beyond a cusp, where a fold curve turns back on itself tangentially
+        // ([`Self::past_cusp`]).
+        macro_rules! beyond_cusp {
+            () => {{
+                if cusps < MAX_RESCUES {
+                    if let Some((mut path, dir)) = self.past_cusp(&cur, tau, index, codim2) {
+                        if let Some(next) = path.pop() {
+                            cusps += 1;
+                            out.extend(path);
+                            resume_from!(next, dir);
+                        }
                     }
                 }
             }};
@@ -351,6 +367,7 @@ impl Tracer<'_> {
                             beyond_corner!(codim2.last());
                             return (out, CurveEnd::Border);
                         }
+                        beyond_cusp!();
                         return (out, CurveEnd::Stalled);
                     }
                     h = (h * 1.5).min(h_max);
@@ -381,6 +398,7 @@ impl Tracer<'_> {
                         if let Some(end) = self.end_at_codim2(&cur, codim2, index) {
                             return (out, end);
                         }
+                        beyond_cusp!();
                         // The step along the tangent failed at every length: the
                         // tangent may be off (at a point where the cycle's branch folds
                         // over the plane, the gradient is poorly defined). The curve
