@@ -128,6 +128,16 @@ pub(crate) fn fd1_over_r_to_eight() -> &'static (Plane, Curves) {
     })
 }
 
+/// F_0.5 over (α, r) up to period 8, seeded from r = 0.575 on grids from five values.
+fn fd05_over_r_to_eight() -> &'static (Plane, Curves) {
+    static P: std::sync::OnceLock<(Plane, Curves)> = std::sync::OnceLock::new();
+    P.get_or_init(|| {
+        let plane = fd_over_r(0.5);
+        let set = from_fixed(&plane, 8, 0.575, 5);
+        (plane, set)
+    })
+}
+
 /// Over (α, r) on F_1 the (8, 8) period doubling from (0.5235, 0.6741) runs where its
 /// cycle's monodromy has entries of 10³ and more, the PD test 1 + tr M + det M their
 /// small difference, so steep (10⁷ per unit of α at α 0.69, and growing) that rounding
@@ -252,8 +262,8 @@ fn folds_ending_on_a_border_collision_have_a_multiplier_one() {
 #[test]
 fn the_other_border_collision_through_a_double_border_is_followed() {
     use bouncemap_engine::orbits::curves::CurveKind;
-    let plane = fd_over_r(0.5);
-    let set = from_fixed(&plane, 8, 0.575, 5);
+    let (plane, set) = fd05_over_r_to_eight();
+    let plane = plane.clone();
     let long: Vec<&Curve> = set
         .curves
         .iter()
@@ -328,4 +338,58 @@ fn a_step_across_a_corner_goes_on_from_the_corner() {
     ends.sort();
     assert_eq!(ends, ["collapse", "window"]);
     assert!(arm[0].points.iter().any(|q| q.alpha == 0.62));
+}
+
+/// Over (α, r) on F_0.5 the (2, 2) border collision at ½ is one curve from the window's
+/// edge r = 0.95 back to it, through its double border with the border collision at 0.
+/// Beyond that corner its cycle exists on one side of the curve only (two cycles, one
+/// on either side of the breakpoint, meet on it and end), where the differences of the
+/// condition at a point exactly on the breakpoint mix the two sides: the curve used to
+/// crawl along a tangent 56° off and end `stalled` at (0.63173, 0.89386).
+/// The double border is known in closed form. In the map's units (g = 1, table
+/// period 1) a flight between equal table heights lasting T leaves with velocity T/2, and
+/// F_D(0) = F_D(½): the (2, 2) cycle with impacts at phases 0 and ½ flies 3/2 and then
+/// ½, leaving them with velocities 3/4 and 1/4. By the impact law (the velocity after
+/// is −r times the velocity before, plus (1 + r) α F'), 3/4 = r/4 + (1 + r) α F'(0)
+/// and 1/4 = 3r/4 + (1 + r) α F'(½): with q = F'(½)/F'(0), r = (1 − 3q)/(3 − q) and
+/// α = (3 − r)/(4 (1 + r) F'(0)).
+#[test]
+fn a_border_collision_whose_cycle_ends_on_the_border_goes_on_to_the_window() {
+    use bouncemap_engine::orbits::curves::{Codim2Kind, CurveKind};
+    let (plane, set) = fd05_over_r_to_eight();
+    let table = Table::fd(0.5).unwrap();
+    assert!((table.value(0.0) - table.value(0.5)).abs() < 1e-15);
+    let q = table.derivative(0.5, 1) / table.derivative(0.0, 1);
+    let r = (1.0 - 3.0 * q) / (3.0 - q);
+    let alpha = (3.0 - r) / (4.0 * (1.0 + r) * table.derivative(0.0, 1));
+    let half: Vec<&Curve> = set
+        .curves
+        .iter()
+        .filter(|c| {
+            c.n == 2
+                && matches!(c.kind, CurveKind::BorderCollision { breakpoint, .. } if breakpoint == 0.5)
+        })
+        .collect();
+    assert_eq!(half.len(), 1, "one (2, 2) border collision at ½");
+    let c = half[0];
+    assert_eq!(c.ends.map(|e| e.as_str()), ["window", "window"]);
+    assert!(
+        c.points.iter().any(|q| q.alpha > 0.7),
+        "beyond (0.63173, 0.89386)"
+    );
+    assert!(c.passes_near(alpha, r, 1e-7), "through ({alpha}, {r})");
+    let corner = set
+        .codim2
+        .iter()
+        .find(|p| p.kind == Codim2Kind::DoubleBorder && (p.alpha - alpha).hypot(p.p - r) < 1e-9);
+    assert!(corner.is_some(), "the double border at ({alpha}, {r})");
+    for q in c.points.iter().step_by(5) {
+        let (ret, on) = on_its_border(plane, c, q);
+        assert!(
+            ret < 1e-10 && on < 1e-9,
+            "({}, {}): return {ret:e}, impact at {on:e}",
+            q.alpha,
+            q.p
+        );
+    }
 }

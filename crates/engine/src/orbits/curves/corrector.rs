@@ -71,7 +71,8 @@ impl Tracer<'_> {
 
     /// ∇G by central differences, the cycle re-solved at each.
     pub(super) fn gradient(&self, e: &Eval) -> Result<[f64; 2], PassError> {
-        let own = matches!(self.kind, CurveKind::BorderCollision { .. }) && e.g != 0.0;
+        let border = matches!(self.kind, CurveKind::BorderCollision { .. });
+        let own = border && e.g != 0.0;
         let tests = self.border_tests(&e.pt);
         // A difference is taken within the pieces of the point's cycle: every other
         // impact on its side of every breakpoint (next to a double border a step may
@@ -88,6 +89,9 @@ impl Tracer<'_> {
             !crossed && (!own || ((q.g < 0.0) == (e.g < 0.0) && q.g != 0.0))
         };
         let mut grad = [0.0; 2];
+        // For a border collision, the side of its breakpoint (G < 0) each component's
+        // difference was taken on, None where it straddles it.
+        let mut sides = [None; 2];
         for (i, g) in grad.iter_mut().enumerate() {
             let h = 1e-7 * (1.0 + e.y[i].abs());
             let mut plus = e.y;
@@ -101,9 +105,9 @@ impl Tracer<'_> {
             // beyond the curve), or where one side lies in other pieces.
             let at = |y: [f64; 2]| valid(y).then(|| self.eval(y, &e.pt).ok()).flatten();
             let difference = |p: Option<&Eval>, m: Option<&Eval>| match (p, m) {
-                (Some(p), Some(m)) => Some((p.g - m.g) / (2.0 * h)),
-                (Some(p), None) => Some((p.g - e.g) / h),
-                (None, Some(m)) => Some((e.g - m.g) / h),
+                (Some(p), Some(m)) => Some(((p.g - m.g) / (2.0 * h), [p.g, m.g])),
+                (Some(p), None) => Some(((p.g - e.g) / h, [p.g, e.g])),
+                (None, Some(m)) => Some(((e.g - m.g) / h, [e.g, m.g])),
                 (None, None) => None,
             };
             let (p, m) = (at(plus), at(minus));
@@ -111,9 +115,56 @@ impl Tracer<'_> {
                 p.as_ref().filter(|q| keeps(q)),
                 m.as_ref().filter(|q| keeps(q)),
             );
-            *g = difference(pk, mk)
+            let (d, ends) = difference(pk, mk)
                 .or_else(|| difference(p.as_ref(), m.as_ref()))
                 .ok_or(PassError::NoConvergence)?;
+            *g = d;
+            // The side of the values differenced (the point's own value, on the
+            // curve, takes its partner's).
+            let side = |v: f64, w: f64| if v == 0.0 { w < 0.0 } else { v < 0.0 };
+            let (a, b) = (side(ends[0], ends[1]), side(ends[1], ends[0]));
+            sides[i] = (a == b).then_some(a);
+        }
+        if !(grad[0].is_finite() && grad[1].is_finite()) || grad == [0.0, 0.0] {
+            return Err(PassError::NoConvergence);
+        }
+        // A border collision's condition has a kink on the curve: differences that
+        // straddle it in both directions average the two pieces' gradients, which share
+        // the curve's tangent, and so do differences on one piece. But at a point on
+        // the breakpoint exactly (G = 0, no side of its own to keep them on), one
+        // direction on one piece and the other on the other (where two cycles, one on
+        // either piece, meet on the border and end there, each existing on one side of
+        // the curve only) mix them, and give another direction: there the gradient is
+        // the point's own piece's. Unless another impact lies within 10⁻⁶ of a
+        // breakpoint: the extended system's differences would straddle that one.
+        let clear = tests.iter().all(|t| t.abs() > 1e-6);
+        if border
+            && e.g == 0.0
+            && clear
+            && sides[0].is_some()
+            && sides[1].is_some()
+            && sides[0] != sides[1]
+        {
+            if let Ok(piece) = self.piece_gradient(e) {
+                return Ok(piece);
+            }
+        }
+        Ok(grad)
+    }
+
+    /// ∇G on the point's own piece (for a border collision, the side of the breakpoint
+    /// its impact lies on: G ≥ 0 the piece after it), from the extended system's
+    /// Jacobian: G's partial derivatives less those through the cycle moving, G_x (M −
+    /// I)⁻¹ A, A the cycle equations' columns in α and p.
+    fn piece_gradient(&self, e: &Eval) -> Result<[f64; 2], PassError> {
+        let x = [e.y[0], e.y[1], e.pt.t0, e.pt.velocities[0]];
+        let (f, p) = self.fold_system(x)?;
+        let j = self.extended_jacobian(x, f, &p)?;
+        let a = [[j[0][2], j[0][3]], [j[1][2], j[1][3]]];
+        let mut grad = [0.0; 2];
+        for (i, g) in grad.iter_mut().enumerate() {
+            let z = solve(a, [j[0][i], j[1][i]]).ok_or(PassError::NoConvergence)?;
+            *g = j[2][i] - (j[2][2] * z[0] + j[2][3] * z[1]);
         }
         if !(grad[0].is_finite() && grad[1].is_finite()) || grad == [0.0, 0.0] {
             return Err(PassError::NoConvergence);
