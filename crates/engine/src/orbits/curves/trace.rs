@@ -1,7 +1,8 @@
 //! Following one two-parameter curve with the corrector of [`super::corrector`]: the
 //! predictor steps and their halving, the window's edges, and the test functions of the
 //! codimension-two points watched between consecutive points. Where the steps stop,
-//! [`super::stops`] says why, or finds the way on.
+//! [`super::stops`] says why, or finds the way on ([`super::cusp`] through a fold
+//! curve's cusp).
 
 use super::corrector::{collapsed, Tracer};
 use super::{
