@@ -389,7 +389,6 @@ impl Tracer<'_> {
         row: [f64; 4],
         d: f64,
     ) -> Result<(Eval, [f64; 2], [f64; 4]), PassError> {
-        let dot = |a: [f64; 4], b: [f64; 4]| a.iter().zip(&b).map(|(u, v)| u * v).sum::<f64>();
         let mut last = f64::INFINITY;
         for _ in 0..30 {
             let (f, p) = self.fold_system(x)?;
@@ -543,6 +542,11 @@ fn moved(pt: &CyclePoint, guess: &CyclePoint) -> f64 {
     signed_distance(pt.phases[0], guess.phases[0])
         .abs()
         .max((pt.velocities[0] - guess.velocities[0]).abs() / (1.0 + guess.velocities[0].abs()))
+}
+
+/// The dot product in (α, p, t₀, v₀).
+pub(super) fn dot(a: [f64; 4], b: [f64; 4]) -> f64 {
+    a.iter().zip(&b).map(|(u, v)| u * v).sum()
 }
 
 /// The null vector of a 3 × 4 matrix of rank three, of unit length: its components are

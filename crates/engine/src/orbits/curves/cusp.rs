@@ -7,7 +7,7 @@
 //! the way the curve came changes sign. [`super::trace`] asks this where a fold
 //! curve's steps fail or stall, before it looks ahead in other directions.
 
-use super::corrector::{Eval, Tracer};
+use super::corrector::{dot, Eval, Tracer};
 use super::{Codim2, Codim2Kind, CurveKind, CurvePoint};
 use crate::orbits::roots::bracketed_root_nan;
 use crate::time::signed_distance;
@@ -21,16 +21,19 @@ const PLANE_SHARE: f64 = 0.2;
 /// ... or once it lies this share of the plane from the cusp.
 const BEYOND: f64 = 1e-4;
 
-/// A point of the fold curve in all four: x = (α, p, t₀, v₀), the unit tangent there,
-/// and the corrector's point.
+/// A point of the fold curve in all four: the corrector's point and the unit tangent
+/// there.
 struct Along {
-    x: [f64; 4],
-    t: [f64; 4],
     e: Eval,
+    t: [f64; 4],
 }
 
-fn dot(a: [f64; 4], b: [f64; 4]) -> f64 {
-    a.iter().zip(&b).map(|(u, v)| u * v).sum()
+impl Along {
+    /// x = (α, p, t₀, v₀).
+    fn x(&self) -> [f64; 4] {
+        let e = &self.e;
+        [e.y[0], e.y[1], e.pt.t0, e.pt.velocities[0]]
+    }
 }
 
 impl Tracer<'_> {
@@ -57,7 +60,8 @@ impl Tracer<'_> {
         // Oriented the way the curve came.
         let forward = |t: [f64; 4]| t[0] * tau[0] + t[1] * tau[1];
         let t = if forward(t) < 0.0 { t.map(|v| -v) } else { t };
-        let mut at = Along { x: x0, t, e };
+        let mut at = Along { e, t };
+        let mut last = self.point(at.e.clone());
         let mut sigma = 1e-6;
         let mut cusp: Option<[f64; 2]> = None;
         let mut path = Vec::new();
@@ -71,10 +75,8 @@ impl Tracer<'_> {
             };
             // A fold curve cannot cross a breakpoint (its condition is another
             // function beyond).
-            let (a, b) = (self.point(at.e.clone()), self.point(next.e.clone()));
-            if !self.plane.inside(next.x[..2].try_into().ok()?)
-                || self.crosses_border(&a, &b, tau, index, codim2)
-            {
+            let b = self.point(next.e.clone());
+            if !self.plane.inside(next.e.y) || self.crosses_border(&last, &b, tau, index, codim2) {
                 return None;
             }
             if cusp.is_none() && forward(next.t) < 0.0 {
@@ -83,7 +85,7 @@ impl Tracer<'_> {
                 let mut share = |s: f64| self.step_along(&at, s).map_or(f64::NAN, |q| forward(q.t));
                 let s = bracketed_root_nan(&mut share, 0.0, sigma, forward(at.t), forward(next.t))?;
                 let q = self.step_along(&at, s)?;
-                let y = [q.x[0], q.x[1]];
+                let y = q.e.y;
                 codim2.push(Codim2 {
                     kind: Codim2Kind::Cusp,
                     curve: index,
@@ -97,11 +99,12 @@ impl Tracer<'_> {
                 cusp = Some(y);
                 path.push(self.point(q.e));
             }
-            path.push(self.point(next.e.clone()));
+            path.push(b.clone());
+            last = b;
             at = next;
             if let Some(c) = cusp {
                 let plane = at.t[0].hypot(at.t[1]);
-                let away = (at.x[0] - c[0]).hypot(at.x[1] - c[1]);
+                let away = (at.e.y[0] - c[0]).hypot(at.e.y[1] - c[1]);
                 if plane >= PLANE_SHARE || away >= BEYOND * scale {
                     let dir = [at.t[0] / plane, at.t[1] / plane];
                     return Some((path, dir));
@@ -116,20 +119,20 @@ impl Tracer<'_> {
     /// arclength condition t·(x − x_at) = σ), with its tangent oriented as `at`'s; None
     /// where it is not found, or is another cycle than `at`'s moved on.
     fn step_along(&self, at: &Along, sigma: f64) -> Option<Along> {
-        let guess: [f64; 4] = std::array::from_fn(|i| at.x[i] + sigma * at.t[i]);
-        let (e, _, t) = self.extended(guess, at.t, dot(at.t, at.x) + sigma).ok()?;
+        let x = at.x();
+        let guess: [f64; 4] = std::array::from_fn(|i| x[i] + sigma * at.t[i]);
+        let (e, _, t) = self.extended(guess, at.t, dot(at.t, x) + sigma).ok()?;
         if !t.iter().all(|v| v.is_finite()) {
             return None;
         }
-        let x = [e.y[0], e.y[1], e.pt.t0, e.pt.velocities[0]];
         // The same cycle moved on: its launch within a few steps of the guess.
         let moved = signed_distance(e.pt.phases[0], at.e.pt.phases[0])
             .abs()
-            .max((x[3] - at.x[3]).abs());
+            .max((e.pt.velocities[0] - x[3]).abs());
         if moved > 4.0 * sigma + 1e-9 {
             return None;
         }
         let t = if dot(t, at.t) < 0.0 { t.map(|v| -v) } else { t };
-        Some(Along { x, t, e })
+        Some(Along { e, t })
     }
 }
