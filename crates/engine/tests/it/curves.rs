@@ -44,6 +44,14 @@ pub fn of<'a>(c: &'a Curves, kind: &str, n: usize) -> Vec<&'a Curve> {
         .collect()
 }
 
+/// The border-collision curves of the (n, k) cycles at `breakpoint`.
+pub fn border_collisions(c: &Curves, n: usize, breakpoint: f64) -> impl Iterator<Item = &Curve> {
+    c.curves.iter().filter(move |cv| {
+        cv.n == n
+            && matches!(cv.kind, bouncemap_engine::orbits::curves::CurveKind::BorderCollision { breakpoint: b, .. } if b == breakpoint)
+    })
+}
+
 /// Every point of the (1, 1) PD curve over (α, r) lies on the closed-form α_PD(r).
 fn pd_curve_over_r_is_the_closed_form(table: Table, r_lo: f64) {
     let windows: Vec<f64> = (0..50)

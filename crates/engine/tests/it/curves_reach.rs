@@ -4,7 +4,7 @@
 //! border collision from its sides; checked against the one-parameter continuation,
 //! the exact map and differences of it.
 
-use super::curves::{lowest_in_flight, of};
+use super::curves::{border_collisions, lowest_in_flight, of};
 use super::curves_set::{
     continuation_borders, fd_over_d, fd_over_r, from_fixed, monodromy_by_differences, on_its_border,
 };
@@ -53,14 +53,7 @@ fn border_collision_curves_go_on_next_to_a_birth_and_through_a_corner() {
     }
     for count in [5, 17, 20] {
         let four = run(4, count);
-        let bc: Vec<&Curve> = four
-            .curves
-            .iter()
-            .filter(|c| {
-                c.n == 4
-                    && matches!(c.kind, bouncemap_engine::orbits::curves::CurveKind::BorderCollision { breakpoint, .. } if breakpoint == 0.0)
-            })
-            .collect();
+        let bc: Vec<&Curve> = border_collisions(&four, 4, 0.0).collect();
         assert_eq!(
             bc.len(),
             1,
@@ -261,18 +254,10 @@ fn folds_ending_on_a_border_collision_have_a_multiplier_one() {
 /// run twice.
 #[test]
 fn the_other_border_collision_through_a_double_border_is_followed() {
-    use bouncemap_engine::orbits::curves::CurveKind;
     let (plane, set) = fd05_over_r_to_eight();
     let plane = plane.clone();
-    let long: Vec<&Curve> = set
-        .curves
-        .iter()
-        .filter(|c| {
-            c.n == 8
-                && matches!(c.kind, CurveKind::BorderCollision { breakpoint, .. } if breakpoint == 0.0)
-                && c.passes_near(0.56999, 0.78842, 1e-4)
-                && c.points.iter().any(|q| q.p < 0.55)
-        })
+    let long: Vec<&Curve> = border_collisions(set, 8, 0.0)
+        .filter(|c| c.passes_near(0.56999, 0.78842, 1e-4) && c.points.iter().any(|q| q.p < 0.55))
         .collect();
     assert_eq!(
         long.len(),
@@ -314,20 +299,13 @@ fn the_other_border_collision_through_a_double_border_is_followed() {
 /// by that long step, 1.2·10⁻⁴ from it.)
 #[test]
 fn a_step_across_a_corner_goes_on_from_the_corner() {
-    use bouncemap_engine::orbits::curves::CurveKind;
     let plane = Plane {
         alpha: (0.45, 0.62),
         ..fd_over_d()
     };
     let set = from_fixed(&plane, 8, 0.5, 20);
-    let arm: Vec<&Curve> = set
-        .curves
-        .iter()
-        .filter(|c| {
-            c.n == 8
-                && matches!(c.kind, CurveKind::BorderCollision { breakpoint, .. } if breakpoint == 0.5)
-                && c.passes_near(0.58247, 0.62801, 2e-4)
-        })
+    let arm: Vec<&Curve> = border_collisions(&set, 8, 0.5)
+        .filter(|c| c.passes_near(0.58247, 0.62801, 2e-4))
         .collect();
     assert_eq!(
         arm.len(),
@@ -355,21 +333,14 @@ fn a_step_across_a_corner_goes_on_from_the_corner() {
 /// α = (3 − r)/(4 (1 + r) F'(0)).
 #[test]
 fn a_border_collision_whose_cycle_ends_on_the_border_goes_on_to_the_window() {
-    use bouncemap_engine::orbits::curves::{Codim2Kind, CurveKind};
+    use bouncemap_engine::orbits::curves::Codim2Kind;
     let (plane, set) = fd05_over_r_to_eight();
     let table = Table::fd(0.5).unwrap();
     assert!((table.value(0.0) - table.value(0.5)).abs() < 1e-15);
     let q = table.derivative(0.5, 1) / table.derivative(0.0, 1);
     let r = (1.0 - 3.0 * q) / (3.0 - q);
     let alpha = (3.0 - r) / (4.0 * (1.0 + r) * table.derivative(0.0, 1));
-    let half: Vec<&Curve> = set
-        .curves
-        .iter()
-        .filter(|c| {
-            c.n == 2
-                && matches!(c.kind, CurveKind::BorderCollision { breakpoint, .. } if breakpoint == 0.5)
-        })
-        .collect();
+    let half: Vec<&Curve> = border_collisions(set, 2, 0.5).collect();
     assert_eq!(half.len(), 1, "one (2, 2) border collision at ½");
     let c = half[0];
     assert_eq!(c.ends.map(|e| e.as_str()), ["window", "window"]);

@@ -4,7 +4,7 @@
 //! closed forms, `fixed_points`, the one-parameter continuation and the exact map. The
 //! planes and checks here serve [`super::curves_reach`] too.
 
-use super::curves::of;
+use super::curves::{border_collisions, of};
 use bouncemap_engine::jobs::grid::SweepParam;
 use bouncemap_engine::orbits::continuation::{branches, Kind, Options, Special, Start};
 use bouncemap_engine::orbits::curves::{
@@ -358,12 +358,8 @@ fn the_period_eight_plane_does_not_depend_on_the_seeds() {
     for set in [&a, &b] {
         // The border collision through the corner: from the window's edge α = 0.7
         // down past the corner.
-        let through = set.curves.iter().any(|c| {
-            c.n == 8
-                && matches!(c.kind, bouncemap_engine::orbits::curves::CurveKind::BorderCollision { breakpoint, .. } if breakpoint == 0.5)
-                && c.passes_near(0.7, 0.700476, 1e-4)
-                && c.passes_near(0.58247, 0.62801, 1e-4)
-        });
+        let through = border_collisions(set, 8, 0.5)
+            .any(|c| c.passes_near(0.7, 0.700476, 1e-4) && c.passes_near(0.58247, 0.62801, 1e-4));
         assert!(through, "the (8, 8) border collision through the corner");
         let short = of(set, "period_doubling", 8).into_iter().any(|c| {
             c.passes_near(0.592838, 0.778550, 1e-5) && c.passes_near(0.592242, 0.757299, 1e-5)
@@ -506,12 +502,11 @@ fn a_window_inside_another_shows_what_the_wider_one_shows_in_it() {
         }
     }
     let fd8 = |set: &Curves| {
-        set.curves
-            .iter()
+        border_collisions(set, 8, 0.0)
             .filter(|c| {
-                c.n == 8
-                    && matches!(c.kind, CurveKind::BorderCollision { breakpoint, .. } if breakpoint == 0.0)
-                    && c.points.iter().any(|q| q.alpha > 0.615 && (q.p - 0.46).abs() < 0.01)
+                c.points
+                    .iter()
+                    .any(|q| q.alpha > 0.615 && (q.p - 0.46).abs() < 0.01)
             })
             .count()
     };
@@ -540,11 +535,8 @@ fn a_window_inside_another_shows_what_the_wider_one_shows_in_it() {
     }
     // The (2, 2) border collision at phase 0 passes its double border with the one at
     // ½ (α 0.6111, D 0.7273) on the way from D = 0 to the wide window's edge α = 0.7.
-    let whole = a.curves.iter().any(|c| {
-        c.n == 2
-            && matches!(c.kind, CurveKind::BorderCollision { breakpoint, .. } if breakpoint == 0.0)
-            && c.points.iter().any(|q| q.p < 1e-9)
-            && c.points.iter().any(|q| q.alpha > 0.7 - 1e-9)
+    let whole = border_collisions(&a, 2, 0.0).any(|c| {
+        c.points.iter().any(|q| q.p < 1e-9) && c.points.iter().any(|q| q.alpha > 0.7 - 1e-9)
     });
     assert!(whole, "the (2, 2) border collision at phase 0, whole");
     for c in &b.curves {
