@@ -6,10 +6,11 @@
 
 use super::curves::{border_collisions, lowest_in_flight, of};
 use super::curves_set::{
-    continuation_borders, fd_over_d, fd_over_r, from_fixed, monodromy_by_differences, on_its_border,
+    continuation_borders, fd_over_d, fd_over_r, from_fixed, monodromy_by_differences,
+    on_its_border, precise_border_distance,
 };
 use bouncemap_engine::jobs::grid::SweepParam;
-use bouncemap_engine::orbits::curves::{Curve, Curves, Plane};
+use bouncemap_engine::orbits::curves::{Codim2Kind, Curve, CurvePoint, Curves, Plane};
 use bouncemap_engine::table::Table;
 
 /// The (8, 8) border collision at phase 0 over F_D's D is one curve where the (8, 8)
@@ -295,8 +296,9 @@ fn the_other_border_collision_through_a_double_border_is_followed() {
 /// arm's tangent, which the gradient may give there, passed the check). In the window
 /// α 0.45..0.62 with `--seeds 20` the (8, 8) border collision at ½ crossed the corner
 /// near (0.58247, 0.62801) in one step of 4.8·10⁻⁴ and then ended `no_convergence`
-/// 1.6·10⁻⁴ past it; it goes on to the window's edge. (Its polyline cuts the corner
-/// by that long step, 1.2·10⁻⁴ from it.)
+/// 1.6·10⁻⁴ past it; it goes on to the window's edge. Its polyline turns at the corner
+/// itself: the double border located on the step is a vertex (the long step's chord
+/// passed 1.2·10⁻⁴ from it, and the curve seemed not to pass through it).
 #[test]
 fn a_step_across_a_corner_goes_on_from_the_corner() {
     let plane = Plane {
@@ -316,6 +318,97 @@ fn a_step_across_a_corner_goes_on_from_the_corner() {
     ends.sort();
     assert_eq!(ends, ["collapse", "window"]);
     assert!(arm[0].points.iter().any(|q| q.alpha == 0.62));
+    let corner = set
+        .codim2
+        .iter()
+        .find(|p| {
+            p.kind == Codim2Kind::DoubleBorder && (p.alpha - 0.58247).hypot(p.p - 0.62801) < 1e-4
+        })
+        .expect("the double border");
+    assert!(
+        arm[0]
+            .points
+            .iter()
+            .any(|q| (q.alpha - corner.alpha).hypot(q.p - corner.p) < 1e-12),
+        "a vertex at the corner ({}, {})",
+        corner.alpha,
+        corner.p
+    );
+}
+
+/// Over (α, r) on F_1 the (4, 4) border collision at 0 used to end `stalled` at
+/// (0.5524, 0.6734). Closing in on the breakpoint, the difference of its condition in
+/// α straddled the curve and the one in r did not: the gradient mixed the two pieces'
+/// ((0.216, −0.494) against its own piece's (−0.357, −0.494)), and every step along
+/// that tangent failed. Where the differences are not on one side and point more than
+/// 20° from the piece's gradient, the gradient is the piece's now: the curve goes on,
+/// past α 0.68, to a double border at (0.68315, 0.57620). A second method at every
+/// fifth point past the old end: the cycle at 40 digits puts the impact at the point's
+/// (α, r) within 10⁻⁹ of the breakpoint, and within 10⁻¹⁰ of where the point says.
+#[test]
+fn a_border_collision_goes_on_where_its_differences_mix_the_pieces() {
+    let (_, set) = fd1_over_r_to_eight();
+    let bc: Vec<&Curve> = border_collisions(set, 4, 0.0)
+        .filter(|c| c.passes_near(0.5524, 0.67342, 1e-4))
+        .collect();
+    assert_eq!(bc.len(), 1, "one (4, 4) border collision at 0 there");
+    let c = bc[0];
+    let ends = c.ends.map(|e| e.as_str());
+    assert!(
+        !ends
+            .iter()
+            .any(|e| matches!(*e, "stalled" | "no_convergence" | "step_limit")),
+        "{ends:?}"
+    );
+    let beyond: Vec<&CurvePoint> = c.points.iter().filter(|q| q.alpha > 0.5524).collect();
+    assert!(beyond.iter().any(|q| q.alpha > 0.68), "past α 0.68");
+    for q in beyond.iter().step_by(5) {
+        let at = precise_border_distance(1.0, q.p, c, q).expect("the cycle at 40 digits");
+        assert!(
+            at.abs() < 1e-9 && (at - q.condition).abs() < 1e-10,
+            "({}, {}): {at:e} against {:e}",
+            q.alpha,
+            q.p,
+            q.condition
+        );
+    }
+}
+
+/// The double border (4/7, 13/15) of F_0.5 over (α, r) (the closed form is in the
+/// test below) has a fourth arm: the (2, 2) border collision at 0 goes on through it
+/// to the window's edge α = 0.8 (it used to end on the corner: its cycle exists beyond
+/// on one side of the curve only, and no step of the tracer found it). At every fifth
+/// point beyond the corner the cycle at 40 digits puts the impact within 10⁻⁹ of the
+/// breakpoint, and within 10⁻¹⁰ of where the point says.
+#[test]
+fn the_border_collision_at_zero_goes_on_through_the_closed_form_double_border() {
+    let (_, set) = fd05_over_r_to_eight();
+    let (alpha, r) = (4.0 / 7.0, 13.0 / 15.0);
+    let bc: Vec<&Curve> = border_collisions(set, 2, 0.0)
+        .filter(|c| c.passes_near(alpha, r, 1e-7))
+        .collect();
+    assert_eq!(
+        bc.len(),
+        1,
+        "one (2, 2) border collision at 0 through the corner"
+    );
+    let c = bc[0];
+    assert!(
+        c.points.iter().any(|q| q.alpha == 0.8),
+        "to the window's edge α = 0.8"
+    );
+    let beyond: Vec<&CurvePoint> = c.points.iter().filter(|q| q.alpha > alpha + 1e-6).collect();
+    assert!(beyond.len() >= 10, "{} points beyond", beyond.len());
+    for q in beyond.iter().step_by(5) {
+        let at = precise_border_distance(0.5, q.p, c, q).expect("the cycle at 40 digits");
+        assert!(
+            at.abs() < 1e-9 && (at - q.condition).abs() < 1e-10,
+            "({}, {}): {at:e} against {:e}",
+            q.alpha,
+            q.p,
+            q.condition
+        );
+    }
 }
 
 /// Over (α, r) on F_0.5 the (2, 2) border collision at ½ is one curve from the window's
@@ -333,7 +426,6 @@ fn a_step_across_a_corner_goes_on_from_the_corner() {
 /// α = (3 − r)/(4 (1 + r) F'(0)).
 #[test]
 fn a_border_collision_whose_cycle_ends_on_the_border_goes_on_to_the_window() {
-    use bouncemap_engine::orbits::curves::Codim2Kind;
     let (plane, set) = fd05_over_r_to_eight();
     let table = Table::fd(0.5).unwrap();
     assert!((table.value(0.0) - table.value(0.5)).abs() < 1e-15);

@@ -340,7 +340,12 @@ pub(crate) fn continuation_borders(
 }
 
 /// Up to period 8 the F_D plane over (α, D) is one set whatever the seeds (5 or 20
-/// values to begin with). Two things used to break that. The (8, 8) border collision
+/// values to begin with). Three things used to break that. A border collision seeded
+/// on a double border (from the curve crossing it there) took no step on one side and
+/// ended on the corner: the (8, 8) one at ½ through (0.62405, 0.73940) with 20 seeds; it
+/// goes on beyond the corner now, and so through the corner (0.62158, 0.74908) the
+/// other (8, 8) one at ½ does, where its differences mixed the pieces (both run from
+/// the window's edge α = 0.7 back to it; their points are checked at 40 digits). The (8, 8) border collision
 /// at ½ that turns at the double border near (0.58247, 0.62801) (another impact
 /// meeting 0 there) went on beyond it only when a long step happened to jump the
 /// corner: the tangent taken just past it was the other arm's. And a period doubling
@@ -361,6 +366,28 @@ fn the_period_eight_plane_does_not_depend_on_the_seeds() {
         let through = border_collisions(set, 8, 0.5)
             .any(|c| c.passes_near(0.7, 0.700476, 1e-4) && c.passes_near(0.58247, 0.62801, 1e-4));
         assert!(through, "the (8, 8) border collision through the corner");
+        for (corner, edge) in [
+            ((0.621584, 0.749075), 0.845118),
+            ((0.624052, 0.739404), 0.808156),
+        ] {
+            let c = border_collisions(set, 8, 0.5)
+                .find(|c| c.passes_near(corner.0, corner.1, 1e-5) && c.passes_near(0.7, edge, 1e-5))
+                .unwrap_or_else(|| panic!("the (8, 8) border collision at ½ through {corner:?}"));
+            assert_eq!(c.ends.map(|e| e.as_str()), ["window"; 2], "{corner:?}");
+            // A second method: at each tenth point the cycle at 40 digits puts the
+            // impact where the point says, within 10⁻¹⁰.
+            for q in c.points.iter().step_by(10) {
+                let at =
+                    precise_border_distance(q.p, plane.r, c, q).expect("the cycle at 40 digits");
+                assert!(
+                    at.abs() < 1e-9 && (at - q.condition).abs() < 1e-10,
+                    "({}, {}): {at:e} against {:e}",
+                    q.alpha,
+                    q.p,
+                    q.condition
+                );
+            }
+        }
         let short = of(set, "period_doubling", 8).into_iter().any(|c| {
             c.passes_near(0.592838, 0.778550, 1e-5) && c.passes_near(0.592242, 0.757299, 1e-5)
         });
@@ -568,4 +595,58 @@ fn a_window_inside_another_shows_what_the_wider_one_shows_in_it() {
             }
         }
     }
+}
+
+/// A second method for a point `q` of the border-collision curve `c` on F_d at
+/// restitution r: the impact's signed distance to its breakpoint at the point's α, the
+/// cycle solved at 40 digits (Newton's method with the map at that precision, from the
+/// point's launch) 10⁻¹¹ and 2·10⁻¹¹ off the point in α, on whichever side it exists,
+/// and its distance extrapolated linearly back to the point. None where the cycle is
+/// found on neither side.
+pub(crate) fn precise_border_distance(d: f64, r: f64, c: &Curve, q: &CurvePoint) -> Option<f64> {
+    use bouncemap_engine::orbits::curves::CurveKind;
+    use bouncemap_engine::table::Family;
+    use bouncemap_engine::{
+        bits_for_digits, solve_cycle, Big, PreciseMap, PreciseState, PreciseSystem, Real,
+    };
+    let CurveKind::BorderCollision { impact, breakpoint } = c.kind else {
+        panic!("{} is no border collision", c.kind.as_str())
+    };
+    let bits = bits_for_digits(40);
+    let (n, k) = (q.cycle.n, q.cycle.k);
+    // The impact's signed distance to the breakpoint at α, if the cycle is found there.
+    let distance = |alpha: f64| -> Option<f64> {
+        let sys = PreciseSystem::new(
+            Family::fd()
+                .pieces_in(&[Big::from_f64(d, &bits)], &bits)
+                .unwrap(),
+            Big::from_f64(alpha, &bits),
+            Big::from_f64(r, &bits),
+            bits,
+        )
+        .unwrap();
+        let guess = (
+            Big::from_f64(q.cycle.t0.rem_euclid(1.0), &bits),
+            Big::from_f64(q.cycle.velocities[0], &bits),
+        );
+        let cycle = solve_cycle(&sys, n, k, guess.0, guess.1, &mut |_| {}).ok()?;
+        let w = cycle.v.clone() - sys.jet(&cycle.phase)[1].clone();
+        let mut map = PreciseMap::new(sys.clone(), PreciseState::launch(&sys, 0, cycle.phase, w));
+        let mut phase = map.state().phase.to_f64();
+        for _ in 0..impact {
+            phase = map.step().ok()?.phase.to_f64();
+        }
+        let x = (phase - breakpoint).rem_euclid(1.0);
+        Some(if x > 0.5 { x - 1.0 } else { x })
+    };
+    // Small enough that no other impact crosses a breakpoint on the way (next to a
+    // double border), large enough for 40 digits to resolve.
+    let delta = 1e-11;
+    [1.0, -1.0]
+        .into_iter()
+        .filter_map(|side: f64| {
+            let (a1, a2) = (q.alpha + side * delta, q.alpha + 2.0 * side * delta);
+            Some(2.0 * distance(a1)? - distance(a2)?)
+        })
+        .next()
 }

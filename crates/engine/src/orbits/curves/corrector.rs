@@ -15,6 +15,11 @@ use crate::time::signed_distance;
 /// wander in the condition's rounding noise.
 const STAGNATION: f64 = 0.5;
 
+/// Differences of a border collision's condition that mix its two pieces are taken
+/// for the point's own piece's gradient while their directions agree to within 20°
+/// (this cosine).
+const MIXED: f64 = 0.94;
+
 /// The relative change of the solved variables a condition's rounding floor is taken
 /// at: the cycle is solved to about 1e-14, and the point's coordinates are known to a
 /// few units in the last place beyond that.
@@ -138,15 +143,13 @@ impl Tracer<'_> {
         // the point's own piece's. Unless another impact lies within 10⁻⁶ of a
         // breakpoint: the extended system's differences would straddle that one.
         let clear = tests.iter().all(|t| t.abs() > 1e-6);
-        if border
-            && e.g == 0.0
-            && clear
-            && sides[0].is_some()
-            && sides[1].is_some()
-            && sides[0] != sides[1]
-        {
+        if border && clear && sides[0] != sides[1] {
             if let Ok(piece) = self.piece_gradient(e) {
-                return Ok(piece);
+                let cos = (grad[0] * piece[0] + grad[1] * piece[1]).abs()
+                    / (grad[0].hypot(grad[1]) * piece[0].hypot(piece[1]));
+                if cos < MIXED {
+                    return Ok(piece);
+                }
             }
         }
         Ok(grad)

@@ -40,6 +40,10 @@ const ROOT_SHARE: f64 = 1e-3;
 /// slid to along the seed line.
 const ENDS_WITHIN: f64 = 1e-3;
 
+/// Where the cycle on one side of a border-collision curve ends between two of its
+/// points with its fold test down to this share of its value at the last point before,
+/// it ends at a fold.
+const FOLD_CLOSING: f64 = 0.05;
 /// The pieces [`split`] cuts a chord in where a test's sign change has no root.
 const SPLIT: usize = 8;
 
@@ -63,6 +67,7 @@ const TESTS: [(CurveKind, Test); 2] = [
 ];
 
 /// The cycle solved just off a border-collision curve, on one side.
+#[derive(Clone)]
 struct Off {
     /// Where it was solved.
     y: [f64; 2],
@@ -101,14 +106,28 @@ pub(super) fn seed_from_border_sides(
             jumps: plane.jumps(c.points[0].p),
             dead_ends,
         };
+        // The curve's points but its corners (where another impact lies on a
+        // breakpoint, the cycle just off the curve straddles that one, and the curve's
+        // normal turns).
+        let points: Vec<CurvePoint> = c
+            .points
+            .iter()
+            .filter(|q| {
+                tracer
+                    .border_tests(&q.cycle)
+                    .iter()
+                    .all(|t| t.abs() > CONDITION_TOLERANCE)
+            })
+            .cloned()
+            .collect();
         // Each point's cycle just off the curve, by the side its impact lies on.
-        let sides: Vec<[Option<Off>; 2]> = (0..c.points.len())
+        let sides: Vec<[Option<Off>; 2]> = (0..points.len())
             .map(|j| {
                 let mut found: [Option<Off>; 2] = [None, None];
-                let Some(normal) = normal(&c.points, j) else {
+                let Some(normal) = normal(&points, j) else {
                     return found;
                 };
-                let q = &c.points[j];
+                let q = &points[j];
                 for sign in [1.0, -1.0] {
                     let normal = [sign * normal[0], sign * normal[1]];
                     if let Some((side, off)) = off_curve(
@@ -127,7 +146,7 @@ pub(super) fn seed_from_border_sides(
         let mut seeds: Vec<(CurveKind, [f64; 2], Off)> = Vec::new();
         for side in 0..2 {
             for j in 0..sides.len().saturating_sub(1) {
-                let (p, q) = (&c.points[j], &c.points[j + 1]);
+                let (p, q) = (&points[j], &points[j + 1]);
                 // Where the cycle on this side is solved at one of the two points only
                 // (it ends between them, at a fold or where it leaves its pieces), the
                 // test is watched up to where it still is.
@@ -148,6 +167,7 @@ pub(super) fn seed_from_border_sides(
                     border: (impact, breakpoint),
                 };
                 let reached;
+                let mut ends = false;
                 let (a, b, (p, q)) = match (&sides[j][side], &sides[j + 1][side]) {
                     (Some(a), Some(b)) => (a, b, (p, q)),
                     pair => {
@@ -161,12 +181,28 @@ pub(super) fn seed_from_border_sides(
                             continue;
                         };
                         reached = r;
+                        ends = true;
                         (a, &reached.1, (from, &reached.0))
                     }
                 };
                 for (kind, test) in TESTS {
                     let (ga, gb) = (test(&a.pt), test(&b.pt));
-                    if !(ga.is_finite() && gb.is_finite()) || (ga < 0.0) == (gb < 0.0) {
+                    if !(ga.is_finite() && gb.is_finite()) {
+                        continue;
+                    }
+                    // The cycle on this side ends where its fold test closes in on
+                    // zero: at a fold, whose curve ends on the border collision there
+                    // (followed from there, it must end there to be taken).
+                    if ends
+                        && kind == CurveKind::Fold
+                        && (ga < 0.0) == (gb < 0.0)
+                        && gb.abs() <= FOLD_CLOSING * ga.abs()
+                        && !near_half(&b.pt)
+                    {
+                        seeds.push((kind, [q.alpha, q.p], b.clone()));
+                        continue;
+                    }
+                    if (ga < 0.0) == (gb < 0.0) {
                         continue;
                     }
                     match locate(look(a), (p, q), test, (ga, gb)) {
@@ -337,8 +373,8 @@ fn bisect(
 
 /// Where the cycle on the side `look` is solved off the border-collision curve at its point
 /// `from` but not at the next point `to`: the point of the curve between them nearest
-/// `to` where it still is (by bisection over the chord, each chord point taken onto the
-/// curve across it), with that cycle.
+/// `to` where it still is (marching and then bisecting over the chord, each chord point
+/// taken onto the curve across it), with that cycle.
 fn reach(
     look: OneSide<'_, '_>,
     (from, to): (&CurvePoint, &CurvePoint),
@@ -350,6 +386,23 @@ fn reach(
     };
     let (mut lo, mut hi) = (0.0f64, 1.0f64);
     let mut found: Option<(CurvePoint, Off)> = None;
+    // First in [`SPLIT`] pieces, each from the cycle of the one before (from `from`'s
+    // own, a chord point far along may take Newton's method to another cycle's border
+    // collision close by), then by bisection within the last piece it is solved in.
+    for i in 1..SPLIT {
+        let s = i as f64 / SPLIT as f64;
+        let guess = found.as_ref().map_or(&from.cycle, |f| &f.0.cycle);
+        match at(s, guess) {
+            Some(f) => {
+                lo = s;
+                found = Some(f);
+            }
+            None => {
+                hi = s;
+                break;
+            }
+        }
+    }
     for _ in 0..REACH_STEPS {
         let mid = 0.5 * (lo + hi);
         let guess = found.as_ref().map_or(&from.cycle, |f| &f.0.cycle);
@@ -444,6 +497,14 @@ fn off_curve(
             pt: e.pt,
         },
     ))
+}
+
+/// Whether a doubled cycle's halves are within 10⁻² of each other: next to where it
+/// collapses onto the cycle of half its period, whose multiplier −1 makes its own fold
+/// test vanish there (it ends by collapsing, not at a fold).
+fn near_half(pt: &CyclePoint) -> bool {
+    pt.half_return
+        .is_some_and(|[dt, dv]| dt.abs().max(dv.abs()) <= 1e-2)
 }
 
 /// Whether `curve` ends at a border within `within` of `x`.

@@ -4,7 +4,9 @@
 //! on the curve it ended at. [`super::trace`] asks these when its steps fail or stall.
 
 use super::corrector::{collapsed, Tracer};
-use super::{Codim2, Codim2Kind, CurveEnd, CurveKind, CurvePoint, DeadEnd, BORDER_REACH};
+use super::{
+    Codim2, Codim2Kind, CurveEnd, CurveKind, CurvePoint, DeadEnd, BORDER_REACH, CONDITION_TOLERANCE,
+};
 use crate::orbits::periodic::CyclePoint;
 use crate::time::signed_distance;
 
@@ -125,6 +127,35 @@ impl Tracer<'_> {
         };
         self.around(y0, came, 180.0, &cur.cycle, &mut |t| {
             side(t.q) != here && t.dist <= 10.0 * t.rho && self.plane.inside([t.q.alpha, t.q.p])
+        })
+    }
+
+    /// The double border a border-collision curve is seeded on: another impact of its
+    /// first point `first` on a breakpoint (to [`CONDITION_TOLERANCE`]), as the
+    /// codimension-two point there on this curve (`index`).
+    pub(super) fn seed_corner(&self, first: &CurvePoint, index: usize) -> Option<Codim2> {
+        if !matches!(self.kind, CurveKind::BorderCollision { .. }) {
+            return None;
+        }
+        let nb = self.jumps.len().max(1);
+        let tests = self.border_tests(&first.cycle);
+        let (j, &t) = tests
+            .iter()
+            .enumerate()
+            .min_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))?;
+        (t.abs() <= CONDITION_TOLERANCE).then(|| Codim2 {
+            kind: if collapsed(&first.cycle) {
+                Codim2Kind::Collapse
+            } else {
+                Codim2Kind::DoubleBorder
+            },
+            curve: index,
+            alpha: first.alpha,
+            p: first.p,
+            condition: first.condition,
+            second_condition: t,
+            impact: Some((j / nb, self.jumps[j % nb])),
+            meets: vec![index],
         })
     }
 

@@ -124,8 +124,31 @@ pub(super) fn follow_from(
     let t0 = tangent(grad0, line.c);
     for dir in [1.0, -1.0] {
         let tau = [dir * t0[0], dir * t0[1]];
-        let (pts, end) = tr.run(first.clone(), tau, index, &mut codim2, y0);
+        let (pts, end) = tr.run(first.clone(), tau, index, &mut codim2, y0, None);
         halves.push((pts, end));
+    }
+    // A border collision seeded on a double border (from the curve it crosses there)
+    // may take no step at all one way: it goes on beyond the corner, on the other side
+    // of the other impact's breakpoint from the half that got under way.
+    for h in 0..2 {
+        if !halves[h].0.is_empty() || halves[h].1 == CurveEnd::Window {
+            continue;
+        }
+        // The other half's first point off the seed (not a corner vertex on it).
+        let off = |q: &&CurvePoint| (q.alpha - y0[0]).hypot(q.p - y0[1]) > 1e-9 * plane.scale();
+        let Some(arm) = halves[1 - h].0.iter().find(off).cloned() else {
+            continue;
+        };
+        let Some(corner) = tr.seed_corner(&first, index) else {
+            continue;
+        };
+        let sign = if h == 0 { 1.0 } else { -1.0 };
+        let tau = [sign * t0[0], sign * t0[1]];
+        if let Some((next, dir)) = tr.past_corner(Some(&arm), &first, tau, &corner) {
+            let at = [corner.alpha, corner.p];
+            codim2.push(corner);
+            halves[h] = tr.run(next, dir, index, &mut codim2, y0, Some(at));
+        }
     }
     let (back, back_end) = halves.pop().expect("two directions");
     let (fwd, fwd_end) = halves.pop().expect("two directions");
@@ -157,7 +180,9 @@ pub(super) fn follow_from(
 }
 
 impl Tracer<'_> {
-    /// One direction of a curve from `start` (not included in the result).
+    /// One direction of a curve from `start` (not included in the result), or, where
+    /// `start` is the curve's point just beyond the double border `beyond` it is
+    /// seeded on, from that corner (`start` included).
     fn run(
         &self,
         start: CurvePoint,
@@ -165,6 +190,7 @@ impl Tracer<'_> {
         index: usize,
         codim2: &mut Vec<Codim2>,
         origin: [f64; 2],
+        beyond: Option<[f64; 2]>,
     ) -> (Vec<CurvePoint>, CurveEnd) {
         let scale = self.plane.scale();
         let h_max = 0.005 * scale;
@@ -185,6 +211,12 @@ impl Tracer<'_> {
         // Corners passed, each once (a curve that came back to one it passed would
         // otherwise pass it to and fro).
         let mut passed: Vec<[f64; 2]> = Vec::new();
+        if let Some(at) = beyond {
+            passed.push(at);
+            corner = Some(0);
+            out.push(cur.clone());
+            h = (16.0 * h_min).max(1e-6 * scale);
+        }
         // Go on from `next`, a point found off the tangent's way (beyond a corner, or
         // ahead where the steps failed), leaving in `dir` with short steps.
         macro_rules! resume_from {
@@ -276,19 +308,21 @@ impl Tracer<'_> {
                 };
                 let lost = !near_edge(self.plane, e.y) || off > reach;
                 let next = (!lost).then(|| self.point(e));
-                match next {
-                    Some(next) if !self.crosses_border(&cur, &next, tau, index, codim2) => {
-                        Ok((next, grad))
-                    }
+                let corners = next
+                    .as_ref()
+                    .and_then(|next| self.corners_between(&cur, next, tau, index, codim2));
+                match (next, corners) {
+                    (Some(next), Some(corners)) => Ok((next, grad, corners)),
                     _ => Err(PassError::NoConvergence),
                 }
             });
             match step {
-                Ok((next, _)) if at_edge => {
+                Ok((next, _, corners)) if at_edge => {
+                    out.extend(corners);
                     out.push(next);
                     return (out, CurveEnd::Window);
                 }
-                Ok((next, grad)) => {
+                Ok((next, grad, corners)) => {
                     // A step against the way the curve came: it turns back on itself.
                     if let Some(p) = &prev {
                         let back = (next.alpha - cur.alpha) * (cur.alpha - p.alpha)
@@ -320,6 +354,8 @@ impl Tracer<'_> {
                         .map_or([cur.alpha, cur.p], |q| [q.alpha, q.p]);
                     tau = along_step(grad, from, &next, tau);
                     prev = Some(std::mem::replace(&mut cur, next));
+                    // The corners turned on the way are the polyline's vertices.
+                    out.extend(corners);
                     out.push(cur.clone());
                     // Back at the start going the way it left: a closed curve (coming
                     // back the other way, it retraced itself).
@@ -437,6 +473,21 @@ impl Tracer<'_> {
         index: usize,
         codim2: &mut Vec<Codim2>,
     ) -> bool {
+        self.corners_between(a, b, tau, index, codim2).is_none()
+    }
+
+    /// [`Self::crosses_border`]'s watch, with the step's corners: the curve's points on
+    /// the double borders it passed between `a` and `b`, in order (the vertices its
+    /// polyline turns at). None where the step is refused.
+    pub(super) fn corners_between(
+        &self,
+        a: &CurvePoint,
+        b: &CurvePoint,
+        tau: [f64; 2],
+        index: usize,
+        codim2: &mut Vec<Codim2>,
+    ) -> Option<Vec<CurvePoint>> {
+        let mut corners: Vec<(f64, CurvePoint)> = Vec::new();
         let ta = self.border_tests(&a.cycle);
         let tb = self.border_tests(&b.cycle);
         let nb = self.jumps.len().max(1);
@@ -456,7 +507,7 @@ impl Tracer<'_> {
             // function there, and a point beyond is on another curve. The step is
             // refused, and the shrinking steps close in on the border ([`border_end`]).
             if !matches!(self.kind, CurveKind::BorderCollision { .. }) {
-                return true;
+                return None;
             }
             let (impact, bp) = (j / nb, self.jumps[j % nb]);
             let test = |q: &CurvePoint| signed_distance(q.cycle.phases[impact], bp);
@@ -465,12 +516,11 @@ impl Tracer<'_> {
             // no crossing of this curve: the step jumped onto another curve close by
             // (two arms of a cusp, the other impact on either side of its breakpoint),
             // and is refused.
-            let Some(q) = bracketed_root_nan(&mut g, 0.0, h, ga, gb).and_then(at) else {
-                return true;
-            };
+            let (s, q) =
+                bracketed_root_nan(&mut g, 0.0, h, ga, gb).and_then(|s| Some((s, at(s)?)))?;
             let second = test(&q);
             if second.abs() > CONDITION_TOLERANCE {
-                return true;
+                return None;
             }
             codim2.push(Codim2 {
                 kind: if collapsed(&q.cycle) {
@@ -486,6 +536,12 @@ impl Tracer<'_> {
                 impact: Some((impact, bp)),
                 meets: vec![index],
             });
+            // A vertex where the step begins or ends is that point already.
+            let apart =
+                |r: &CurvePoint| (q.alpha - r.alpha).hypot(q.p - r.p) > 1e-9 * self.plane.scale();
+            if apart(a) && apart(b) {
+                corners.push((s, q));
+            }
         }
         if let (Some(ca), Some(cb)) = (a.criticality, b.criticality) {
             if ca.supercritical().is_some()
@@ -509,7 +565,8 @@ impl Tracer<'_> {
                 }
             }
         }
-        false
+        corners.sort_by(|x, y| x.0.total_cmp(&y.0));
+        Some(corners.into_iter().map(|(_, q)| q).collect())
     }
 }
 
