@@ -10,7 +10,9 @@
 //! side's PD and fold test functions are watched from point to point, and where one
 //! changes sign with no curve of its kind and cycle ending there, that curve is
 //! followed from a line parallel to the border-collision curve, just off it on that
-//! side.
+//! side. Where the cycle on one side stops being solved between two points, its tests
+//! are watched up to where it still is, and where it stops with its fold test closing
+//! in on zero, the fold curve ending there is followed.
 
 use super::corrector::{Eval, Tracer};
 use super::trace::{follow_from, SeedLine};
@@ -44,6 +46,7 @@ const ENDS_WITHIN: f64 = 1e-3;
 /// points with its fold test down to this share of its value at the last point before,
 /// it ends at a fold.
 const FOLD_CLOSING: f64 = 0.05;
+
 /// The pieces [`split`] cuts a chord in where a test's sign change has no root.
 const SPLIT: usize = 8;
 
