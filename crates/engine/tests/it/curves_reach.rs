@@ -6,8 +6,8 @@
 
 use super::curves::{border_collisions, lowest_in_flight, of};
 use super::curves_set::{
-    continuation_borders, fd_over_d, fd_over_r, from_fixed, monodromy_by_differences,
-    on_its_border, precise_border_distance,
+    assert_border_at_forty_digits, continuation_borders, fd_over_d, fd_over_r, from_fixed,
+    monodromy_by_differences, on_its_border,
 };
 use bouncemap_engine::jobs::grid::SweepParam;
 use bouncemap_engine::orbits::curves::{Codim2Kind, Curve, CurvePoint, Curves, Plane};
@@ -363,14 +363,7 @@ fn a_border_collision_goes_on_where_its_differences_mix_the_pieces() {
     let beyond: Vec<&CurvePoint> = c.points.iter().filter(|q| q.alpha > 0.5524).collect();
     assert!(beyond.iter().any(|q| q.alpha > 0.68), "past α 0.68");
     for q in beyond.iter().step_by(5) {
-        let at = precise_border_distance(1.0, q.p, c, q).expect("the cycle at 40 digits");
-        assert!(
-            at.abs() < 1e-9 && (at - q.condition).abs() < 1e-10,
-            "({}, {}): {at:e} against {:e}",
-            q.alpha,
-            q.p,
-            q.condition
-        );
+        assert_border_at_forty_digits(1.0, q.p, c, q);
     }
 }
 
@@ -400,14 +393,7 @@ fn the_border_collision_at_zero_goes_on_through_the_closed_form_double_border() 
     let beyond: Vec<&CurvePoint> = c.points.iter().filter(|q| q.alpha > alpha + 1e-6).collect();
     assert!(beyond.len() >= 10, "{} points beyond", beyond.len());
     for q in beyond.iter().step_by(5) {
-        let at = precise_border_distance(0.5, q.p, c, q).expect("the cycle at 40 digits");
-        assert!(
-            at.abs() < 1e-9 && (at - q.condition).abs() < 1e-10,
-            "({}, {}): {at:e} against {:e}",
-            q.alpha,
-            q.p,
-            q.condition
-        );
+        assert_border_at_forty_digits(0.5, q.p, c, q);
     }
 }
 

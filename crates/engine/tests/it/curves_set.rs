@@ -377,15 +377,7 @@ fn the_period_eight_plane_does_not_depend_on_the_seeds() {
             // A second method: at each tenth point the cycle at 40 digits puts the
             // impact where the point says, within 10⁻¹⁰.
             for q in c.points.iter().step_by(10) {
-                let at =
-                    precise_border_distance(q.p, plane.r, c, q).expect("the cycle at 40 digits");
-                assert!(
-                    at.abs() < 1e-9 && (at - q.condition).abs() < 1e-10,
-                    "({}, {}): {at:e} against {:e}",
-                    q.alpha,
-                    q.p,
-                    q.condition
-                );
+                assert_border_at_forty_digits(q.p, plane.r, c, q);
             }
         }
         let short = of(set, "period_doubling", 8).into_iter().any(|c| {
@@ -597,13 +589,27 @@ fn a_window_inside_another_shows_what_the_wider_one_shows_in_it() {
     }
 }
 
+/// That the cycle at 40 digits puts the impact of the border-collision point `q` of
+/// `c` (on F_d at r) within 10⁻⁹ of the breakpoint, and within 10⁻¹⁰ of where the
+/// point says ([`precise_border_distance`]).
+pub(crate) fn assert_border_at_forty_digits(d: f64, r: f64, c: &Curve, q: &CurvePoint) {
+    let at = precise_border_distance(d, r, c, q).expect("the cycle at 40 digits");
+    assert!(
+        at.abs() < 1e-9 && (at - q.condition).abs() < 1e-10,
+        "({}, {}): {at:e} against {:e}",
+        q.alpha,
+        q.p,
+        q.condition
+    );
+}
+
 /// A second method for a point `q` of the border-collision curve `c` on F_d at
 /// restitution r: the impact's signed distance to its breakpoint at the point's α, the
 /// cycle solved at 40 digits (Newton's method with the map at that precision, from the
 /// point's launch) 10⁻¹¹ and 2·10⁻¹¹ off the point in α, on whichever side it exists,
 /// and its distance extrapolated linearly back to the point. None where the cycle is
 /// found on neither side.
-pub(crate) fn precise_border_distance(d: f64, r: f64, c: &Curve, q: &CurvePoint) -> Option<f64> {
+fn precise_border_distance(d: f64, r: f64, c: &Curve, q: &CurvePoint) -> Option<f64> {
     use bouncemap_engine::orbits::curves::CurveKind;
     use bouncemap_engine::table::Family;
     use bouncemap_engine::{

@@ -517,6 +517,15 @@ impl Tracer<'_> {
         out
     }
 
+    /// The border test of `pt` nearest zero ([`Self::border_tests`]): its index and
+    /// value.
+    pub(super) fn nearest_border(&self, pt: &CyclePoint) -> Option<(usize, f64)> {
+        self.border_tests(pt)
+            .into_iter()
+            .enumerate()
+            .min_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))
+    }
+
     pub(super) fn point(&self, e: Eval) -> CurvePoint {
         let criticality = (self.kind == CurveKind::PeriodDoubling)
             .then(|| criticality(&e.sys, &e.pt))

@@ -46,16 +46,10 @@ impl Tracer<'_> {
     ) -> bool {
         let Some(prev) = prev else { return false };
         let nb = self.jumps.len().max(1);
-        let tc = self.border_tests(&cur.cycle);
-        let tp = self.border_tests(&prev.cycle);
-        let Some((j, &dc)) = tc
-            .iter()
-            .enumerate()
-            .min_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))
-        else {
+        let Some((j, dc)) = self.nearest_border(&cur.cycle) else {
             return false;
         };
-        let dp = tp[j];
+        let dp = self.border_tests(&prev.cycle)[j];
         // On the border already (to rounding), or closing in on it from one side.
         let on = dc.abs() <= 1e-12;
         if !on && (dc.abs() > BORDER_REACH || dp.abs() <= dc.abs() || (dp < 0.0) != (dc < 0.0)) {
@@ -138,25 +132,35 @@ impl Tracer<'_> {
             return None;
         }
         let nb = self.jumps.len().max(1);
-        let tests = self.border_tests(&first.cycle);
-        let (j, &t) = tests
-            .iter()
-            .enumerate()
-            .min_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))?;
-        (t.abs() <= CONDITION_TOLERANCE).then(|| Codim2 {
-            kind: if collapsed(&first.cycle) {
+        let (j, t) = self.nearest_border(&first.cycle)?;
+        (t.abs() <= CONDITION_TOLERANCE)
+            .then(|| self.corner(first, index, (j / nb, self.jumps[j % nb]), t))
+    }
+
+    /// The double border at the point `q` of this curve (`index`), where the impact
+    /// `impact` lies `second` from the breakpoint `bp`: a collapse where the doubled
+    /// cycle has collapsed onto the cycle of half its period.
+    pub(super) fn corner(
+        &self,
+        q: &CurvePoint,
+        index: usize,
+        (impact, bp): (usize, f64),
+        second: f64,
+    ) -> Codim2 {
+        Codim2 {
+            kind: if collapsed(&q.cycle) {
                 Codim2Kind::Collapse
             } else {
                 Codim2Kind::DoubleBorder
             },
             curve: index,
-            alpha: first.alpha,
-            p: first.p,
-            condition: first.condition,
-            second_condition: t,
-            impact: Some((j / nb, self.jumps[j % nb])),
+            alpha: q.alpha,
+            p: q.p,
+            condition: q.condition,
+            second_condition: second,
+            impact: Some((impact, bp)),
             meets: vec![index],
-        })
+        }
     }
 
     /// The first curve point, solved from `guess`'s cycle on the lines across the

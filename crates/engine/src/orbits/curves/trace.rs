@@ -4,7 +4,7 @@
 //! [`super::stops`] says why, or finds the way on ([`super::cusp`] through a fold
 //! curve's cusp).
 
-use super::corrector::{collapsed, Tracer};
+use super::corrector::Tracer;
 use super::{
     Codim2, Codim2Kind, Curve, CurveEnd, CurveKind, CurvePoint, DeadEnd, Plane,
     CONDITION_TOLERANCE, MAX_STEPS,
@@ -522,20 +522,7 @@ impl Tracer<'_> {
             if second.abs() > CONDITION_TOLERANCE {
                 return None;
             }
-            codim2.push(Codim2 {
-                kind: if collapsed(&q.cycle) {
-                    Codim2Kind::Collapse
-                } else {
-                    Codim2Kind::DoubleBorder
-                },
-                curve: index,
-                alpha: q.alpha,
-                p: q.p,
-                condition: q.condition,
-                second_condition: second,
-                impact: Some((impact, bp)),
-                meets: vec![index],
-            });
+            codim2.push(self.corner(&q, index, (impact, bp), second));
             // A vertex where the step begins or ends is that point already.
             let apart =
                 |r: &CurvePoint| (q.alpha - r.alpha).hypot(q.p - r.p) > 1e-9 * self.plane.scale();
