@@ -367,6 +367,63 @@ fn a_border_collision_goes_on_where_its_differences_mix_the_pieces() {
     }
 }
 
+/// That (4, 4) border collision at 0 ends at a double border (0.68315, 0.57620) where
+/// its cycle's impact half a cycle on reaches the same breakpoint. Such twin impacts
+/// meet on one breakpoint where a doubled cycle collapses onto the one of half its
+/// period, and were taken for that; here the halves lie 0.42 apart in phase, and the
+/// corner is a double border like any other: the other border collision through it
+/// (the twin impact on the breakpoint) is followed too, from the window's edge α = 0.8
+/// to the corner. Beyond the corner, the ways found lead back along the arms they came
+/// by (the cycle exists on one side of a line through the corner only), and each curve
+/// ends there instead of running back to its start. A second method at every fifth
+/// point of the new curve: the cycle at 40 digits puts the impact within 10⁻⁹ of the
+/// breakpoint, and within 10⁻¹⁰ of where the point says.
+#[test]
+fn the_twin_impacts_border_collision_through_a_double_border_is_followed() {
+    let (plane, set) = fd1_over_r_to_eight();
+    let (alpha, r) = (0.68315, 0.57620);
+    let at: Vec<_> = set
+        .codim2
+        .iter()
+        .filter(|q| (q.alpha - alpha).hypot(q.p - r) < 1e-5)
+        .collect();
+    assert_eq!(at.len(), 1, "the double border once: {at:?}");
+    assert_eq!(at[0].kind, Codim2Kind::DoubleBorder);
+    // The curves it lists: each within 10⁻⁴ of it (its located point is the better of
+    // the two curves' extrapolations to it; the other ends 10⁻⁵ short).
+    let arms: Vec<&Curve> = border_collisions(set, 4, 0.0)
+        .filter(|c| c.passes_near(at[0].alpha, at[0].p, 1e-4))
+        .collect();
+    assert_eq!(
+        arms.len(),
+        2,
+        "two (4, 4) border collisions at 0 through it"
+    );
+    assert_ne!(arms[0].kind, arms[1].kind, "of two impacts");
+    for c in &arms {
+        assert!(at[0]
+            .meets
+            .contains(&set.curves.iter().position(|x| x == *c).unwrap()));
+        // Not back along itself: its two ends lie apart.
+        let (a, b) = (&c.points[0], &c.points[c.points.len() - 1]);
+        assert!((a.alpha - b.alpha).hypot(a.p - b.p) > 1e-2, "{:?}", c.ends);
+        assert!(c.ends.iter().any(|e| e.as_str() == "border_collision"));
+    }
+    let new = arms
+        .iter()
+        .find(|c| c.points.iter().any(|q| q.alpha == plane.alpha.1))
+        .expect("one from the window's edge α = 0.8");
+    let far: Vec<&CurvePoint> = new
+        .points
+        .iter()
+        .filter(|q| (q.alpha - at[0].alpha).hypot(q.p - at[0].p) > 1e-4)
+        .collect();
+    assert!(far.len() >= 20, "{} points", far.len());
+    for q in far.iter().step_by(5) {
+        assert_border_at_forty_digits(1.0, q.p, new, q);
+    }
+}
+
 /// The double border (4/7, 13/15) of F_0.5 over (α, r) (the closed form is in the
 /// test below) has a fourth arm: the (2, 2) border collision at 0 goes on through it
 /// to the window's edge α = 0.8 (it used to end on the corner: its cycle exists beyond

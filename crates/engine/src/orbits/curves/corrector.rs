@@ -548,6 +548,15 @@ pub(super) fn collapsed(pt: &CyclePoint) -> bool {
         .is_some_and(|[dt, dv]| dt.abs().max(dv.abs()) <= 1e-7)
 }
 
+/// Whether a doubled cycle's halves are within 10⁻² of each other: next to where it is
+/// born from the cycle of half its period (by a period doubling, or on a border) and
+/// collapses back onto it. There a curve that cannot go on ends, and that cycle's
+/// multiplier −1 makes the doubled cycle's fold test vanish.
+pub(super) fn near_birth(pt: &CyclePoint) -> bool {
+    pt.half_return
+        .is_some_and(|[dt, dv]| dt.abs().max(dv.abs()) <= 1e-2)
+}
+
 /// How far a cycle's launch moved from `guess`'s: in phase, and in velocity relative to
 /// its size.
 fn moved(pt: &CyclePoint, guess: &CyclePoint) -> f64 {

@@ -152,10 +152,14 @@ fn seed_at_double_borders(plane: &Plane, out: &mut Curves, dead_ends: &RefCell<V
             continue;
         };
         let on = &out.curves[p.curve];
-        // The twin impact of a doubled cycle on its own breakpoint: the cycle collapses
-        // there onto the one of half its period, and the "other" curve is that cycle
+        // The point of the known curve nearest the double border gives the cycle.
+        let Some(q) = nearest(on, &p) else {
+            continue;
+        };
+        // The twin impact of a doubled cycle on its own breakpoint, where the cycle
+        // collapses onto the one of half its period: the "other" curve is that cycle
         // run twice.
-        if on.kind.twin(on.n, (impact, breakpoint)) {
+        if on.kind.twin(&q.cycle, (impact, breakpoint)) {
             continue;
         }
         let crossing = out.curves.iter().enumerate().any(|(j, c)| {
@@ -168,10 +172,6 @@ fn seed_at_double_borders(plane: &Plane, out: &mut Curves, dead_ends: &RefCell<V
         if crossing || out.curves.len() >= MAX_CURVES {
             continue;
         }
-        // The point of the known curve nearest the double border gives the cycle.
-        let Some(q) = nearest(on, &p) else {
-            continue;
-        };
         // The other curve is solved for α at a fixed value of the second parameter,
         // from a guess of α: that point's, else values just off the double border on
         // either side from the border's α (at the border itself the impact lies on both

@@ -6,15 +6,29 @@ use super::*;
 
 /// Each codimension-two point once: points of one kind within `tol` of each other (the
 /// same point located on two curves, or twice on one) are one, the best located kept
-/// (the smaller condition); each then lists every curve passing through it.
+/// (the smaller condition); so are the double borders of one cycle's two impacts
+/// located from its two border collisions, within ten times `tol` (the curve that
+/// meets the corner at a small angle to the border locates it the less well), the one
+/// with the smaller conditions kept. Each then lists every curve passing through it.
 pub(super) fn codim2_once(out: &mut Curves, tol: f64) {
     doubled_at_pd_border(out, 10.0 * tol);
     let mut kept: Vec<Codim2> = Vec::new();
     for p in std::mem::take(&mut out.codim2) {
-        let twin = kept
-            .iter_mut()
-            .find(|q| q.kind == p.kind && (q.alpha - p.alpha).hypot(q.p - p.p) <= tol);
+        let pair = border_pair(out, &p);
+        let twin = kept.iter_mut().find(|q| {
+            let d = (q.alpha - p.alpha).hypot(q.p - p.p);
+            q.kind == p.kind
+                && (d <= tol || (pair.is_some() && d <= 10.0 * tol && border_pair(out, q) == pair))
+        });
+        let off = |q: &Codim2| q.condition.abs() + q.second_condition.abs();
         match twin {
+            Some(q) if pair.is_some() && border_pair(out, q) == pair => {
+                if off(&p) < off(q) {
+                    let meets = std::mem::take(&mut q.meets);
+                    *q = p;
+                    q.meets = meets;
+                }
+            }
             Some(q) => {
                 if p.condition.abs() < q.condition.abs() {
                     let meets = std::mem::take(&mut q.meets);
@@ -28,6 +42,25 @@ pub(super) fn codim2_once(out: &mut Curves, tol: f64) {
     out.codim2 = kept;
     list_meets(out, tol);
     ends_at_codim2(out, 10.0 * tol);
+}
+
+/// A double border's cycle (n, k) and its two impacts with their breakpoints' bits, in
+/// the order of the impacts.
+type BorderPair = (usize, u32, [(usize, u64); 2]);
+
+/// The [`BorderPair`] of a double border found on a border-collision curve.
+fn border_pair(out: &Curves, p: &Codim2) -> Option<BorderPair> {
+    if p.kind != Codim2Kind::DoubleBorder {
+        return None;
+    }
+    let c = out.curves.get(p.curve)?;
+    let CurveKind::BorderCollision { impact, breakpoint } = c.kind else {
+        return None;
+    };
+    let (j, bp) = p.impact?;
+    let mut two = [(impact, breakpoint.to_bits()), (j, bp.to_bits())];
+    two.sort_unstable();
+    Some((c.n, c.k, two))
 }
 
 /// A curve that stopped, for want of a next point, within `tol` of a

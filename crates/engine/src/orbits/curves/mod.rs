@@ -117,6 +117,7 @@ pub use find::{curves, curves_with_progress};
 
 use super::continuation::Special;
 use super::events::jump_phases;
+use super::manifold::segment_distance;
 use super::periodic::{min_interior_gap, CyclePoint, PassError};
 use crate::error::EngineError;
 use crate::jobs::grid::SweepParam;
@@ -307,13 +308,17 @@ impl CurveKind {
         }
     }
 
-    /// Whether impact `other` at the breakpoint `at` (of a cycle of `n` impacts) is
-    /// this border collision's twin: in a doubled cycle, the impact half a cycle on, on
-    /// the same breakpoint. The two meet there only where the cycle collapses onto the
-    /// one of half its period, which is no double border.
-    pub fn twin(&self, n: usize, (other, at): (usize, f64)) -> bool {
+    /// Whether impact `other` reaching the breakpoint `at` beside this border
+    /// collision's impact, on its cycle `pt`, is the cycle collapsing onto the one of
+    /// half its period, which is no double border: in a doubled cycle whose halves are
+    /// close ([`corrector::near_birth`]), the impact half a cycle on, on the same
+    /// breakpoint. (With its halves apart, the two impacts on one breakpoint are a
+    /// double border like any other.)
+    fn twin(&self, pt: &CyclePoint, (other, at): (usize, f64)) -> bool {
+        let n = pt.n;
         matches!(*self, CurveKind::BorderCollision { impact, breakpoint }
             if breakpoint == at && n.is_multiple_of(2) && (other + n / 2) % n == impact)
+            && corrector::near_birth(pt)
     }
 
     /// Short label (as in the one-parameter diagrams).
@@ -563,19 +568,13 @@ pub struct Curve {
 impl Curve {
     /// Whether the curve passes within `tol` (in the plane's units) of (α, p).
     pub fn passes_near(&self, alpha: f64, p: f64, tol: f64) -> bool {
+        let y = [alpha, p];
         let d = |a: &CurvePoint| (a.alpha - alpha).hypot(a.p - p);
         self.points.iter().any(|q| d(q) <= tol)
-            || self.points.windows(2).any(|w| {
-                // Distance to the segment.
-                let (ax, ay, bx, by) = (w[0].alpha, w[0].p, w[1].alpha, w[1].p);
-                let (dx, dy) = (bx - ax, by - ay);
-                let l2 = dx * dx + dy * dy;
-                if l2 == 0.0 {
-                    return false;
-                }
-                let t = (((alpha - ax) * dx + (p - ay) * dy) / l2).clamp(0.0, 1.0);
-                (ax + t * dx - alpha).hypot(ay + t * dy - p) <= tol
-            })
+            || self
+                .points
+                .windows(2)
+                .any(|w| segment_distance(y, [w[0].alpha, w[0].p], [w[1].alpha, w[1].p]) <= tol)
     }
 }
 

@@ -14,7 +14,7 @@
 //! are watched up to where it still is, and where it stops with its fold test closing
 //! in on zero, the fold curve ending there is followed.
 
-use super::corrector::{Eval, Tracer};
+use super::corrector::{near_birth, Eval, Tracer};
 use super::trace::{follow_from, SeedLine};
 use super::*;
 use crate::orbits::continuation::Kind;
@@ -200,7 +200,7 @@ pub(super) fn seed_from_border_sides(
                         && kind == CurveKind::Fold
                         && (ga < 0.0) == (gb < 0.0)
                         && gb.abs() <= FOLD_CLOSING * ga.abs()
-                        && !near_half(&b.pt)
+                        && !near_birth(&b.pt)
                     {
                         seeds.push((kind, [q.alpha, q.p], b.clone()));
                         continue;
@@ -500,14 +500,6 @@ fn off_curve(
             pt: e.pt,
         },
     ))
-}
-
-/// Whether a doubled cycle's halves are within 10⁻² of each other: next to where it
-/// collapses onto the cycle of half its period, whose multiplier −1 makes its own fold
-/// test vanish there (it ends by collapsing, not at a fold).
-fn near_half(pt: &CyclePoint) -> bool {
-    pt.half_return
-        .is_some_and(|[dt, dv]| dt.abs().max(dv.abs()) <= 1e-2)
 }
 
 /// Whether `curve` ends at a border within `within` of `x`.

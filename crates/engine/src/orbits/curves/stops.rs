@@ -102,7 +102,7 @@ impl Tracer<'_> {
         let (j, bp) = corner.impact?;
         // The twin impact of a doubled cycle on the same breakpoint: the cycle
         // collapses there onto the one of half its period, which is no corner.
-        if self.kind.twin(self.n, (j, bp)) {
+        if self.kind.twin(&cur.cycle, (j, bp)) {
             return None;
         }
         let side = |q: &CurvePoint| signed_distance(q.cycle.phases[j], bp) < 0.0;

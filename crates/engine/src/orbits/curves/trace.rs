@@ -4,12 +4,13 @@
 //! [`super::stops`] says why, or finds the way on ([`super::cusp`] through a fold
 //! curve's cusp).
 
-use super::corrector::Tracer;
+use super::corrector::{near_birth, Tracer};
 use super::{
     Codim2, Codim2Kind, Curve, CurveEnd, CurveKind, CurvePoint, DeadEnd, Plane,
     CONDITION_TOLERANCE, MAX_STEPS,
 };
 use crate::orbits::continuation::Special;
+use crate::orbits::manifold::segment_distance;
 use crate::orbits::periodic::{cycle, CyclePoint, PassError};
 use crate::orbits::roots::bracketed_root_nan;
 use crate::time::signed_distance;
@@ -21,6 +22,10 @@ const CORNER_STEP: f64 = 1e-2;
 const STALL_STEP: f64 = 1e-3;
 /// ... and this many small steps in a row stall a curve ([`CurveEnd::Stalled`]).
 const STALL_STEPS: usize = 60;
+/// A point within this share of the plane of the arm a curve came to a corner by, and
+/// farther from the corner than a thousand times that, has come back along it (two
+/// arms that close are one to 0.06°; a corner's arms may part at a few degrees).
+const RETRACE: f64 = 1e-6;
 /// Times one direction of a curve may be taken up again past a point where its steps
 /// failed ([`Tracer::ahead`]).
 const MAX_RESCUES: usize = 4;
@@ -122,9 +127,24 @@ pub(super) fn follow_from(
     let mut halves: Vec<(Vec<CurvePoint>, CurveEnd)> = Vec::new();
     let mut codim2 = Vec::new();
     let t0 = tangent(grad0, line.c);
-    for dir in [1.0, -1.0] {
-        let tau = [dir * t0[0], dir * t0[1]];
-        let (pts, end) = tr.run(first.clone(), tau, index, &mut codim2, y0, None);
+    let mut arms: [Vec<Arm>; 2] = Default::default();
+    for (h, dir) in [1.0, -1.0].into_iter().enumerate() {
+        // Behind the second half lie the first, from its far end, and the seed.
+        let behind: Vec<CurvePoint> = halves
+            .first()
+            .map(|(pts, _)| pts.iter().rev().cloned().collect::<Vec<_>>())
+            .unwrap_or_default()
+            .into_iter()
+            .chain([first.clone()])
+            .collect();
+        let from = Run {
+            start: first.clone(),
+            tau: [dir * t0[0], dir * t0[1]],
+            origin: y0,
+            beyond: None,
+            behind: &behind,
+        };
+        let (pts, end) = tr.run(from, index, &mut codim2, &mut arms[h]);
         halves.push((pts, end));
     }
     // A border collision seeded on a double border (from the curve it crosses there)
@@ -147,7 +167,48 @@ pub(super) fn follow_from(
         if let Some((next, dir)) = tr.past_corner(Some(&arm), &first, tau, &corner) {
             let at = [corner.alpha, corner.p];
             codim2.push(corner);
-            halves[h] = tr.run(next, dir, index, &mut codim2, y0, Some(at));
+            let behind: Vec<CurvePoint> = halves[1 - h]
+                .0
+                .iter()
+                .rev()
+                .cloned()
+                .chain([first.clone()])
+                .collect();
+            let from = Run {
+                start: next,
+                tau: dir,
+                origin: y0,
+                beyond: Some(at),
+                behind: &behind,
+            };
+            halves[h] = tr.run(from, index, &mut codim2, &mut arms[h]);
+        }
+    }
+    // The first half did not know the second: a way it found past a corner that comes
+    // back along the second half ends it at that corner.
+    let tol = RETRACE * plane.scale();
+    for arm in &arms[0] {
+        let (fwd, back) = (&halves[0].0, &halves[1].0);
+        let Some(beyond) = fwd.get(arm.at..) else {
+            continue;
+        };
+        let back_along = beyond.iter().find_map(|q| {
+            let before = fwd[..arm.at]
+                .iter()
+                .rev()
+                .chain([&first])
+                .chain(back.iter());
+            comes_back(
+                [q.alpha, q.p],
+                arm.corner,
+                before.map(|q| [q.alpha, q.p]),
+                tol,
+            )
+        });
+        if back_along == Some(true) {
+            halves[0].0.truncate(arm.at);
+            halves[0].1 = CurveEnd::Border;
+            break;
         }
     }
     let (back, back_end) = halves.pop().expect("two directions");
@@ -182,16 +243,22 @@ pub(super) fn follow_from(
 impl Tracer<'_> {
     /// One direction of a curve from `start` (not included in the result), or, where
     /// `start` is the curve's point just beyond the double border `beyond` it is
-    /// seeded on, from that corner (`start` included).
+    /// seeded on, from that corner (`start` included). The corners it passes are added
+    /// to `arms`.
     fn run(
         &self,
-        start: CurvePoint,
-        tau0: [f64; 2],
+        from: Run<'_>,
         index: usize,
         codim2: &mut Vec<Codim2>,
-        origin: [f64; 2],
-        beyond: Option<[f64; 2]>,
+        arms: &mut Vec<Arm>,
     ) -> (Vec<CurvePoint>, CurveEnd) {
+        let Run {
+            start,
+            tau: tau0,
+            origin,
+            beyond,
+            behind,
+        } = from;
         let scale = self.plane.scale();
         let h_max = 0.005 * scale;
         let h_min = 1e-9 * scale;
@@ -213,6 +280,11 @@ impl Tracer<'_> {
         let mut passed: Vec<[f64; 2]> = Vec::new();
         if let Some(at) = beyond {
             passed.push(at);
+            arms.push(Arm {
+                corner: at,
+                at: 0,
+                checked: false,
+            });
             corner = Some(0);
             out.push(cur.clone());
             h = (16.0 * h_min).max(1e-6 * scale);
@@ -244,6 +316,11 @@ impl Tracer<'_> {
                     let y = [c.alpha, c.p];
                     if let Some((next, dir)) = self.past_corner(prev.as_ref(), &cur, tau, c) {
                         passed.push(y);
+                        arms.push(Arm {
+                            corner: y,
+                            at: out.len(),
+                            checked: false,
+                        });
                         corner = Some(out.len());
                         crawl = 0;
                         resume_from!(next, dir);
@@ -357,6 +434,21 @@ impl Tracer<'_> {
                     // The corners turned on the way are the polyline's vertices.
                     out.extend(corners);
                     out.push(cur.clone());
+                    // Beyond a corner, back along the arm it came by: the way found
+                    // past the corner only led back, and the curve ends at the corner.
+                    let y = [cur.alpha, cur.p];
+                    for arm in arms.iter_mut().filter(|a| !a.checked) {
+                        let before = out[..arm.at].iter().rev().chain(behind.iter().rev());
+                        let before = before.map(|q| [q.alpha, q.p]);
+                        match comes_back(y, arm.corner, before, RETRACE * scale) {
+                            Some(true) => {
+                                out.truncate(arm.at);
+                                return (out, CurveEnd::Border);
+                            }
+                            Some(false) => arm.checked = true,
+                            None => {}
+                        }
+                    }
                     // Back at the start going the way it left: a closed curve (coming
                     // back the other way, it retraced itself).
                     if travelled > 4.0 * h_max
@@ -599,19 +691,64 @@ pub(super) fn secant(prev: Option<&CurvePoint>, cur: &CurvePoint, h: f64) -> Cyc
     guess
 }
 
+/// Where one direction of a curve starts ([`Tracer::run`]): its first point, the way
+/// it leaves, the curve's seed (to tell it closed), the double border `start` lies
+/// just beyond where it is seeded on one, and the points of the curve behind `start`
+/// (nearest last), which a way past a corner must not come back along.
+struct Run<'a> {
+    start: CurvePoint,
+    tau: [f64; 2],
+    origin: [f64; 2],
+    beyond: Option<[f64; 2]>,
+    behind: &'a [CurvePoint],
+}
+
+/// A corner a curve passed: where, how many of its points lie before it, and whether
+/// the way on was checked against the arm it came by ([`comes_back`]).
+#[derive(Clone, Copy)]
+struct Arm {
+    corner: [f64; 2],
+    at: usize,
+    checked: bool,
+}
+
+/// Whether `y`, farther than a thousand times `tol` from `corner`, lies within `tol` of the
+/// arm `before` that a curve came to the corner by (its points from the corner back,
+/// followed at most twice `y`'s distance from the corner, the way a retrace comes): the
+/// way found past the corner only led back ([`RETRACE`]). None while `y` is nearer the
+/// corner than that.
+fn comes_back(
+    y: [f64; 2],
+    corner: [f64; 2],
+    before: impl Iterator<Item = [f64; 2]>,
+    tol: f64,
+) -> Option<bool> {
+    let away = (y[0] - corner[0]).hypot(y[1] - corner[1]);
+    if away <= 1e3 * tol {
+        return None;
+    }
+    let mut arc = 0.0;
+    let mut last: Option<[f64; 2]> = None;
+    for b in before {
+        if let Some(a) = last {
+            if segment_distance(y, a, b) <= tol {
+                return Some(true);
+            }
+            arc += (b[0] - a[0]).hypot(b[1] - a[1]);
+            if arc > 2.0 * away + tol {
+                break;
+            }
+        }
+        last = Some(b);
+    }
+    Some(false)
+}
+
 /// Whether a doubled cycle is about to collapse (its halves within 1e-5 of each
 /// other): where the steps shrink toward a collapse they cannot pass.
 fn collapsing(pt: &CyclePoint) -> bool {
     pt.half_return
         .is_some_and(|[dt, dv]| dt.abs().max(dv.abs()) <= 1e-5)
-}
-
-/// Whether a doubled cycle's halves are within 1e-2 of each other: where a curve that
-/// cannot go on stops next to the point its cycle is born from its parent (by a period
-/// doubling, or on a border), which is where it ends.
-fn near_birth(pt: &CyclePoint) -> bool {
-    pt.half_return
-        .is_some_and(|[dt, dv]| dt.abs().max(dv.abs()) <= 1e-2)
 }
 
 /// The first edge of the window `w` (α range, second parameter's range) the segment
@@ -647,4 +784,40 @@ fn on_edge(plane: &Plane, y: [f64; 2]) -> bool {
 /// Whether y lies in the search range (to 1e-9 of the window's size).
 fn near_edge(plane: &Plane, y: [f64; 2]) -> bool {
     plane.spans(plane.search_alpha(), y, 1e-9 * plane.scale())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::comes_back;
+
+    /// An arm to the corner at the origin along the diagonal from (1, 1), from the
+    /// corner back.
+    fn arm() -> impl Iterator<Item = [f64; 2]> {
+        (0..=100).map(|i| {
+            let s = i as f64 / 100.0;
+            [s, s]
+        })
+    }
+
+    #[test]
+    fn a_way_past_a_corner_that_runs_back_along_the_arm_comes_back() {
+        let tol = 1e-6;
+        // Back along the arm, 0.014 from the corner (rounding off it by 1e-9).
+        assert_eq!(
+            comes_back([0.01, 0.01 + 1e-9], [0.0; 2], arm(), tol),
+            Some(true)
+        );
+        // An arm leaving 2.6° from it: 6.4e-4 off at that distance.
+        let th = (45.0f64 + 2.6).to_radians();
+        let y = [0.0141 * th.cos(), 0.0141 * th.sin()];
+        assert_eq!(comes_back(y, [0.0; 2], arm(), tol), Some(false));
+        // Near the corner, where arms lie close whatever their angle, it is not told.
+        assert_eq!(comes_back([1e-4, 1e-4], [0.0; 2], arm(), tol), None);
+        // Only the arm up to twice the distance from the corner is looked at: coming
+        // back onto it after a long way round is no retrace.
+        let round = [[0.0, 0.0], [3.0, 0.0], [3.0, 0.01], [0.0, 0.01]].into_iter();
+        assert_eq!(comes_back([0.5, 0.01], [0.0; 2], round, tol), Some(false));
+        let round = [[0.0, 0.0], [3.0, 0.0], [3.0, 0.01], [0.0, 0.01]].into_iter();
+        assert_eq!(comes_back([2.9, 0.01], [0.0; 2], round, tol), Some(true));
+    }
 }
