@@ -13,7 +13,7 @@ use crate::output::Format;
 use bouncemap_engine::orbits::curves::{
     curves_with_progress, Codim2, Codim2Kind, Curve, CurveKind, Curves, Plane, Seeds,
 };
-use serde_json::json;
+use serde_json::{json, Value};
 use std::io::{self, Write};
 
 pub fn run(run: &CurvesRun) -> anyhow::Result<()> {
@@ -131,6 +131,7 @@ pub fn run(run: &CurvesRun) -> anyhow::Result<()> {
                             "impact": impact,
                             "breakpoint": bp,
                             "ends": [c.ends[0].as_str(), c.ends[1].as_str()],
+                            "end_evidence": end_evidence(plane, c),
                             "cycle": stability(c),
                             "seed": c.seed,
                             "points": c.points.iter().map(|q| json!({
@@ -251,6 +252,18 @@ fn table_label(plane: &Plane) -> String {
     crate::output::text::table_with_free(&plane.table, &[plane.second])
 }
 
+/// The json of a curve's [`EndEvidence`](bouncemap_engine::orbits::curves::EndEvidence)
+/// at each end (null where it ended otherwise).
+fn end_evidence(plane: &Plane, c: &Curve) -> Value {
+    json!([0, 1].map(|e| c.end_evidence(plane, e).map(|v| json!({
+        "multiplier": v.multiplier,
+        "monodromy": v.monodromy,
+        "impact": v.nearest.map(|x| x.0),
+        "breakpoint": v.nearest.map(|x| x.1),
+        "distance": v.nearest.map(|x| x.2),
+    }))))
+}
+
 /// A number as every csv field prints it: the shortest exact form (exponent form for
 /// very small and very large magnitudes); empty for none.
 fn num(x: f64) -> String {
@@ -361,6 +374,21 @@ fn text(out: &mut impl Write, plane: &Plane, seeds: &Seeds, found: &Curves) -> i
             last.alpha,
             last.p
         )?;
+        for e in 0..2 {
+            if let Some(v) = c.end_evidence(plane, e) {
+                let near = v.nearest.map_or(String::new(), |(i, b, d)| {
+                    format!(", impact {i} {:.1e} from the breakpoint {b}", d.abs())
+                });
+                writeln!(
+                    out,
+                    "  at the {} end ({}): the cycle's largest multiplier |λ| {:.2e}, largest monodromy entry {:.2e}{near}",
+                    ["first", "last"][e],
+                    c.ends[e].as_str(),
+                    v.multiplier,
+                    v.monodromy
+                )?;
+            }
+        }
         if c.kind == CurveKind::PeriodDoubling {
             let mut counts = [0usize; 3];
             for q in &c.points {

@@ -611,38 +611,12 @@ pub(crate) fn assert_border_at_forty_digits(d: f64, r: f64, c: &Curve, q: &Curve
 /// found on neither side.
 fn precise_border_distance(d: f64, r: f64, c: &Curve, q: &CurvePoint) -> Option<f64> {
     use bouncemap_engine::orbits::curves::CurveKind;
-    use bouncemap_engine::table::Family;
-    use bouncemap_engine::{
-        bits_for_digits, solve_cycle, Big, PreciseMap, PreciseState, PreciseSystem, Real,
-    };
     let CurveKind::BorderCollision { impact, breakpoint } = c.kind else {
         panic!("{} is no border collision", c.kind.as_str())
     };
-    let bits = bits_for_digits(40);
-    let (n, k) = (q.cycle.n, q.cycle.k);
-    // The impact's signed distance to the breakpoint at α, if the cycle is found there.
     let distance = |alpha: f64| -> Option<f64> {
-        let sys = PreciseSystem::new(
-            Family::fd()
-                .pieces_in(&[Big::from_f64(d, &bits)], &bits)
-                .unwrap(),
-            Big::from_f64(alpha, &bits),
-            Big::from_f64(r, &bits),
-            bits,
-        )
-        .unwrap();
-        let guess = (
-            Big::from_f64(q.cycle.t0.rem_euclid(1.0), &bits),
-            Big::from_f64(q.cycle.velocities[0], &bits),
-        );
-        let cycle = solve_cycle(&sys, n, k, guess.0, guess.1, &mut |_| {}).ok()?;
-        let w = cycle.v.clone() - sys.jet(&cycle.phase)[1].clone();
-        let mut map = PreciseMap::new(sys.clone(), PreciseState::launch(&sys, 0, cycle.phase, w));
-        let mut phase = map.state().phase.to_f64();
-        for _ in 0..impact {
-            phase = map.step().ok()?.phase.to_f64();
-        }
-        let x = (phase - breakpoint).rem_euclid(1.0);
+        let (phases, _) = precise_cycle(d, r, q, alpha)?;
+        let x = (phases[impact] - breakpoint).rem_euclid(1.0);
         Some(if x > 0.5 { x - 1.0 } else { x })
     };
     // Small enough that no other impact crosses a breakpoint on the way (next to a
@@ -655,4 +629,43 @@ fn precise_border_distance(d: f64, r: f64, c: &Curve, q: &CurvePoint) -> Option<
             Some(2.0 * distance(a1)? - distance(a2)?)
         })
         .next()
+}
+
+/// The cycle of the curve point `q` on F_d at restitution r, solved at 40 digits at
+/// `alpha` (Newton's method with the map at that precision, from the point's launch):
+/// its n impact phases from the launch, and its largest |λ|. None where it is not
+/// found there.
+pub(crate) fn precise_cycle(d: f64, r: f64, q: &CurvePoint, alpha: f64) -> Option<(Vec<f64>, f64)> {
+    use bouncemap_engine::table::Family;
+    use bouncemap_engine::{
+        bits_for_digits, solve_cycle, Big, Multipliers, PreciseMap, PreciseState, PreciseSystem,
+        Real,
+    };
+    let bits = bits_for_digits(40);
+    let (n, k) = (q.cycle.n, q.cycle.k);
+    let sys = PreciseSystem::new(
+        Family::fd()
+            .pieces_in(&[Big::from_f64(d, &bits)], &bits)
+            .unwrap(),
+        Big::from_f64(alpha, &bits),
+        Big::from_f64(r, &bits),
+        bits,
+    )
+    .unwrap();
+    let guess = (
+        Big::from_f64(q.cycle.t0.rem_euclid(1.0), &bits),
+        Big::from_f64(q.cycle.velocities[0], &bits),
+    );
+    let cycle = solve_cycle(&sys, n, k, guess.0, guess.1, &mut |_| {}).ok()?;
+    let largest = match &cycle.multipliers {
+        Multipliers::Real([a, b]) => a.to_f64().abs().max(b.to_f64().abs()),
+        Multipliers::Complex { re, im } => re.to_f64().hypot(im.to_f64()),
+    };
+    let w = cycle.v.clone() - sys.jet(&cycle.phase)[1].clone();
+    let mut map = PreciseMap::new(sys.clone(), PreciseState::launch(&sys, 0, cycle.phase, w));
+    let mut phases = vec![map.state().phase.to_f64()];
+    for _ in 1..n {
+        phases.push(map.step().ok()?.phase.to_f64());
+    }
+    Some((phases, largest))
 }
