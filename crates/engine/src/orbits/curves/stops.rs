@@ -1,12 +1,15 @@
 //! Where a curve's steps stop: the breakpoint another impact reached (a codimension-two
 //! point, by extrapolation), the way on through a double border, the curve ahead in
 //! other directions where the tangent was off, and the codimension-two point located
-//! on the curve it ended at. [`super::trace`] asks these when its steps fail or stall.
+//! on the curve it ended at, and whether a way found past a corner only leads back
+//! along the arm the curve came by. [`super::trace`] asks these when its steps fail or
+//! stall, and as it goes on past a corner.
 
 use super::corrector::{collapsed, Tracer};
 use super::{
     Codim2, Codim2Kind, CurveEnd, CurveKind, CurvePoint, DeadEnd, BORDER_REACH, CONDITION_TOLERANCE,
 };
+use crate::orbits::manifold::segment_distance;
 use crate::orbits::periodic::CyclePoint;
 use crate::time::signed_distance;
 
@@ -17,6 +20,10 @@ const TURNS: [f64; 23] = [
     0.0, 15.0, -15.0, 30.0, -30.0, 45.0, -45.0, 60.0, -60.0, 75.0, -75.0, 90.0, -90.0, 105.0,
     -105.0, 120.0, -120.0, 135.0, -135.0, 150.0, -150.0, 165.0, -165.0,
 ];
+/// A point within this share of the plane of the arm a curve came to a corner by, and
+/// farther from the corner than a thousand times that, has come back along it (two
+/// arms that close are one to 0.06°; a corner's arms may part at a few degrees).
+pub(super) const RETRACE: f64 = 1e-6;
 /// A curve stopped within this share of the plane of a codimension-two point located
 /// on it stopped there.
 const AT_CODIM2: f64 = 1e-5;
@@ -286,5 +293,98 @@ impl Tracer<'_> {
     ) -> Option<CurveEnd> {
         self.codim2_at(cur, codim2, index)
             .find_map(|p| p.kind.end())
+    }
+}
+
+/// A corner a curve passed: where, how many of its points lie before it, and whether
+/// the way on was checked against the arm it came by ([`comes_back`]).
+#[derive(Clone, Copy)]
+pub(super) struct Arm {
+    pub(super) corner: [f64; 2],
+    pub(super) at: usize,
+    pub(super) checked: bool,
+}
+
+impl Arm {
+    /// [`comes_back`] for `y` on the curve `out` past this corner: the arm it came by is
+    /// `out`'s points before the corner, from the corner back, then `rest` (the curve
+    /// behind `out`'s start, nearest first).
+    pub(super) fn comes_back<'a>(
+        &self,
+        y: [f64; 2],
+        out: &'a [CurvePoint],
+        rest: impl Iterator<Item = &'a CurvePoint>,
+        tol: f64,
+    ) -> Option<bool> {
+        let before = out[..self.at].iter().rev().chain(rest);
+        comes_back(y, self.corner, before.map(|q| [q.alpha, q.p]), tol)
+    }
+}
+
+/// Whether `y`, farther than a thousand times `tol` from `corner`, lies within `tol` of the
+/// arm `before` that a curve came to the corner by (its points from the corner back,
+/// followed at most twice `y`'s distance from the corner, the way a retrace comes): the
+/// way found past the corner only led back ([`RETRACE`]). None while `y` is nearer the
+/// corner than that.
+fn comes_back(
+    y: [f64; 2],
+    corner: [f64; 2],
+    before: impl Iterator<Item = [f64; 2]>,
+    tol: f64,
+) -> Option<bool> {
+    let away = (y[0] - corner[0]).hypot(y[1] - corner[1]);
+    if away <= 1e3 * tol {
+        return None;
+    }
+    let mut arc = 0.0;
+    let mut last: Option<[f64; 2]> = None;
+    for b in before {
+        if let Some(a) = last {
+            if segment_distance(y, a, b) <= tol {
+                return Some(true);
+            }
+            arc += (b[0] - a[0]).hypot(b[1] - a[1]);
+            if arc > 2.0 * away + tol {
+                break;
+            }
+        }
+        last = Some(b);
+    }
+    Some(false)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::comes_back;
+
+    /// An arm to the corner at the origin along the diagonal from (1, 1), from the
+    /// corner back.
+    fn arm() -> impl Iterator<Item = [f64; 2]> {
+        (0..=100).map(|i| {
+            let s = i as f64 / 100.0;
+            [s, s]
+        })
+    }
+
+    #[test]
+    fn a_way_past_a_corner_that_runs_back_along_the_arm_comes_back() {
+        let tol = 1e-6;
+        // Back along the arm, 0.014 from the corner (rounding off it by 1e-9).
+        assert_eq!(
+            comes_back([0.01, 0.01 + 1e-9], [0.0; 2], arm(), tol),
+            Some(true)
+        );
+        // An arm leaving 2.6° from it: 6.4e-4 off at that distance.
+        let th = (45.0f64 + 2.6).to_radians();
+        let y = [0.0141 * th.cos(), 0.0141 * th.sin()];
+        assert_eq!(comes_back(y, [0.0; 2], arm(), tol), Some(false));
+        // Near the corner, where arms lie close whatever their angle, it is not told.
+        assert_eq!(comes_back([1e-4, 1e-4], [0.0; 2], arm(), tol), None);
+        // Only the arm up to twice the distance from the corner is looked at: coming
+        // back onto it after a long way round is no retrace.
+        let round = [[0.0, 0.0], [3.0, 0.0], [3.0, 0.01], [0.0, 0.01]].into_iter();
+        assert_eq!(comes_back([0.5, 0.01], [0.0; 2], round, tol), Some(false));
+        let round = [[0.0, 0.0], [3.0, 0.0], [3.0, 0.01], [0.0, 0.01]].into_iter();
+        assert_eq!(comes_back([2.9, 0.01], [0.0; 2], round, tol), Some(true));
     }
 }

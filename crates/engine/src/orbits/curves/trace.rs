@@ -5,12 +5,12 @@
 //! curve's cusp).
 
 use super::corrector::{near_birth, Tracer};
+use super::stops::{Arm, RETRACE};
 use super::{
     Codim2, Codim2Kind, Curve, CurveEnd, CurveKind, CurvePoint, DeadEnd, Plane,
     CONDITION_TOLERANCE, MAX_STEPS,
 };
 use crate::orbits::continuation::Special;
-use crate::orbits::manifold::segment_distance;
 use crate::orbits::periodic::{cycle, CyclePoint, PassError};
 use crate::orbits::roots::bracketed_root_nan;
 use crate::time::signed_distance;
@@ -22,10 +22,6 @@ const CORNER_STEP: f64 = 1e-2;
 const STALL_STEP: f64 = 1e-3;
 /// ... and this many small steps in a row stall a curve ([`CurveEnd::Stalled`]).
 const STALL_STEPS: usize = 60;
-/// A point within this share of the plane of the arm a curve came to a corner by, and
-/// farther from the corner than a thousand times that, has come back along it (two
-/// arms that close are one to 0.06°; a corner's arms may part at a few degrees).
-const RETRACE: f64 = 1e-6;
 /// Times one direction of a curve may be taken up again past a point where its steps
 /// failed ([`Tracer::ahead`]).
 const MAX_RESCUES: usize = 4;
@@ -130,13 +126,7 @@ pub(super) fn follow_from(
     let mut arms: [Vec<Arm>; 2] = Default::default();
     for (h, dir) in [1.0, -1.0].into_iter().enumerate() {
         // Behind the second half lie the first, from its far end, and the seed.
-        let behind: Vec<CurvePoint> = halves
-            .first()
-            .map(|(pts, _)| pts.iter().rev().cloned().collect::<Vec<_>>())
-            .unwrap_or_default()
-            .into_iter()
-            .chain([first.clone()])
-            .collect();
+        let behind = behind(halves.first().map_or(&[], |(pts, _)| pts), &first);
         let from = Run {
             start: first.clone(),
             tau: [dir * t0[0], dir * t0[1]],
@@ -167,13 +157,7 @@ pub(super) fn follow_from(
         if let Some((next, dir)) = tr.past_corner(Some(&arm), &first, tau, &corner) {
             let at = [corner.alpha, corner.p];
             codim2.push(corner);
-            let behind: Vec<CurvePoint> = halves[1 - h]
-                .0
-                .iter()
-                .rev()
-                .cloned()
-                .chain([first.clone()])
-                .collect();
+            let behind = behind(&halves[1 - h].0, &first);
             let from = Run {
                 start: next,
                 tau: dir,
@@ -193,17 +177,7 @@ pub(super) fn follow_from(
             continue;
         };
         let back_along = beyond.iter().find_map(|q| {
-            let before = fwd[..arm.at]
-                .iter()
-                .rev()
-                .chain([&first])
-                .chain(back.iter());
-            comes_back(
-                [q.alpha, q.p],
-                arm.corner,
-                before.map(|q| [q.alpha, q.p]),
-                tol,
-            )
+            arm.comes_back([q.alpha, q.p], fwd, [&first].into_iter().chain(back), tol)
         });
         if back_along == Some(true) {
             halves[0].0.truncate(arm.at);
@@ -438,9 +412,7 @@ impl Tracer<'_> {
                     // past the corner only led back, and the curve ends at the corner.
                     let y = [cur.alpha, cur.p];
                     for arm in arms.iter_mut().filter(|a| !a.checked) {
-                        let before = out[..arm.at].iter().rev().chain(behind.iter().rev());
-                        let before = before.map(|q| [q.alpha, q.p]);
-                        match comes_back(y, arm.corner, before, RETRACE * scale) {
+                        match arm.comes_back(y, &out, behind.iter().rev(), RETRACE * scale) {
                             Some(true) => {
                                 out.truncate(arm.at);
                                 return (out, CurveEnd::Border);
@@ -691,6 +663,12 @@ pub(super) fn secant(prev: Option<&CurvePoint>, cur: &CurvePoint, h: f64) -> Cyc
     guess
 }
 
+/// The points of a curve behind a half that starts at its seed `first`: the other half
+/// `other` from its far end, then the seed (nearest last, as [`Run::behind`]).
+fn behind(other: &[CurvePoint], first: &CurvePoint) -> Vec<CurvePoint> {
+    other.iter().rev().chain([first]).cloned().collect()
+}
+
 /// Where one direction of a curve starts ([`Tracer::run`]): its first point, the way
 /// it leaves, the curve's seed (to tell it closed), the double border `start` lies
 /// just beyond where it is seeded on one, and the points of the curve behind `start`
@@ -701,47 +679,6 @@ struct Run<'a> {
     origin: [f64; 2],
     beyond: Option<[f64; 2]>,
     behind: &'a [CurvePoint],
-}
-
-/// A corner a curve passed: where, how many of its points lie before it, and whether
-/// the way on was checked against the arm it came by ([`comes_back`]).
-#[derive(Clone, Copy)]
-struct Arm {
-    corner: [f64; 2],
-    at: usize,
-    checked: bool,
-}
-
-/// Whether `y`, farther than a thousand times `tol` from `corner`, lies within `tol` of the
-/// arm `before` that a curve came to the corner by (its points from the corner back,
-/// followed at most twice `y`'s distance from the corner, the way a retrace comes): the
-/// way found past the corner only led back ([`RETRACE`]). None while `y` is nearer the
-/// corner than that.
-fn comes_back(
-    y: [f64; 2],
-    corner: [f64; 2],
-    before: impl Iterator<Item = [f64; 2]>,
-    tol: f64,
-) -> Option<bool> {
-    let away = (y[0] - corner[0]).hypot(y[1] - corner[1]);
-    if away <= 1e3 * tol {
-        return None;
-    }
-    let mut arc = 0.0;
-    let mut last: Option<[f64; 2]> = None;
-    for b in before {
-        if let Some(a) = last {
-            if segment_distance(y, a, b) <= tol {
-                return Some(true);
-            }
-            arc += (b[0] - a[0]).hypot(b[1] - a[1]);
-            if arc > 2.0 * away + tol {
-                break;
-            }
-        }
-        last = Some(b);
-    }
-    Some(false)
 }
 
 /// Whether a doubled cycle is about to collapse (its halves within 1e-5 of each
@@ -784,40 +721,4 @@ fn on_edge(plane: &Plane, y: [f64; 2]) -> bool {
 /// Whether y lies in the search range (to 1e-9 of the window's size).
 fn near_edge(plane: &Plane, y: [f64; 2]) -> bool {
     plane.spans(plane.search_alpha(), y, 1e-9 * plane.scale())
-}
-
-#[cfg(test)]
-mod tests {
-    use super::comes_back;
-
-    /// An arm to the corner at the origin along the diagonal from (1, 1), from the
-    /// corner back.
-    fn arm() -> impl Iterator<Item = [f64; 2]> {
-        (0..=100).map(|i| {
-            let s = i as f64 / 100.0;
-            [s, s]
-        })
-    }
-
-    #[test]
-    fn a_way_past_a_corner_that_runs_back_along_the_arm_comes_back() {
-        let tol = 1e-6;
-        // Back along the arm, 0.014 from the corner (rounding off it by 1e-9).
-        assert_eq!(
-            comes_back([0.01, 0.01 + 1e-9], [0.0; 2], arm(), tol),
-            Some(true)
-        );
-        // An arm leaving 2.6° from it: 6.4e-4 off at that distance.
-        let th = (45.0f64 + 2.6).to_radians();
-        let y = [0.0141 * th.cos(), 0.0141 * th.sin()];
-        assert_eq!(comes_back(y, [0.0; 2], arm(), tol), Some(false));
-        // Near the corner, where arms lie close whatever their angle, it is not told.
-        assert_eq!(comes_back([1e-4, 1e-4], [0.0; 2], arm(), tol), None);
-        // Only the arm up to twice the distance from the corner is looked at: coming
-        // back onto it after a long way round is no retrace.
-        let round = [[0.0, 0.0], [3.0, 0.0], [3.0, 0.01], [0.0, 0.01]].into_iter();
-        assert_eq!(comes_back([0.5, 0.01], [0.0; 2], round, tol), Some(false));
-        let round = [[0.0, 0.0], [3.0, 0.0], [3.0, 0.01], [0.0, 0.01]].into_iter();
-        assert_eq!(comes_back([2.9, 0.01], [0.0; 2], round, tol), Some(true));
-    }
 }
