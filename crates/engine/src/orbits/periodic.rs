@@ -89,9 +89,49 @@ pub struct Pass {
     pub impact_speeds: Vec<f64>,
 }
 
+/// One impact of a cycle held on a segment of the table: where its landing falls just
+/// outside that segment, the restitution law and the map's derivatives there take f' and
+/// f'' from the segment's formula continued beyond its end, not from the piece the
+/// landing fell in. The map so held is smooth across that breakpoint (f and f' are
+/// continuous there, f'' jumps), so Newton's method on it converges to the cycle of
+/// that piece whichever side its iterates fall on: where two cycles, with the impact on
+/// either side, meet on the border and end (a nonsmooth fold), the one asked for.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Hold {
+    /// The impact, as [`CyclePoint::phases`] counts them (0 the launch's).
+    pub impact: usize,
+    /// The table segment it is held on ([`crate::table::Table::segment`]).
+    pub segment: usize,
+}
+
 /// Step the map `n` times from the launch at time `t0` (any real; its phase is used)
 /// with velocity `v0`; `map` must hold the system (α set) to use.
 pub fn pass(map: &mut ImpactMap, t0: f64, v0: f64, n: usize, k: u32) -> Result<Pass, PassError> {
+    pass_with(map, t0, v0, n, k, &[])
+}
+
+/// The f' and f'' of segment `segment` of `sys`'s table at `phase`, its formula
+/// continued beyond its ends to the nearest of phase − 1, phase, phase + 1.
+fn held_slopes(sys: &System, segment: usize, phase: f64) -> (f64, f64) {
+    let seg = sys.table().segment(segment);
+    let outside = |t: &f64| (seg.start - t).max(t - seg.end).max(0.0);
+    let t = [phase - 1.0, phase, phase + 1.0]
+        .into_iter()
+        .min_by(|a, b| outside(a).total_cmp(&outside(b)))
+        .unwrap_or(phase);
+    let jet = seg.jet(t);
+    (sys.alpha() * jet[1], sys.alpha() * jet[2])
+}
+
+/// [`pass`], with impacts held on table segments ([`Hold`]).
+pub fn pass_with(
+    map: &mut ImpactMap,
+    t0: f64,
+    v0: f64,
+    n: usize,
+    k: u32,
+    holds: &[Hold],
+) -> Result<Pass, PassError> {
     let period = t0.floor();
     let phase = wrap_phase(t0 - period);
     let sys = map.system().clone();
@@ -114,13 +154,52 @@ pub fn pass(map: &mut ImpactMap, t0: f64, v0: f64, n: usize, k: u32) -> Result<P
         times: Vec::with_capacity(n),
         impact_speeds: Vec::with_capacity(n),
     };
-    for _ in 0..n {
-        let before = *map.state();
-        let e = map.step().map_err(|_| PassError::Halt)?;
+    // The relative launch velocity after a held landing, for the next flight's
+    // derivatives (the map's own state keeps the table's).
+    let mut held_w = None;
+    for i in 0..n {
+        let mut before = *map.state();
+        if let Some(w) = held_w.take() {
+            before.w = w;
+        }
+        let mut e = map.step().map_err(|_| PassError::Halt)?;
         if e.kind != EventKind::Impact {
             return Err(PassError::Stick { phase: e.phase });
         }
-        let fl = flight(&sys, &before, &e).ok_or(PassError::Grazing { phase: e.phase })?;
+        let mut fl = flight(&sys, &before, &e).ok_or(PassError::Grazing { phase: e.phase })?;
+        // Landing i is impact i + 1 of the cycle (the last one the launch's, 0). Held,
+        // it leaves with vᵢ₊₁ = (1 + r) f'_held − r (v − τ), and its derivatives are
+        // those of the landing on the held formula continued (u = v − τ − f'_held at
+        // the landing, w = vᵢ₊₁ − f'_held after it), which the map's own landing time
+        // matches to second order in the distance past the breakpoint (f and f' are
+        // continuous there).
+        let held = holds
+            .iter()
+            .find(|h| h.impact == (i + 1) % n && sys.table().segment_index(e.phase) != h.segment);
+        if let Some(h) = held {
+            let (df, ddf) = held_slopes(&sys, h.segment, e.phase);
+            let shift = df - sys.df(e.phase);
+            let u = e.vrel - shift;
+            if u >= 0.0 {
+                return Err(PassError::Grazing { phase: e.phase });
+            }
+            e.v += (1.0 + sys.r()) * shift;
+            let tau = (e.period - before.period) as f64 + (e.phase - before.phase);
+            let (a, b) = crate::tangent::flight_partials(before.w, tau, u);
+            fl = crate::tangent::Flight {
+                a,
+                b,
+                c: fl.c * fl.u_landing / u.abs(),
+                df_alpha: df / sys.alpha(),
+                ddf,
+                u_landing: u.abs(),
+                r: sys.r(),
+            };
+            let launch = State::launch(&sys, e.period, e.phase, e.v, 0.0)
+                .map_err(|_| PassError::BadLaunch)?;
+            map.set_state(launch);
+            held_w = Some(e.v - df);
+        }
         let j = fl.jacobian();
         let c = fl.alpha_column_with(fl.ddf);
         m = mat_mul(j, m);
@@ -275,6 +354,39 @@ pub(crate) fn accept(
 pub fn map_for(sys: &System) -> ImpactMap {
     let st = State::start(sys, 0.0, None, 0.0).expect("the default start is valid");
     ImpactMap::new(sys.clone(), Solver::Exact, st)
+}
+
+/// Newton's method at fixed α (the one of `map`'s system) for the (n, k) cycle through
+/// (t₀, v₀) near the guess with impacts held on table segments ([`Hold`]): the cycle
+/// whose impacts lie in those segments, where it exists. The point is accepted as
+/// [`solve_at`]'s is, by the map itself, unheld: where the held map's cycle has the
+/// impact outside the segment beyond rounding, no such cycle exists there
+/// ([`PassError::NotReturning`]).
+pub fn solve_held(
+    map: &mut ImpactMap,
+    n: usize,
+    k: u32,
+    (t0, v0): (f64, f64),
+    holds: &[Hold],
+) -> Result<CyclePoint, PassError> {
+    let mut x = [t0, v0];
+    for _ in 0..MAX_NEWTON {
+        let p = pass_with(map, x[0], x[1], n, k, holds)?;
+        let m = p.monodromy;
+        let a = [[m[0][0] - 1.0, m[0][1]], [m[1][0], m[1][1] - 1.0]];
+        let d = solve(a, p.residual).ok_or(PassError::NoConvergence)?;
+        if !(d[0].is_finite() && d[1].is_finite()) || d[0].abs().max(d[1].abs()) > 0.5 {
+            return Err(PassError::NoConvergence);
+        }
+        x = [x[0] - d[0], x[1] - d[1]];
+        let residual = p.residual[0].abs().max(p.residual[1].abs());
+        if d[0].abs().max(d[1].abs()) < 1e-14 * (1.0 + x[1].abs()) || residual < 1e-15 {
+            let p = pass(map, x[0], x[1], n, k)?;
+            let sys = map.system().clone();
+            return accept(&sys, [sys.alpha(), x[0], x[1]], n, k, &p);
+        }
+    }
+    Err(PassError::NoConvergence)
 }
 
 /// Newton's method at fixed α (the one of `map`'s system) for the (n, k) cycle through

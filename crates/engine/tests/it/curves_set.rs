@@ -484,7 +484,11 @@ pub(crate) fn monodromy_by_differences(plane: &Plane, q: &CurvePoint) -> (f64, f
 /// collision is watched up to where it stops being solved, and where a test changes sign
 /// between two of its points with no root, between points closer together (the wide
 /// window missed an (8, 8) fold near (0.587, 0.669) the narrow one found). No curve of
-/// either set ends but at the window, a border or a collapse. Where a curve is cut, its
+/// either set ends but at the window, a border or a collapse, or is closed: in the wide
+/// window the (8, 8) border collision at 0 through the double borders (0.67872,
+/// 0.62473) and (0.62158, 0.74908) (which used to end at both) goes on along the
+/// other cycle's border collision at each (a hairpin at a nonsmooth fold) and closes,
+/// every tenth point off the corners checked at 40 digits. Where a curve is cut, its
 /// end is solved on the edge: it holds its condition there, and at every border
 /// collision's tenth point and ends the exact map stepped from the launch returns to the
 /// cycle with the impact on the breakpoint.
@@ -540,7 +544,10 @@ fn a_window_inside_another_shows_what_the_wider_one_shows_in_it() {
         for c in &set.curves {
             for end in c.ends {
                 assert!(
-                    matches!(end.as_str(), "window" | "border_collision" | "collapse"),
+                    matches!(
+                        end.as_str(),
+                        "window" | "border_collision" | "collapse" | "closed"
+                    ),
                     "{} of ({}, {}) from ({}, {}): {:?}",
                     c.kind.as_str(),
                     c.n,
@@ -551,6 +558,25 @@ fn a_window_inside_another_shows_what_the_wider_one_shows_in_it() {
                 );
             }
         }
+    }
+    let closed = border_collisions(&a, 8, 0.0)
+        .find(|c| c.passes_near(0.67872, 0.62473, 1e-4) && c.passes_near(0.62158, 0.74908, 1e-4))
+        .expect("the (8, 8) border collision at 0 between the two corners");
+    assert_eq!(closed.ends.map(|e| e.as_str()), ["closed"; 2]);
+    let (first, last) = (&closed.points[0], &closed.points[closed.points.len() - 1]);
+    assert!((first.alpha - last.alpha).hypot(first.p - last.p) < 1e-3);
+    // (On the inner side of each corner it runs on the other cycle's border collision.)
+    let span = closed.points.iter().map(|q| q.alpha).fold(0.0, f64::max)
+        - closed.points.iter().map(|q| q.alpha).fold(1.0, f64::min);
+    assert!(span > 0.05, "{span}");
+    // A second method at every tenth point off the corners: the cycle at 40 digits.
+    let off = |q: &&CurvePoint| {
+        a.codim2
+            .iter()
+            .all(|x| (q.alpha - x.alpha).hypot(q.p - x.p) > 1e-4)
+    };
+    for q in closed.points.iter().filter(off).step_by(10) {
+        assert_border_at_forty_digits(q.p, wide.r, closed, q);
     }
     // The (2, 2) border collision at phase 0 passes its double border with the one at
     // ½ (α 0.6111, D 0.7273) on the way from D = 0 to the wide window's edge α = 0.7.

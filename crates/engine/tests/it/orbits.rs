@@ -342,3 +342,140 @@ fn windows_never_panic_on_odd_input() {
     let fp = fixed_point_at(&sys, 1, 0.3);
     assert!(fp.eigenvalues[0].re.is_finite());
 }
+
+/// An impact held on a table piece ([`periodic::Hold`]): where its landing falls just
+/// past the piece's end, f' and f'' are that piece's formula continued. Checked by
+/// second methods: held on the piece the landing falls in, the pass is the map's own,
+/// to the bit; held on the other, 10⁻⁶ past the breakpoint, its monodromy and α column
+/// are the central differences of its own residual to 10⁻⁵ (the derivatives are the
+/// held formula's, not the piece's it fell in; those of a landing on the continued
+/// formula, which the map's own landing time matches to second order in the distance
+/// past), and the launch velocity after the landing is the restitution law with the
+/// continued formula's slope, written out here; and the held map is smooth across the
+/// breakpoint: its residual's differences in t₀ agree on either side of the launch
+/// where the landing crosses it, where the map's own jump with f''.
+#[test]
+fn a_held_impact_continues_its_piece_past_the_breakpoint() {
+    use bouncemap_engine::orbits::periodic::{map_for, pass, pass_with, Hold};
+    let t = Table::fd(0.5).unwrap();
+    let (alpha, r) = (0.57, 0.8);
+    let sys = System::new(t.clone(), alpha, r).unwrap();
+    let mut map = map_for(&sys);
+    let v0 = 1.2;
+    // A launch whose first landing falls at phase ½ + δ (Newton's method on the landing
+    // time in t₀, with ∂t₁/∂t₀ from the pass).
+    let land_at = |target: f64, map: &mut ImpactMap| {
+        let mut t0 = 0.1;
+        for _ in 0..50 {
+            let p = pass(map, t0, v0, 1, 1).unwrap();
+            let miss = p.phases[0] - target;
+            if miss.abs() < 1e-15 {
+                break;
+            }
+            t0 -= miss / p.monodromy[0][0];
+        }
+        t0
+    };
+    let delta = 1e-6;
+    let t0 = land_at(0.5 + delta, &mut map);
+    let after = t.segment_index(0.5 + delta);
+    let before = t.segment_index(0.5 - delta);
+    assert_ne!(after, before);
+    let own = pass(&mut map, t0, v0, 1, 1).unwrap();
+    assert!((own.phases[0] - 0.5 - delta).abs() < 1e-12);
+    let same = pass_with(
+        &mut map,
+        t0,
+        v0,
+        1,
+        1,
+        &[Hold {
+            impact: 0,
+            segment: after,
+        }],
+    )
+    .unwrap();
+    assert_eq!(same.residual, own.residual);
+    assert_eq!(same.monodromy, own.monodromy);
+    let hold = [Hold {
+        impact: 0,
+        segment: before,
+    }];
+    let held = pass_with(&mut map, t0, v0, 1, 1, &hold).unwrap();
+    // The restitution law with the continued slope: v₁ = (1 + r) f'_held − r (v₀ − τ).
+    let seg = t.segment(before);
+    let tau = held.times[0];
+    let slope = alpha * seg.jet(0.5 + delta)[1];
+    let v1 = (1.0 + r) * slope - r * (v0 - tau);
+    assert!(
+        (held.velocities[0] - v1).abs() < 1e-12,
+        "{} {v1}",
+        held.velocities[0]
+    );
+    assert!(
+        (held.velocities[0] - own.velocities[0]).abs() > 1e-6,
+        "the slopes differ"
+    );
+    // Its derivatives: central differences of its own residual.
+    let h = 1e-7;
+    let res =
+        |map: &mut ImpactMap, t: f64, v: f64| pass_with(map, t, v, 1, 1, &hold).unwrap().residual;
+    for (col, (dt, dv)) in [(0, (h, 0.0)), (1, (0.0, h))] {
+        let (p, m) = (
+            res(&mut map, t0 + dt, v0 + dv),
+            res(&mut map, t0 - dt, v0 - dv),
+        );
+        for row in 0..2 {
+            // The residual is (t₁ − t₀ − k, v₁ − v₀): M − I by differences.
+            let d = (p[row] - m[row]) / (2.0 * h) + if row == col { 1.0 } else { 0.0 };
+            let want = held.monodromy[row][col];
+            assert!(
+                (d - want).abs() < 1e-6 * (1.0 + want.abs()),
+                "M[{row}][{col}]: {d} against {want}"
+            );
+        }
+    }
+    let sys_at = |a: f64| System::new(t.clone(), a, r).unwrap();
+    let (p, m) = (
+        pass_with(&mut map_for(&sys_at(alpha + h)), t0, v0, 1, 1, &hold)
+            .unwrap()
+            .residual,
+        pass_with(&mut map_for(&sys_at(alpha - h)), t0, v0, 1, 1, &hold)
+            .unwrap()
+            .residual,
+    );
+    for row in 0..2 {
+        let d = (p[row] - m[row]) / (2.0 * h);
+        let want = held.alpha_column[row];
+        assert!(
+            (d - want).abs() < 1e-6 * (1.0 + want.abs()),
+            "α column {row}: {d} against {want}"
+        );
+    }
+    // Smooth across: where the landing is on the breakpoint, one-sided differences in
+    // t₀ of the held residual agree; the map's own differ by the jump of f''.
+    let on = land_at(0.5, &mut map);
+    let s = 1e-6;
+    let slope_of = |map: &mut ImpactMap, holds: &[Hold], side: f64| {
+        let a = pass_with(map, on + side * s, v0, 1, 1, holds)
+            .unwrap()
+            .residual[1];
+        let b = pass_with(map, on + side * 2.0 * s, v0, 1, 1, holds)
+            .unwrap()
+            .residual[1];
+        (b - a) / (side * s)
+    };
+    let (l, rr) = (
+        slope_of(&mut map, &hold, -1.0),
+        slope_of(&mut map, &hold, 1.0),
+    );
+    assert!(
+        (l - rr).abs() < 1e-4 * (1.0 + l.abs()),
+        "held: {l} against {rr}"
+    );
+    let (l, rr) = (slope_of(&mut map, &[], -1.0), slope_of(&mut map, &[], 1.0));
+    assert!(
+        (l - rr).abs() > 1e-2 * (1.0 + l.abs()),
+        "unheld: {l} against {rr}"
+    );
+}

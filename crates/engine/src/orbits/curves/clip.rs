@@ -110,6 +110,7 @@ fn cut(plane: &Plane, c: &Curve, dead_ends: &RefCell<Vec<DeadEnd>>) -> Vec<Curve
         k: c.k,
         jumps: plane.jumps(c.seed[1]),
         dead_ends,
+        hold: false,
     };
     let m = points.len();
     let mut out = Vec::new();

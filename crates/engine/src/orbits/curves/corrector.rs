@@ -25,6 +25,10 @@ const MIXED: f64 = 0.94;
 /// few units in the last place beyond that.
 const ROUNDING: f64 = 1e-14;
 
+/// An impact of the guessed cycle this near a breakpoint is held on its piece while the
+/// cycle is solved ([`periodic::Hold`]).
+const HOLD_NEAR: f64 = 1e-4;
+
 /// The cycle and the condition at a point of the plane.
 #[derive(Clone, Debug)]
 pub(super) struct Eval {
@@ -46,6 +50,9 @@ pub(super) struct Tracer<'a> {
     /// Where curves of this run found no point ahead (every kind and cycle: the
     /// tracer looks for its own), shared by all its traces.
     pub(super) dead_ends: &'a std::cell::RefCell<Vec<super::DeadEnd>>,
+    /// Whether the guess's impacts next to a breakpoint are held on their pieces while
+    /// the cycle is solved ([`HOLD_NEAR`]).
+    pub(super) hold: bool,
 }
 
 impl Tracer<'_> {
@@ -54,7 +61,26 @@ impl Tracer<'_> {
             .plane
             .system(y[0], y[1])
             .map_err(|_| PassError::BadLaunch)?;
-        let pt = cycle(&sys, self.n, self.k, guess.t0, guess.velocities[0])?;
+        let holds = if self.hold {
+            self.held_impacts(&sys, guess)
+        } else {
+            Vec::new()
+        };
+        let real = || cycle(&sys, self.n, self.k, guess.t0, guess.velocities[0]);
+        let pt = if holds.is_empty() {
+            real()?
+        } else {
+            match periodic::solve_held(
+                &mut periodic::map_for(&sys),
+                self.n,
+                self.k,
+                (guess.t0, guess.velocities[0]),
+                &holds,
+            ) {
+                Ok(pt) => pt,
+                Err(first) => real().map_err(|_| first)?,
+            }
+        };
         // The same cycle, not another one nearby: the launch moved continuously, and a
         // doubled cycle did not fall onto the cycle of half its period run twice (next
         // to its birth Newton's method may find that one, also a cycle of n impacts).
@@ -515,6 +541,28 @@ impl Tracer<'_> {
             }
         }
         out
+    }
+
+    /// The impacts of `guess` within [`HOLD_NEAR`] of a breakpoint (the curve's own on
+    /// its own aside), each held on the piece it lies in.
+    fn held_impacts(&self, sys: &System, guess: &CyclePoint) -> Vec<periodic::Hold> {
+        let own = match self.kind {
+            CurveKind::BorderCollision { impact, .. } => Some(impact),
+            _ => None,
+        };
+        let table = sys.table();
+        (0..guess.n)
+            .filter(|&i| Some(i) != own)
+            .filter(|&i| {
+                self.jumps
+                    .iter()
+                    .any(|&b| signed_distance(guess.phases[i], b).abs() < HOLD_NEAR)
+            })
+            .map(|i| periodic::Hold {
+                impact: i,
+                segment: table.segment_index(guess.phases[i]),
+            })
+            .collect()
     }
 
     /// The border test of `pt` nearest zero ([`Self::border_tests`]): its index and

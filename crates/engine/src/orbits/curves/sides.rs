@@ -108,6 +108,7 @@ pub(super) fn seed_from_border_sides(
             k,
             jumps: plane.jumps(c.points[0].p),
             dead_ends,
+            hold: false,
         };
         // The curve's points but its corners (where another impact lies on a
         // breakpoint, the cycle just off the curve straddles that one, and the curve's

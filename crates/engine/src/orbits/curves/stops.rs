@@ -10,7 +10,7 @@ use super::{
     Codim2, Codim2Kind, CurveEnd, CurveKind, CurvePoint, DeadEnd, BORDER_REACH, CONDITION_TOLERANCE,
 };
 use crate::orbits::manifold::segment_distance;
-use crate::orbits::periodic::CyclePoint;
+use crate::orbits::periodic::{self, CyclePoint};
 use crate::time::signed_distance;
 
 /// The directions a curve may leave a double border in, in degrees from the way it
@@ -126,9 +126,56 @@ impl Tracer<'_> {
         } else {
             tau
         };
-        self.around(y0, came, 180.0, &cur.cycle, &mut |t| {
+        let mut beyond = |t: Tried<'_>| {
             side(t.q) != here && t.dist <= 10.0 * t.rho && self.plane.inside([t.q.alpha, t.q.p])
-        })
+        };
+        self.around(y0, came, 180.0, &cur.cycle, &mut beyond)
+            .or_else(|| {
+                // Where the other impact's border is a nonsmooth fold (two cycles, with
+                // it on either side, meet on it and end there), the curve goes on along
+                // the other cycle's border collision, back on the same side of that
+                // border: a hairpin. Newton's method from this cycle finds this one
+                // again; the other is solved with the impact held on the other piece.
+                let other = self.held_across(cur, j, bp, here)?;
+                self.around(y0, came, 180.0, &other, &mut beyond)
+            })
+            .or_else(|| {
+                // And where this cycle's family, held, has another real cycle across
+                // (three or more cycles near the corner), the one Newton's method finds
+                // unheld from this cycle.
+                let free = Tracer {
+                    jumps: self.jumps.clone(),
+                    hold: false,
+                    ..*self
+                };
+                free.around(y0, came, 180.0, &cur.cycle, &mut beyond)
+            })
+    }
+
+    /// The cycle at `cur`'s parameters with its impact `j` on the other side of the
+    /// breakpoint `bp` than `before` says (true: before it), solved with that impact
+    /// held on the piece there ([`periodic::solve_held`]); None where there is none.
+    fn held_across(&self, cur: &CurvePoint, j: usize, bp: f64, before: bool) -> Option<CyclePoint> {
+        let sys = self.plane.system(cur.alpha, cur.p).ok()?;
+        let table = sys.table();
+        let count = table.segment_count();
+        let after = table.segment_index(bp);
+        let segment = if before {
+            after
+        } else {
+            (after + count - 1) % count
+        };
+        let c = &cur.cycle;
+        let hold = periodic::Hold { impact: j, segment };
+        let other = periodic::solve_held(
+            &mut periodic::map_for(&sys),
+            c.n,
+            c.k,
+            (c.t0, c.velocities[0]),
+            &[hold],
+        )
+        .ok()?;
+        ((signed_distance(other.phases[j], bp) < 0.0) != before).then_some(other)
     }
 
     /// The double border a border-collision curve is seeded on: another impact of its

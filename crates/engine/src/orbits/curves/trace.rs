@@ -112,6 +112,7 @@ pub(super) fn follow_from(
         k: s.point.k,
         jumps,
         dead_ends,
+        hold: true,
     };
     // The seed: solve G = 0 on the line (in α at fixed p, for a seed of the
     // continuation).
@@ -187,15 +188,18 @@ pub(super) fn follow_from(
     }
     let (back, back_end) = halves.pop().expect("two directions");
     let (fwd, fwd_end) = halves.pop().expect("two directions");
-    let closed = fwd_end == CurveEnd::Closed;
-    // A closed curve was found whole going forward: the backward half repeats it.
-    let mut points: Vec<CurvePoint> = if closed {
+    // A closed curve found whole going one way: the other half repeats it (or part of
+    // it, where a corner passed one way is not passed the other).
+    let closed = fwd_end == CurveEnd::Closed || back_end == CurveEnd::Closed;
+    let mut points: Vec<CurvePoint> = if fwd_end == CurveEnd::Closed {
         Vec::new()
     } else {
         back.into_iter().rev().collect()
     };
     points.push(first);
-    points.extend(fwd);
+    if !closed || fwd_end == CurveEnd::Closed {
+        points.extend(fwd);
+    }
     let ends = if closed {
         [CurveEnd::Closed, CurveEnd::Closed]
     } else {
