@@ -100,9 +100,8 @@ pub fn one_sided_monodromies(
     map.set_alpha(p.alpha).ok()?;
     let sys = map.system().clone();
     let table: &Table = sys.table();
-    let right = table.segment(table.segment_index(bp));
-    let count = table.segment_count();
-    let left = table.segment((table.segment_index(bp) + count - 1) % count);
+    let (left, right) = table.segments_around(bp);
+    let (left, right) = (table.segment(left), table.segment(right));
     // The left segment ends at bp (at 1 for the breakpoint 0: its formula continues
     // there, not at 0).
     let left_at = if bp == 0.0 { 1.0 } else { bp };

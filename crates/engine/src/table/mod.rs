@@ -337,6 +337,15 @@ impl Table {
         i
     }
 
+    /// The indices of the segments on either side of the breakpoint `bp`: the one
+    /// ending there (for the breakpoint 0, the last, ending at 1) and the one starting
+    /// there.
+    pub fn segments_around(&self, bp: f64) -> (usize, usize) {
+        let after = self.segment_index(bp);
+        let count = self.segment_count();
+        ((after + count - 1) % count, after)
+    }
+
     /// The segment containing `phase` in [0, 1).
     pub fn segment_at(&self, phase: f64) -> Segment<'_> {
         self.segment(self.segment_index(phase))

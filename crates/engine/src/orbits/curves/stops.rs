@@ -157,14 +157,8 @@ impl Tracer<'_> {
     /// held on the piece there ([`periodic::solve_held`]); None where there is none.
     fn held_across(&self, cur: &CurvePoint, j: usize, bp: f64, before: bool) -> Option<CyclePoint> {
         let sys = self.plane.system(cur.alpha, cur.p).ok()?;
-        let table = sys.table();
-        let count = table.segment_count();
-        let after = table.segment_index(bp);
-        let segment = if before {
-            after
-        } else {
-            (after + count - 1) % count
-        };
+        let (ending, starting) = sys.table().segments_around(bp);
+        let segment = if before { starting } else { ending };
         let c = &cur.cycle;
         let hold = periodic::Hold { impact: j, segment };
         let other = periodic::solve_held(

@@ -191,15 +191,14 @@ pub(super) fn follow_from(
     // A closed curve found whole going one way: the other half repeats it (or part of
     // it, where a corner passed one way is not passed the other).
     let closed = fwd_end == CurveEnd::Closed || back_end == CurveEnd::Closed;
-    let mut points: Vec<CurvePoint> = if fwd_end == CurveEnd::Closed {
-        Vec::new()
-    } else {
-        back.into_iter().rev().collect()
+    let (back, fwd) = match (back_end, fwd_end) {
+        (_, CurveEnd::Closed) => (Vec::new(), fwd),
+        (CurveEnd::Closed, _) => (back, Vec::new()),
+        _ => (back, fwd),
     };
+    let mut points: Vec<CurvePoint> = back.into_iter().rev().collect();
     points.push(first);
-    if !closed || fwd_end == CurveEnd::Closed {
-        points.extend(fwd);
-    }
+    points.extend(fwd);
     let ends = if closed {
         [CurveEnd::Closed, CurveEnd::Closed]
     } else {
